@@ -1,0 +1,38 @@
+#pragma once
+// Rigid transforms and the small-error transform used throughout the error model.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace mtacc {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+using Mat4 = Eigen::Matrix4d;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Pose = Eigen::Isometry3d;
+
+// Six error components in ISO 230-1 order: translations along X, Y, Z, then rotations
+// about X, Y, Z (the A, B, C of the names EXk, EYk, EZk, EAk, EBk, ECk and X0k ... C0k).
+enum Component : int { kX = 0, kY = 1, kZ = 2, kA = 3, kB = 4, kC = 5 };
+
+// R = Rx(a) * Ry(b) * Rz(c): the order of seed 003 eq. [3.8], exact (not linearised).
+Mat3 rotationXYZ(double a, double b, double c);
+// d R / d (a, b, c)[which] at (a, b, c).
+Mat3 rotationXYZDerivative(double a, double b, double c, int which);
+
+// Trans(e) * Rx(a) * Ry(b) * Rz(c) for error components (ex, ey, ez, a, b, c).
+Pose errorTransform(const Vec6& components);
+// d errorTransform / d components[which], as a 4x4 matrix (bottom row zero).
+Mat4 errorTransformDerivative(const Vec6& components, int which);
+
+// Right-handed rotation by angle about a unit axis.
+Mat3 rotationAbout(const Vec3& unitAxis, double angle);
+
+// Rotation vector (axis * angle) of a rotation matrix, and the inverse of the left
+// Jacobian of SO(3) at that vector: d log(exp(w) R) / dw at w = 0.
+Vec3 rotationVector(const Mat3& rotation);
+Mat3 leftJacobianInverse(const Vec3& rotationVector);
+
+Mat3 skew(const Vec3& v);
+
+}  // namespace mtacc

@@ -1,0 +1,28 @@
+#pragma once
+// Quantities with units, as written in the input files: "10 um", "30 urad", "5 arcsec",
+// "0.01 deg". Internally every length is in mm and every angle in rad.
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace mtacc {
+
+enum class Dimension { Length, Angle };
+
+const char* toString(Dimension d);
+
+struct Quantity {
+  double value;         // in mm or rad
+  Dimension dimension;
+};
+
+// Parses "<number> <unit>". Returns nullopt with a reason when the text is not a quantity
+// (no number, no unit, unknown unit, not finite).
+std::optional<Quantity> parseQuantity(std::string_view text, std::string* reason = nullptr);
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+constexpr double kArcsec = kPi / 648000.0;
+constexpr double kMicro = 1e-3;  // 1 um in mm
+
+}  // namespace mtacc

@@ -1,0 +1,17 @@
+#pragma once
+// Reading error descriptions: the `errors:` mapping of a machine file or of a separate file
+// (schema in docs/errors-file.md). Names are ISO 230-1 or an alias from aliases.hpp; every
+// value states its unit.
+#include <string>
+
+#include "mtacc/errors/error_model.hpp"
+
+namespace mtacc {
+
+// The errors of the machine file itself (zero when it has no `errors:` key).
+ErrorModel loadMachineErrors(const Machine& machine);
+// The `errors:` mapping of any file; throws InputError naming file, line and key.
+ErrorModel loadErrors(const Machine& machine, const std::string& path);
+ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, const std::string& sourceName);
+
+}  // namespace mtacc

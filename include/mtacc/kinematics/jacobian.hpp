@@ -1,0 +1,27 @@
+#pragma once
+// Analytic sensitivities of the exact model: the derivative of the TCP position and
+// orientation error with respect to every error parameter at any pose, evaluated at the
+// current error state (not only at zero errors).
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mtacc/errors/error_model.hpp"
+#include "mtacc/kinematics/kinematic_model.hpp"
+
+namespace mtacc {
+
+using ParameterJacobian = Eigen::Matrix<double, 6, Eigen::Dynamic>;
+
+// Rows: dx, dy, dz (mm per unit), then the rotation-vector error (rad per unit), all in the
+// workpiece frame. One column per parameter (mm or rad). `model` must be compiled with
+// errors (KinematicModel::withErrors).
+ParameterJacobian parameterJacobian(const KinematicModel& model, const std::vector<Parameter>& parameters,
+                                    const double* q, const int* dir = nullptr);
+
+// The frame in which each axis's component errors act (after offset and location error,
+// before the joint for fixed frames and after it for moving frames, at the axis location
+// point), in the bed frame. Indexed like Machine::axes.
+std::vector<Pose> errorFrames(const KinematicModel& model, const double* q);
+
+}  // namespace mtacc

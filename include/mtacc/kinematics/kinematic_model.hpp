@@ -1,0 +1,77 @@
+#pragma once
+// The compiled form of a machine with its errors (the Model of the Model/Data split): the
+// two chains as sequences of factors, constant factors merged, ready for fast evaluation.
+// Build once per machine and error state; evaluate many poses with the free functions of
+// forward.hpp, inverse.hpp and jacobian.hpp.
+#include <memory>
+#include <vector>
+
+#include "mtacc/errors/error_model.hpp"
+#include "mtacc/machine/machine.hpp"
+
+namespace mtacc {
+
+// One step of a chain: what factor(s) an element contributes, in order
+// offset -> [location error] -> [motion error, fixed frame] -> joint -> [motion error, moving frame].
+struct ChainElement {
+  int axis = -1;     // index into Machine::axes
+  int joint = -1;    // index into the joint vector q, -1 for the spindle
+  AxisType type = AxisType::Linear;
+  ErrorFrame frame = ErrorFrame::Moving;
+  double sign = 1.0;  // +1 tool side, -1 workpiece side (ISO 841: the axis moves the workpiece)
+  Vec3 offset = Vec3::Zero();
+  Vec3 direction = Vec3::UnitX();
+  Vec3 location = Vec3::Zero();  // rotary: point on the axis line; linear: origin
+};
+
+enum class Hook { None, Location, Motion, LinearJoint };
+
+// A factor of a chain product, tagged with what error parameters it depends on.
+struct Factor {
+  Pose pose;
+  Hook hook = Hook::None;
+  int axis = -1;
+};
+
+// One operation of the compiled evaluation program.
+struct ChainOp {
+  enum Kind { Constant, LinearJoint, RotaryJoint, MotionError } kind;
+  Pose constant = Pose::Identity();  // Constant
+  int joint = -1;
+  int axis = -1;
+  Vec3 vector = Vec3::Zero();  // LinearJoint: translation per unit q; RotaryJoint: unit axis
+  Vec3 base = Vec3::Zero();    // LinearJoint: translation at q = 0; RotaryJoint / MotionError: point
+  double sign = 1.0;           // RotaryJoint
+};
+
+struct KinematicModel {
+  std::shared_ptr<const Machine> machine;
+  ErrorModel errors;
+  bool withErrors = true;
+  std::vector<ChainElement> toolChain;       // bed -> tool
+  std::vector<ChainElement> workpieceChain;  // bed -> workpiece
+  std::vector<ChainOp> toolProgram;
+  std::vector<ChainOp> workpieceProgram;
+  Pose toolFrame = Pose::Identity();       // Trans(tool offset)
+  Pose workpieceFrame = Pose::Identity();  // Trans(workpiece offset)
+  Vec3 toolDirection = Vec3::UnitZ();
+  Pose alignment = Pose::Identity();  // M_WC of seed 001 eq. 12 (identity for table alignment)
+  int jointCount = 0;
+};
+
+// Compiles the machine with its errors. withErrors = false gives the nominal machine.
+KinematicModel compile(std::shared_ptr<const Machine> machine, const ErrorModel& errors, bool withErrors = true);
+KinematicModel compileNominal(std::shared_ptr<const Machine> machine);
+
+// The factors of one element at joint value q (direction of motion dir for reversal errors).
+// Hooked factors are emitted even when their errors are zero, so that derivatives exist.
+void elementFactors(const KinematicModel& model, const ChainElement& e, double q, int dir, std::vector<Factor>& out);
+
+// The joint's own motion: translation along the (tilted) direction or rotation about the
+// axis line; identity for the spindle.
+Pose jointPose(const KinematicModel& model, const ChainElement& e, double q);
+
+// Translation of a linear joint with its location errors (tilt of the direction, zero offset).
+Vec3 linearJointTranslation(const KinematicModel& model, const ChainElement& e, double q);
+
+}  // namespace mtacc

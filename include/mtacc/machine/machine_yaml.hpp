@@ -1,0 +1,18 @@
+#pragma once
+// Loading a machine description (YAML; schema in docs/machine-file.md).
+#include <string>
+
+#include "mtacc/machine/machine.hpp"
+
+namespace mtacc {
+
+// Reads a machine file. A bare name such as "tilting-table" that is not a file is looked up
+// among the bundled machines (data/machines/<name>.yaml). Throws InputError.
+Machine loadMachine(const std::string& pathOrName);
+Machine parseMachine(const std::string& yamlText, const std::string& sourceName);
+
+// The path a name resolves to (the argument itself when it is an existing file).
+std::string resolveMachinePath(const std::string& pathOrName);
+std::string bundledDataDir();
+
+}  // namespace mtacc

@@ -1,0 +1,60 @@
+#include "mtacc/core/units.hpp"
+
+#include <array>
+#include <cmath>
+#include <charconv>
+#include <string>
+
+namespace mtacc {
+namespace {
+
+struct UnitDef {
+  std::string_view name;
+  double factor;
+  Dimension dimension;
+};
+
+constexpr std::array<UnitDef, 17> kUnits{{
+    {"nm", 1e-6, Dimension::Length},     {"um", 1e-3, Dimension::Length},
+    {"µm", 1e-3, Dimension::Length},     {"mm", 1.0, Dimension::Length},
+    {"cm", 10.0, Dimension::Length},     {"m", 1000.0, Dimension::Length},
+    {"in", 25.4, Dimension::Length},     {"rad", 1.0, Dimension::Angle},
+    {"mrad", 1e-3, Dimension::Angle},    {"urad", 1e-6, Dimension::Angle},
+    {"µrad", 1e-6, Dimension::Angle},    {"um/m", 1e-6, Dimension::Angle},
+    {"µm/m", 1e-6, Dimension::Angle},    {"mm/m", 1e-3, Dimension::Angle},
+    {"deg", kDeg, Dimension::Angle},     {"arcmin", kPi / 10800.0, Dimension::Angle},
+    {"arcsec", kArcsec, Dimension::Angle},
+}};
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+}  // namespace
+
+const char* toString(Dimension d) { return d == Dimension::Length ? "length" : "angle"; }
+
+std::optional<Quantity> parseQuantity(std::string_view text, std::string* reason) {
+  auto fail = [&](std::string why) -> std::optional<Quantity> {
+    if (reason) *reason = std::move(why);
+    return std::nullopt;
+  };
+  text = trim(text);
+  double number = 0.0;
+  const char* begin = text.data();
+  const char* end = text.data() + text.size();
+  if (!text.empty() && *begin == '+') ++begin;
+  auto [ptr, ec] = std::from_chars(begin, end, number);
+  if (ec != std::errc() || ptr == begin) return fail("expected a number followed by a unit, got '" + std::string(text) + "'");
+  if (!std::isfinite(number)) return fail("value is not finite: '" + std::string(text) + "'");
+  std::string_view unit = trim(std::string_view(ptr, static_cast<size_t>(end - ptr)));
+  if (unit.empty()) return fail("missing unit in '" + std::string(text) + "' (e.g. '10 um', '30 urad', '0.01 deg')");
+  for (const auto& u : kUnits) {
+    if (u.name == unit) return Quantity{number * u.factor, u.dimension};
+  }
+  return fail("unknown unit '" + std::string(unit) + "' (length: nm um mm cm m in; angle: rad mrad urad um/m mm/m deg arcmin arcsec)");
+}
+
+}  // namespace mtacc

@@ -1,0 +1,212 @@
+#include "mtacc/errors/error_function.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include <map>
+#include <stdexcept>
+
+#include <Eigen/LU>
+
+#include "mtacc/core/units.hpp"
+
+namespace mtacc {
+namespace {
+
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
+
+int termParameterCount(const ErrorTerm& term) {
+  return std::visit(Overloaded{[](const PolynomialTerm& p) { return static_cast<int>(p.coefficients.size()); },
+                               [](const HarmonicTerm&) { return 1; },
+                               [](const TableTerm& t) { return static_cast<int>(t.values.size()); },
+                               [](const ReversalTerm&) { return 1; }},
+                    term);
+}
+
+// Interval index i with positions[i] <= x <= positions[i+1], x already clamped.
+size_t intervalOf(const TableTerm& t, double x) {
+  const size_t last = t.positions.size() - 2;
+  if (t.uniform) {
+    const double h = t.positions[1] - t.positions[0];
+    return std::min(last, static_cast<size_t>((x - t.positions[0]) / h));
+  }
+  const auto it = std::upper_bound(t.positions.begin(), t.positions.end(), x);
+  const size_t i = static_cast<size_t>(std::max<std::ptrdiff_t>(it - t.positions.begin() - 1, 0));
+  return std::min(last, i);
+}
+
+struct SplineWeights {
+  size_t i;
+  double a, b, c, d;  // f = a*y_i + b*y_{i+1} + c*M_i + d*M_{i+1}
+};
+
+SplineWeights weightsAt(const TableTerm& t, double q) {
+  const double x = std::clamp(q, t.positions.front(), t.positions.back());
+  const size_t i = intervalOf(t, x);
+  const double h = t.positions[i + 1] - t.positions[i];
+  const double b = (x - t.positions[i]) / h;
+  const double a = 1.0 - b;
+  if (t.interpolation == Interpolation::Linear) return {i, a, b, 0.0, 0.0};
+  return {i, a, b, (a * a * a - a) * h * h / 6.0, (b * b * b - b) * h * h / 6.0};
+}
+
+double polynomialBasis(const PolynomialTerm& p, int k, double q) { return std::pow((q - p.zero) / p.scale, k); }
+
+double harmonicBasis(const HarmonicTerm& h, double q) {
+  return std::cos(2.0 * kPi * h.order * (q - h.zero) / h.period + h.phase);
+}
+
+double reversalBasis(int direction) { return 0.5 * static_cast<double>((direction > 0) - (direction < 0)); }
+
+}  // namespace
+
+TableTerm::TableTerm(std::vector<double> p, std::vector<double> v, Interpolation interp)
+    : positions(std::move(p)), values(std::move(v)), interpolation(interp) {
+  const size_t n = positions.size();
+  const double h0 = positions[1] - positions[0];
+  uniform = true;
+  for (size_t i = 1; i + 1 < n; ++i)
+    uniform = uniform && std::abs((positions[i + 1] - positions[i]) - h0) <= 1e-12 * std::abs(h0);
+  splineOperator = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  if (interpolation == Interpolation::CubicSpline && n > 2) {
+    // Natural spline: interior rows h_{i-1} M_{i-1} + 2(h_{i-1}+h_i) M_i + h_i M_{i+1}
+    //   = 6[(y_{i+1}-y_i)/h_i - (y_i-y_{i-1})/h_{i-1}], M_0 = M_{n-1} = 0.
+    const Eigen::Index m = static_cast<Eigen::Index>(n) - 2;
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(m, m);
+    Eigen::MatrixXd b = Eigen::MatrixXd::Zero(m, static_cast<Eigen::Index>(n));
+    for (Eigen::Index r = 0; r < m; ++r) {
+      const size_t i = static_cast<size_t>(r) + 1;
+      const double hl = positions[i] - positions[i - 1];
+      const double hr = positions[i + 1] - positions[i];
+      if (r > 0) a(r, r - 1) = hl;
+      a(r, r) = 2.0 * (hl + hr);
+      if (r + 1 < m) a(r, r + 1) = hr;
+      b(r, r) = 6.0 / hl;
+      b(r, r + 1) = -6.0 / hl - 6.0 / hr;
+      b(r, r + 2) = 6.0 / hr;
+    }
+    splineOperator.middleRows(1, m) = a.partialPivLu().solve(b);
+  }
+  refresh();
+}
+
+void TableTerm::refresh() {
+  const Eigen::Map<const Eigen::VectorXd> y(values.data(), static_cast<Eigen::Index>(values.size()));
+  const Eigen::VectorXd m = splineOperator * y;
+  secondDerivatives.assign(m.data(), m.data() + m.size());
+}
+
+void ErrorFunction::add(ErrorTerm term) { terms_.push_back(std::move(term)); }
+
+double ErrorFunction::value(double q, int direction) const {
+  double sum = 0.0;
+  for (const auto& term : terms_) {
+    sum += std::visit(
+        Overloaded{[&](const PolynomialTerm& p) {
+                     double v = 0.0;
+                     const double u = (q - p.zero) / p.scale;
+                     for (auto it = p.coefficients.rbegin(); it != p.coefficients.rend(); ++it) v = v * u + *it;
+                     return v;
+                   },
+                   [&](const HarmonicTerm& h) { return h.amplitude * harmonicBasis(h, q); },
+                   [&](const TableTerm& t) {
+                     const auto w = weightsAt(t, q);
+                     double v = w.a * t.values[w.i] + w.b * t.values[w.i + 1];
+                     if (t.interpolation == Interpolation::CubicSpline)
+                       v += w.c * t.secondDerivatives[w.i] + w.d * t.secondDerivatives[w.i + 1];
+                     return v;
+                   },
+                   [&](const ReversalTerm& r) { return r.width * reversalBasis(direction); }},
+        term);
+  }
+  return sum;
+}
+
+int ErrorFunction::parameterCount() const {
+  int n = 0;
+  for (const auto& t : terms_) n += termParameterCount(t);
+  return n;
+}
+
+std::vector<std::string> ErrorFunction::parameterSuffixes() const {
+  std::vector<std::string> names;
+  std::map<std::string, int> used;
+  auto push = [&](std::string s) {
+    const int k = used[s]++;
+    names.push_back(k == 0 ? s : fmt::format("{}#{}", s, k + 1));
+  };
+  for (const auto& term : terms_) {
+    std::visit(Overloaded{[&](const PolynomialTerm& p) {
+                            for (size_t k = 0; k < p.coefficients.size(); ++k) push(fmt::format("c{}", k));
+                          },
+                          [&](const HarmonicTerm& h) { push(fmt::format("h{}", h.order)); },
+                          [&](const TableTerm& t) {
+                            for (size_t k = 0; k < t.values.size(); ++k) push(fmt::format("t{}", k));
+                          },
+                          [&](const ReversalTerm&) { push("rev"); }},
+               term);
+  }
+  return names;
+}
+
+namespace {
+// Calls f(term, localIndex) for the term that holds global parameter index.
+template <class Terms, class F>
+auto withParameter(Terms& terms, int index, F&& f) {
+  for (auto& term : terms) {
+    const int n = termParameterCount(term);
+    if (index < n) return f(term, index);
+    index -= n;
+  }
+  throw std::out_of_range("error-function parameter index out of range");
+}
+}  // namespace
+
+double ErrorFunction::parameter(int index) const {
+  return withParameter(terms_, index, [](const ErrorTerm& term, int k) -> double {
+    return std::visit(Overloaded{[&](const PolynomialTerm& p) { return p.coefficients[static_cast<size_t>(k)]; },
+                                 [&](const HarmonicTerm& h) { return h.amplitude; },
+                                 [&](const TableTerm& t) { return t.values[static_cast<size_t>(k)]; },
+                                 [&](const ReversalTerm& r) { return r.width; }},
+                      term);
+  });
+}
+
+void ErrorFunction::setParameter(int index, double v) {
+  withParameter(terms_, index, [v](ErrorTerm& term, int k) {
+    std::visit(Overloaded{[&](PolynomialTerm& p) { p.coefficients[static_cast<size_t>(k)] = v; },
+                          [&](HarmonicTerm& h) { h.amplitude = v; },
+                          [&](TableTerm& t) {
+                            t.values[static_cast<size_t>(k)] = v;
+                            t.refresh();
+                          },
+                          [&](ReversalTerm& r) { r.width = v; }},
+               term);
+  });
+}
+
+double ErrorFunction::basis(int index, double q, int direction) const {
+  return withParameter(terms_, index, [&](const ErrorTerm& term, int k) -> double {
+    return std::visit(Overloaded{[&](const PolynomialTerm& p) { return polynomialBasis(p, k, q); },
+                                 [&](const HarmonicTerm& h) { return harmonicBasis(h, q); },
+                                 [&](const TableTerm& t) {
+                                   const auto w = weightsAt(t, q);
+                                   const auto ku = static_cast<size_t>(k);
+                                   double v = (ku == w.i ? w.a : 0.0) + (ku == w.i + 1 ? w.b : 0.0);
+                                   if (t.interpolation == Interpolation::CubicSpline)
+                                     v += w.c * t.splineOperator(static_cast<Eigen::Index>(w.i), k) +
+                                          w.d * t.splineOperator(static_cast<Eigen::Index>(w.i + 1), k);
+                                   return v;
+                                 },
+                                 [&](const ReversalTerm&) { return reversalBasis(direction); }},
+                      term);
+  });
+}
+
+}  // namespace mtacc

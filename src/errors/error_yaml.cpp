@@ -1,0 +1,168 @@
+#include "mtacc/errors/error_yaml.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "../io/yaml_input.hpp"
+#include "mtacc/errors/aliases.hpp"
+
+namespace mtacc {
+namespace {
+
+using yamlin::Context;
+
+constexpr std::string_view kComponents = "XYZABC";
+
+struct MotionTarget {
+  int axis;
+  int component;
+};
+
+std::optional<MotionTarget> parseMotionName(const Machine& m, const std::string& name) {
+  if (name.size() < 3 || name[0] != 'E') return std::nullopt;
+  const auto c = kComponents.find(name[1]);
+  if (c == std::string_view::npos) return std::nullopt;
+  const int axis = m.axisIndex(name.substr(2));
+  if (axis < 0) return std::nullopt;
+  return MotionTarget{axis, static_cast<int>(c)};
+}
+
+Dimension axisDimension(const Axis& a) { return a.isRotary() ? Dimension::Angle : Dimension::Length; }
+
+// Default span for harmonics over the travel: the travel, or one turn.
+std::pair<double, double> defaultSpan(const Axis& a) {
+  if (a.travel) return {a.travel->min, a.travel->max - a.travel->min};
+  return {0.0, 2.0 * kPi};
+}
+
+void readTerms(const Context& ctx, const Machine& m, const MotionTarget& t, const YAML::Node& node,
+               const std::string& key, ErrorFunction& f) {
+  const Axis& axis = m.axes[static_cast<size_t>(t.axis)];
+  const Dimension valueDim = t.component < 3 ? Dimension::Length : Dimension::Angle;
+  const Dimension posDim = axisDimension(axis);
+  if (node.IsScalar()) {
+    f.add(PolynomialTerm{0.0, 1.0, {yamlin::quantity(ctx, node, key, valueDim)}});
+    return;
+  }
+  yamlin::rejectUnknownKeys(ctx, node, key, {"constant", "linear", "polynomial", "harmonics", "cyclic", "table", "reversal"});
+  for (const auto& kv : node) {
+    const auto type = kv.first.as<std::string>();
+    const auto& v = kv.second;
+    const std::string k = key + "." + type;
+    if (type == "constant") {
+      f.add(PolynomialTerm{0.0, 1.0, {yamlin::quantity(ctx, v, k, valueDim)}});
+    } else if (type == "linear") {
+      yamlin::rejectUnknownKeys(ctx, v, k, {"value", "over", "zero"});
+      const double over = yamlin::quantity(ctx, v["over"], k + ".over", posDim);
+      if (over == 0.0) ctx.fail(v["over"], k + ".over", "must not be zero");
+      const double zero = v["zero"] ? yamlin::quantity(ctx, v["zero"], k + ".zero", posDim) : 0.0;
+      f.add(PolynomialTerm{zero, over, {0.0, yamlin::quantity(ctx, v["value"], k + ".value", valueDim)}});
+    } else if (type == "polynomial") {
+      yamlin::rejectUnknownKeys(ctx, v, k, {"coefficients", "scale", "zero"});
+      PolynomialTerm p;
+      p.scale = yamlin::quantity(ctx, v["scale"], k + ".scale", posDim);
+      if (p.scale == 0.0) ctx.fail(v["scale"], k + ".scale", "must not be zero");
+      p.zero = v["zero"] ? yamlin::quantity(ctx, v["zero"], k + ".zero", posDim) : 0.0;
+      const auto coeffs = v["coefficients"];
+      if (!coeffs.IsSequence() || coeffs.size() == 0) ctx.fail(coeffs, k + ".coefficients", "expected a list of values");
+      for (const auto& c : coeffs) p.coefficients.push_back(yamlin::quantity(ctx, c, k + ".coefficients", valueDim));
+      f.add(std::move(p));
+    } else if (type == "harmonics" || type == "cyclic") {
+      const bool cyclic = type == "cyclic";
+      yamlin::rejectUnknownKeys(ctx, v, k, cyclic ? std::initializer_list<const char*>{"pitch", "amplitude", "phase", "zero"}
+                                                  : std::initializer_list<const char*>{"period", "zero", "terms"});
+      auto [zero, period] = defaultSpan(axis);
+      if (v["zero"]) zero = yamlin::quantity(ctx, v["zero"], k + ".zero", posDim);
+      const char* periodKey = cyclic ? "pitch" : "period";
+      if (v[periodKey]) period = yamlin::quantity(ctx, v[periodKey], k + "." + periodKey, posDim);
+      else if (cyclic) ctx.fail(v, k + ".pitch", "missing pitch");
+      if (!(period > 0.0)) ctx.fail(v[periodKey], k + "." + periodKey, "must be positive");
+      if (cyclic) {
+        const double phase = v["phase"] ? yamlin::quantity(ctx, v["phase"], k + ".phase", Dimension::Angle) : 0.0;
+        f.add(HarmonicTerm{period, zero, 1, yamlin::quantity(ctx, v["amplitude"], k + ".amplitude", valueDim), phase});
+        continue;
+      }
+      const auto terms = v["terms"];
+      if (!terms.IsSequence() || terms.size() == 0) ctx.fail(terms, k + ".terms", "expected a list of {order, amplitude, phase}");
+      for (const auto& h : terms) {
+        yamlin::rejectUnknownKeys(ctx, h, k + ".terms", {"order", "amplitude", "phase"});
+        const double order = yamlin::number(ctx, h["order"], k + ".terms.order");
+        if (order < 1 || order != std::floor(order)) ctx.fail(h["order"], k + ".terms.order", "order must be a whole number >= 1");
+        const double phase = h["phase"] ? yamlin::quantity(ctx, h["phase"], k + ".terms.phase", Dimension::Angle) : 0.0;
+        f.add(HarmonicTerm{period, zero, static_cast<int>(order),
+                           yamlin::quantity(ctx, h["amplitude"], k + ".terms.amplitude", valueDim), phase});
+      }
+    } else if (type == "table") {
+      yamlin::rejectUnknownKeys(ctx, v, k, {"positions", "values", "interpolation"});
+      const auto pos = v["positions"];
+      const auto val = v["values"];
+      if (!pos.IsSequence() || !val.IsSequence()) ctx.fail(v, k, "table needs 'positions' and 'values' lists");
+      if (pos.size() != val.size()) ctx.fail(val, k + ".values", fmt::format("{} values for {} positions", val.size(), pos.size()));
+      if (pos.size() < 2) ctx.fail(pos, k + ".positions", "a table needs at least two positions");
+      std::vector<double> p, y;
+      for (const auto& x : pos) p.push_back(yamlin::quantity(ctx, x, k + ".positions", posDim));
+      for (const auto& x : val) y.push_back(yamlin::quantity(ctx, x, k + ".values", valueDim));
+      for (size_t i = 1; i < p.size(); ++i)
+        if (!(p[i] > p[i - 1])) ctx.fail(pos[i], k + ".positions", "positions must increase strictly");
+      Interpolation interp = Interpolation::CubicSpline;
+      if (v["interpolation"]) {
+        const auto s = yamlin::scalar(ctx, v["interpolation"], k + ".interpolation");
+        if (s == "linear") interp = Interpolation::Linear;
+        else if (s != "spline") ctx.fail(v["interpolation"], k + ".interpolation", "expected 'linear' or 'spline'");
+      }
+      f.add(TableTerm(std::move(p), std::move(y), interp));
+    } else if (type == "reversal") {
+      f.add(ReversalTerm{yamlin::quantity(ctx, v, k, valueDim)});
+    }
+  }
+}
+
+}  // namespace
+
+ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, const std::string& sourceName) {
+  const Context ctx{sourceName};
+  const auto root = yamlin::loadText(yamlText, sourceName);
+  ErrorModel model = ErrorModel::zero(machine);
+  if (!root.IsMap()) ctx.fail(root, "", "expected a YAML mapping with an 'errors' key");
+  const auto errors = root["errors"];
+  if (!errors) return model;
+  if (!errors.IsMap()) ctx.fail(errors, "errors", "expected a mapping of error names to values");
+  for (const auto& kv : errors) {
+    const auto name = kv.first.as<std::string>();
+    const std::string key = "errors." + name;
+    std::string iso = name;
+    double sign = 1.0;
+    if (const auto alias = findAlias(name)) {
+      iso = alias->isoName;
+      sign = alias->sign;
+    }
+    if (const auto target = parseMotionName(machine, iso)) {
+      auto& f = model.axes[static_cast<size_t>(target->axis)].motion[static_cast<size_t>(target->component)];
+      if (!f.empty()) ctx.fail(kv.first, key, "error given twice (" + iso + ")");
+      readTerms(ctx, machine, *target, kv.second, key, f);
+      continue;
+    }
+    Parameter p;
+    try {
+      p = findParameter(machine, model, iso);
+    } catch (const std::invalid_argument& e) {
+      ctx.fail(kv.first, key, e.what());
+    }
+    const Dimension dim = p.dimension;
+    model.axes[static_cast<size_t>(p.axis)].location[p.component] = sign * yamlin::quantity(ctx, kv.second, key, dim);
+  }
+  return model;
+}
+
+ErrorModel loadErrors(const Machine& machine, const std::string& path) {
+  return parseErrors(machine, yamlin::readText(path), path);
+}
+
+ErrorModel loadMachineErrors(const Machine& machine) {
+  if (machine.sourceFile.empty()) return ErrorModel::zero(machine);
+  return loadErrors(machine, machine.sourceFile);
+}
+
+}  // namespace mtacc

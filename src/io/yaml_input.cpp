@@ -1,0 +1,104 @@
+#include "yaml_input.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace mtacc::yamlin {
+
+InputLocation Context::at(const YAML::Node& node, const std::string& key) const {
+  const int line = node.IsDefined() && node.Mark().line >= 0 ? node.Mark().line + 1 : 0;
+  return InputLocation{file, line, key};
+}
+
+void Context::fail(const YAML::Node& node, const std::string& key, const std::string& what) const {
+  throw InputError(at(node, key), what);
+}
+
+YAML::Node loadText(const std::string& text, const std::string& sourceName) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(InputLocation{sourceName, e.mark.line >= 0 ? e.mark.line + 1 : 0, ""},
+                     "malformed YAML: " + e.msg);
+  }
+}
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(InputLocation{path, 0, ""}, "cannot open file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+YAML::Node loadFile(const std::string& path) { return loadText(readText(path), path); }
+
+void rejectUnknownKeys(const Context& ctx, const YAML::Node& map, const std::string& path,
+                       std::initializer_list<const char*> allowed) {
+  if (!map.IsMap()) ctx.fail(map, path, "expected a mapping");
+  std::set<std::string> ok(allowed.begin(), allowed.end());
+  for (const auto& kv : map) {
+    const auto key = kv.first.as<std::string>();
+    if (!ok.count(key)) {
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      ctx.fail(kv.first, path.empty() ? key : path + "." + key, "unknown key (expected one of: " + list + ")");
+    }
+  }
+}
+
+std::string scalar(const Context& ctx, const YAML::Node& node, const std::string& key) {
+  if (!node.IsDefined() || node.IsNull()) ctx.fail(node, key, "missing value");
+  if (!node.IsScalar()) ctx.fail(node, key, "expected a single value");
+  return node.Scalar();
+}
+
+double number(const Context& ctx, const YAML::Node& node, const std::string& key) {
+  const auto text = scalar(ctx, node, key);
+  try {
+    size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used != text.size()) throw std::invalid_argument("trailing text");
+    if (!std::isfinite(v)) ctx.fail(node, key, "value is not finite");
+    return v;
+  } catch (const std::logic_error&) {
+    ctx.fail(node, key, "expected a plain number, got '" + text + "'");
+  }
+}
+
+Quantity anyQuantity(const Context& ctx, const YAML::Node& node, const std::string& key) {
+  const auto text = scalar(ctx, node, key);
+  std::string reason;
+  const auto q = parseQuantity(text, &reason);
+  if (!q) ctx.fail(node, key, reason);
+  return *q;
+}
+
+double quantity(const Context& ctx, const YAML::Node& node, const std::string& key, Dimension expected) {
+  const auto q = anyQuantity(ctx, node, key);
+  if (q.dimension != expected)
+    ctx.fail(node, key, fmt::format("expected a {} but '{}' is an {}", toString(expected), node.Scalar(), toString(q.dimension)));
+  return q.value;
+}
+
+Vec3 unitVector(const Context& ctx, const YAML::Node& node, const std::string& key) {
+  if (!node.IsSequence() || node.size() != 3) ctx.fail(node, key, "expected a vector [x, y, z]");
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) v[i] = number(ctx, node[i], key);
+  const double n = v.norm();
+  if (!(n > 1e-12)) ctx.fail(node, key, "direction vector has zero length");
+  return v / n;
+}
+
+Vec3 lengthVector(const Context& ctx, const YAML::Node& node, const std::string& key) {
+  if (!node.IsSequence() || node.size() != 3) ctx.fail(node, key, "expected a vector [x mm, y mm, z mm]");
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) v[i] = quantity(ctx, node[i], key, Dimension::Length);
+  return v;
+}
+
+}  // namespace mtacc::yamlin

@@ -1,0 +1,38 @@
+#pragma once
+// Reading YAML with messages that name file, line and key. Private to the library.
+#include <yaml-cpp/yaml.h>
+
+#include <initializer_list>
+#include <string>
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/core/transform.hpp"
+#include "mtacc/core/units.hpp"
+
+namespace mtacc::yamlin {
+
+struct Context {
+  std::string file;
+
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& what) const;
+  InputLocation at(const YAML::Node& node, const std::string& key) const;
+};
+
+// Loads a YAML document from a file (or from text), turning parser errors into InputError.
+std::string readText(const std::string& path);
+YAML::Node loadFile(const std::string& path);
+YAML::Node loadText(const std::string& text, const std::string& sourceName);
+
+void rejectUnknownKeys(const Context& ctx, const YAML::Node& map, const std::string& path,
+                       std::initializer_list<const char*> allowed);
+std::string scalar(const Context& ctx, const YAML::Node& node, const std::string& key);
+double number(const Context& ctx, const YAML::Node& node, const std::string& key);
+double quantity(const Context& ctx, const YAML::Node& node, const std::string& key, Dimension expected);
+// A quantity whose dimension is one of length or angle, chosen by the caller's context.
+Quantity anyQuantity(const Context& ctx, const YAML::Node& node, const std::string& key);
+// [x, y, z] of plain numbers, normalised; zero length is an error.
+Vec3 unitVector(const Context& ctx, const YAML::Node& node, const std::string& key);
+// [x mm, y mm, z mm]
+Vec3 lengthVector(const Context& ctx, const YAML::Node& node, const std::string& key);
+
+}  // namespace mtacc::yamlin

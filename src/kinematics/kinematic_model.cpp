@@ -1,0 +1,167 @@
+#include "mtacc/kinematics/kinematic_model.hpp"
+
+#include "mtacc/kinematics/forward.hpp"
+
+namespace mtacc {
+namespace {
+
+Pose translation(const Vec3& t) {
+  Pose p = Pose::Identity();
+  p.translation() = t;
+  return p;
+}
+
+int ownLinearComponent(char letter) {
+  switch (letter) {
+    case 'X': case 'U': return kX;
+    case 'Y': case 'V': return kY;
+    default: return kZ;
+  }
+}
+
+bool hasMotionErrors(const KinematicModel& m, int axis) {
+  if (!m.withErrors) return false;
+  for (const auto& f : m.errors.axes[static_cast<size_t>(axis)].motion)
+    if (!f.empty()) return true;
+  return false;
+}
+
+Vec6 motionComponents(const KinematicModel& m, int axis, double q, int dir) {
+  Vec6 c;
+  const auto& motion = m.errors.axes[static_cast<size_t>(axis)].motion;
+  for (int k = 0; k < 6; ++k) c[k] = motion[static_cast<size_t>(k)].value(q, dir);
+  return c;
+}
+
+std::vector<ChainElement> buildChain(const Machine& machine, const std::vector<int>& indices, double sign) {
+  std::vector<ChainElement> chain;
+  for (int i : indices) {
+    const Axis& a = machine.axes[static_cast<size_t>(i)];
+    ChainElement e;
+    e.axis = i;
+    e.joint = a.commanded() ? i : -1;  // commanded axes come first in Machine::axes
+    e.type = a.type;
+    e.frame = a.errorFrame;
+    e.sign = sign;
+    e.offset = a.offset;
+    e.direction = a.direction;
+    e.location = a.type == AxisType::Linear ? Vec3::Zero() : a.location;
+    chain.push_back(e);
+  }
+  return chain;
+}
+
+// Merges runs of constant factors; joint and motion-error factors become operations.
+std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<ChainElement>& chain) {
+  std::vector<ChainOp> ops;
+  auto pushConstant = [&](const Pose& p) {
+    if (p.isApprox(Pose::Identity(), 0.0)) return;
+    if (!ops.empty() && ops.back().kind == ChainOp::Constant)
+      ops.back().constant = ops.back().constant * p;
+    else
+      ops.push_back(ChainOp{ChainOp::Constant, p});
+  };
+  std::vector<Factor> factors;
+  for (const auto& e : chain) {
+    const bool motion = hasMotionErrors(m, e.axis);
+    auto pushMotion = [&]() {
+      pushConstant(translation(e.location));
+      ChainOp op{ChainOp::MotionError};
+      op.joint = e.joint;
+      op.axis = e.axis;
+      ops.push_back(op);
+      pushConstant(translation(-e.location));
+    };
+    pushConstant(translation(e.offset));
+    if (m.withErrors && e.type != AxisType::Linear) {
+      const Vec6& loc = m.errors.axes[static_cast<size_t>(e.axis)].location;
+      pushConstant(translation(e.location) * errorTransform(loc) * translation(-e.location));
+    }
+    if (motion && e.frame == ErrorFrame::Fixed) pushMotion();
+    if (e.type == AxisType::Linear) {
+      ChainOp op{ChainOp::LinearJoint};
+      op.joint = e.joint;
+      op.base = linearJointTranslation(m, e, 0.0);
+      op.vector = linearJointTranslation(m, e, 1.0) - op.base;
+      ops.push_back(op);
+    } else if (e.type == AxisType::Rotary) {
+      ChainOp op{ChainOp::RotaryJoint};
+      op.joint = e.joint;
+      op.vector = e.direction;
+      op.base = e.location;
+      op.sign = e.sign;
+      ops.push_back(op);
+    }
+    if (motion && e.frame == ErrorFrame::Moving) pushMotion();
+  }
+  return ops;
+}
+
+}  // namespace
+
+Vec3 linearJointTranslation(const KinematicModel& m, const ChainElement& e, double q) {
+  if (!m.withErrors) return e.sign * q * e.direction;
+  const Vec6& loc = m.errors.axes[static_cast<size_t>(e.axis)].location;
+  const char letter = m.machine->axes[static_cast<size_t>(e.axis)].name[0];
+  const double zero = loc[ownLinearComponent(letter)];
+  return e.sign * (q + zero) * (rotationXYZ(loc[kA], loc[kB], loc[kC]) * e.direction);
+}
+
+Pose jointPose(const KinematicModel& m, const ChainElement& e, double q) {
+  Pose j = Pose::Identity();
+  if (e.type == AxisType::Linear) {
+    j.translation() = linearJointTranslation(m, e, q);
+  } else if (e.type == AxisType::Rotary) {
+    j.linear() = rotationAbout(e.direction, e.sign * q);
+    j.translation() = e.location - j.linear() * e.location;
+  }
+  return j;
+}
+
+void elementFactors(const KinematicModel& m, const ChainElement& e, double q, int dir, std::vector<Factor>& out) {
+  const bool motion = hasMotionErrors(m, e.axis);
+  auto pushMotion = [&]() {
+    out.push_back({translation(e.location), Hook::None, e.axis});
+    out.push_back({errorTransform(motionComponents(m, e.axis, q, dir)), Hook::Motion, e.axis});
+    out.push_back({translation(-e.location), Hook::None, e.axis});
+  };
+  out.push_back({translation(e.offset), Hook::None, e.axis});
+  if (m.withErrors && e.type != AxisType::Linear) {
+    out.push_back({translation(e.location), Hook::None, e.axis});
+    out.push_back({errorTransform(m.errors.axes[static_cast<size_t>(e.axis)].location), Hook::Location, e.axis});
+    out.push_back({translation(-e.location), Hook::None, e.axis});
+  }
+  if (motion && e.frame == ErrorFrame::Fixed) pushMotion();
+  if (e.type != AxisType::Spindle)
+    out.push_back({jointPose(m, e, q), e.type == AxisType::Linear ? Hook::LinearJoint : Hook::None, e.axis});
+  if (motion && e.frame == ErrorFrame::Moving) pushMotion();
+}
+
+KinematicModel compile(std::shared_ptr<const Machine> machine, const ErrorModel& errors, bool withErrors) {
+  KinematicModel m;
+  m.machine = machine;
+  m.errors = errors;
+  m.withErrors = withErrors;
+  m.jointCount = machine->commandedCount();
+  m.toolChain = buildChain(*machine, machine->toolChain, +1.0);
+  m.workpieceChain = buildChain(*machine, machine->workpieceChain, -1.0);
+  m.toolProgram = buildProgram(m, m.toolChain);
+  m.workpieceProgram = buildProgram(m, m.workpieceChain);
+  m.toolFrame = translation(machine->toolOffset);
+  m.workpieceFrame = translation(machine->workpieceOffset);
+  m.toolDirection = machine->toolDirection;
+  if (withErrors && machine->alignment == WorkpieceAlignment::Machine) {
+    // Seed 001 eqs. 10-12: the workpiece is set up aligned with the machine at the reference
+    // pose, so M_WC = W_nominal(q_ref)^-1 * W_actual(q_ref).
+    const KinematicModel nominal = compile(machine, errors, false);
+    const auto& q = machine->referencePose;
+    m.alignment = workpiecePose(nominal, q.data(), nullptr).inverse() * workpiecePose(m, q.data(), nullptr);
+  }
+  return m;
+}
+
+KinematicModel compileNominal(std::shared_ptr<const Machine> machine) {
+  return compile(machine, ErrorModel::zero(*machine), false);
+}
+
+}  // namespace mtacc

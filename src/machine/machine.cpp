@@ -1,0 +1,39 @@
+#include "mtacc/machine/machine.hpp"
+
+#include <fmt/format.h>
+
+#include "mtacc/core/units.hpp"
+
+namespace mtacc {
+
+int Machine::commandedCount() const {
+  int n = 0;
+  for (const auto& a : axes) n += a.commanded() ? 1 : 0;
+  return n;
+}
+
+int Machine::rotaryCount() const {
+  int n = 0;
+  for (const auto& a : axes) n += a.type == AxisType::Rotary ? 1 : 0;
+  return n;
+}
+
+int Machine::axisIndex(const std::string& axisName) const {
+  for (size_t i = 0; i < axes.size(); ++i)
+    if (axes[i].name == axisName) return static_cast<int>(i);
+  return -1;
+}
+
+std::string Machine::describePose(const std::vector<double>& q) const {
+  std::string s;
+  for (size_t i = 0; i < q.size() && i < axes.size(); ++i) {
+    if (!s.empty()) s += ", ";
+    if (axes[i].isRotary())
+      s += fmt::format("{}={:.6g} deg", axes[i].name, q[i] / kDeg);
+    else
+      s += fmt::format("{}={:.6g} mm", axes[i].name, q[i]);
+  }
+  return s;
+}
+
+}  // namespace mtacc
