@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/kinematics/kinematic_model.hpp"
 
 namespace mtacc {
