@@ -35,6 +35,7 @@ std::string_view trim(std::string_view s) {
 }  // namespace
 
 const char* toString(Dimension d) { return d == Dimension::Length ? "length" : "angle"; }
+const char* withArticle(Dimension d) { return d == Dimension::Length ? "a length" : "an angle"; }
 
 std::optional<Quantity> parseQuantity(std::string_view text, std::string* reason) {
   auto fail = [&](std::string why) -> std::optional<Quantity> {

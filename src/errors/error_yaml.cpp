@@ -81,7 +81,7 @@ void readTerms(const Context& ctx, const Machine& m, const MotionTarget& t, cons
       if (!(period > 0.0)) ctx.fail(v[periodKey], k + "." + periodKey, "must be positive");
       if (cyclic) {
         const double phase = v["phase"] ? yamlin::quantity(ctx, v["phase"], k + ".phase", Dimension::Angle) : 0.0;
-        f.add(HarmonicTerm{period, zero, 1, yamlin::quantity(ctx, v["amplitude"], k + ".amplitude", valueDim), phase});
+        f.add(HarmonicTerm{period, zero, 1, yamlin::quantity(ctx, v["amplitude"], k + ".amplitude", valueDim), phase, true});
         continue;
       }
       const auto terms = v["terms"];

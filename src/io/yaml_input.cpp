@@ -81,7 +81,7 @@ Quantity anyQuantity(const Context& ctx, const YAML::Node& node, const std::stri
 double quantity(const Context& ctx, const YAML::Node& node, const std::string& key, Dimension expected) {
   const auto q = anyQuantity(ctx, node, key);
   if (q.dimension != expected)
-    ctx.fail(node, key, fmt::format("expected a {} but '{}' is an {}", toString(expected), node.Scalar(), toString(q.dimension)));
+    ctx.fail(node, key, fmt::format("expected {} but '{}' is {}", withArticle(expected), node.Scalar(), withArticle(q.dimension)));
   return q.value;
 }
 

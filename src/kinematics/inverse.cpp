@@ -126,21 +126,6 @@ std::vector<double> equivalents(const Axis& axis, double a, double reference) {
   return out;
 }
 
-std::string travelViolation(const Machine& m, const std::vector<double>& q) {
-  for (size_t i = 0; i < q.size(); ++i) {
-    const Axis& a = m.axes[i];
-    if (!a.travel) continue;
-    const double tol = 1e-9;
-    if (q[i] < a.travel->min - tol || q[i] > a.travel->max + tol) {
-      const double f = a.isRotary() ? 1.0 / kDeg : 1.0;
-      const char* unit = a.isRotary() ? "deg" : "mm";
-      return fmt::format("{}={:.6g} {} beyond travel [{:.6g}, {:.6g}] {}", a.name, q[i] * f, unit, a.travel->min * f,
-                         a.travel->max * f, unit);
-    }
-  }
-  return {};
-}
-
 // With the rotary angles fixed, the TCP is affine in the linear joints: solve for them.
 bool solveLinear(const KinematicModel& m, std::vector<double>& q, const Vec3& target) {
   std::vector<int> linear;
@@ -195,7 +180,7 @@ IkResult inverseKinematics(const KinematicModel& m, const Vec3& position, const 
         throw UnreachablePose(fmt::format("TCP ({:.6g}, {:.6g}, {:.6g}) mm cannot be reached by the linear axes", target.x(), target.y(), target.z()));
       s.singular = set.singular;
       if (set.singular) s.singularAxis = machine.axes[static_cast<size_t>(rot[static_cast<size_t>(set.freeIndex)].joint)].name;
-      s.travelViolation = travelViolation(machine, s.q);
+      s.travelViolation = machine.travelViolation(s.q);
       s.withinTravel = s.travelViolation.empty();
       result.solutions.push_back(std::move(s));
     }

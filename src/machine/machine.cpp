@@ -24,6 +24,21 @@ int Machine::axisIndex(const std::string& axisName) const {
   return -1;
 }
 
+std::string Machine::travelViolation(const std::vector<double>& q) const {
+  for (size_t i = 0; i < q.size() && i < axes.size(); ++i) {
+    const Axis& a = axes[i];
+    if (!a.travel) continue;
+    constexpr double tol = 1e-9;
+    if (q[i] < a.travel->min - tol || q[i] > a.travel->max + tol) {
+      const double f = a.isRotary() ? 1.0 / kDeg : 1.0;
+      const char* unit = a.isRotary() ? "deg" : "mm";
+      return fmt::format("{}={:.6g} {} beyond travel [{:.6g}, {:.6g}] {}", a.name, q[i] * f, unit, a.travel->min * f,
+                         a.travel->max * f, unit);
+    }
+  }
+  return {};
+}
+
 std::string Machine::describePose(const std::vector<double>& q) const {
   std::string s;
   for (size_t i = 0; i < q.size() && i < axes.size(); ++i) {

@@ -10,6 +10,7 @@ namespace mtacc {
 enum class Dimension { Length, Angle };
 
 const char* toString(Dimension d);
+const char* withArticle(Dimension d);  // "a length", "an angle"
 
 struct Quantity {
   double value;         // in mm or rad

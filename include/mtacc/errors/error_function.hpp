@@ -24,6 +24,7 @@ struct HarmonicTerm {
   int order = 1;
   double amplitude = 0.0;
   double phase = 0.0;
+  bool cyclic = false;  // a pitch error (parameter named "cyc") rather than a harmonic of the travel ("h<order>")
 };
 
 enum class Interpolation { Linear, CubicSpline };

@@ -61,6 +61,9 @@ struct Machine {
   int rotaryCount() const;
   // Index of a commanded axis by name, or -1.
   int axisIndex(const std::string& name) const;
+  // Empty when every commanded axis is within its travel, else e.g.
+  // "X=500 mm beyond travel [-400, 400] mm" for the first axis outside.
+  std::string travelViolation(const std::vector<double>& q) const;
   // "X=10 mm, B=-15 deg" for messages.
   std::string describePose(const std::vector<double>& q) const;
 };

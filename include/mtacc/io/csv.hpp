@@ -1,0 +1,35 @@
+#pragma once
+// Reading the documented CSV inputs (docs/file-formats.md): a header row of column names,
+// then rows of plain numbers. '#' starts a comment line.
+#include <string>
+#include <vector>
+
+#include "mtacc/kinematics/forward.hpp"
+#include "mtacc/machine/machine.hpp"
+
+namespace mtacc {
+
+struct CsvTable {
+  std::string file;
+  std::vector<std::string> header;
+  std::vector<std::vector<double>> rows;
+  std::vector<int> lines;  // source line of each row
+};
+
+// Throws InputError naming file, line and column for a wrong column count, a value that is
+// not a finite number, or an empty table.
+CsvTable readCsv(const std::string& path);
+CsvTable parseCsv(const std::string& text, const std::string& sourceName);
+
+// Axis positions from a table with one column per commanded axis (linear mm, rotary deg) and
+// optional "<axis>_dir" columns (+1, -1, 0) for the direction of motion.
+struct PoseTable {
+  JointMatrix q;            // mm, rad
+  Eigen::MatrixXi direction;  // empty when no direction column was given
+};
+PoseTable posesFromCsv(const Machine& machine, const CsvTable& table);
+
+// Looks up the required columns by name; throws InputError when one is missing.
+std::vector<int> requireColumns(const CsvTable& table, const std::vector<std::string>& names);
+
+}  // namespace mtacc

@@ -1,0 +1,150 @@
+// Bad input through the CLI: one line on stderr naming file, line and key (or the pose), a
+// non-zero exit, and no output file.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exitCode;
+  std::string out;
+  std::string err;
+};
+
+class CliBadInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("mtacc-cli-" + std::to_string(::getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& text) {
+    const auto p = dir_ / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  static std::string slurp(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  CliRun run(const std::string& args) {
+    const auto out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    const std::string cmd = std::string(MTACC_CLI) + " " + args + " > " + out.string() + " 2> " + err.string();
+    const int status = std::system(cmd.c_str());
+    return {WEXITSTATUS(status), slurp(out), slurp(err)};
+  }
+  std::string output() const { return (dir_ / "result.csv").string(); }
+  // One line, the expected pieces in it, non-zero exit, no output file.
+  void expectCleanFailure(const CliRun& r, std::initializer_list<std::string> pieces) {
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    for (const auto& p : pieces) EXPECT_NE(r.err.find(p), std::string::npos) << "missing '" << p << "' in: " << r.err;
+    EXPECT_FALSE(fs::exists(output()));
+    for (const auto& e : fs::directory_iterator(dir_)) EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos);
+  }
+
+  fs::path dir_;
+};
+
+const std::string kMachine = R"(name: test machine
+structure: t-(C)-Z-Y-b-X-B-C-w
+axes:
+  X: {direction: [1, 0, 0], travel: [-400 mm, 400 mm]}
+  Y: {direction: [0, 1, 0], travel: [-300 mm, 300 mm]}
+  Z: {direction: [0, 0, 1], travel: [-300 mm, 400 mm]}
+  B: {direction: [0, 1, 0], travel: [-120 deg, 120 deg]}
+  C: {direction: [0, 0, 1], travel: continuous}
+)";
+
+TEST_F(CliBadInput, MalformedYaml) {
+  const auto f = write("bad.yaml", "name: x\naxes: [1, 2\nstructure: t-Z-b-X-w\n");
+  expectCleanFailure(run("check " + f + " -o " + output()), {f + ":", "malformed YAML"});
+}
+
+TEST_F(CliBadInput, UnknownAxisLetterInStructureCode) {
+  const auto f = write("m.yaml", "name: x\nstructure: t-(C)-Z-Q-b-X-w\naxes: {}\n");
+  expectCleanFailure(run("check " + f + " -o " + output()), {f + ":2: structure", "unknown letter 'Q'"});
+}
+
+TEST_F(CliBadInput, AxisEntryNotInStructureCode) {
+  const auto f = write("m.yaml", kMachine + "  A: {direction: [1, 0, 0], travel: [0 deg, 90 deg]}\n");
+  expectCleanFailure(run("check " + f + " -o " + output()), {f + ":9: axes.A", "not in the structure code"});
+}
+
+TEST_F(CliBadInput, UnknownErrorName) {
+  const auto f = write("m.yaml", kMachine + "errors:\n  X0Q: 10 um\n");
+  expectCleanFailure(run("check " + f + " -o " + output()), {f + ":10: errors.X0Q", "unknown error parameter"});
+}
+
+TEST_F(CliBadInput, UnknownComponentErrorAxis) {
+  const auto f = write("m.yaml", kMachine + "errors:\n  EXQ: 10 um\n");
+  expectCleanFailure(run("check " + f + " -o " + output()), {f + ":10: errors.EXQ", "unknown error parameter"});
+}
+
+TEST_F(CliBadInput, MissingUnit) {
+  const auto f = write("m.yaml", kMachine + "errors:\n  X0C: 10\n");
+  expectCleanFailure(run("budget " + f + " -o " + output()), {f + ":10: errors.X0C", "missing unit"});
+}
+
+TEST_F(CliBadInput, WrongDimension) {
+  const auto f = write("m.yaml", kMachine + "errors:\n  A0C: 10 um\n");
+  expectCleanFailure(run("check " + f + " -o " + output()), {f + ":10: errors.A0C", "expected an angle but '10 um' is a length"});
+}
+
+TEST_F(CliBadInput, ZeroDirectionVector) {
+  std::string m = kMachine;
+  m.replace(m.find("[1, 0, 0]"), 9, "[0, 0, 0]");
+  const auto f = write("m.yaml", m);
+  expectCleanFailure(run("check " + f + " -o " + output()), {f + ":4: axes.X.direction", "zero length"});
+}
+
+TEST_F(CliBadInput, UnreachableToolDirection) {
+  const auto f = write("m.yaml", kMachine);
+  expectCleanFailure(run("ik " + f + " --tcp 0,0,0 --tool 0,0,-1 -o " + output()), {"unreachable pose", "tool (0, 0, -1)", "B=180 deg beyond travel"});
+}
+
+TEST_F(CliBadInput, TcpBeyondTravel) {
+  const auto f = write("m.yaml", kMachine);
+  expectCleanFailure(run("ik " + f + " --tcp 1000,0,0 --tool 0,0,1 -o " + output()), {"TCP (1000, 0, 0)", "X=1000 mm beyond travel [-400, 400] mm"});
+}
+
+TEST_F(CliBadInput, PoseFileBeyondTravel) {
+  const auto f = write("m.yaml", kMachine);
+  const auto p = write("poses.csv", "X,Y,Z,B,C\n10,20,30,-15,45\n500,0,0,0,0\n");
+  expectCleanFailure(run("fk " + f + " --poses " + p + " -o " + output()), {p + ":3", "X=500 mm beyond travel"});
+}
+
+TEST_F(CliBadInput, PoseFileWithNaNAndWrongColumns) {
+  const auto f = write("m.yaml", kMachine);
+  const auto p = write("poses.csv", "X,Y,Z,B,C\n10,20,nan,-15,45\n");
+  expectCleanFailure(run("errors " + f + " --poses " + p + " -o " + output()), {p + ":2: Z", "not a finite number"});
+  const auto q = write("poses2.csv", "X,Y,Z,B,C\n10,20,30,-15\n");
+  expectCleanFailure(run("errors " + f + " --poses " + q + " -o " + output()), {q + ":2", "expected 5 columns, found 4"});
+}
+
+TEST_F(CliBadInput, GoodInputWritesTheFile) {
+  const auto f = write("m.yaml", kMachine + "errors:\n  X0C: 10 um\n");
+  const auto r = run("fk " + f + " --pose X=1,Y=2,Z=3,B=10,C=20 -o " + output());
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(r.err.empty());
+  ASSERT_TRUE(fs::exists(output()));
+  EXPECT_NE(slurp(output()).find("dx_um"), std::string::npos);
+}
+
+}  // namespace
