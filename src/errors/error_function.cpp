@@ -29,28 +29,15 @@ int termParameterCount(const ErrorTerm& term) {
                     term);
 }
 
-// Interval index i with positions[i] <= x <= positions[i+1], x already clamped.
-size_t intervalOf(const TableTerm& t, double x) {
-  const size_t last = t.positions.size() - 2;
-  if (t.uniform) {
-    const double h = t.positions[1] - t.positions[0];
-    return std::min(last, static_cast<size_t>((x - t.positions[0]) / h));
-  }
-  const auto it = std::upper_bound(t.positions.begin(), t.positions.end(), x);
-  const size_t i = static_cast<size_t>(std::max<std::ptrdiff_t>(it - t.positions.begin() - 1, 0));
-  return std::min(last, i);
-}
-
 struct SplineWeights {
   size_t i;
   double a, b, c, d;  // f = a*y_i + b*y_{i+1} + c*M_i + d*M_{i+1}
 };
 
 SplineWeights weightsAt(const TableTerm& t, double q) {
-  const double x = std::clamp(q, t.positions.front(), t.positions.back());
-  const size_t i = intervalOf(t, x);
+  const auto [i, offset] = t.locate(q);
   const double h = t.positions[i + 1] - t.positions[i];
-  const double b = (x - t.positions[i]) / h;
+  const double b = offset / h;
   const double a = 1.0 - b;
   if (t.interpolation == Interpolation::Linear) return {i, a, b, 0.0, 0.0};
   return {i, a, b, (a * a * a - a) * h * h / 6.0, (b * b * b - b) * h * h / 6.0};
@@ -73,6 +60,7 @@ TableTerm::TableTerm(std::vector<double> p, std::vector<double> v, Interpolation
   uniform = true;
   for (size_t i = 1; i + 1 < n; ++i)
     uniform = uniform && std::abs((positions[i + 1] - positions[i]) - h0) <= 1e-12 * std::abs(h0);
+  inverseStep = 1.0 / h0;
   splineOperator = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   if (interpolation == Interpolation::CubicSpline && n > 2) {
     // Natural spline: interior rows h_{i-1} M_{i-1} + 2(h_{i-1}+h_i) M_i + h_i M_{i+1}
@@ -99,12 +87,29 @@ TableTerm::TableTerm(std::vector<double> p, std::vector<double> v, Interpolation
 void TableTerm::refresh() {
   const Eigen::Map<const Eigen::VectorXd> y(values.data(), static_cast<Eigen::Index>(values.size()));
   const Eigen::VectorXd m = splineOperator * y;
-  secondDerivatives.assign(m.data(), m.data() + m.size());
+  cubic.resize(positions.size() - 1);
+  for (size_t i = 0; i + 1 < positions.size(); ++i) {
+    const double h = positions[i + 1] - positions[i];
+    const double slope = (values[i + 1] - values[i]) / h;
+    const auto mi = static_cast<Eigen::Index>(i);
+    cubic[i] = {values[i], slope - h * (2.0 * m[mi] + m[mi + 1]) / 6.0, m[mi] / 2.0, (m[mi + 1] - m[mi]) / (6.0 * h)};
+  }
+}
+
+GridLocation locateInGridSearch(const std::vector<double>& positions, double x) {
+  const size_t last = positions.size() - 2;
+  const auto it = std::upper_bound(positions.begin(), positions.end(), x);
+  const size_t i = std::min(last, static_cast<size_t>(std::max<std::ptrdiff_t>(it - positions.begin() - 1, 0)));
+  return {i, x - positions[i]};
 }
 
 void ErrorFunction::add(ErrorTerm term) { terms_.push_back(std::move(term)); }
 
-double ErrorFunction::value(double q, int direction) const {
+double ErrorFunction::value(double q, int direction) const { return sum(q, direction, false); }
+
+double ErrorFunction::valueWithoutTables(double q, int direction) const { return sum(q, direction, true); }
+
+double ErrorFunction::sum(double q, int direction, bool skipTables) const {
   double sum = 0.0;
   for (const auto& term : terms_) {
     sum += std::visit(
@@ -115,13 +120,7 @@ double ErrorFunction::value(double q, int direction) const {
                      return v;
                    },
                    [&](const HarmonicTerm& h) { return h.amplitude * harmonicBasis(h, q); },
-                   [&](const TableTerm& t) {
-                     const auto w = weightsAt(t, q);
-                     double v = w.a * t.values[w.i] + w.b * t.values[w.i + 1];
-                     if (t.interpolation == Interpolation::CubicSpline)
-                       v += w.c * t.secondDerivatives[w.i] + w.d * t.secondDerivatives[w.i + 1];
-                     return v;
-                   },
+                   [&](const TableTerm& t) { return skipTables ? 0.0 : t.valueAt(t.locate(q)); },
                    [&](const ReversalTerm& r) { return r.width * reversalBasis(direction); }},
         term);
   }

@@ -1,59 +1,188 @@
 #include "mtacc/kinematics/forward.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <thread>
 #include <vector>
 
 namespace mtacc {
 namespace {
 
+// Right-multiplies the rotation by a rotation of angle about principal axis k.
+void rotatePrincipal(Mat3& r, int k, double angle) {
+  double s, c;
+  ::sincos(angle, &s, &c);
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  const Vec3 ci = r.col(i), cj = r.col(j);
+  r.col(i) = c * ci + s * cj;
+  r.col(j) = c * cj - s * ci;
+}
+
+// The six component errors of a motion-error operation at the current joint values.
+Vec6 motionComponents(const KinematicModel& m, const ChainOp& op, const double* q, const int* dir) {
+  const auto& motion = m.errors.axes[static_cast<size_t>(op.axis)].motion;
+  const double qa = op.joint >= 0 ? q[op.joint] : 0.0;
+  const int d = (dir && op.joint >= 0) ? dir[op.joint] : 0;
+  Vec6 c = Vec6::Zero();
+  for (const auto& group : op.tableGroups) {
+    const auto at = locateInGrid(group.positions, group.uniform, group.inverseStep, qa);
+    const size_t n = group.components.size();
+    const double* k = group.coefficients.data() + at.interval * n * 4;
+    for (size_t t = 0; t < n; ++t, k += 4) c[group.components[t]] += k[0] + at.s * (k[1] + at.s * (k[2] + at.s * k[3]));
+  }
+  if (op.residualMask)
+    for (int k = 0; k < 6; ++k)
+      if (op.residualMask & (1u << k)) c[k] += motion[static_cast<size_t>(k)].valueWithoutTables(qa, d);
+  return c;
+}
+
+// A point and a direction carried through the chain one factor at a time: cheaper than
+// composing frames when only the TCP and the tool direction are wanted.
+struct PointDirection {
+  Vec3 p;
+  Vec3 d;
+};
+
+// v <- rotation of v by (s, c) in the plane (i, j) of principal axis k.
+inline void rotatePlane(Vec3& v, int i, int j, double s, double c) {
+  const double vi = v[i], vj = v[j];
+  v[i] = c * vi - s * vj;
+  v[j] = s * vi + c * vj;
+}
+
+constexpr int kNext[3] = {1, 2, 0};
+constexpr int kAfterNext[3] = {2, 0, 1};
+
+// x <- F x (Inverse = false) or x <- F^-1 x for one operation.
+template <bool Inverse>
+inline void applyOp(const KinematicModel& m, const ChainOp& op, const double* q, const int* dir, PointDirection& x) {
+  switch (op.kind) {
+    case ChainOp::Constant: {
+      const Mat3& r = op.constant.linear();
+      const Vec3 t = op.constant.translation();
+      if constexpr (Inverse) {
+        x.p = r.transpose() * (x.p - t);
+        x.d = r.transpose() * x.d;
+      } else {
+        x.p = r * x.p + t;
+        x.d = r * x.d;
+      }
+      break;
+    }
+    case ChainOp::LinearJoint:
+      if constexpr (Inverse)
+        x.p -= op.base + q[op.joint] * op.vector;
+      else
+        x.p += op.base + q[op.joint] * op.vector;
+      break;
+    case ChainOp::RotaryJoint: {
+      const double angle = (Inverse ? -op.sign : op.sign) * q[op.joint];
+      if (op.principal >= 0) {
+        double s, c;
+        ::sincos(angle, &s, &c);
+        const int i = kNext[op.principal], j = kAfterNext[op.principal];
+        if (op.hasBase) x.p -= op.base;
+        rotatePlane(x.p, i, j, s, c);
+        rotatePlane(x.d, i, j, s, c);
+        if (op.hasBase) x.p += op.base;
+      } else {
+        const Mat3 r = rotationAbout(op.vector, angle);
+        x.p = op.base + r * (x.p - op.base);
+        x.d = r * x.d;
+      }
+      break;
+    }
+    case ChainOp::MotionError: {
+      // Trans(e) Rx(a) Ry(b) Rz(c) applied as three plane rotations.
+      const Vec6 c = motionComponents(m, op, q, dir);
+      double sn[3], cs[3];
+      for (int k = 0; k < 3; ++k) exactSinCos(c[3 + k], sn[k], cs[k]);
+      if constexpr (Inverse) {
+        x.p -= c.head<3>();
+        for (int k = 0; k < 3; ++k) {
+          rotatePlane(x.p, kNext[k], kAfterNext[k], -sn[k], cs[k]);
+          rotatePlane(x.d, kNext[k], kAfterNext[k], -sn[k], cs[k]);
+        }
+      } else {
+        for (int k = 2; k >= 0; --k) {
+          rotatePlane(x.p, kNext[k], kAfterNext[k], sn[k], cs[k]);
+          rotatePlane(x.d, kNext[k], kAfterNext[k], sn[k], cs[k]);
+        }
+        x.p += c.head<3>();
+      }
+      break;
+    }
+  }
+}
+
+// Fixed-size frame for the hot loop: rotation and translation kept apart, products written
+// out so that the compiler inlines and unrolls them.
+struct Frame {
+  Mat3 r = Mat3::Identity();
+  Vec3 p = Vec3::Zero();
+  void apply(const Mat3& rc, const Vec3& pc) {
+    p.noalias() += r * pc;
+    const Mat3 old = r;
+    r.noalias() = old * rc;
+  }
+};
+
 Pose runProgram(const KinematicModel& m, const std::vector<ChainOp>& program, const double* q, const int* dir) {
-  Pose t = Pose::Identity();
+  Frame t;
   for (const auto& op : program) {
     switch (op.kind) {
       case ChainOp::Constant:
-        t = t * op.constant;
+        t.apply(op.constant.linear(), op.constant.translation());
         break;
       case ChainOp::LinearJoint:
-        t.translation() += t.linear() * (op.base + q[op.joint] * op.vector);
+        t.p.noalias() += t.r * (op.base + q[op.joint] * op.vector);
         break;
       case ChainOp::RotaryJoint: {
-        const Mat3 r = rotationAbout(op.vector, op.sign * q[op.joint]);
-        t.translation() += t.linear() * (op.base - r * op.base);
-        t.linear() = t.linear() * r;
+        const double angle = op.sign * q[op.joint];
+        if (op.principal >= 0 && !op.hasBase) {
+          rotatePrincipal(t.r, op.principal, angle);
+          break;
+        }
+        const Mat3 r = rotationAbout(op.vector, angle);
+        t.apply(r, op.base - r * op.base);
         break;
       }
       case ChainOp::MotionError: {
-        const auto& motion = m.errors.axes[static_cast<size_t>(op.axis)].motion;
-        const double qa = op.joint >= 0 ? q[op.joint] : 0.0;
-        const int d = (dir && op.joint >= 0) ? dir[op.joint] : 0;
-        Vec6 c;
-        for (int k = 0; k < 6; ++k) c[k] = motion[static_cast<size_t>(k)].value(qa, d);
-        t = t * errorTransform(c);
+        const Vec6 c = motionComponents(m, op, q, dir);
+        t.apply(rotationXYZ(c[kA], c[kB], c[kC]), c.head<3>());
         break;
       }
     }
   }
-  return t;
+  Pose out = Pose::Identity();
+  out.linear() = t.r;
+  out.translation() = t.p;
+  return out;
 }
 
 }  // namespace
 
 Pose toolChainPose(const KinematicModel& m, const double* q, const int* dir) {
-  return runProgram(m, m.toolProgram, q, dir) * m.toolFrame;
+  return runProgram(m, m.toolProgram, q, dir);
 }
 
 Pose workpiecePose(const KinematicModel& m, const double* q, const int* dir) {
-  return runProgram(m, m.workpieceProgram, q, dir) * m.workpieceFrame;
+  return runProgram(m, m.workpieceProgram, q, dir);
 }
 
 Pose toolInWorkpiece(const KinematicModel& m, const double* q, const int* dir) {
-  return m.alignment * workpiecePose(m, q, dir).inverse(Eigen::Isometry) * toolChainPose(m, q, dir);
+  const Pose p = workpiecePose(m, q, dir).inverse(Eigen::Isometry) * toolChainPose(m, q, dir);
+  return m.aligned ? m.alignment * p : p;
 }
 
 ToolPoint toolPoint(const KinematicModel& m, const double* q, const int* dir) {
-  const Pose p = toolInWorkpiece(m, q, dir);
-  return {p.translation(), p.linear() * m.toolDirection};
+  // W^-1 T applied to the TCP (origin of the tool frame) and the tool direction, factor by
+  // factor: the tool chain from its end, then the inverted workpiece chain from the bed.
+  PointDirection x{Vec3::Zero(), m.toolDirection};
+  for (auto it = m.toolProgram.rbegin(); it != m.toolProgram.rend(); ++it) applyOp<false>(m, *it, q, dir, x);
+  for (const auto& op : m.workpieceProgram) applyOp<true>(m, op, q, dir, x);
+  if (m.aligned) return {m.alignment * x.p, m.alignment.linear() * x.d};
+  return {x.p, x.d};
 }
 
 Vec6 poseError(const Pose& actual, const Pose& nominal) {

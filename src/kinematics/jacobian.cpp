@@ -22,7 +22,7 @@ ChainFactors expand(const KinematicModel& m, const std::vector<ChainElement>& ch
     const int d = (dir && e.joint >= 0) ? dir[e.joint] : 0;
     elementFactors(m, e, qe, d, c.factors);
   }
-  c.factors.push_back({tail, Hook::None, -1});
+  c.factors.push_back({tail, Hook::None, -1});  // the tool or workpiece frame
   const size_t n = c.factors.size();
   c.prefix.resize(n);
   c.suffix.resize(n);

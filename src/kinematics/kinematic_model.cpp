@@ -2,6 +2,8 @@
 
 #include "mtacc/kinematics/forward.hpp"
 
+#include <algorithm>
+
 namespace mtacc {
 namespace {
 
@@ -52,23 +54,53 @@ std::vector<ChainElement> buildChain(const Machine& machine, const std::vector<i
 }
 
 // Merges runs of constant factors; joint and motion-error factors become operations.
-std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<ChainElement>& chain) {
+std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<ChainElement>& chain, const Pose& tail) {
   std::vector<ChainOp> ops;
   auto pushConstant = [&](const Pose& p) {
     if (p.isApprox(Pose::Identity(), 0.0)) return;
-    if (!ops.empty() && ops.back().kind == ChainOp::Constant)
+    if (!ops.empty() && ops.back().kind == ChainOp::Constant) {
       ops.back().constant = ops.back().constant * p;
-    else
-      ops.push_back(ChainOp{ChainOp::Constant, p});
+      return;
+    }
+    ChainOp op;
+    op.constant = p;
+    ops.push_back(op);
   };
-  std::vector<Factor> factors;
   for (const auto& e : chain) {
     const bool motion = hasMotionErrors(m, e.axis);
     auto pushMotion = [&]() {
       pushConstant(translation(e.location));
-      ChainOp op{ChainOp::MotionError};
+      ChainOp op;
+      op.kind = ChainOp::MotionError;
       op.joint = e.joint;
       op.axis = e.axis;
+      const auto& motion = m.errors.axes[static_cast<size_t>(e.axis)].motion;
+      std::vector<std::vector<const TableTerm*>> tables;
+      for (int k = 0; k < 6; ++k) {
+        for (const auto& term : motion[static_cast<size_t>(k)].terms()) {
+          const auto* table = std::get_if<TableTerm>(&term);
+          if (!table) {
+            op.residualMask |= 1u << k;
+            continue;
+          }
+          auto same = std::find_if(op.tableGroups.begin(), op.tableGroups.end(),
+                                   [&](const auto& g) { return g.positions == table->positions; });
+          if (same == op.tableGroups.end()) {
+            same = op.tableGroups.emplace(op.tableGroups.end());
+            same->positions = table->positions;
+            same->uniform = table->uniform;
+            same->inverseStep = table->inverseStep;
+            tables.emplace_back();
+          }
+          same->components.push_back(k);
+          tables[static_cast<size_t>(same - op.tableGroups.begin())].push_back(table);
+        }
+      }
+      for (size_t g = 0; g < op.tableGroups.size(); ++g) {
+        auto& group = op.tableGroups[g];
+        for (size_t i = 0; i + 1 < group.positions.size(); ++i)
+          for (const TableTerm* t : tables[g]) group.coefficients.insert(group.coefficients.end(), t->cubic[i].begin(), t->cubic[i].end());
+      }
       ops.push_back(op);
       pushConstant(translation(-e.location));
     };
@@ -79,21 +111,27 @@ std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<Cha
     }
     if (motion && e.frame == ErrorFrame::Fixed) pushMotion();
     if (e.type == AxisType::Linear) {
-      ChainOp op{ChainOp::LinearJoint};
+      ChainOp op;
+      op.kind = ChainOp::LinearJoint;
       op.joint = e.joint;
       op.base = linearJointTranslation(m, e, 0.0);
       op.vector = linearJointTranslation(m, e, 1.0) - op.base;
       ops.push_back(op);
     } else if (e.type == AxisType::Rotary) {
-      ChainOp op{ChainOp::RotaryJoint};
+      ChainOp op;
+      op.kind = ChainOp::RotaryJoint;
       op.joint = e.joint;
       op.vector = e.direction;
       op.base = e.location;
       op.sign = e.sign;
+      op.hasBase = !e.location.isZero(0.0);
+      for (int k = 0; k < 3; ++k)
+        if (e.direction[k] == 1.0) op.principal = k;
       ops.push_back(op);
     }
     if (motion && e.frame == ErrorFrame::Moving) pushMotion();
   }
+  pushConstant(tail);
   return ops;
 }
 
@@ -145,10 +183,10 @@ KinematicModel compile(std::shared_ptr<const Machine> machine, const ErrorModel&
   m.jointCount = machine->commandedCount();
   m.toolChain = buildChain(*machine, machine->toolChain, +1.0);
   m.workpieceChain = buildChain(*machine, machine->workpieceChain, -1.0);
-  m.toolProgram = buildProgram(m, m.toolChain);
-  m.workpieceProgram = buildProgram(m, m.workpieceChain);
   m.toolFrame = translation(machine->toolOffset);
   m.workpieceFrame = translation(machine->workpieceOffset);
+  m.toolProgram = buildProgram(m, m.toolChain, m.toolFrame);
+  m.workpieceProgram = buildProgram(m, m.workpieceChain, m.workpieceFrame);
   m.toolDirection = machine->toolDirection;
   if (withErrors && machine->alignment == WorkpieceAlignment::Machine) {
     // Seed 001 eqs. 10-12: the workpiece is set up aligned with the machine at the reference
@@ -156,6 +194,7 @@ KinematicModel compile(std::shared_ptr<const Machine> machine, const ErrorModel&
     const KinematicModel nominal = compile(machine, errors, false);
     const auto& q = machine->referencePose;
     m.alignment = workpiecePose(nominal, q.data(), nullptr).inverse() * workpiecePose(m, q.data(), nullptr);
+    m.aligned = true;
   }
   return m;
 }

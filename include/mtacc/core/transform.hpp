@@ -1,5 +1,7 @@
 #pragma once
 // Rigid transforms and the small-error transform used throughout the error model.
+#include <cmath>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -14,6 +16,24 @@ using Pose = Eigen::Isometry3d;
 // Six error components in ISO 230-1 order: translations along X, Y, Z, then rotations
 // about X, Y, Z (the A, B, C of the names EXk, EYk, EZk, EAk, EBk, ECk and X0k ... C0k).
 enum Component : int { kX = 0, kY = 1, kZ = 2, kA = 3, kB = 4, kC = 5 };
+
+// sin and cos to full double precision. Error motions are small angles: a short Taylor
+// series whose first omitted term lies below 1e-17 of the result for |x| < 1e-4 (and a
+// longer one for |x| < 1e-2, below 1e-24); libm beyond.
+inline void exactSinCos(double x, double& s, double& c) {
+  const double x2 = x * x;
+  if (x2 < 1e-8) {
+    s = x * (1.0 - x2 * (1.0 / 6));
+    c = 1.0 + x2 * (-0.5 + x2 * (1.0 / 24));
+    return;
+  }
+  if (x2 < 1e-4) {
+    s = x * (1.0 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880)))));
+    c = 1.0 + x2 * (-0.5 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 - x2 * (1.0 / 3628800)))));
+    return;
+  }
+  ::sincos(x, &s, &c);
+}
 
 // R = Rx(a) * Ry(b) * Rz(c): the order of seed 003 eq. [3.8], exact (not linearised).
 Mat3 rotationXYZ(double a, double b, double c);

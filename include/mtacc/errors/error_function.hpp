@@ -1,6 +1,7 @@
 #pragma once
 // A component error motion as a function of its axis position (ISO 230-1 E<D><axis>):
 // a sum of terms, each linear in its parameters, so that sensitivities are exact.
+#include <array>
 #include <string>
 #include <variant>
 #include <vector>
@@ -29,6 +30,23 @@ struct HarmonicTerm {
 
 enum class Interpolation { Linear, CubicSpline };
 
+// Where q falls in a grid of increasing positions: the interval and the offset from its start,
+// clamped to the grid.
+struct GridLocation {
+  size_t interval;
+  double s;
+};
+GridLocation locateInGridSearch(const std::vector<double>& positions, double x);
+inline GridLocation locateInGrid(const std::vector<double>& positions, bool uniform, double inverseStep, double q) {
+  const double x0 = positions.front(), xn = positions.back();
+  const double x = q < x0 ? x0 : (q > xn ? xn : q);
+  if (!uniform) return locateInGridSearch(positions, x);
+  const size_t last = positions.size() - 2;
+  size_t i = static_cast<size_t>((x - x0) * inverseStep);
+  if (i > last) i = last;
+  return {i, x - positions[i]};
+}
+
 // Values at positions, interpolated linearly or with a natural cubic spline; held constant
 // beyond the first and last position.
 struct TableTerm {
@@ -38,10 +56,18 @@ struct TableTerm {
   Interpolation interpolation;
   // Natural spline: second derivatives = splineOperator * values (precomputed, n x n).
   Eigen::MatrixXd splineOperator;
-  std::vector<double> secondDerivatives;
+  // Per interval i, the exact cubic c0 + c1 s + c2 s^2 + c3 s^3 in s = x - positions[i].
+  std::vector<std::array<double, 4>> cubic;
   bool uniform = false;
+  double inverseStep = 0.0;  // 1 / spacing when uniform
 
-  void refresh();  // recompute secondDerivatives after values changed
+  void refresh();  // recompute the cubic coefficients after values changed
+
+  GridLocation locate(double q) const { return locateInGrid(positions, uniform, inverseStep, q); }
+  double valueAt(const GridLocation& at) const {
+    const auto& c = cubic[at.interval];
+    return c[0] + at.s * (c[1] + at.s * (c[2] + at.s * c[3]));
+  }
 };
 
 // Reversal (hysteresis): +width/2 when the axis moves in its positive direction, -width/2
@@ -60,6 +86,8 @@ class ErrorFunction {
 
   // direction: +1, -1, or 0 (unknown / standing still).
   double value(double q, int direction) const;
+  // The same, leaving out table terms (which a caller evaluates grouped by grid).
+  double valueWithoutTables(double q, int direction) const;
 
   // The linear parameters of all terms, in order. Names are suffixes such as "c1", "h2",
   // "t3", "rev" (made unique within the function).
@@ -71,6 +99,7 @@ class ErrorFunction {
   double basis(int index, double q, int direction) const;
 
  private:
+  double sum(double q, int direction, bool skipTables) const;
   std::vector<ErrorTerm> terms_;
 };
 

@@ -35,13 +35,27 @@ struct Factor {
 
 // One operation of the compiled evaluation program.
 struct ChainOp {
-  enum Kind { Constant, LinearJoint, RotaryJoint, MotionError } kind;
+  enum Kind { Constant, LinearJoint, RotaryJoint, MotionError } kind = Constant;
   Pose constant = Pose::Identity();  // Constant
   int joint = -1;
   int axis = -1;
   Vec3 vector = Vec3::Zero();  // LinearJoint: translation per unit q; RotaryJoint: unit axis
-  Vec3 base = Vec3::Zero();    // LinearJoint: translation at q = 0; RotaryJoint / MotionError: point
+  Vec3 base = Vec3::Zero();    // LinearJoint: translation at q = 0; RotaryJoint: point on the axis
   double sign = 1.0;           // RotaryJoint
+  int principal = -1;          // RotaryJoint: 0, 1, 2 when the axis is +X, +Y, +Z (fast path), else -1
+  bool hasBase = false;        // RotaryJoint: the axis does not pass through the frame origin
+  // MotionError: table terms grouped by their grid, so that each grid is located once per
+  // pose, with their cubic coefficients copied side by side ([interval][table][4]);
+  // residualMask has bit k set when component k has terms other than tables.
+  struct TableGroup {
+    std::vector<double> positions;
+    bool uniform = false;
+    double inverseStep = 0.0;
+    std::vector<int> components;
+    std::vector<double> coefficients;
+  };
+  std::vector<TableGroup> tableGroups;
+  unsigned residualMask = 0;
 };
 
 struct KinematicModel {
@@ -52,10 +66,11 @@ struct KinematicModel {
   std::vector<ChainElement> workpieceChain;  // bed -> workpiece
   std::vector<ChainOp> toolProgram;
   std::vector<ChainOp> workpieceProgram;
-  Pose toolFrame = Pose::Identity();       // Trans(tool offset)
+  Pose toolFrame = Pose::Identity();       // Trans(tool offset); also the programs' last factor
   Pose workpieceFrame = Pose::Identity();  // Trans(workpiece offset)
   Vec3 toolDirection = Vec3::UnitZ();
   Pose alignment = Pose::Identity();  // M_WC of seed 001 eq. 12 (identity for table alignment)
+  bool aligned = false;               // alignment differs from the identity
   int jointCount = 0;
 };
 
