@@ -136,11 +136,15 @@ class RatioReporter : public benchmark::ConsoleReporter {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Five repetitions by default: the machines are shared and noisy; ratios use medians.
+  // Five interleaved repetitions by default: the machines are shared and noisy, so KDL and
+  // mtacc take turns and the ratios use medians.
   std::vector<char*> args(argv, argv + argc);
-  std::string reps = "--benchmark_repetitions=5";
-  if (std::none_of(args.begin(), args.end(), [](const char* a) { return std::string(a).rfind("--benchmark_repetitions", 0) == 0; }))
-    args.push_back(reps.data());
+  std::string reps = "--benchmark_repetitions=5", interleave = "--benchmark_enable_random_interleaving=true";
+  auto given = [&](const char* flag) {
+    return std::any_of(args.begin(), args.end(), [&](const char* a) { return std::string(a).rfind(flag, 0) == 0; });
+  };
+  if (!given("--benchmark_repetitions")) args.push_back(reps.data());
+  if (!given("--benchmark_enable_random_interleaving")) args.push_back(interleave.data());
   int n = static_cast<int>(args.size());
   benchmark::Initialize(&n, args.data());
   // Same chain, same poses: the nominal mtacc and KDL results must agree before timing.
