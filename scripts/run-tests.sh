@@ -8,4 +8,4 @@ bash scripts/build.sh
 (cd build && ctest --output-on-failure -j"$(nproc)")
 echo
 echo "== Benchmark: batch forward kinematics against orocos KDL =="
-./build/bench/bench_fk_vs_kdl --benchmark_min_time=0.2
+./build/bench/bench_fk_vs_kdl --benchmark_min_time=0.2 --benchmark_color=false
