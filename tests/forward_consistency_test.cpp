@@ -43,14 +43,9 @@ TEST_P(ForwardConsistency, ToolPointEqualsPoseComposition) {
     machine->alignment = alignment;
     const auto model = compile(machine, richErrors(*machine, rng));
     for (int trial = 0; trial < 200; ++trial) {
-      std::vector<double> q(static_cast<size_t>(model.jointCount));
+      const auto q = test::randomPose(*machine, rng);
       std::vector<int> dir(q.size());
-      for (size_t i = 0; i < q.size(); ++i) {
-        const Axis& a = machine->axes[i];
-        const double lo = a.travel ? a.travel->min : -kPi, hi = a.travel ? a.travel->max : kPi;
-        q[i] = lo + (hi - lo) * u(rng);
-        dir[i] = static_cast<int>(3 * u(rng)) - 1;
-      }
+      for (auto& d : dir) d = static_cast<int>(3 * u(rng)) - 1;
       const ToolPoint fast = toolPoint(model, q.data(), dir.data());
       const Pose full = toolInWorkpiece(model, q.data(), dir.data());
       EXPECT_LT((fast.position - full.translation()).norm(), 1e-10);
@@ -62,11 +57,7 @@ TEST_P(ForwardConsistency, ToolPointEqualsPoseComposition) {
 INSTANTIATE_TEST_SUITE_P(Bundled, ForwardConsistency,
                          ::testing::Values("tilting-table", "swivel-head-table", "double-pivot-head", "inclined-a-table",
                                            "multitasking-b-c", "maho", "three-axis-vertical"),
-                         [](const auto& info) {
-                           std::string n = info.param;
-                           for (auto& ch : n) ch = ch == '-' ? '_' : ch;
-                           return n;
-                         });
+                         test::MachineName());
 
 TEST(ForwardKinematics, BatchOnTwoThreadsEqualsOneThread) {
   const auto machine = test::bundled("tilting-table");

@@ -23,12 +23,7 @@ TEST_P(IkRoundTrip, TenThousandRandomPoses) {
   int found = 0;
   double worstPosition = 0, worstDirection = 0;
   for (int trial = 0; trial < 10000; ++trial) {
-    std::vector<double> q(static_cast<size_t>(model.jointCount));
-    for (size_t i = 0; i < q.size(); ++i) {
-      const Axis& a = machine->axes[i];
-      const double lo = a.travel ? a.travel->min : -kPi, hi = a.travel ? a.travel->max : kPi;
-      q[i] = lo + (hi - lo) * u(rng);
-    }
+    const auto q = test::randomPose(*machine, rng);
     const ToolPoint target = toolPoint(model, q.data());
     const auto result = inverseKinematics(model, target.position, target.direction);
     ASSERT_FALSE(result.solutions.empty());
@@ -51,11 +46,7 @@ TEST_P(IkRoundTrip, TenThousandRandomPoses) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BundledFiveAxis, IkRoundTrip, ::testing::ValuesIn(test::kFiveAxisMachines),
-                         [](const auto& info) {
-                           std::string n = info.param;
-                           for (auto& ch : n) ch = ch == '-' ? '_' : ch;
-                           return n;
-                         });
+                         test::MachineName());
 
 TEST(IkSingularity, TiltingTableAtBZeroIsReportedAndKeepsTheHint) {
   const auto model = compileNominal(test::bundled("tilting-table"));

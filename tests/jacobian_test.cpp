@@ -23,14 +23,9 @@ void checkJacobian(std::shared_ptr<const Machine> machine, ErrorModel errors, in
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int trial = 0; trial < poses; ++trial) {
-    std::vector<double> q(static_cast<size_t>(model.jointCount));
+    const auto q = test::randomPose(*machine, rng);
     std::vector<int> dir(q.size());
-    for (size_t i = 0; i < q.size(); ++i) {
-      const Axis& a = machine->axes[i];
-      const double lo = a.travel ? a.travel->min : -kPi, hi = a.travel ? a.travel->max : kPi;
-      q[i] = lo + (hi - lo) * u(rng);
-      dir[i] = u(rng) < 0.5 ? -1 : 1;
-    }
+    for (auto& d : dir) d = u(rng) < 0.5 ? -1 : 1;
     const Pose nominalPose = toolInWorkpiece(nominal, q.data());
     const auto jac = parameterJacobian(model, params, q.data(), dir.data());
     for (size_t k = 0; k < params.size(); ++k) {
@@ -82,11 +77,7 @@ TEST_P(JacobianAllMachines, RandomLocationErrors) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Bundled, JacobianAllMachines, ::testing::ValuesIn(test::kFiveAxisMachines),
-                         [](const auto& info) {
-                           std::string n = info.param;
-                           for (auto& ch : n) ch = ch == '-' ? '_' : ch;
-                           return n;
-                         });
+                         test::MachineName());
 
 TEST(ParameterJacobian, MahoMotionErrorsOnFixedAndMovingFrames) {
   const auto machine = test::bundled("maho");

@@ -1,5 +1,7 @@
 #pragma once
 #include <memory>
+#include <random>
+#include <vector>
 #include <string>
 
 #include "mtacc/core/units.hpp"
@@ -12,6 +14,29 @@ namespace mtacc::test {
 inline std::shared_ptr<const Machine> bundled(const std::string& name) {
   return std::make_shared<const Machine>(loadMachine(name));
 }
+
+// A uniformly random pose within travel (one turn for a continuous rotary axis).
+template <class Rng>
+std::vector<double> randomPose(const Machine& m, Rng& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> q(static_cast<size_t>(m.commandedCount()));
+  for (size_t i = 0; i < q.size(); ++i) {
+    const Axis& a = m.axes[i];
+    const double lo = a.travel ? a.travel->min : -kPi, hi = a.travel ? a.travel->max : kPi;
+    q[i] = lo + (hi - lo) * u(rng);
+  }
+  return q;
+}
+
+// gtest parameter names from machine names ("tilting-table" -> "tilting_table").
+struct MachineName {
+  template <class Info>
+  std::string operator()(const Info& info) const {
+    std::string n = info.param;
+    for (auto& ch : n) ch = ch == '-' ? '_' : ch;
+    return n;
+  }
+};
 
 inline const char* kFiveAxisMachines[] = {"tilting-table", "swivel-head-table", "double-pivot-head",
                                           "inclined-a-table", "multitasking-b-c", "maho"};

@@ -11,14 +11,6 @@ namespace {
 constexpr char kComponentLetters[] = {'X', 'Y', 'Z', 'A', 'B', 'C'};
 
 // X, Y, Z for linear letters (U, V, W are secondary X, Y, Z).
-int ownLinearComponent(char letter) {
-  switch (letter) {
-    case 'X': case 'U': return kX;
-    case 'Y': case 'V': return kY;
-    default: return kZ;
-  }
-}
-
 struct LocationSlot {
   std::string name;
   int component;
@@ -31,7 +23,7 @@ std::vector<LocationSlot> locationSlots(const Machine& machine, int axis) {
     for (int c = 0; c < 6; ++c) slots.push_back({std::string(1, kComponentLetters[c]) + "0" + a.name, c});
     return slots;
   }
-  const int own = ownLinearComponent(a.name[0]);
+  const int own = a.ownComponent();
   slots.push_back({std::string(1, kComponentLetters[own]) + "0" + a.name, own});
   for (int c = 0; c < 3; ++c) {
     if (std::abs(a.direction[c]) > 1.0 - 1e-9) continue;  // rotation about the axis itself

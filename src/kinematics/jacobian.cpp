@@ -40,14 +40,6 @@ ChainFactors expand(const KinematicModel& m, const std::vector<ChainElement>& ch
   return c;
 }
 
-int ownLinearComponent(char letter) {
-  switch (letter) {
-    case 'X': case 'U': return kX;
-    case 'Y': case 'V': return kY;
-    default: return kZ;
-  }
-}
-
 // d(chain total) / d(parameter) for one chain; zero when the parameter is not in it.
 Mat4 chainDerivative(const KinematicModel& m, const ChainFactors& c, const std::vector<ChainElement>& chain,
                      const Parameter& p, const double* q, const int* dir) {
@@ -67,7 +59,7 @@ Mat4 chainDerivative(const KinematicModel& m, const ChainFactors& c, const std::
       df = errorTransformDerivative(errs.location, p.component);
     } else if (p.kind == ParameterKind::Location && f.hook == Hook::LinearJoint) {
       const Vec6& loc = errs.location;
-      const int own = ownLinearComponent(m.machine->axes[static_cast<size_t>(p.axis)].name[0]);
+      const int own = m.machine->axes[static_cast<size_t>(p.axis)].ownComponent();
       Vec3 dt;
       if (p.component == own)
         dt = element->sign * (rotationXYZ(loc[kA], loc[kB], loc[kC]) * element->direction);

@@ -13,14 +13,6 @@ Pose translation(const Vec3& t) {
   return p;
 }
 
-int ownLinearComponent(char letter) {
-  switch (letter) {
-    case 'X': case 'U': return kX;
-    case 'Y': case 'V': return kY;
-    default: return kZ;
-  }
-}
-
 bool hasMotionErrors(const KinematicModel& m, int axis) {
   if (!m.withErrors) return false;
   for (const auto& f : m.errors.axes[static_cast<size_t>(axis)].motion)
@@ -140,8 +132,7 @@ std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<Cha
 Vec3 linearJointTranslation(const KinematicModel& m, const ChainElement& e, double q) {
   if (!m.withErrors) return e.sign * q * e.direction;
   const Vec6& loc = m.errors.axes[static_cast<size_t>(e.axis)].location;
-  const char letter = m.machine->axes[static_cast<size_t>(e.axis)].name[0];
-  const double zero = loc[ownLinearComponent(letter)];
+  const double zero = loc[m.machine->axes[static_cast<size_t>(e.axis)].ownComponent()];
   return e.sign * (q + zero) * (rotationXYZ(loc[kA], loc[kB], loc[kC]) * e.direction);
 }
 

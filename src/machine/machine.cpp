@@ -6,6 +6,14 @@
 
 namespace mtacc {
 
+int Axis::ownComponent() const {
+  switch (name[0]) {
+    case 'X': case 'U': return 0;
+    case 'Y': case 'V': return 1;
+    default: return 2;
+  }
+}
+
 int Machine::commandedCount() const {
   int n = 0;
   for (const auto& a : axes) n += a.commanded() ? 1 : 0;

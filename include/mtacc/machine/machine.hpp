@@ -38,6 +38,8 @@ struct Axis {
   int line = 0;                  // line in the machine file, for messages
 
   bool commanded() const { return type != AxisType::Spindle; }
+  // The machine direction a linear axis is named after: 0, 1, 2 for X (U), Y (V), Z (W).
+  int ownComponent() const;
   bool isRotary() const { return type != AxisType::Linear; }
 };
 
