@@ -17,19 +17,12 @@ struct InverseOptions : MachineOptions {
   bool all = false;
 };
 
-TiltBranch parseBranch(const std::string& s) {
-  if (s == "auto") return TiltBranch::Auto;
-  if (s == "positive") return TiltBranch::Positive;
-  if (s == "negative") return TiltBranch::Negative;
-  throw InputError(InputLocation{"", 0, "--branch"}, "expected auto, positive or negative, got '" + s + "'");
-}
-
 void run(const InverseOptions& o) {
   const auto loaded = load(o);
   const Machine& m = *loaded.machine;
   const auto nominal = compileNominal(loaded.machine);
   IkOptions options;
-  options.branch = parseBranch(o.branch);
+  options.branch = parseTiltBranch(o.branch);
   std::vector<Vec3> positions, directions;
   if (o.tcp.empty() == o.targetsFile.empty())
     throw InputError(InputLocation{"", 0, "--tcp/--targets"}, "give exactly one of --tcp x,y,z or --targets FILE.csv");

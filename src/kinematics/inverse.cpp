@@ -147,6 +147,13 @@ bool solveLinear(const KinematicModel& m, std::vector<double>& q, const Vec3& ta
 
 }  // namespace
 
+TiltBranch parseTiltBranch(const std::string& name) {
+  if (name == "auto") return TiltBranch::Auto;
+  if (name == "positive") return TiltBranch::Positive;
+  if (name == "negative") return TiltBranch::Negative;
+  throw InputError(InputLocation{"", 0, "branch"}, "expected auto, positive or negative, got '" + name + "'");
+}
+
 IkResult inverseKinematics(const KinematicModel& m, const Vec3& position, const Vec3& toolDirection,
                            const IkOptions& o) {
   const Machine& machine = *m.machine;

@@ -18,6 +18,9 @@ enum class TiltBranch {
   Negative,  // tilt axis <= 0
 };
 
+// "auto", "positive" or "negative"; throws InputError otherwise.
+TiltBranch parseTiltBranch(const std::string& name);
+
 struct IkOptions {
   TiltBranch branch = TiltBranch::Auto;
   // Previous pose along a path: rotary angles are chosen closest to it (unwrapping

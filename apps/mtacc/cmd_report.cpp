@@ -1,0 +1,51 @@
+// mtacc report MACHINE: the HTML accuracy report, built by the Python package (matplotlib
+// figures) on top of the same library. Runs /usr/bin/python3 -m mtacc.report.
+#include <unistd.h>
+
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "cli_common.hpp"
+
+namespace mtacc::cli {
+namespace {
+
+struct ReportOptions {
+  std::string machine;
+  std::string errorsFile;
+  std::string output = ".";
+  int samples = 5;
+};
+
+[[noreturn]] void run(const ReportOptions& o) {
+  const std::string pythonDir = MTACC_PYTHON_DIR;
+  const char* old = std::getenv("PYTHONPATH");
+  const std::string path = pythonDir + (old && *old ? ":" + std::string(old) : "");
+  ::setenv("PYTHONPATH", path.c_str(), 1);
+  std::vector<std::string> args{"/usr/bin/python3", "-m", "mtacc.report", o.machine, "-o", o.output,
+                                "--samples", std::to_string(o.samples)};
+  if (!o.errorsFile.empty()) {
+    args.push_back("--errors");
+    args.push_back(o.errorsFile);
+  }
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  ::execv(argv[0], argv.data());
+  throw std::runtime_error("cannot start /usr/bin/python3 for the report");
+}
+
+}  // namespace
+
+void addReportCommand(CLI::App& app) {
+  auto o = std::make_shared<ReportOptions>();
+  auto* cmd = app.add_subcommand("report", "write the HTML accuracy report (self-contained, figures as SVG)");
+  cmd->add_option("machine", o->machine, "machine file, or the name of a bundled machine")->required();
+  cmd->add_option("-o,--output", o->output, "output directory (default: current)");
+  cmd->add_option("--errors", o->errorsFile, "errors file (default: the machine file's)");
+  cmd->add_option("--samples", o->samples, "positions per axis for the error budget (default 5)");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace mtacc::cli

@@ -1,0 +1,360 @@
+// The Python module mtacc._mtacc: a machine with its errors, batch kinematics on numpy
+// arrays, sensitivities and the error budget. Units at this interface are those of the CLI:
+// mm and degrees for axis positions, mm for the TCP, um and urad for errors.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/core/units.hpp"
+#include "mtacc/errors/aliases.hpp"
+#include "mtacc/errors/error_yaml.hpp"
+#include "mtacc/kinematics/budget.hpp"
+#include "mtacc/kinematics/forward.hpp"
+#include "mtacc/kinematics/inverse.hpp"
+#include "mtacc/kinematics/jacobian.hpp"
+#include "mtacc/machine/machine_yaml.hpp"
+
+namespace py = pybind11;
+using namespace mtacc;
+
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+class PyMachine {
+ public:
+  PyMachine(const std::string& pathOrName, const std::string& errorsFile)
+      : machine_(std::make_shared<const Machine>(loadMachine(pathOrName))),
+        errors_(errorsFile.empty() ? loadMachineErrors(*machine_) : loadErrors(*machine_, errorsFile)) {}
+
+  const Machine& machine() const { return *machine_; }
+  std::shared_ptr<const Machine> shared() const { return machine_; }
+  ErrorModel& errors() { return errors_; }
+
+  int axisCount() const { return machine_->commandedCount(); }
+
+  // (n, axes) in mm / deg -> joint matrix in mm / rad.
+  JointMatrix joints(const Array& q) const {
+    const auto r = q.unchecked<2>();
+    if (r.shape(1) != axisCount())
+      throw InputError(InputLocation{"", 0, "q"}, "expected " + std::to_string(axisCount()) + " columns (one per axis), got " +
+                                                     std::to_string(r.shape(1)));
+    JointMatrix out(r.shape(0), r.shape(1));
+    for (py::ssize_t i = 0; i < r.shape(0); ++i)
+      for (py::ssize_t k = 0; k < r.shape(1); ++k) {
+        const double v = r(i, k);
+        if (!std::isfinite(v)) throw InputError(InputLocation{"", 0, "q"}, "row " + std::to_string(i) + ": not a finite number");
+        out(i, k) = machine_->axes[static_cast<size_t>(k)].isRotary() ? v * kDeg : v;
+      }
+    return out;
+  }
+
+  Eigen::MatrixXi directions(const py::object& dirs, long rows) const {
+    if (dirs.is_none()) return {};
+    const auto a = py::array_t<int, py::array::c_style | py::array::forcecast>(dirs);
+    const auto r = a.unchecked<2>();
+    if (r.shape(0) != rows || r.shape(1) != axisCount())
+      throw InputError(InputLocation{"", 0, "directions"}, "expected the shape of q");
+    Eigen::MatrixXi out(rows, axisCount());
+    for (py::ssize_t i = 0; i < rows; ++i)
+      for (py::ssize_t k = 0; k < axisCount(); ++k) out(i, k) = r(i, k);
+    return out;
+  }
+
+  void checkTravel(const JointMatrix& q) const {
+    for (long r = 0; r < q.rows(); ++r) {
+      const std::vector<double> row(q.row(r).data(), q.row(r).data() + q.cols());
+      const auto v = machine_->travelViolation(row);
+      if (!v.empty()) throw InputError(InputLocation{"", 0, "row " + std::to_string(r)}, "pose " + v);
+    }
+  }
+
+ private:
+  std::shared_ptr<const Machine> machine_;
+  ErrorModel errors_;
+};
+
+py::array_t<double> toArray(const double* data, py::ssize_t rows, py::ssize_t cols) {
+  py::array_t<double> out({rows, cols});
+  std::copy(data, data + rows * cols, out.mutable_data());
+  return out;
+}
+
+py::dict poseDict(const Machine& m, const std::vector<double>& q) {
+  py::dict d;
+  for (int i = 0; i < m.commandedCount(); ++i) {
+    const Axis& a = m.axes[static_cast<size_t>(i)];
+    d[py::str(a.name)] = a.isRotary() ? q[static_cast<size_t>(i)] / kDeg : q[static_cast<size_t>(i)];
+  }
+  return d;
+}
+
+double parseValue(const py::object& value, Dimension dim, const std::string& name) {
+  if (py::isinstance<py::str>(value)) {
+    std::string reason;
+    const auto q = parseQuantity(value.cast<std::string>(), &reason);
+    if (!q) throw InputError(InputLocation{"", 0, name}, reason);
+    if (q->dimension != dim) throw InputError(InputLocation{"", 0, name}, std::string("expected ") + withArticle(dim));
+    return q->value;
+  }
+  return value.cast<double>();
+}
+
+// Values given under a source's alias convert with its sign (iso = sign * source).
+double aliasSign(const std::string& name) {
+  const auto alias = findAlias(name);
+  return alias ? alias->sign : 1.0;
+}
+
+Parameter findParameterOrThrow(PyMachine& m, const std::string& name) {
+  try {
+    return findParameter(m.machine(), m.errors(), name);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(InputLocation{"", 0, name}, e.what());
+  }
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_mtacc, mod) {
+  mod.doc() = "mtacc: geometric accuracy of multi-axis machine tools (C++ core)";
+  static py::exception<InputError> inputError(mod, "InputError", PyExc_ValueError);
+  static py::exception<UnreachablePose> unreachable(mod, "UnreachablePose", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      inputError(e.what());
+    } catch (const UnreachablePose& e) {
+      unreachable((std::string("unreachable pose: ") + e.what()).c_str());
+    }
+  });
+
+  py::class_<PyMachine>(mod, "Machine")
+      .def(py::init<const std::string&, const std::string&>(), py::arg("machine"), py::arg("errors") = "")
+      .def_property_readonly("name", [](const PyMachine& m) { return m.machine().name; })
+      .def_property_readonly("file", [](const PyMachine& m) { return m.machine().sourceFile; })
+      .def_property_readonly("structure", [](const PyMachine& m) { return m.machine().structure.text; })
+      .def_property_readonly("structure_tool_first", [](const PyMachine& m) { return m.machine().structure.toolFirst(); })
+      .def_property_readonly("axis_names",
+                             [](const PyMachine& m) {
+                               std::vector<std::string> n;
+                               for (const auto& a : m.machine().axes)
+                                 if (a.commanded()) n.push_back(a.name);
+                               return n;
+                             })
+      .def_property_readonly("axes",
+                             [](const PyMachine& m) {
+                               py::list out;
+                               const Machine& mach = m.machine();
+                               auto chainOf = [&](int i) {
+                                 for (int k : mach.toolChain)
+                                   if (k == i) return "tool";
+                                 return "workpiece";
+                               };
+                               for (int i = 0; i < static_cast<int>(mach.axes.size()); ++i) {
+                                 const Axis& a = mach.axes[static_cast<size_t>(i)];
+                                 py::dict d;
+                                 d["name"] = a.name;
+                                 d["type"] = a.type == AxisType::Linear ? "linear" : a.type == AxisType::Rotary ? "rotary" : "spindle";
+                                 d["side"] = chainOf(i);
+                                 d["direction"] = std::vector<double>{a.direction.x(), a.direction.y(), a.direction.z()};
+                                 d["location_mm"] = std::vector<double>{a.location.x(), a.location.y(), a.location.z()};
+                                 d["offset_mm"] = std::vector<double>{a.offset.x(), a.offset.y(), a.offset.z()};
+                                 d["error_frame"] = a.errorFrame == ErrorFrame::Fixed ? "fixed" : "moving";
+                                 const double f = a.isRotary() ? 1.0 / kDeg : 1.0;
+                                 if (a.travel) d["travel"] = std::vector<double>{a.travel->min * f, a.travel->max * f};
+                                 else d["travel"] = py::none();
+                                 out.append(d);
+                               }
+                               return out;
+                             })
+      .def_property_readonly("tool_chain",
+                             [](const PyMachine& m) {
+                               std::vector<std::string> n;
+                               for (int i : m.machine().toolChain) n.push_back(m.machine().axes[static_cast<size_t>(i)].name);
+                               return n;
+                             })
+      .def_property_readonly("workpiece_chain",
+                             [](const PyMachine& m) {
+                               std::vector<std::string> n;
+                               for (int i : m.machine().workpieceChain) n.push_back(m.machine().axes[static_cast<size_t>(i)].name);
+                               return n;
+                             })
+      .def_property_readonly("tool_direction",
+                             [](const PyMachine& m) {
+                               const Vec3& d = m.machine().toolDirection;
+                               return std::vector<double>{d.x(), d.y(), d.z()};
+                             })
+      .def("parameter_names",
+           [](PyMachine& m) {
+             std::vector<std::string> n;
+             for (const auto& p : parameterCatalogue(m.machine(), m.errors())) n.push_back(p.name);
+             return n;
+           })
+      .def("error_unit",
+           [](PyMachine& m, const std::string& name) {
+             return findParameterOrThrow(m, name).dimension == Dimension::Length ? "mm" : "rad";
+           })
+      .def("get_error",
+           [](PyMachine& m, const std::string& name) {
+             return aliasSign(name) * parameterValue(m.errors(), findParameterOrThrow(m, name));
+           })
+      .def("set_error",
+           [](PyMachine& m, const std::string& name, const py::object& value) {
+             const auto p = findParameterOrThrow(m, name);
+             setParameterValue(m.errors(), p, aliasSign(name) * parseValue(value, p.dimension, name));
+           })
+      .def("nonzero_errors",
+           [](PyMachine& m) {
+             py::dict d;
+             for (const auto& p : nonZeroParameters(m.machine(), m.errors())) d[py::str(p.name)] = parameterValue(m.errors(), p);
+             return d;
+           })
+      .def(
+          "fk",
+          [](PyMachine& m, const Array& q, const py::object& dirs, bool nominal) {
+            const auto joints = m.joints(q);
+            m.checkTravel(joints);
+            const auto d = m.directions(dirs, joints.rows());
+            const auto model = nominal ? compileNominal(m.shared()) : compile(m.shared(), m.errors());
+            PointMatrix pos, dir;
+            {
+              py::gil_scoped_release release;
+              toolPoints(model, joints, d, pos, dir, 0);
+            }
+            return py::make_tuple(toArray(pos.data(), pos.rows(), 3), toArray(dir.data(), dir.rows(), 3));
+          },
+          py::arg("q"), py::arg("directions") = py::none(), py::arg("nominal") = false)
+      .def(
+          "tcp_errors",
+          [](PyMachine& m, const Array& q, const py::object& dirs) {
+            const auto joints = m.joints(q);
+            m.checkTravel(joints);
+            const auto d = m.directions(dirs, joints.rows());
+            const auto actual = compile(m.shared(), m.errors());
+            const auto nominal = compileNominal(m.shared());
+            Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor> e;
+            {
+              py::gil_scoped_release release;
+              e = toolErrors(actual, nominal, joints, d, 0);
+            }
+            for (long r = 0; r < e.rows(); ++r) {
+              e.row(r).head<3>() *= 1e3;
+              e.row(r).tail<3>() *= 1e6;
+            }
+            return toArray(e.data(), e.rows(), 6);
+          },
+          py::arg("q"), py::arg("directions") = py::none())
+      .def(
+          "ik",
+          [](PyMachine& m, std::vector<double> tcp, std::vector<double> tool, const std::string& branch, bool all) {
+            if (tcp.size() != 3 || tool.size() != 3) throw InputError(InputLocation{"", 0, "tcp/tool"}, "expected three numbers x,y,z");
+            IkOptions o;
+            o.branch = parseTiltBranch(branch);
+            const auto nominal = compileNominal(m.shared());
+            const Vec3 p(tcp[0], tcp[1], tcp[2]), t(tool[0], tool[1], tool[2]);
+            std::vector<IkSolution> sols;
+            if (all) sols = inverseKinematics(nominal, p, t, o).solutions;
+            else sols = {solveIk(nominal, p, t, o)};
+            py::list out;
+            for (const auto& s : sols)
+              out.append(py::dict(py::arg("pose") = poseDict(m.machine(), s.q), py::arg("singular") = s.singular,
+                                  py::arg("free_axis") = s.singularAxis, py::arg("within_travel") = s.withinTravel,
+                                  py::arg("travel_violation") = s.travelViolation));
+            return out;
+          },
+          py::arg("tcp"), py::arg("tool") = std::vector<double>{0, 0, 1}, py::arg("branch") = "auto", py::arg("all") = false)
+      .def(
+          "ik_path",
+          [](PyMachine& m, const Array& tcps, const Array& tools, const std::string& branch) {
+            const auto p = tcps.unchecked<2>();
+            const auto t = tools.unchecked<2>();
+            if (p.shape(1) != 3 || t.shape(1) != 3 || p.shape(0) != t.shape(0))
+              throw InputError(InputLocation{"", 0, "tcps/tools"}, "expected two (n, 3) arrays of the same length");
+            std::vector<Vec3> ps, ts;
+            for (py::ssize_t i = 0; i < p.shape(0); ++i) {
+              ps.emplace_back(p(i, 0), p(i, 1), p(i, 2));
+              ts.emplace_back(t(i, 0), t(i, 1), t(i, 2));
+            }
+            IkOptions o;
+            o.branch = parseTiltBranch(branch);
+            const auto path = solveIkPath(compileNominal(m.shared()), ps, ts, o);
+            py::array_t<double> out({static_cast<py::ssize_t>(path.size()), static_cast<py::ssize_t>(m.axisCount())});
+            auto w = out.mutable_unchecked<2>();
+            for (size_t i = 0; i < path.size(); ++i)
+              for (int k = 0; k < m.axisCount(); ++k)
+                w(static_cast<py::ssize_t>(i), k) = m.machine().axes[static_cast<size_t>(k)].isRotary() ? path[i].q[static_cast<size_t>(k)] / kDeg
+                                                                                                   : path[i].q[static_cast<size_t>(k)];
+            return out;
+          },
+          py::arg("tcps"), py::arg("tools"), py::arg("branch") = "auto")
+      .def(
+          "jacobian",
+          [](PyMachine& m, Array q, const py::object& params) {
+            const auto joints = m.joints(Array(q.reshape({1L, static_cast<long>(q.size())})));
+            std::vector<Parameter> ps;
+            if (params.is_none()) ps = parameterCatalogue(m.machine(), m.errors());
+            else
+              for (const auto& n : params.cast<std::vector<std::string>>()) ps.push_back(findParameterOrThrow(m, n));
+            const auto jac = parameterJacobian(compile(m.shared(), m.errors()), ps, joints.row(0).data());
+            std::vector<std::string> names;
+            for (const auto& p : ps) names.push_back(p.name);
+            py::array_t<double> out({6L, static_cast<long>(ps.size())});
+            auto w = out.mutable_unchecked<2>();
+            for (long r = 0; r < 6; ++r)
+              for (long c = 0; c < static_cast<long>(ps.size()); ++c) w(r, c) = jac(r, c);
+            return py::make_tuple(names, out);
+          },
+          py::arg("q"), py::arg("params") = py::none(),
+          "Derivative of (dx, dy, dz [mm], rotation [rad]) with respect to each parameter (mm or rad)")
+      .def(
+          "working_volume_grid",
+          [](PyMachine& m, int samples) {
+            if (samples < 2 || samples > 50) throw InputError(InputLocation{"", 0, "samples"}, "must be between 2 and 50");
+            const auto g = workingVolumeGrid(m.machine(), samples);
+            py::array_t<double> out({static_cast<py::ssize_t>(g.rows()), static_cast<py::ssize_t>(g.cols())});
+            auto w = out.mutable_unchecked<2>();
+            for (long r = 0; r < g.rows(); ++r)
+              for (long k = 0; k < g.cols(); ++k)
+                w(r, k) = m.machine().axes[static_cast<size_t>(k)].isRotary() ? g(r, k) / kDeg : g(r, k);
+            return out;
+          },
+          py::arg("samples") = 5, "The budget's grid: samples positions per axis across the travel (mm, deg)")
+      .def(
+          "budget",
+          [](PyMachine& m, int samples, const py::object& length, const py::object& angle) {
+            std::vector<BudgetItem> items;
+            std::string basis;
+            const bool atMagnitude = !length.is_none() || !angle.is_none();
+            if (atMagnitude || nonZeroParameters(m.machine(), m.errors()).empty()) {
+              const double l = length.is_none() ? 0.01 : parseValue(length, Dimension::Length, "length");
+              const double a = angle.is_none() ? 30e-6 : parseValue(angle, Dimension::Angle, "angle");
+              items = budgetItemsAtMagnitude(m.machine(), l, a);
+              basis = "magnitude";
+            } else {
+              items = budgetItemsOfModel(m.machine(), m.errors());
+              basis = "model";
+            }
+            if (samples < 2 || samples > 50) throw InputError(InputLocation{"", 0, "samples"}, "must be between 2 and 50");
+            const auto grid = workingVolumeGrid(m.machine(), samples);
+            std::vector<BudgetEntry> entries;
+            {
+              py::gil_scoped_release release;
+              entries = errorBudget(m.shared(), items, grid, 0);
+            }
+            py::list out;
+            for (const auto& e : entries)
+              out.append(py::dict(py::arg("error") = e.name,
+                                  py::arg("magnitude") = e.dimension == Dimension::Length ? e.magnitude * 1e3 : e.magnitude * 1e6,
+                                  py::arg("unit") = e.dimension == Dimension::Length ? "um" : "urad",
+                                  py::arg("max_position_error_um") = e.maxPositionError * 1e3,
+                                  py::arg("max_orientation_error_urad") = e.maxOrientationError * 1e6,
+                                  py::arg("worst_pose") = poseDict(m.machine(), e.worstPose)));
+            return py::dict(py::arg("basis") = basis, py::arg("poses") = grid.rows(), py::arg("entries") = out);
+          },
+          py::arg("samples") = 5, py::arg("length") = py::none(), py::arg("angle") = py::none());
+}

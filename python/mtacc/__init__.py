@@ -1,0 +1,106 @@
+"""mtacc: geometric accuracy of multi-axis machine tools.
+
+    import mtacc
+    m = mtacc.Machine("tilting-table")           # a bundled machine, or a YAML file
+    m.errors["X0C"] = "5 um"                      # set by ISO name (or alias), with a unit
+    pos, tool = m.fk([[10, 20, 30, -15, 45]])     # axis positions in mm and degrees
+    err = m.tcp_errors(q)                         # (n, 6): dx dy dz [um], ea eb ec [urad]
+    q = m.ik_path(tcps, tools, branch="negative") # (n, axes) in mm and degrees
+    budget = m.budget()                           # the error budget, as the CLI's --json
+
+Units are those of the command line: mm and degrees for axis positions, mm for the TCP,
+um and urad for errors. Error parameters read back in mm or rad (see Errors.unit).
+"""
+from collections.abc import MutableMapping
+
+import numpy as np
+
+from ._mtacc import InputError, UnreachablePose
+from ._mtacc import Machine as _CoreMachine
+
+__all__ = ["Machine", "Errors", "InputError", "UnreachablePose"]
+
+
+class Errors(MutableMapping):
+    """The machine's error parameters by ISO 230-1 name (aliases accepted).
+
+    Reading gives the value in mm (lengths) or rad (angles); writing accepts a number in
+    those units or a string with a unit such as "10 um", "30 urad", "5 arcsec".
+    Iteration visits the non-zero parameters.
+    """
+
+    def __init__(self, core):
+        self._core = core
+
+    def __getitem__(self, name):
+        return self._core.get_error(name)
+
+    def __setitem__(self, name, value):
+        self._core.set_error(name, value)
+
+    def __delitem__(self, name):
+        self._core.set_error(name, 0.0)
+
+    def __iter__(self):
+        return iter(self._core.nonzero_errors())
+
+    def __len__(self):
+        return len(self._core.nonzero_errors())
+
+    def unit(self, name):
+        """'mm' or 'rad'."""
+        return self._core.error_unit(name)
+
+    def names(self):
+        """Every parameter of the machine: location errors, then component-error coefficients."""
+        return self._core.parameter_names()
+
+
+class Machine:
+    """A machine description with its errors (from the machine file, or `errors=FILE`)."""
+
+    def __init__(self, machine, errors=None):
+        self._core = _CoreMachine(str(machine), "" if errors is None else str(errors))
+        self.errors = Errors(self._core)
+
+    name = property(lambda self: self._core.name)
+    file = property(lambda self: self._core.file)
+    structure = property(lambda self: self._core.structure)
+    structure_tool_first = property(lambda self: self._core.structure_tool_first)
+    axis_names = property(lambda self: self._core.axis_names)
+    axes = property(lambda self: self._core.axes)
+    tool_chain = property(lambda self: self._core.tool_chain)
+    workpiece_chain = property(lambda self: self._core.workpiece_chain)
+    tool_direction = property(lambda self: np.array(self._core.tool_direction))
+
+    def _q(self, q):
+        q = np.asarray(q, dtype=float)
+        return q.reshape(1, -1) if q.ndim == 1 else q
+
+    def fk(self, q, directions=None, nominal=False):
+        """TCP positions (n, 3) [mm] and tool directions (n, 3) in the workpiece frame."""
+        return self._core.fk(self._q(q), directions, nominal)
+
+    def tcp_errors(self, q, directions=None):
+        """(n, 6): position error dx dy dz [um] and orientation error [urad], actual minus nominal."""
+        return self._core.tcp_errors(self._q(q), directions)
+
+    def ik(self, tcp, tool=(0, 0, 1), branch="auto", all=False):
+        """Solutions for one TCP [mm] and tool direction: a list of dicts (pose in mm/deg)."""
+        return self._core.ik(list(map(float, tcp)), list(map(float, tool)), branch, all)
+
+    def ik_path(self, tcps, tools, branch="auto"):
+        """Axis positions (n, axes) [mm, deg] along a continuous path."""
+        return self._core.ik_path(np.asarray(tcps, float), np.asarray(tools, float), branch)
+
+    def jacobian(self, q, params=None):
+        """(names, J): J is 6 x n, d(dx, dy, dz [mm], rotation [rad]) / d(parameter [mm or rad])."""
+        return self._core.jacobian(np.asarray(q, float).ravel(), params)
+
+    def working_volume_grid(self, samples=5):
+        """Grid of `samples` positions per axis across its travel (mm, deg), as the budget uses."""
+        return self._core.working_volume_grid(samples)
+
+    def budget(self, samples=5, length=None, angle=None):
+        """Each error alone: largest TCP deviation over a grid of `samples` positions per axis."""
+        return self._core.budget(samples, length, angle)

@@ -1,0 +1,165 @@
+"""Figures of a machine and its errors. Every function returns a matplotlib Figure."""
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+SIDE_COLOURS = {"tool": "#1f77b4", "workpiece": "#d62728", "bed": "#555555"}
+
+
+def chain_schematic(machine):
+    """The structure code as a chain of boxes from the tool through the bed to the workpiece,
+    each axis with its type and direction."""
+    axes = {a["name"]: a for a in machine.axes}
+    tool_side = list(reversed(machine.tool_chain))  # tool first
+    items = [("tool", "tool", None)] + [(n, "tool", axes[n]) for n in tool_side]
+    items += [("bed", "bed", None)] + [(n, "workpiece", axes[n]) for n in machine.workpiece_chain]
+    items += [("workpiece", "workpiece", None)]
+    fig, ax = plt.subplots(figsize=(max(6.0, 1.35 * len(items)), 2.6))
+    for i, (name, side, axis) in enumerate(items):
+        colour = SIDE_COLOURS[side]
+        box = matplotlib.patches.FancyBboxPatch((i - 0.4, -0.35), 0.8, 0.7, boxstyle="round,pad=0.05",
+                                                facecolor=colour if axis is None else "white",
+                                                edgecolor=colour, linewidth=2)
+        ax.add_patch(box)
+        ax.text(i, 0.08, name, ha="center", va="center", fontsize=12, weight="bold",
+                color="white" if axis is None else colour)
+        if axis is not None:
+            d = axis["direction"]
+            kind = {"linear": "linear", "rotary": "rotary", "spindle": "spindle"}[axis["type"]]
+            ax.text(i, -0.18, kind, ha="center", va="center", fontsize=8, color="#333")
+            ax.text(i, -0.55, f"({d[0]:.2g}, {d[1]:.2g}, {d[2]:.2g})", ha="center", va="center", fontsize=7,
+                    color="#333")
+        if i:
+            ax.annotate("", xy=(i - 0.45, 0), xytext=(i - 0.55, 0), arrowprops=dict(arrowstyle="-", color="#999"))
+    ax.set_xlim(-0.7, len(items) - 0.3)
+    ax.set_ylim(-0.8, 0.7)
+    ax.axis("off")
+    ax.set_title(f"Kinematic chain {machine.structure_tool_first}  (tool side blue, workpiece side red; "
+                 "direction = tool relative to workpiece)", fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def budget_bar_chart(budget, top=20):
+    """Largest TCP deviation of each error alone (the `budget` result), largest first."""
+    entries = budget["entries"][:top]
+    names = [f'{e["error"]} ({e["magnitude"]:.3g} {e["unit"]})' for e in entries]
+    values = [e["max_position_error_um"] for e in entries]
+    fig, ax = plt.subplots(figsize=(7.5, 0.28 * len(entries) + 1.2))
+    y = np.arange(len(entries))
+    ax.barh(y, values, color="#4c72b0")
+    ax.set_yticks(y, names, fontsize=8)
+    ax.invert_yaxis()
+    ax.set_xlabel("largest TCP deviation over the working volume [µm]")
+    ax.grid(axis="x", alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def volumetric_error_map(machine, plane=("X", "Y"), fixed=None, samples=41):
+    """|TCP position error| over a plane of two linear axes across their travel, other axes at
+    `fixed` (dict, mm/deg; default mid-travel for linear, 0 for rotary). Arrows: in-plane error."""
+    names = machine.axis_names
+    axes = {a["name"]: a for a in machine.axes}
+    base = []
+    for n in names:
+        a = axes[n]
+        if fixed and n in fixed:
+            base.append(float(fixed[n]))
+        elif a["type"] == "linear":
+            base.append(0.5 * (a["travel"][0] + a["travel"][1]))
+        else:
+            t = a["travel"]
+            base.append(0.0 if t is None or t[0] <= 0.0 <= t[1] else t[0])
+    i, j = names.index(plane[0]), names.index(plane[1])
+    u = np.linspace(*axes[plane[0]]["travel"], samples)
+    v = np.linspace(*axes[plane[1]]["travel"], samples)
+    uu, vv = np.meshgrid(u, v)
+    q = np.tile(base, (uu.size, 1))
+    q[:, i] = uu.ravel()
+    q[:, j] = vv.ravel()
+    err = machine.tcp_errors(q)
+    magnitude = np.linalg.norm(err[:, :3], axis=1).reshape(uu.shape)
+    fig, ax = plt.subplots(figsize=(6.4, 5.0))
+    mesh = ax.imshow(magnitude, origin="lower", extent=(u[0], u[-1], v[0], v[-1]), cmap="viridis",
+                     interpolation="bilinear", aspect="equal")
+    fig.colorbar(mesh, ax=ax, label="|TCP position error| [µm]")
+    step = max(1, samples // 10)
+    if np.any(err[:, [i, j]] != 0.0):
+        ax.quiver(uu[::step, ::step], vv[::step, ::step], err[:, i].reshape(uu.shape)[::step, ::step],
+                  err[:, j].reshape(uu.shape)[::step, ::step], color="white", alpha=0.8)
+    others = ", ".join(f"{n}={b:g}" for k, (n, b) in enumerate(zip(names, base)) if k not in (i, j))
+    ax.set_title(f"Volumetric error over {plane[0]}-{plane[1]} ({others})", fontsize=9)
+    ax.set_xlabel(f"{plane[0]} [mm]")
+    ax.set_ylabel(f"{plane[1]} [mm]")
+    fig.tight_layout()
+    return fig
+
+
+def sensitivity_along_path(machine, q_path, parameter, direction=None, s=None):
+    """d(TCP)/d(parameter) along a path of axis positions (n, axes), per unit of the parameter
+    (µm/µm or µm/µrad); with `direction`, also its projection (the sensitivity coefficient)."""
+    q_path = np.asarray(q_path, float)
+    s = np.arange(len(q_path)) if s is None else np.asarray(s)
+    cols = np.array([machine.jacobian(q, [parameter])[1][:3, 0] for q in q_path])
+    scale = 1.0 if machine.errors.unit(parameter) == "mm" else 1e-3
+    cols *= scale
+    unit = "µm/µm" if scale == 1.0 else "µm/µrad"
+    fig, ax = plt.subplots(figsize=(7.0, 3.4))
+    for k, label in enumerate("xyz"):
+        ax.plot(s, cols[:, k], label=f"d{label}")
+    if direction is not None:
+        n = np.asarray(direction, float)
+        n = n / np.linalg.norm(n, axis=-1, keepdims=True)
+        k_coeff = np.sum(cols * n, axis=1)
+        ax.plot(s, k_coeff, "k--", label="along normal (k)")
+    ax.set_ylabel(f"sensitivity to {parameter} [{unit}]")
+    ax.set_xlabel("path parameter")
+    ax.legend(fontsize=8, ncol=4)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def axis_positions_along_path(machine, q_path, s=None, s_label="path parameter"):
+    """Each commanded axis along a path (mm, deg)."""
+    q_path = np.asarray(q_path, float)
+    s = np.arange(len(q_path)) if s is None else np.asarray(s)
+    names = machine.axis_names
+    axes = {a["name"]: a for a in machine.axes}
+    fig, panels = plt.subplots(len(names), 1, figsize=(7.0, 1.3 * len(names) + 0.6), sharex=True)
+    for k, (ax, n) in enumerate(zip(np.atleast_1d(panels), names)):
+        ax.plot(s, q_path[:, k], color="#1f77b4" if axes[n]["type"] == "linear" else "#d62728")
+        ax.set_ylabel(f"{n} [{'mm' if axes[n]['type'] == 'linear' else 'deg'}]", fontsize=8)
+        ax.grid(alpha=0.3)
+    np.atleast_1d(panels)[-1].set_xlabel(s_label)
+    fig.tight_layout()
+    return fig
+
+
+def polar_deviation(angle_deg, deviation_um, title="Radial deviation", remove_mean=True):
+    """Polar plot of a deviation around a circle, magnified about a reference circle as ballbar
+    software shows it: the reference (grey) is the mean (or zero), and the scale bar in the
+    title gives the deviation that spans from the reference to the dashed limit circles."""
+    angle = np.radians(np.asarray(angle_deg, float))
+    dev = np.asarray(deviation_um, float)
+    mean = float(dev.mean()) if remove_mean else 0.0
+    rel = dev - mean
+    half = float(np.max(np.abs(rel))) if rel.size else 0.0
+    half = half if half > 0 else 1.0
+    fig = plt.figure(figsize=(5.0, 5.0))
+    ax = fig.add_subplot(projection="polar")
+    theta = np.linspace(0, 2 * np.pi, 361)
+    ax.plot(theta, np.ones_like(theta), color="#888", lw=1, label="reference")
+    for r in (0.6, 1.4):
+        ax.plot(theta, np.full_like(theta, r), color="#bbb", lw=0.8, ls="--")
+    ax.plot(angle, 1.0 + 0.4 * rel / half, color="#d62728", lw=1.6, label="deviation")
+    ax.set_ylim(0, 1.5)
+    ax.set_rticks([])
+    ref = f"mean {mean:+.2f} µm removed" if remove_mean else "reference = 0"
+    ax.set_title(f"{title}\nPV {np.ptp(dev):.2f} µm; dashed circles = ±{half:.2f} µm; {ref}", fontsize=9)
+    ax.legend(loc="lower left", fontsize=7)
+    fig.tight_layout()
+    return fig

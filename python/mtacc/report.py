@@ -1,0 +1,258 @@
+"""The accuracy report: one self-contained HTML file (figures inline as SVG, no network).
+
+    python3 -m mtacc.report MACHINE [-o DIR] [--errors FILE]     (or: mtacc report ...)
+"""
+import argparse
+import datetime
+import html
+import io
+import os
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+from . import InputError, Machine, UnreachablePose, plots
+
+# Marks every figure as rendered (non-empty box) and records script errors, so that a
+# browser test can read the outcome from the DOM.
+CHECK_SCRIPT = """<script>
+(function () {
+  var errors = [];
+  window.addEventListener('error', function (e) { errors.push(String(e.message)); });
+  var original = console.error;
+  console.error = function () { errors.push(Array.prototype.join.call(arguments, ' ')); original.apply(console, arguments); };
+  window.addEventListener('load', function () {
+    var figures = document.querySelectorAll('figure.plot');
+    var rendered = 0;
+    figures.forEach(function (f) {
+      var svg = f.querySelector('svg');
+      if (!svg) return;
+      var box = svg.getBoundingClientRect();
+      if (box.width > 50 && box.height > 50 && svg.querySelectorAll('path').length > 0) rendered += 1;
+    });
+    document.body.setAttribute('data-figures-expected', String(figures.length));
+    document.body.setAttribute('data-figures-rendered', String(rendered));
+    document.body.setAttribute('data-errors', errors.join(' | '));
+  });
+})();
+</script>"""
+
+STYLE = """<style>
+body { font-family: system-ui, sans-serif; max-width: 1100px; margin: 2em auto; color: #222; line-height: 1.45; }
+h1 { font-size: 1.6em; margin-bottom: 0.1em; } h2 { border-bottom: 1px solid #ccc; margin-top: 2em; }
+table { border-collapse: collapse; font-size: 0.85em; margin: 0.8em 0; }
+th, td { border: 1px solid #ddd; padding: 3px 8px; text-align: right; } th { background: #f3f3f3; }
+td.l, th.l { text-align: left; }
+figure.plot { margin: 1em 0; } figure.plot svg { max-width: 100%; height: auto; }
+figcaption { font-size: 0.85em; color: #555; }
+.meta { color: #666; font-size: 0.9em; } .key { font-size: 1.15em; background: #f6f8fa; padding: 0.6em 1em; border-radius: 6px; }
+</style>"""
+
+
+def svg(fig):
+    buf = io.StringIO()
+    fig.savefig(buf, format="svg")
+    plots.plt.close(fig)
+    text = buf.getvalue()
+    return text[text.index("<svg"):]
+
+
+def figure(fig, caption):
+    return f'<figure class="plot">{svg(fig)}<figcaption>{html.escape(caption)}</figcaption></figure>'
+
+
+def table(header, rows, left=1):
+    head = "".join(f'<th class="{"l" if i < left else ""}">{html.escape(str(h))}</th>' for i, h in enumerate(header))
+    body = "".join("<tr>" + "".join(f'<td class="{"l" if i < left else ""}">{html.escape(str(c))}</td>'
+                                    for i, c in enumerate(r)) + "</tr>" for r in rows)
+    return f"<table><tr>{head}</tr>{body}</table>"
+
+
+def fmt_pose(pose):
+    return ", ".join(f"{k}={v:.4g}" for k, v in pose.items())
+
+
+def circle_test(machine, progress):
+    """A circle in the X-Y plane of the workpiece with the rotary axes at zero, as an ISO 230-4
+    circular test sees it: the radial component of the TCP error around the circle."""
+    axes = {a["name"]: a for a in machine.axes}
+    if not all(n in axes for n in ("X", "Y", "Z")):
+        return ""
+    mid = {n: 0.5 * sum(axes[n]["travel"]) for n in ("X", "Y", "Z")}
+    radius = 0.25 * min(axes["X"]["travel"][1] - axes["X"]["travel"][0], axes["Y"]["travel"][1] - axes["Y"]["travel"][0])
+    phi = np.linspace(0.0, 360.0, 361)
+    names = machine.axis_names
+    q = np.zeros((phi.size, len(names)))
+    for k, n in enumerate(names):
+        q[:, k] = mid.get(n, 0.0)
+    for k, n in enumerate(names):
+        if axes[n]["type"] == "rotary" and axes[n]["travel"] is not None and not (axes[n]["travel"][0] <= 0 <= axes[n]["travel"][1]):
+            q[:, k] = axes[n]["travel"][0]
+    nominal, _ = machine.fk(q, nominal=True)
+    centre, _ = machine.fk(q[:1], nominal=True)
+    # Commanded circle: X, Y around their mid-travel; the TCP follows it in the workpiece frame.
+    q[:, names.index("X")] += radius * np.cos(np.radians(phi))
+    q[:, names.index("Y")] += radius * np.sin(np.radians(phi))
+    nominal, _ = machine.fk(q, nominal=True)
+    err = machine.tcp_errors(q)
+    radial_dir = nominal - centre
+    radial_dir /= np.linalg.norm(radial_dir, axis=1, keepdims=True)
+    radial = np.sum(err[:, :3] * radial_dir, axis=1)
+    progress("circular test")
+    fig = plots.polar_deviation(phi, radial, title=f"Circle R {radius:g} mm in X-Y, radial TCP deviation")
+    return ("<h2>Circular test (X-Y)</h2><p>A circle of radius "
+            f"{radius:g} mm around mid-travel with the rotary axes at zero; the radial component of the TCP "
+            "error is what a ballbar would record from the geometric errors alone (no servo effects).</p>"
+            + figure(fig, "Radial TCP deviation around the circle (reference circle grey, deviation red)"))
+
+
+def five_axis_circle(machine, top_parameter, progress):
+    """A TCP circle with the tool tilted 30 degrees towards its centre (a cone-frustum-like
+    5-axis path): axis positions, radial deviation and the sensitivity to the largest error."""
+    rotary = [a for a in machine.axes if a["type"] == "rotary"]
+    if len(rotary) != 2:
+        return ""
+    radius, tilt, centre = 40.0, np.radians(30.0), np.array([-60.0, 0.0, 50.0])
+    phi = np.linspace(0.0, 360.0, 181)
+    t = np.radians(phi)
+    tcps = centre + np.stack([radius * np.cos(t), radius * np.sin(t), np.zeros_like(t)], axis=1)
+    tools = np.stack([-np.sin(tilt) * np.cos(t), -np.sin(tilt) * np.sin(t), np.full_like(t, np.cos(tilt))], axis=1)
+    try:
+        q = machine.ik_path(tcps, tools)
+    except (UnreachablePose, InputError) as e:
+        return f"<h2>5-axis circle</h2><p>Not reachable on this machine: {html.escape(str(e))}</p>"
+    progress("5-axis circle")
+    err = machine.tcp_errors(q)
+    radial_dir = (tcps - centre) * [1, 1, 0]
+    radial_dir /= np.linalg.norm(radial_dir, axis=1, keepdims=True)
+    radial = np.sum(err[:, :3] * radial_dir, axis=1)
+    out = ("<h2>5-axis circle</h2><p>TCP circle of radius 40 mm around (-60, 0, 50) mm in the workpiece frame, "
+           "tool tilted 30° towards the circle's centre (a cone-frustum-like path), solved through the generic "
+           "inverse kinematics as one continuous path.</p>")
+    out += figure(plots.axis_positions_along_path(machine, q, phi, "φ [deg]"), "Axis positions along the path")
+    out += figure(plots.polar_deviation(phi, radial, title="5-axis circle, radial TCP deviation"),
+                  "Radial TCP deviation along the 5-axis circle")
+    if top_parameter:
+        out += figure(plots.sensitivity_along_path(machine, q, top_parameter, direction=radial_dir, s=phi),
+                      f"Sensitivity of the TCP to {top_parameter} along the path (dashed: radial, the sensitivity coefficient k)")
+    return out
+
+
+def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=None):
+    """Writes <output_dir>/<machine>-report.html atomically and returns its path."""
+    start = time.perf_counter()
+    steps = ["machine", "error budget", "volumetric error maps", "circular test", "5-axis circle", "writing"]
+    done = []
+
+    def step(name):
+        done.append(name)
+        if progress:
+            progress(f"report: [{len(done)}/{len(steps)}] {name}")
+
+    machine = Machine(machine_path, errors)
+    step("machine")
+    parts = [f"<h1>Accuracy report: {html.escape(machine.name)}</h1>",
+             f'<p class="meta">{html.escape(machine.file)} · structure {html.escape(machine.structure)} · '
+             f'generated {datetime.datetime.now().strftime("%Y-%m-%d %H:%M")} by mtacc</p>']
+
+    budget = machine.budget(samples=samples)
+    grid = machine.working_volume_grid(samples)
+    combined = np.linalg.norm(machine.tcp_errors(grid)[:, :3], axis=1)
+    step("error budget")
+    parts.append(f'<p class="key">Largest TCP position error over the working volume ({len(grid)} poses): '
+                 f"<b>{combined.max():.2f} µm</b> (median {np.median(combined):.2f} µm). "
+                 f'Largest single contributor: <b>{html.escape(budget["entries"][0]["error"])}</b> '
+                 f'({budget["entries"][0]["max_position_error_um"]:.2f} µm).</p>')
+
+    parts.append("<h2>Machine</h2>")
+    parts.append(figure(plots.chain_schematic(machine), "Kinematic chain from the tool through the bed to the workpiece"))
+    rows = []
+    for a in machine.axes:
+        unit = "mm" if a["type"] == "linear" else "deg"
+        travel = "continuous" if a["travel"] is None else f'{a["travel"][0]:g} … {a["travel"][1]:g} {unit}'
+        rows.append([a["name"], a["type"], a["side"], "({:.3g}, {:.3g}, {:.3g})".format(*a["direction"]),
+                     "({:.4g}, {:.4g}, {:.4g})".format(*a["location_mm"]), travel, a["error_frame"]])
+    parts.append(table(["axis", "type", "side", "direction", "location [mm]", "travel", "errors act in"], rows, left=3))
+
+    params = machine.errors
+    rows = []
+    for name in params:
+        unit = params.unit(name)
+        value = params[name] * (1e3 if unit == "mm" else 1e6)
+        rows.append([name, f"{value:.3f}", "µm" if unit == "mm" else "µrad"])
+    parts.append(f"<h2>Error parameters</h2><p>{len(rows)} non-zero of {len(params.names())} parameters "
+                 "(ISO 230-1 names; conventions in docs/conventions.md).</p>")
+    parts.append(table(["parameter", "value", "unit"], rows))
+
+    basis = ("each non-zero error of the description alone, at its value" if budget["basis"] == "model"
+             else "every error alone at 10 µm / 30 µrad")
+    parts.append(f"<h2>Error budget</h2><p>{basis}; largest deviation over a grid of {samples} positions per axis "
+                 f"({budget['poses']} poses).</p>")
+    parts.append(figure(plots.budget_bar_chart(budget), "Largest TCP deviation of each error alone"))
+    parts.append(table(["rank", "error", "magnitude", "max TCP dev. [µm]", "max tilt [µrad]", "worst pose"],
+                       [[k + 1, e["error"], f'{e["magnitude"]:.3g} {e["unit"]}', f'{e["max_position_error_um"]:.3f}',
+                         f'{e["max_orientation_error_urad"]:.2f}', fmt_pose(e["worst_pose"])]
+                        for k, e in enumerate(budget["entries"][:15])], left=0))
+
+    linear = [a["name"] for a in machine.axes if a["type"] == "linear"]
+    maps = ""
+    if {"X", "Y"} <= set(linear):
+        maps += figure(plots.volumetric_error_map(machine, ("X", "Y")), "TCP position error over the X-Y plane")
+    if {"X", "Z"} <= set(linear):
+        maps += figure(plots.volumetric_error_map(machine, ("X", "Z")), "TCP position error over the X-Z plane")
+    rotary = [a for a in machine.axes if a["type"] == "rotary" and a["travel"] is not None]
+    if rotary and {"X", "Y"} <= set(linear):
+        tilt = rotary[0]
+        angle = 30.0 if tilt["travel"][0] <= 30.0 <= tilt["travel"][1] else tilt["travel"][0]
+        maps += figure(plots.volumetric_error_map(machine, ("X", "Y"), fixed={tilt["name"]: angle}),
+                       f'TCP position error over the X-Y plane with {tilt["name"]} = {angle:g}°')
+    step("volumetric error maps")
+    parts.append("<h2>Volumetric error maps</h2>" + maps)
+    parts.append(circle_test(machine, lambda s: None))
+    step("circular test")
+    parts.append(five_axis_circle(machine, budget["entries"][0]["error"] if budget["entries"] else None, lambda s: None))
+    step("5-axis circle")
+
+    elapsed = time.perf_counter() - start
+    parts.append(f'<p class="meta">Built in {elapsed:.1f} s.</p>')
+    document = ("<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"
+                f"<title>mtacc report: {html.escape(machine.name)}</title>{STYLE}{CHECK_SCRIPT}</head><body>"
+                + "\n".join(parts) + "</body></html>")
+    os.makedirs(output_dir, exist_ok=True)
+    base = os.path.splitext(os.path.basename(machine.file))[0]
+    target = os.path.join(output_dir, f"{base}-report.html")
+    fd, tmp = tempfile.mkstemp(dir=output_dir, prefix=".report-", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(document)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, target)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise
+    step("writing")
+    return target
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="mtacc report", description="Write the HTML accuracy report of a machine.")
+    parser.add_argument("machine", help="machine file, or the name of a bundled machine")
+    parser.add_argument("-o", "--output", default=".", help="output directory (default: current)")
+    parser.add_argument("--errors", help="errors file (default: the machine file's errors)")
+    parser.add_argument("--samples", type=int, default=5, help="positions per axis for the budget grid")
+    args = parser.parse_args(argv)
+    try:
+        path = build_report(args.machine, args.output, args.errors, args.samples,
+                            progress=lambda s: print(s, file=sys.stderr, flush=True))
+    except (InputError, UnreachablePose) as e:
+        print(f"mtacc: error: {e}", file=sys.stderr)
+        return 2
+    print(path)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

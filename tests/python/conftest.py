@@ -1,0 +1,22 @@
+import os
+import pathlib
+import sys
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "python"))
+
+
+@pytest.fixture(scope="session")
+def cli():
+    path = pathlib.Path(os.environ.get("MTACC_CLI", ROOT / "build" / "mtacc"))
+    assert path.exists(), f"build the CLI first: {path}"
+    return str(path)
+
+
+@pytest.fixture(scope="session")
+def artifacts():
+    path = pathlib.Path(os.environ.get("MTACC_TEST_ARTIFACTS", ROOT / "build" / "test-artifacts"))
+    path.mkdir(parents=True, exist_ok=True)
+    return path

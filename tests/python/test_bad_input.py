@@ -1,0 +1,73 @@
+"""Bad input through Python raises a Python exception with the CLI's message, never a crash."""
+import subprocess
+
+import numpy as np
+import pytest
+
+import mtacc
+
+MACHINE = """name: test machine
+structure: t-(C)-Z-Y-b-X-B-C-w
+axes:
+  X: {direction: [1, 0, 0], travel: [-400 mm, 400 mm]}
+  Y: {direction: [0, 1, 0], travel: [-300 mm, 300 mm]}
+  Z: {direction: [0, 0, 1], travel: [-300 mm, 400 mm]}
+  B: {direction: [0, 1, 0], travel: [-120 deg, 120 deg]}
+  C: {direction: [0, 0, 1], travel: continuous}
+"""
+
+CASES = {
+    "malformed": "name: x\naxes: [1, 2\n",
+    "missing_unit": MACHINE + "errors:\n  X0C: 10\n",
+    "unknown_error": MACHINE + "errors:\n  X0Q: 10 um\n",
+    "zero_direction": MACHINE.replace("[1, 0, 0]", "[0, 0, 0]"),
+    "unknown_axis": "name: x\nstructure: t-(C)-Z-Q-b-X-w\naxes: {}\n",
+}
+
+
+def cli_message(cli, *args):
+    out = subprocess.run([cli, *args], capture_output=True, text=True)
+    assert out.returncode != 0
+    line = out.stderr.strip()
+    assert line.count("\n") == 0
+    assert line.startswith("mtacc: error: ")
+    return line[len("mtacc: error: "):]
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_bad_machine_file(cli, tmp_path, case):
+    path = tmp_path / f"{case}.yaml"
+    path.write_text(CASES[case])
+    expected = cli_message(cli, "check", str(path))
+    with pytest.raises(mtacc.InputError) as info:
+        mtacc.Machine(str(path))
+    assert str(info.value) == expected
+
+
+def test_unreachable_pose(cli):
+    expected = cli_message(cli, "ik", "tilting-table", "--tcp", "0,0,0", "--tool", "0,0,-1")
+    with pytest.raises(mtacc.UnreachablePose) as info:
+        mtacc.Machine("tilting-table").ik([0, 0, 0], [0, 0, -1])
+    assert str(info.value) == expected
+
+
+def test_pose_beyond_travel(cli):
+    expected = cli_message(cli, "fk", "tilting-table", "--pose", "X=500,Y=0,Z=0,B=0,C=0")
+    with pytest.raises(mtacc.InputError) as info:
+        mtacc.Machine("tilting-table").fk([500, 0, 0, 0, 0])
+    assert "X=500 mm beyond travel [-400, 400] mm" in str(info.value)
+    assert "X=500 mm beyond travel [-400, 400] mm" in expected
+
+
+def test_bad_arrays_and_names_raise():
+    m = mtacc.Machine("tilting-table")
+    with pytest.raises(mtacc.InputError):
+        m.fk([[1, 2, 3]])
+    with pytest.raises(mtacc.InputError):
+        m.tcp_errors([[np.nan, 0, 0, 0, 0]])
+    with pytest.raises(mtacc.InputError):
+        m.errors["X0Q"] = 1.0
+    with pytest.raises(mtacc.InputError):
+        m.errors["A0B"] = "10 um"
+    with pytest.raises(mtacc.InputError):
+        m.ik([0, 0, 0], [0, 0, 1], branch="sideways")

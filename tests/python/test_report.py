@@ -1,0 +1,72 @@
+"""The HTML report: self-contained, every figure rendered in headless Chromium, no errors."""
+import pathlib
+import re
+import shutil
+import subprocess
+
+import pytest
+
+import mtacc
+from mtacc import plots, report
+
+CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
+FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+         "--disable-background-networking", "--disable-component-update", "--disable-sync",
+         "--virtual-time-budget=10000"]
+
+
+@pytest.fixture(scope="module")
+def tilting_table_report(tmp_path_factory):
+    out = tmp_path_factory.mktemp("report")
+    return pathlib.Path(report.build_report("tilting-table", str(out)))
+
+
+def test_report_is_self_contained(tilting_table_report):
+    text = tilting_table_report.read_text()
+    assert text.count('<figure class="plot">') >= 8
+    assert not re.search(r'(src|href)\s*=\s*["\']?(https?:)?//', text)
+    assert "<link" not in text and "@import" not in text and "url(http" not in text
+
+
+def test_report_renders_in_headless_chromium(tilting_table_report, tmp_path, artifacts):
+    profile = tmp_path / "chromium-profile"
+    url = tilting_table_report.as_uri()
+    dom = subprocess.run([CHROMIUM, *FLAGS, f"--user-data-dir={profile}", "--dump-dom", url],
+                         capture_output=True, text=True, timeout=120).stdout
+    body = re.search(r"<body([^>]*)>", dom).group(1)
+    expected = int(re.search(r'data-figures-expected="(\d+)"', body).group(1))
+    rendered = int(re.search(r'data-figures-rendered="(\d+)"', body).group(1))
+    errors = re.search(r'data-errors="([^"]*)"', body).group(1)
+    assert expected >= 8
+    assert rendered == expected
+    assert errors == ""
+    shot = artifacts / "report-tilting-table.png"
+    subprocess.run([CHROMIUM, *FLAGS, f"--user-data-dir={profile}", "--hide-scrollbars", "--window-size=1200,6000",
+                    f"--screenshot={shot}", url], capture_output=True, timeout=120, check=True)
+    assert shot.stat().st_size > 10000
+
+
+@pytest.mark.parametrize("name", ["three-axis-vertical", "maho", "inclined-a-table", "multitasking-b-c"])
+def test_report_for_other_machines(tmp_path, name):
+    path = pathlib.Path(report.build_report(name, str(tmp_path)))
+    assert path.exists() and path.stat().st_size > 10000
+
+
+def test_plot_functions_return_figures():
+    m = mtacc.Machine("swivel-head-table")
+    figs = [plots.chain_schematic(m), plots.budget_bar_chart(m.budget(samples=3)),
+            plots.volumetric_error_map(m, ("X", "Z"), samples=11),
+            plots.polar_deviation([0, 90, 180, 270, 360], [1, -1, 2, 0, 1])]
+    q = [[0, 0, 100, b, c] for b, c in zip(range(-30, 31, 10), range(0, 70, 10))]
+    m.errors["X0C"] = "5 um"
+    figs.append(plots.sensitivity_along_path(m, q, "X0C", direction=[1, 0, 0]))
+    figs.append(plots.axis_positions_along_path(m, q))
+    for fig in figs:
+        assert fig.axes
+        plots.plt.close(fig)
+
+
+def test_bad_machine_writes_no_report(tmp_path):
+    with pytest.raises(mtacc.InputError):
+        report.build_report(str(tmp_path / "missing.yaml"), str(tmp_path / "out"))
+    assert not (tmp_path / "out").exists()
