@@ -119,6 +119,7 @@ BENCHMARK(MtaccSplineErrorsTwoThreads)->Unit(benchmark::kMillisecond)->UseRealTi
 // Collects the rate of every repetition; the ratios use the median of each benchmark.
 class RatioReporter : public benchmark::ConsoleReporter {
  public:
+  RatioReporter() : ConsoleReporter(OO_Tabular) {}
   std::map<std::string, std::vector<double>> rates;
   void ReportRuns(const std::vector<Run>& runs) override {
     for (const auto& r : runs)

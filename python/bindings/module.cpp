@@ -312,6 +312,19 @@ PYBIND11_MODULE(_mtacc, mod) {
           py::arg("q"), py::arg("params") = py::none(),
           "Derivative of (dx, dy, dz [mm], rotation [rad]) with respect to each parameter (mm or rad)")
       .def(
+          "sensitivity_coefficient",
+          [](PyMachine& m, Array q, const std::string& name, const py::object& epsilon, std::vector<double> direction) {
+            if (direction.size() != 3) throw InputError(InputLocation{"", 0, "direction"}, "expected three numbers");
+            const auto joints = m.joints(Array(q.reshape({1L, static_cast<long>(q.size())})));
+            const auto p = findParameterOrThrow(m, name);
+            const double eps = parseValue(epsilon, p.dimension, "epsilon");
+            if (eps == 0.0) throw InputError(InputLocation{"", 0, "epsilon"}, "must not be zero");
+            return sensitivityCoefficient(m.shared(), m.errors(), p, eps, joints.row(0).data(),
+                                          Vec3(direction[0], direction[1], direction[2]));
+          },
+          py::arg("q"), py::arg("parameter"), py::arg("epsilon"), py::arg("direction"),
+          "Seed 001 eq. 15: k = E / epsilon, E the TCP deviation along direction [mm] for the error epsilon alone")
+      .def(
           "working_volume_grid",
           [](PyMachine& m, int samples) {
             if (samples < 2 || samples > 50) throw InputError(InputLocation{"", 0, "samples"}, "must be between 2 and 50");

@@ -97,6 +97,11 @@ class Machine:
         """(names, J): J is 6 x n, d(dx, dy, dz [mm], rotation [rad]) / d(parameter [mm or rad])."""
         return self._core.jacobian(np.asarray(q, float).ravel(), params)
 
+    def sensitivity_coefficient(self, q, parameter, epsilon, direction):
+        """Seed 001 eq. 15: k = E / epsilon with the exact model; epsilon in mm/rad or with a unit
+        ("10 um"); E is the TCP deviation along `direction` (outward normal) in mm."""
+        return self._core.sensitivity_coefficient(np.asarray(q, float).ravel(), parameter, epsilon, list(map(float, direction)))
+
     def working_volume_grid(self, samples=5):
         """Grid of `samples` positions per axis across its travel (mm, deg), as the budget uses."""
         return self._core.working_volume_grid(samples)

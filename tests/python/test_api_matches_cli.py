@@ -74,3 +74,15 @@ def test_errors_set_through_python_equal_an_errors_file(cli, tmp_path):
     assert by_name.errors["X0B"] == pytest.approx(-0.010)
     data = run_json(cli, "errors", "tilting-table", "--errors", str(errors), "--pose", "X=10,Y=20,Z=30,B=-15,C=45")
     assert data["poses"][0]["position_error"] == from_file.tcp_errors(POSES[:1])[0, :3].tolist()
+
+
+def test_sensitivity_coefficient(cli):
+    machine = mtacc.Machine("tilting-table")
+    q = "X=0,Y=0,Z=100,B=-30,C=0"
+    data = run_json(cli, "sensitivity", "tilting-table", "--pose", q, "--params", "X0C,A0B", "--direction", "-0.5,0,0.866")
+    n = np.array([-0.5, 0, 0.866])
+    n = n / np.linalg.norm(n)
+    k_x0c = machine.sensitivity_coefficient([0, 0, 100, -30, 0], "X0C", "10 um", n)
+    k_a0b = machine.sensitivity_coefficient([0, 0, 100, -30, 0], "A0B", "30 urad", n)
+    assert data["parameters"][0]["k_exact"] == k_x0c           # um/um
+    assert data["parameters"][1]["k_exact"] == k_a0b * 1e-3    # um/urad from mm/rad
