@@ -1,0 +1,84 @@
+// Seed 000 part I (Bossoni, ETH): the cone-frustum test piece. Reference values from
+// shared/reference/seed000_part1_cone_test_piece.md with the seed's line numbers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mtacc/procedures/cone.hpp"
+#include "test_helpers.hpp"
+
+namespace mtacc {
+namespace {
+
+ConeSpec spec(double alphaDeg, double betaDeg, double r = 40.0, Vec3 centre = Vec3(-65, 0, 150)) {
+  ConeSpec s;
+  s.alpha = alphaDeg * kDeg;
+  s.beta = betaDeg * kDeg;
+  s.radius = r;
+  s.centre = centre;
+  return s;
+}
+
+ConeMotion motionOn(const ConeSpec& s, int points = 3600) {
+  const auto nominal = compileNominal(test::bundled("tilting-table"));
+  return coneMotion(nominal, s, conePath(s, points));
+}
+
+const AxisMotion& axis(const ConeMotion& m, const std::string& name) {
+  for (const auto& a : m.axes)
+    if (a.axis == name) return a;
+  throw std::runtime_error(name);
+}
+
+// Table 3.6 (L4202-4222), alpha and beta swapped in print (erratum 9); printed to 0.1 mm.
+TEST(Seed000, Table3_6ThroughTheConeProcedure) {
+  const auto proposed = motionOn(spec(45, 30));
+  EXPECT_NEAR(axis(proposed, "X").range, 185.7, 0.05);
+  EXPECT_NEAR(axis(proposed, "Y").range, 90.0, 0.05);
+  EXPECT_NEAR(axis(proposed, "Z").range, 185.7, 0.05);
+  EXPECT_NEAR(axis(proposed, "B").range / kDeg, 60.0, 0.05);
+  EXPECT_NEAR(axis(proposed, "C").range / kDeg, 360.0, 0.2);  // sampled at 0.1 deg steps of phi
+  const auto comparison = motionOn(spec(45, 30, 44.8, Vec3(48.9, 0, 66.1)));
+  EXPECT_NEAR(axis(comparison, "X").range, 36.0, 0.05);
+  EXPECT_NEAR(axis(comparison, "Y").range, 142.6, 0.05);
+  EXPECT_NEAR(axis(comparison, "Z").range, 13.2, 0.05);
+  // L4224-4234: in the comparison set-up X reverses 4 times, in the proposed one twice.
+  EXPECT_EQ(axis(comparison, "X").reversalsPhi.size(), 4u);
+  EXPECT_EQ(axis(proposed, "X").reversalsPhi.size(), 2u);
+}
+
+// Table 3.1 (L2352-2363) and §3.4: closed forms against the sampled path; reference §10.2.
+TEST(Seed000, Table3_1RotaryRanges) {
+  struct Case {
+    double alpha, beta, tiltMin, tiltMax, rotaryRange;
+  } cases[] = {{30, 20, 10, 50, 360}, {30, 50, 20, 80, 81.49}, {45, 60, 15, 105, 109.47}, {45, 30, 15, 75, 360}};
+  for (const auto& c : cases) {
+    const auto closed = rotaryRangesClosedForm(c.alpha * kDeg, c.beta * kDeg);
+    EXPECT_NEAR(closed.tiltMin / kDeg, c.tiltMin, 1e-9);
+    EXPECT_NEAR(closed.tiltMax / kDeg, c.tiltMax, 1e-9);
+    EXPECT_NEAR(closed.rotaryRange / kDeg, c.rotaryRange, 0.005);  // printed to 0.01 deg
+    const auto m = motionOn(spec(c.alpha, c.beta), 7200);
+    const auto& b = axis(m, "B");
+    EXPECT_NEAR(std::min(std::abs(b.min), std::abs(b.max)) / kDeg, c.tiltMin, 1e-3);
+    EXPECT_NEAR(std::max(std::abs(b.min), std::abs(b.max)) / kDeg, c.tiltMax, 1e-3);
+    EXPECT_NEAR(axis(m, "C").range / kDeg, c.rotaryRange, c.rotaryRange == 360 ? 0.06 : 0.01);
+  }
+  // §3.4.4, Fig. 3.24: dC/dphi at phi = 0 for alpha = 45 deg.
+  EXPECT_NEAR(rotarySpeedFactorAtStart(45 * kDeg, 30 * kDeg), 2.732, 5e-4);
+  EXPECT_NEAR(rotarySpeedFactorAtStart(45 * kDeg, 44 * kDeg), 40.52, 5e-3);
+}
+
+TEST(Seed000, SingularAndNearSingularSetupsWarnNeverNaN) {
+  for (const double beta : {45.0, 44.5, 45.3}) {
+    const auto m = motionOn(spec(45, beta), 720);
+    ASSERT_EQ(m.warnings.size(), 1u) << beta;
+    EXPECT_NE(m.warnings[0].find(beta == 45.0 ? "singular set-up alpha = beta" : "near-singular"), std::string::npos);
+    for (const auto& q : m.q)
+      for (double v : q) EXPECT_TRUE(std::isfinite(v));
+    for (const auto& a : m.axes) EXPECT_TRUE(std::isfinite(a.maxSpeed));
+  }
+  EXPECT_TRUE(motionOn(spec(45, 30), 720).warnings.empty());
+}
+
+}  // namespace
+}  // namespace mtacc
