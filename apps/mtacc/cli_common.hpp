@@ -51,6 +51,7 @@ void addForwardCommands(CLI::App& app);  // fk, errors
 void addInverseCommand(CLI::App& app);   // ik
 void addSensitivityCommand(CLI::App& app);
 void addBudgetCommand(CLI::App& app);
-void addReportCommand(CLI::App& app);  // runs the Python report builder
+void addReportCommand(CLI::App& app);
+void addConeCommand(CLI::App& app);  // runs the Python report builder
 
 }  // namespace mtacc::cli

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   mtacc::cli::addInverseCommand(app);
   mtacc::cli::addSensitivityCommand(app);
   mtacc::cli::addBudgetCommand(app);
+  mtacc::cli::addConeCommand(app);
   mtacc::cli::addReportCommand(app);
   try {
     app.parse(argc, argv);

@@ -1,0 +1,88 @@
+// Monte Carlo of the cone-frustum test piece on the tilting-table example: 1000 samples of
+// the Table 3.9 limits, each evaluated with the exact procedure of seed 000 §3.9 (720 points,
+// FK with errors, LS plane and circle). Target: under 2 s on one core. Side by side in the
+// same run, the first-order shortcut (n . dP, harmonic removal) on the same samples.
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+
+#include "mtacc/machine/machine_yaml.hpp"
+#include "mtacc/procedures/monte_carlo.hpp"
+
+namespace {
+
+using namespace mtacc;
+
+struct Setup {
+  std::shared_ptr<const Machine> machine = std::make_shared<const Machine>(loadMachine("tilting-table"));
+  ErrorLimits limits = loadErrorLimits(*machine, bundledDataDir() + "/limits/seed000-table3.9.yaml");
+  ConeSpec spec;
+  KinematicModel nominal = compileNominal(machine);
+  ConePath path = conePath(spec, 720);
+  ConeMotion motion = coneMotion(nominal, spec, path);
+};
+
+Setup& setup() {
+  static Setup s;
+  return s;
+}
+
+constexpr int kSamples = 1000;
+
+double run(bool exact) {
+  auto& s = setup();
+  if (exact) return coneMonteCarlo(s.machine, s.limits, s.spec, s.path, s.motion, kSamples, 7).statistics.median;
+  std::vector<AxisSpan> spans;
+  for (const auto& a : s.motion.axes) spans.push_back({a.min, a.range});
+  std::mt19937_64 rng(7);
+  std::vector<double> v;
+  for (int i = 0; i < kSamples; ++i)
+    v.push_back(coneFormErrorFirstOrder(compile(s.machine, sampleErrors(*s.machine, s.limits, spans, rng)), s.nominal, s.path,
+                                        s.motion).formError);
+  return boxStatistics(v).median;
+}
+
+void MonteCarloExact(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(run(true));
+  state.SetItemsProcessed(state.iterations() * kSamples);
+}
+void MonteCarloFirstOrder(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(run(false));
+  state.SetItemsProcessed(state.iterations() * kSamples);
+}
+BENCHMARK(MonteCarloExact)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->UseRealTime();
+BENCHMARK(MonteCarloFirstOrder)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->UseRealTime();
+
+class Collect : public benchmark::ConsoleReporter {
+ public:
+  Collect() : ConsoleReporter(OO_Tabular) {}
+  std::map<std::string, std::vector<double>> seconds;
+  void ReportRuns(const std::vector<Run>& runs) override {
+    for (const auto& r : runs)
+      if (r.run_type == Run::RT_Iteration) seconds[r.run_name.function_name].push_back(r.GetAdjustedRealTime() / 1e3);
+    ConsoleReporter::ReportRuns(runs);
+  }
+  double median(const std::string& n) {
+    auto v = seconds[n];
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  setup();
+  Collect reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  const double exact = reporter.median("MonteCarloExact"), first = reporter.median("MonteCarloFirstOrder");
+  fmt::print("\ncone Monte Carlo, {} samples x 720 points, one core (medians of 3 runs):\n", kSamples);
+  fmt::print("  exact evaluation       {:.3f} s = {:.0f} samples/s (target < 2 s)\n", exact, kSamples / exact);
+  fmt::print("  first-order shortcut   {:.3f} s = {:.0f} samples/s; exact / first-order time ratio {:.2f}\n", first,
+             kSamples / first, exact / first);
+  benchmark::Shutdown();
+  return 0;
+}
