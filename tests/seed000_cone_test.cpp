@@ -63,9 +63,27 @@ TEST(Seed000, Table3_1RotaryRanges) {
     EXPECT_NEAR(std::max(std::abs(b.min), std::abs(b.max)) / kDeg, c.tiltMax, 1e-3);
     EXPECT_NEAR(axis(m, "C").range / kDeg, c.rotaryRange, c.rotaryRange == 360 ? 0.06 : 0.01);
   }
+  // Upside-down cone of the double pivot head (§3.6.2): the same tilt range as |alpha|.
+  const auto upside = rotaryRangesClosedForm(-45 * kDeg, 30 * kDeg);
+  EXPECT_NEAR(upside.tiltMin / kDeg, 15, 1e-9);
+  EXPECT_NEAR(upside.tiltMax / kDeg, 75, 1e-9);
   // §3.4.4, Fig. 3.24: dC/dphi at phi = 0 for alpha = 45 deg.
   EXPECT_NEAR(rotarySpeedFactorAtStart(45 * kDeg, 30 * kDeg), 2.732, 5e-4);
   EXPECT_NEAR(rotarySpeedFactorAtStart(45 * kDeg, 44 * kDeg), 40.52, 5e-3);
+}
+
+// §3.6.2 (L2871-2932) with erratum 6: double pivot head, alpha = -45, beta = 30, gamma = 45:
+// dZ = r_Q = r + l / sqrt(2), dX = dY = r_Q sqrt(7/2); with the bundled head's l = 200 mm
+// (reference §10.2): 181.42 and 339.41 mm.
+TEST(Seed000, DoublePivotHeadProposedSetup) {
+  const auto s = *conePreset("double-pivot");
+  const auto nominal = compileNominal(test::bundled("double-pivot-head"));
+  const auto m = coneMotion(nominal, s, conePath(s, 3600));
+  const double rq = 40 + 200 / std::sqrt(2.0);
+  EXPECT_NEAR(axis(m, "Z").range, rq, 1e-6);
+  EXPECT_NEAR(axis(m, "X").range, rq * std::sqrt(3.5), 0.01);  // extremes fall between samples
+  EXPECT_NEAR(axis(m, "Y").range, rq * std::sqrt(3.5), 0.01);
+  EXPECT_NEAR(axis(m, "B").range / kDeg, 60.0, 1e-6);
 }
 
 TEST(Seed000, SingularAndNearSingularSetupsWarnNeverNaN) {

@@ -59,7 +59,9 @@ int pointsForChordTolerance(const ConeSpec& s, double tolerance) {
   return std::max(8, static_cast<int>(std::ceil(kPi / std::max(half, 1e-9))));
 }
 
-RotaryRanges rotaryRangesClosedForm(double alpha, double beta, bool startAtPole) {
+RotaryRanges rotaryRangesClosedForm(double alphaSigned, double betaSigned, bool startAtPole) {
+  // An upside-down cone (alpha < 0) runs through the same tilts half a turn later.
+  const double alpha = std::abs(alphaSigned), beta = std::abs(betaSigned);
   if (std::abs(alpha - beta) < 1e-12) {
     if (startAtPole) return {0.0, 2 * alpha, 2 * alpha, kPi, "alpha = beta, start at the pole (phi = 0)"};
     return {-2 * beta, 2 * beta, 4 * alpha, kPi, "alpha = beta, start at phi = 180 deg"};

@@ -35,7 +35,7 @@ ConePath conePath(const ConeSpec& spec, int points);
 // Points needed so that the chord between neighbours deviates at most `tolerance` (mm).
 int pointsForChordTolerance(const ConeSpec& spec, double tolerance);
 
-// Table 3.1 of seed 000 (L2352-2363): closed-form ranges of the rotary axes.
+// Table 3.1 of seed 000 (L2352-2363): closed-form ranges of the rotary axes (for |alpha|, |beta|).
 struct RotaryRanges {
   double tiltMin, tiltMax, tiltRange, rotaryRange;  // rad (|B| extremes, their difference, dC)
   std::string caseName;                              // "alpha > beta", "alpha < beta", "alpha = beta (...)"
