@@ -16,6 +16,7 @@
 #include "mtacc/kinematics/inverse.hpp"
 #include "mtacc/kinematics/jacobian.hpp"
 #include "mtacc/machine/machine_yaml.hpp"
+#include "mtacc/procedures/monte_carlo.hpp"
 
 namespace py = pybind11;
 using namespace mtacc;
@@ -324,6 +325,107 @@ PYBIND11_MODULE(_mtacc, mod) {
           },
           py::arg("q"), py::arg("parameter"), py::arg("epsilon"), py::arg("direction"),
           "Seed 001 eq. 15: k = E / epsilon, E the TCP deviation along direction [mm] for the error epsilon alone")
+      .def(
+          "cone",
+          [](PyMachine& m, double alpha, double beta, double radius, std::vector<double> centre, double gamma, bool face,
+             int points, const std::string& branch, double feed, bool singleErrors, int monteCarlo, const std::string& limitsFile,
+             std::uint64_t seed) {
+            if (centre.size() != 3) throw InputError(InputLocation{"", 0, "centre"}, "expected three numbers x,y,z");
+            if (points < 8 || points > 1000000) throw InputError(InputLocation{"", 0, "points"}, "must be between 8 and 1000000");
+            ConeSpec spec;
+            spec.alpha = alpha * kDeg;
+            spec.beta = beta * kDeg;
+            spec.radius = radius;
+            spec.centre = Vec3(centre[0], centre[1], centre[2]);
+            spec.gamma = gamma * kDeg;
+            spec.faceMilling = face;
+            const auto nominal = compileNominal(m.shared());
+            const auto path = conePath(spec, points);
+            const auto motion = coneMotion(nominal, spec, path, parseTiltBranch(branch), feed);
+            const Machine& mach = m.machine();
+            const auto n = static_cast<py::ssize_t>(path.phi.size());
+            const auto axes = static_cast<py::ssize_t>(mach.commandedCount());
+            const py::ssize_t three = 3;
+            py::array_t<double> phi(n), q({n, axes}), normals({n, three}), tools({n, three}), points3({n, three}),
+                machineNormals({n, three});
+            auto wq = q.mutable_unchecked<2>();
+            auto wm = machineNormals.mutable_unchecked<2>();
+            auto wn = normals.mutable_unchecked<2>();
+            auto wt = tools.mutable_unchecked<2>();
+            auto wp = points3.mutable_unchecked<2>();
+            for (py::ssize_t i = 0; i < n; ++i) {
+              phi.mutable_at(i) = path.phi[static_cast<size_t>(i)] / kDeg;
+              for (py::ssize_t k = 0; k < axes; ++k)
+                wq(i, k) = mach.axes[static_cast<size_t>(k)].isRotary() ? motion.q[static_cast<size_t>(i)][static_cast<size_t>(k)] / kDeg
+                                                                       : motion.q[static_cast<size_t>(i)][static_cast<size_t>(k)];
+              const Vec3 nm = workpiecePose(nominal, motion.q[static_cast<size_t>(i)].data(), nullptr).linear() *
+                              path.normals[static_cast<size_t>(i)];
+              for (int c = 0; c < 3; ++c) {
+                wm(i, c) = nm[c];
+                wn(i, c) = path.normals[static_cast<size_t>(i)][c];
+                wt(i, c) = path.tools[static_cast<size_t>(i)][c];
+                wp(i, c) = path.points[static_cast<size_t>(i)][c];
+              }
+            }
+            py::list axisStats;
+            for (size_t k = 0; k < motion.axes.size(); ++k) {
+              const auto& a = motion.axes[k];
+              const double f = mach.axes[k].isRotary() ? 1.0 / kDeg : 1.0;
+              std::vector<double> rev;
+              for (double p : a.reversalsPhi) rev.push_back(p / kDeg);
+              axisStats.append(py::dict(py::arg("axis") = a.axis, py::arg("min") = a.min * f, py::arg("max") = a.max * f,
+                                        py::arg("range") = a.range * f, py::arg("reversals_phi_deg") = rev,
+                                        py::arg("max_speed_per_s") = a.maxSpeed * f / 60,
+                                        py::arg("max_acceleration_per_s2") = a.maxAcceleration * f / 3600));
+            }
+            py::dict out(py::arg("phi") = phi, py::arg("q") = q, py::arg("normals") = normals,
+                         py::arg("normals_machine") = machineNormals, py::arg("tools") = tools,
+                         py::arg("points") = points3, py::arg("axes") = axisStats, py::arg("warnings") = motion.warnings);
+            auto deviationArray = [](const std::vector<double>& v) {
+              py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+              for (size_t i = 0; i < v.size(); ++i) a.mutable_at(static_cast<py::ssize_t>(i)) = v[i] * 1e3;
+              return a;
+            };
+            const auto nonZero = nonZeroParameters(mach, m.errors());
+            if (!nonZero.empty()) {
+              const auto r = coneFormErrorExact(compile(m.shared(), m.errors()), spec, path, motion);
+              out["form_error_um"] = r.formError * 1e3;
+              out["deviation_um"] = deviationArray(r.deviation);
+              out["raw_deviation_um"] = deviationArray(r.rawDeviation);
+            }
+            if (singleErrors) {
+              py::list singles;
+              for (const auto& p : nonZero) {
+                ErrorModel single = m.errors();
+                for (const auto& other : parameterCatalogue(mach, single))
+                  if (other.name != p.name) setParameterValue(single, other, 0.0);
+                const auto r = coneFormErrorExact(compile(m.shared(), single), spec, path, motion);
+                singles.append(py::dict(py::arg("error") = p.name, py::arg("form_error_um") = r.formError * 1e3,
+                                        py::arg("deviation_um") = deviationArray(r.deviation),
+                                        py::arg("raw_deviation_um") = deviationArray(r.rawDeviation)));
+              }
+              out["single_errors"] = singles;
+            }
+            if (monteCarlo > 0) {
+              const auto limits = loadErrorLimits(mach, limitsFile.empty() ? bundledDataDir() + "/limits/seed000-table3.9.yaml" : limitsFile);
+              ConeMonteCarlo mc;
+              {
+                py::gil_scoped_release release;
+                mc = coneMonteCarlo(m.shared(), limits, spec, path, motion, monteCarlo, seed);
+              }
+              const auto& st = mc.statistics;
+              out["monte_carlo"] = py::dict(py::arg("form_errors_um") = deviationArray(mc.formErrors),
+                                            py::arg("min_um") = st.min * 1e3, py::arg("lower_quartile_um") = st.lowerQuartile * 1e3,
+                                            py::arg("median_um") = st.median * 1e3, py::arg("upper_quartile_um") = st.upperQuartile * 1e3,
+                                            py::arg("max_um") = st.max * 1e3);
+            }
+            return out;
+          },
+          py::arg("alpha") = 45.0, py::arg("beta") = 30.0, py::arg("radius") = 40.0,
+          py::arg("centre") = std::vector<double>{-65, 0, 150}, py::arg("gamma") = 0.0, py::arg("face_milling") = false,
+          py::arg("points") = 720, py::arg("branch") = "negative", py::arg("feed") = 500.0, py::arg("single_errors") = false,
+          py::arg("monte_carlo") = 0, py::arg("limits") = "", py::arg("seed") = 1,
+          "The cone-frustum test piece of seed 000 (angles in deg, lengths in mm, deviations in um)")
       .def(
           "working_volume_grid",
           [](PyMachine& m, int samples) {

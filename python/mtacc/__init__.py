@@ -102,6 +102,15 @@ class Machine:
         ("10 um"); E is the TCP deviation along `direction` (outward normal) in mm."""
         return self._core.sensitivity_coefficient(np.asarray(q, float).ravel(), parameter, epsilon, list(map(float, direction)))
 
+    def cone(self, alpha=45.0, beta=30.0, radius=40.0, centre=(-65.0, 0.0, 150.0), gamma=0.0, face_milling=False,
+             points=720, branch="negative", feed=500.0, single_errors=False, monte_carlo=0, limits=None, seed=1):
+        """The cone-frustum test piece of seed 000 on this machine (as `mtacc cone`): path (phi in deg,
+        points, tools, normals), axis positions q (mm, deg) and their statistics, warnings; with
+        errors the equivalent cone form error and its deviation (um); optionally each error alone
+        and a Monte Carlo over limits (default: seed 000 Table 3.9)."""
+        return self._core.cone(alpha, beta, radius, list(map(float, centre)), gamma, face_milling, points, branch, feed,
+                               single_errors, monte_carlo, "" if limits is None else str(limits), seed)
+
     def working_volume_grid(self, samples=5):
         """Grid of `samples` positions per axis across its travel (mm, deg), as the budget uses."""
         return self._core.working_volume_grid(samples)

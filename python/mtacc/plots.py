@@ -163,3 +163,58 @@ def polar_deviation(angle_deg, deviation_um, title="Radial deviation", remove_me
     ax.legend(loc="lower left", fontsize=7)
     fig.tight_layout()
     return fig
+
+
+def polar_axis_positions(machine, phi_deg, q):
+    """Radial representation of the axis positions over the path (seed 000 Fig. 3.43): each axis
+    scaled to its own range, 1 = mid-range, the dashed circles its extremes."""
+    phi = np.radians(np.asarray(phi_deg, float))
+    q = np.asarray(q, float)
+    fig = plt.figure(figsize=(5.4, 5.4))
+    ax = fig.add_subplot(projection="polar")
+    theta = np.linspace(0, 2 * np.pi, 361)
+    for r in (0.6, 1.4):
+        ax.plot(theta, np.full_like(theta, r), color="#bbb", lw=0.8, ls="--")
+    axes = {a["name"]: a for a in machine.axes}
+    for k, name in enumerate(machine.axis_names):
+        v = q[:, k]
+        half = 0.5 * np.ptp(v)
+        if half <= 1e-9:
+            continue
+        unit = "mm" if axes[name]["type"] == "linear" else "deg"
+        ax.plot(np.append(phi, phi[0]), np.append(1 + 0.4 * (v - (v.max() - half)) / half, 1 + 0.4 * (v[0] - (v.max() - half)) / half),
+                label=f"{name} ({v.min():.1f} … {v.max():.1f} {unit})")
+    ax.set_ylim(0, 1.5)
+    ax.set_rticks([])
+    ax.set_title("Axis positions over φ, each scaled to its range", fontsize=9)
+    ax.legend(loc="lower left", fontsize=7, bbox_to_anchor=(-0.1, -0.12))
+    fig.tight_layout()
+    return fig
+
+
+def normal_components(phi_deg, normals, frame="machine"):
+    """Components of the surface normal over the path: the sensitive direction of the test."""
+    normals = np.asarray(normals, float)
+    fig, ax = plt.subplots(figsize=(7.0, 3.0))
+    for k, label in enumerate("xyz"):
+        ax.plot(phi_deg, normals[:, k], label=f"n{label}")
+    ax.set_xlabel("φ [deg]")
+    ax.set_ylabel(f"normal ({frame} frame)")
+    ax.set_ylim(-1.05, 1.05)
+    ax.legend(fontsize=8, ncol=3)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def box_plot(groups, ylabel="equivalent cone form error [µm]"):
+    """Box plots (whiskers at minimum and maximum, box at the quartiles, median line) of one
+    or more samples: {label: values}."""
+    fig, ax = plt.subplots(figsize=(4.5, 4.0))
+    labels = list(groups)
+    ax.boxplot([np.asarray(groups[k], float) for k in labels], whis=(0, 100), labels=labels,
+               medianprops=dict(color="#d62728", lw=2), boxprops=dict(color="#1f77b4"))
+    ax.set_ylabel(ylabel)
+    ax.grid(axis="y", alpha=0.3)
+    fig.tight_layout()
+    return fig

@@ -140,10 +140,73 @@ def five_axis_circle(machine, top_parameter, progress):
     return out
 
 
+def cone_family(machine):
+    """The seed 000 preset for the machine's family: both rotary axes on the workpiece side
+    (tilting table), both on the tool side (double pivot head), or one on each."""
+    sides = [a["side"] for a in machine.axes if a["type"] == "rotary"]
+    if len(sides) != 2:
+        return None
+    if sides.count("workpiece") == 2:
+        return "tilting table", dict(alpha=45.0, beta=30.0, radius=40.0, centre=(-65.0, 0.0, 150.0), gamma=0.0)
+    if sides.count("tool") == 2:
+        return "double pivot head", dict(alpha=-45.0, beta=30.0, radius=40.0, centre=(0.0, 0.0, 0.0), gamma=45.0)
+    return "swivel head and rotary table", dict(alpha=45.0, beta=30.0, radius=40.0,
+                                                 centre=(100.0 - 40.0 * np.cos(np.radians(30.0)), 0.0, 0.0), gamma=0.0)
+
+
+def cone_section(machine, progress, monte_carlo=200):
+    """The cone-frustum test piece of seed 000 with the recommended set-up of §3.6."""
+    family = cone_family(machine)
+    if family is None:
+        return ""
+    name, spec = family
+    try:
+        cone = machine.cone(**spec, points=720, single_errors=True)
+    except (UnreachablePose, InputError) as e:
+        return f"<h2>Cone-frustum test piece</h2><p>The recommended set-up is not reachable: {html.escape(str(e))}</p>"
+    try:  # the bundled limits (seed 000 Table 3.9) name the axes of a B-C tilting table
+        cone["monte_carlo"] = machine.cone(**spec, points=720, monte_carlo=monte_carlo)["monte_carlo"]
+    except InputError as e:
+        cone["monte_carlo_skipped"] = str(e)
+    progress("cone frustum")
+    out = (f"<h2>Cone-frustum test piece (seed 000)</h2><p>Recommended set-up for a {name} (§3.6): α {spec['alpha']:g}°, "
+           f"β {spec['beta']:g}°, r {spec['radius']:g} mm, centre ({', '.join(f'{c:g}' for c in spec['centre'])}) mm, "
+           f"γ {spec['gamma']:g}°; 720 points, feed 500 mm/min.</p>")
+    for w in cone["warnings"]:
+        out += f"<p><b>Warning:</b> {html.escape(w)}</p>"
+    out += table(["axis", "min", "max", "range", "reversals", "max speed [/s]", "max accel. [/s²]"],
+                  [[a["axis"], f'{a["min"]:.3f}', f'{a["max"]:.3f}', f'{a["range"]:.3f}', len(a["reversals_phi_deg"]),
+                    f'{a["max_speed_per_s"]:.3f}', f'{a["max_acceleration_per_s2"]:.3f}'] for a in cone["axes"]])
+    out += figure(plots.axis_positions_along_path(machine, cone["q"], cone["phi"], "φ [deg]"), "Axis positions over φ")
+    out += figure(plots.polar_axis_positions(machine, cone["phi"], cone["q"]), "Radial representation of the axis positions")
+    out += figure(plots.normal_components(cone["phi"], cone["normals_machine"]),
+                  "Surface normal in the machine frame: the direction in which errors show on the cone")
+    if "form_error_um" in cone:
+        out += (f"<p class='key'>Equivalent cone form error of this machine's errors: "
+                f"<b>{cone['form_error_um']:.2f} µm</b> (exact procedure, §3.9).</p>")
+        out += figure(plots.polar_deviation(cone["phi"], cone["deviation_um"], title="All errors: normal deviation after the circle fit",
+                                            remove_mean=False), "Cone form deviation of all errors together")
+        singles = sorted(cone["single_errors"], key=lambda e: -e["form_error_um"])
+        out += table(["error", "form error [µm]"], [[e["error"], f'{e["form_error_um"]:.3f}'] for e in singles[:12]])
+        for e in singles[:3]:
+            out += figure(plots.polar_deviation(cone["phi"], e["deviation_um"], title=f'{e["error"]} alone', remove_mean=False),
+                          f'Cone form deviation caused by {e["error"]} alone')
+    if "monte_carlo" in cone:
+        mc = cone["monte_carlo"]
+        out += (f"<p>Monte Carlo: {monte_carlo} machines with errors drawn uniformly within seed 000 Table 3.9: median "
+                f"{mc['median_um']:.2f} µm, quartiles {mc['lower_quartile_um']:.2f} / {mc['upper_quartile_um']:.2f} µm, "
+                f"range {mc['min_um']:.2f} … {mc['max_um']:.2f} µm (thesis Table 3.5: 8.8, 6.9 / 11.0, 2.6 … 23.9 µm).</p>")
+        out += figure(plots.box_plot({"equivalent cone form error": mc["form_errors_um"]}),
+                      "Distribution of the equivalent cone form error over the Monte Carlo samples")
+    elif "monte_carlo_skipped" in cone:
+        out += f"<p>Monte Carlo skipped: the seed 000 Table 3.9 limits do not fit this machine ({html.escape(cone['monte_carlo_skipped'])}).</p>"
+    return out
+
+
 def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=None):
     """Writes <output_dir>/<machine>-report.html atomically and returns its path."""
     start = time.perf_counter()
-    steps = ["machine", "error budget", "volumetric error maps", "circular test", "5-axis circle", "writing"]
+    steps = ["machine", "error budget", "volumetric error maps", "circular test", "5-axis circle", "cone frustum", "writing"]
     done = []
 
     def step(name):
@@ -212,8 +275,12 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     parts.append("<h2>Volumetric error maps</h2>" + maps)
     parts.append(circle_test(machine, lambda s: None))
     step("circular test")
-    parts.append(five_axis_circle(machine, budget["entries"][0]["error"] if budget["entries"] else None, lambda s: None))
+    parameters = set(machine.errors.names())
+    top = next((e["error"] for e in budget["entries"] if e["error"] in parameters), None)
+    parts.append(five_axis_circle(machine, top, lambda s: None))
     step("5-axis circle")
+    parts.append(cone_section(machine, lambda s: None))
+    step("cone frustum")
 
     elapsed = time.perf_counter() - start
     parts.append(f'<p class="meta">Built in {elapsed:.1f} s.</p>')
