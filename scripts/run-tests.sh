@@ -12,3 +12,6 @@ MTACC_CLI="$(pwd)/build/mtacc" MTACC_TEST_ARTIFACTS="$(pwd)/build/test-artifacts
 echo
 echo "== Benchmark: batch forward kinematics against orocos KDL =="
 ./build/bench/bench_fk_vs_kdl --benchmark_min_time=0.2 --benchmark_color=false
+echo
+echo "== Benchmark: cone-frustum Monte Carlo, 1000 samples, exact evaluation =="
+./build/bench/bench_cone_monte_carlo --benchmark_color=false
