@@ -137,10 +137,10 @@ class RatioReporter : public benchmark::ConsoleReporter {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Five interleaved repetitions by default: the machines are shared and noisy, so KDL and
+  // Eleven interleaved repetitions by default: the machines are shared and noisy, so KDL and
   // mtacc take turns and the ratios use medians.
   std::vector<char*> args(argv, argv + argc);
-  std::string reps = "--benchmark_repetitions=5", interleave = "--benchmark_enable_random_interleaving=true";
+  std::string reps = "--benchmark_repetitions=11", interleave = "--benchmark_enable_random_interleaving=true";
   auto given = [&](const char* flag) {
     return std::any_of(args.begin(), args.end(), [&](const char* a) { return std::string(a).rfind(flag, 0) == 0; });
   };

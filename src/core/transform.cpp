@@ -48,18 +48,6 @@ Mat3 skew(const Vec3& v) {
   return m;
 }
 
-Mat3 rotationXYZ(double a, double b, double c) {
-  double sa, ca, sb, cb, sc, cc;
-  exactSinCos(a, sa, ca);
-  exactSinCos(b, sb, cb);
-  exactSinCos(c, sc, cc);
-  Mat3 r;
-  r << cb * cc, -cb * sc, sb,                                 //
-      sa * sb * cc + ca * sc, -sa * sb * sc + ca * cc, -sa * cb,  //
-      -ca * sb * cc + sa * sc, ca * sb * sc + sa * cc, ca * cb;
-  return r;
-}
-
 Mat3 rotationXYZDerivative(double a, double b, double c, int which) {
   switch (which) {
     case 0: return drx(a) * ry(b) * rz(c);

@@ -27,8 +27,14 @@ Vec6 motionComponents(const KinematicModel& m, const ChainOp& op, const double* 
   for (const auto& group : op.tableGroups) {
     const auto at = locateInGrid(group.positions, group.uniform, group.inverseStep, qa);
     const size_t n = group.components.size();
-    const double* k = group.coefficients.data() + at.interval * n * 4;
-    for (size_t t = 0; t < n; ++t, k += 4) c[group.components[t]] += k[0] + at.s * (k[1] + at.s * (k[2] + at.s * k[3]));
+    const double* k0 = group.coefficients.data() + at.interval * n * 4;
+    const double *k1 = k0 + n, *k2 = k1 + n, *k3 = k2 + n;
+    const double s = at.s;
+    if (n == 6 && group.inOrder) {  // all six components on one grid: a fixed, vectorisable loop
+      for (int t = 0; t < 6; ++t) c[t] = k0[t] + s * (k1[t] + s * (k2[t] + s * k3[t]));
+      continue;
+    }
+    for (size_t t = 0; t < n; ++t) c[group.components[t]] += k0[t] + s * (k1[t] + s * (k2[t] + s * k3[t]));
   }
   if (op.residualMask)
     for (int k = 0; k < 6; ++k)
@@ -42,6 +48,16 @@ struct PointDirection {
   Vec3 p;
   Vec3 d;
 };
+
+// 3x3 products written out: the hot loop applies a few of them per operation.
+inline Vec3 times(const Mat3& r, const Vec3& v) {
+  return {r(0, 0) * v[0] + r(0, 1) * v[1] + r(0, 2) * v[2], r(1, 0) * v[0] + r(1, 1) * v[1] + r(1, 2) * v[2],
+          r(2, 0) * v[0] + r(2, 1) * v[1] + r(2, 2) * v[2]};
+}
+inline Vec3 transposeTimes(const Mat3& r, const Vec3& v) {
+  return {r(0, 0) * v[0] + r(1, 0) * v[1] + r(2, 0) * v[2], r(0, 1) * v[0] + r(1, 1) * v[1] + r(2, 1) * v[2],
+          r(0, 2) * v[0] + r(1, 2) * v[1] + r(2, 2) * v[2]};
+}
 
 // v <- rotation of v by (s, c) in the plane (i, j) of principal axis k.
 inline void rotatePlane(Vec3& v, int i, int j, double s, double c) {
@@ -58,14 +74,14 @@ template <bool Inverse>
 inline void applyOp(const KinematicModel& m, const ChainOp& op, const double* q, const int* dir, PointDirection& x) {
   switch (op.kind) {
     case ChainOp::Constant: {
-      const Mat3& r = op.constant.linear();
+      const Mat3 r = op.constant.linear();
       const Vec3 t = op.constant.translation();
       if constexpr (Inverse) {
-        x.p = r.transpose() * (x.p - t);
-        x.d = r.transpose() * x.d;
+        x.p = transposeTimes(r, x.p - t);
+        x.d = transposeTimes(r, x.d);
       } else {
-        x.p = r * x.p + t;
-        x.d = r * x.d;
+        x.p = times(r, x.p) + t;
+        x.d = times(r, x.d);
       }
       break;
     }
@@ -93,22 +109,15 @@ inline void applyOp(const KinematicModel& m, const ChainOp& op, const double* q,
       break;
     }
     case ChainOp::MotionError: {
-      // Trans(e) Rx(a) Ry(b) Rz(c) applied as three plane rotations.
       const Vec6 c = motionComponents(m, op, q, dir);
-      double sn[3], cs[3];
-      for (int k = 0; k < 3; ++k) exactSinCos(c[3 + k], sn[k], cs[k]);
+      const Mat3 r = rotationXYZ(c[kA], c[kB], c[kC]);
+      const Vec3 e = c.head<3>();
       if constexpr (Inverse) {
-        x.p -= c.head<3>();
-        for (int k = 0; k < 3; ++k) {
-          rotatePlane(x.p, kNext[k], kAfterNext[k], -sn[k], cs[k]);
-          rotatePlane(x.d, kNext[k], kAfterNext[k], -sn[k], cs[k]);
-        }
+        x.p = transposeTimes(r, x.p - e);
+        x.d = transposeTimes(r, x.d);
       } else {
-        for (int k = 2; k >= 0; --k) {
-          rotatePlane(x.p, kNext[k], kAfterNext[k], sn[k], cs[k]);
-          rotatePlane(x.d, kNext[k], kAfterNext[k], sn[k], cs[k]);
-        }
-        x.p += c.head<3>();
+        x.p = times(r, x.p) + e;
+        x.d = times(r, x.d);
       }
       break;
     }
@@ -178,8 +187,8 @@ Pose toolInWorkpiece(const KinematicModel& m, const double* q, const int* dir) {
 ToolPoint toolPoint(const KinematicModel& m, const double* q, const int* dir) {
   // W^-1 T applied to the TCP (origin of the tool frame) and the tool direction, factor by
   // factor: the tool chain from its end, then the inverted workpiece chain from the bed.
-  PointDirection x{Vec3::Zero(), m.toolDirection};
-  for (auto it = m.toolProgram.rbegin(); it != m.toolProgram.rend(); ++it) applyOp<false>(m, *it, q, dir, x);
+  PointDirection x{m.tcpStart, m.toolDirectionStart};
+  for (size_t i = m.toolOpsPerPose; i-- > 0;) applyOp<false>(m, m.toolProgram[i], q, dir, x);
   for (const auto& op : m.workpieceProgram) applyOp<true>(m, op, q, dir, x);
   if (m.aligned) return {m.alignment * x.p, m.alignment.linear() * x.d};
   return {x.p, x.d};

@@ -90,8 +90,10 @@ std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<Cha
       }
       for (size_t g = 0; g < op.tableGroups.size(); ++g) {
         auto& group = op.tableGroups[g];
+        group.inOrder = group.components == std::vector<int>{0, 1, 2, 3, 4, 5};
         for (size_t i = 0; i + 1 < group.positions.size(); ++i)
-          for (const TableTerm* t : tables[g]) group.coefficients.insert(group.coefficients.end(), t->cubic[i].begin(), t->cubic[i].end());
+          for (int power = 0; power < 4; ++power)
+            for (const TableTerm* t : tables[g]) group.coefficients.push_back(t->cubic[i][static_cast<size_t>(power)]);
       }
       ops.push_back(op);
       pushConstant(translation(-e.location));
@@ -179,6 +181,15 @@ KinematicModel compile(std::shared_ptr<const Machine> machine, const ErrorModel&
   m.toolProgram = buildProgram(m, m.toolChain, m.toolFrame);
   m.workpieceProgram = buildProgram(m, m.workpieceChain, m.workpieceFrame);
   m.toolDirection = machine->toolDirection;
+  m.tcpStart = Vec3::Zero();
+  m.toolDirectionStart = m.toolDirection;
+  m.toolOpsPerPose = m.toolProgram.size();
+  if (!m.toolProgram.empty() && m.toolProgram.back().kind == ChainOp::Constant) {
+    const Pose& c = m.toolProgram.back().constant;
+    m.tcpStart = c.translation();
+    m.toolDirectionStart = c.linear() * m.toolDirection;
+    --m.toolOpsPerPose;
+  }
   if (withErrors && machine->alignment == WorkpieceAlignment::Machine) {
     // Seed 001 eqs. 10-12: the workpiece is set up aligned with the machine at the reference
     // pose, so M_WC = W_nominal(q_ref)^-1 * W_actual(q_ref).

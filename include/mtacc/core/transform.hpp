@@ -36,7 +36,17 @@ inline void exactSinCos(double x, double& s, double& c) {
 }
 
 // R = Rx(a) * Ry(b) * Rz(c): the order of seed 003 eq. [3.8], exact (not linearised).
-Mat3 rotationXYZ(double a, double b, double c);
+inline Mat3 rotationXYZ(double a, double b, double c) {
+  double sa, ca, sb, cb, sc, cc;
+  exactSinCos(a, sa, ca);
+  exactSinCos(b, sb, cb);
+  exactSinCos(c, sc, cc);
+  Mat3 r;
+  r << cb * cc, -cb * sc, sb,                                      //
+      sa * sb * cc + ca * sc, -sa * sb * sc + ca * cc, -sa * cb,  //
+      -ca * sb * cc + sa * sc, ca * sb * sc + sa * cc, ca * cb;
+  return r;
+}
 // d R / d (a, b, c)[which] at (a, b, c).
 Mat3 rotationXYZDerivative(double a, double b, double c, int which);
 

@@ -45,7 +45,8 @@ struct ChainOp {
   int principal = -1;          // RotaryJoint: 0, 1, 2 when the axis is +X, +Y, +Z (fast path), else -1
   bool hasBase = false;        // RotaryJoint: the axis does not pass through the frame origin
   // MotionError: table terms grouped by their grid, so that each grid is located once per
-  // pose, with their cubic coefficients copied side by side ([interval][table][4]);
+  // pose, with their cubic coefficients copied side by side ([interval][power][table], so
+  // that the tables of one interval evaluate as one vectorisable loop);
   // residualMask has bit k set when component k has terms other than tables.
   struct TableGroup {
     std::vector<double> positions;
@@ -53,6 +54,7 @@ struct ChainOp {
     double inverseStep = 0.0;
     std::vector<int> components;
     std::vector<double> coefficients;
+    bool inOrder = false;  // components are exactly 0..5, one table each
   };
   std::vector<TableGroup> tableGroups;
   unsigned residualMask = 0;
@@ -66,6 +68,11 @@ struct KinematicModel {
   std::vector<ChainElement> workpieceChain;  // bed -> workpiece
   std::vector<ChainOp> toolProgram;
   std::vector<ChainOp> workpieceProgram;
+  // The TCP and tool direction after the tool program's trailing constant (which does not
+  // depend on the pose), and how many tool operations remain to apply per pose.
+  Vec3 tcpStart = Vec3::Zero();
+  Vec3 toolDirectionStart = Vec3::UnitZ();
+  size_t toolOpsPerPose = 0;
   Pose toolFrame = Pose::Identity();       // Trans(tool offset); also the programs' last factor
   Pose workpieceFrame = Pose::Identity();  // Trans(workpiece offset)
   Vec3 toolDirection = Vec3::UnitZ();
