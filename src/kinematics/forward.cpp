@@ -69,22 +69,25 @@ inline void rotatePlane(Vec3& v, int i, int j, double s, double c) {
 constexpr int kNext[3] = {1, 2, 0};
 constexpr int kAfterNext[3] = {2, 0, 1};
 
+// x <- (R, t) x, or its inverse.
+template <bool Inverse>
+inline void transformBy(const Mat3& r, const Vec3& t, PointDirection& x) {
+  if constexpr (Inverse) {
+    x.p = transposeTimes(r, x.p - t);
+    x.d = transposeTimes(r, x.d);
+  } else {
+    x.p = times(r, x.p) + t;
+    x.d = times(r, x.d);
+  }
+}
+
 // x <- F x (Inverse = false) or x <- F^-1 x for one operation.
 template <bool Inverse>
 inline void applyOp(const KinematicModel& m, const ChainOp& op, const double* q, const int* dir, PointDirection& x) {
   switch (op.kind) {
-    case ChainOp::Constant: {
-      const Mat3 r = op.constant.linear();
-      const Vec3 t = op.constant.translation();
-      if constexpr (Inverse) {
-        x.p = transposeTimes(r, x.p - t);
-        x.d = transposeTimes(r, x.d);
-      } else {
-        x.p = times(r, x.p) + t;
-        x.d = times(r, x.d);
-      }
+    case ChainOp::Constant:
+      transformBy<Inverse>(op.constant.linear(), op.constant.translation(), x);
       break;
-    }
     case ChainOp::LinearJoint:
       if constexpr (Inverse)
         x.p -= op.base + q[op.joint] * op.vector;
@@ -110,15 +113,7 @@ inline void applyOp(const KinematicModel& m, const ChainOp& op, const double* q,
     }
     case ChainOp::MotionError: {
       const Vec6 c = motionComponents(m, op, q, dir);
-      const Mat3 r = rotationXYZ(c[kA], c[kB], c[kC]);
-      const Vec3 e = c.head<3>();
-      if constexpr (Inverse) {
-        x.p = transposeTimes(r, x.p - e);
-        x.d = transposeTimes(r, x.d);
-      } else {
-        x.p = times(r, x.p) + e;
-        x.d = times(r, x.d);
-      }
+      transformBy<Inverse>(rotationXYZ(c[kA], c[kB], c[kC]), c.head<3>(), x);
       break;
     }
   }
