@@ -89,6 +89,20 @@ TEST_F(Table3_4, HarmonicErrors) {
   EXPECT_NEAR(formError("EZC: {harmonics: {period: 360 deg, zero: 0 deg, terms: [{order: 1, amplitude: 10 um}]}}"), 1.2, 0.1);  // L4066
 }
 
+// §3.10.4 (L3906-3950): typical form-error types.
+TEST_F(Table3_4, FormErrorTypes) {
+  auto type = [&](const std::string& yaml) {
+    const auto errors = parseErrors(*machine, "errors:\n  " + yaml + "\n", "types");
+    return formErrorType(coneFormErrorExact(compile(machine, errors), spec, path, motion).deviation);
+  };
+  const std::vector<std::string> topBottom{"B0Z: 30 urad", "B0C: 30 urad", "X0B: 10 um", linear("EXX", "X", "10 um"),
+                                           linear("EYY", "Y", "10 um"), "ECC: {linear: {value: 50 urad, over: 360 deg}}"};
+  for (const auto& e : topBottom)
+    EXPECT_EQ(type(e), FormErrorType::TopBottom) << e;
+  for (const std::string e : {"C0Y: 30 urad", "A0Z: 30 urad", "A0B: 30 urad", "A0C: 30 urad", "Y0Y: 10 um"})
+    EXPECT_EQ(type(e), FormErrorType::Asymmetric) << e;
+}
+
 TEST_F(Table3_4, FirstOrderAgreesWithExact) {
   for (const std::string e : {"A0Z: 30 urad", "X0B: 10 um", "EYY: {reversal: 10 um}", "ECC: {linear: {value: 50 urad, over: 360 deg}}"}) {
     const double exact = formError(e, true), first = formError(e, false);

@@ -28,6 +28,7 @@ struct ConeOptions : MachineOptions {
   std::string limits;
   std::uint64_t seed = 1;
   std::string gcode;
+  std::string clData;
 };
 
 std::string formatAxisValue(const Axis& a, double v) { return fmt::format("{:.4f}", a.isRotary() ? v / kDeg : v); }
@@ -122,18 +123,24 @@ void run(const ConeOptions& o) {
     j["form_error_first_order_um"] = first.formError * 1e3;
   }
   if (o.singleErrors) {
-    std::vector<std::pair<std::string, double>> rows;
+    struct Row {
+      std::string name;
+      double formError;
+      FormErrorType type;
+    };
+    std::vector<Row> rows;
     for (const auto& p : nonZeroParameters(m, loaded.errors)) {
       ErrorModel single = loaded.errors;
       for (const auto& q : parameterCatalogue(m, single))
         if (q.name != p.name) setParameterValue(single, q, 0.0);
-      rows.emplace_back(p.name, coneFormErrorExact(compile(loaded.machine, single), spec, path, motion).formError);
+      const auto r = coneFormErrorExact(compile(loaded.machine, single), spec, path, motion);
+      rows.push_back({p.name, r.formError, formErrorType(r.deviation)});
     }
-    std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
-    human += "\nsingle errors (each alone at its value):\n";
-    for (const auto& [name, v] : rows) {
-      human += fmt::format("  {:<10} {:8.3f} um\n", name, v * 1e3);
-      j["single_errors"].push_back({{"error", name}, {"form_error_um", v * 1e3}});
+    std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.formError > b.formError; });
+    human += "\nsingle errors (each alone at its value): equivalent cone form error, form type (seed 000 §3.10.4)\n";
+    for (const auto& r : rows) {
+      human += fmt::format("  {:<10} {:8.3f} um  {}\n", r.name, r.formError * 1e3, toString(r.type));
+      j["single_errors"].push_back({{"error", r.name}, {"form_error_um", r.formError * 1e3}, {"type", toString(r.type)}});
     }
   }
   if (o.monteCarlo > 0) {
@@ -151,6 +158,16 @@ void run(const ConeOptions& o) {
     j["monte_carlo"] = {{"samples", o.monteCarlo}, {"limits", file}, {"seed", o.seed},
                         {"min_um", s.min * 1e3}, {"lower_quartile_um", s.lowerQuartile * 1e3}, {"median_um", s.median * 1e3},
                         {"upper_quartile_um", s.upperQuartile * 1e3}, {"max_um", s.max * 1e3}};
+  }
+  if (!o.clData.empty()) {
+    std::string cl = "phi_deg,x,y,z,i,j,k,nx,ny,nz\n";
+    for (size_t i = 0; i < path.phi.size(); ++i) {
+      const auto &p = path.points[i], &t = path.tools[i], &nv = path.normals[i];
+      cl += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", path.phi[i] / kDeg, p.x(), p.y(), p.z(), t.x(), t.y(), t.z(), nv.x(),
+                        nv.y(), nv.z());
+    }
+    writeFileAtomically(o.clData, cl);
+    human += "\nCL data written: " + o.clData + "\n";
   }
   if (!o.gcode.empty()) {
     writeFileAtomically(o.gcode, gcodeProgram(m, spec, motion, o.feed));
@@ -181,6 +198,7 @@ void addConeCommand(CLI::App& app) {
   cmd->add_option("--limits", o->limits, "limits file (default: seed 000 Table 3.9)");
   cmd->add_option("--seed", o->seed, "random seed of the Monte Carlo (default 1)");
   cmd->add_option("--gcode", o->gcode, "write the NC program of the path to FILE");
+  cmd->add_option("--cl", o->clData, "write the CL data (phi, TCP, tool vector, surface normal) to FILE.csv");
   cmd->callback([o] { run(*o); });
 }
 

@@ -401,6 +401,7 @@ PYBIND11_MODULE(_mtacc, mod) {
                   if (other.name != p.name) setParameterValue(single, other, 0.0);
                 const auto r = coneFormErrorExact(compile(m.shared(), single), spec, path, motion);
                 singles.append(py::dict(py::arg("error") = p.name, py::arg("form_error_um") = r.formError * 1e3,
+                                        py::arg("type") = toString(formErrorType(r.deviation)),
                                         py::arg("deviation_um") = deviationArray(r.deviation),
                                         py::arg("raw_deviation_um") = deviationArray(r.rawDeviation)));
               }

@@ -187,7 +187,8 @@ def cone_section(machine, progress, monte_carlo=200):
         out += figure(plots.polar_deviation(cone["phi"], cone["deviation_um"], title="All errors: normal deviation after the circle fit",
                                             remove_mean=False), "Cone form deviation of all errors together")
         singles = sorted(cone["single_errors"], key=lambda e: -e["form_error_um"])
-        out += table(["error", "form error [µm]"], [[e["error"], f'{e["form_error_um"]:.3f}'] for e in singles[:12]])
+        out += table(["error", "form error [µm]", "type (§3.10.4)"],
+                     [[e["error"], f'{e["form_error_um"]:.3f}', e["type"]] for e in singles[:12]])
         for e in singles[:3]:
             out += figure(plots.polar_deviation(cone["phi"], e["deviation_um"], title=f'{e["error"]} alone', remove_mean=False),
                           f'Cone form deviation caused by {e["error"]} alone')

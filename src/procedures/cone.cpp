@@ -150,6 +150,19 @@ ConeMotion coneMotion(const KinematicModel& nominal, const ConeSpec& spec, const
   return out;
 }
 
+FormErrorType formErrorType(const std::vector<double>& e) {
+  const size_t n = e.size();
+  double symmetric = 0.0, antisymmetric = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const double mirror = e[(n - i) % n];  // value at -phi
+    symmetric += 0.25 * (e[i] + mirror) * (e[i] + mirror);
+    antisymmetric += 0.25 * (e[i] - mirror) * (e[i] - mirror);
+  }
+  return symmetric >= antisymmetric ? FormErrorType::TopBottom : FormErrorType::Asymmetric;
+}
+
+const char* toString(FormErrorType t) { return t == FormErrorType::TopBottom ? "top-bottom" : "asymmetric"; }
+
 void removeFirstHarmonic(const std::vector<double>& phi, std::vector<double>& values) {
   Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
   Eigen::Vector3d atb = Eigen::Vector3d::Zero();

@@ -35,7 +35,9 @@ def test_bad_input_and_gcode(cli, tmp_path):
     assert out.returncode != 0 and "--points" in out.stderr and not gcode.exists()
     out = subprocess.run([cli, "cone", "three-axis-vertical", "--gcode", str(gcode)], capture_output=True, text=True)
     assert out.returncode != 0 and "cannot be reached" in out.stderr and not gcode.exists()
-    subprocess.run([cli, "cone", "swivel-head-table", "--preset", "swivel-head", "--gcode", str(gcode)], check=True,
-                   capture_output=True)
+    cl = tmp_path / "cone.csv"
+    subprocess.run([cli, "cone", "swivel-head-table", "--preset", "swivel-head", "--gcode", str(gcode), "--cl", str(cl)],
+                   check=True, capture_output=True)
+    assert cl.read_text().splitlines()[0] == "phi_deg,x,y,z,i,j,k,nx,ny,nz" and len(cl.read_text().splitlines()) == 721
     lines = gcode.read_text().splitlines()
     assert lines[3].startswith("N10 G01 X") and " B" in lines[3] and " C" in lines[3] and lines[-1] == "M30"

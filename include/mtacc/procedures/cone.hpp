@@ -78,6 +78,14 @@ ConeFormResult coneFormErrorExact(const KinematicModel& actual, const ConeSpec& 
 ConeFormResult coneFormErrorFirstOrder(const KinematicModel& actual, const KinematicModel& nominal,
                                        const ConePath& path, const ConeMotion& motion);
 
+// Seed 000 §3.10.4: a deviation symmetric about phi = 0 / 180 deg (the plane of the cone
+// axis and the rotary axis) is "top-bottom" (type 1); an antisymmetric one is "asymmetric"
+// (type 2). Decided by the larger RMS of the symmetric and antisymmetric parts; needs points
+// spaced evenly over the full turn.
+enum class FormErrorType { TopBottom, Asymmetric };
+FormErrorType formErrorType(const std::vector<double>& deviation);
+const char* toString(FormErrorType t);
+
 // Removes the least-squares a0 + a1 cos(phi) + b1 sin(phi) from values (in place).
 void removeFirstHarmonic(const std::vector<double>& phi, std::vector<double>& values);
 
