@@ -62,15 +62,13 @@ class CliBadInput : public ::testing::Test {
   fs::path dir_;
 };
 
-const std::string kMachine = R"(name: test machine
-structure: t-(C)-Z-Y-b-X-B-C-w
-axes:
-  X: {direction: [1, 0, 0], travel: [-400 mm, 400 mm]}
-  Y: {direction: [0, 1, 0], travel: [-300 mm, 300 mm]}
-  Z: {direction: [0, 0, 1], travel: [-300 mm, 400 mm]}
-  B: {direction: [0, 1, 0], travel: [-120 deg, 120 deg]}
-  C: {direction: [0, 0, 1], travel: continuous}
-)";
+// The bad-input cases of the C++ and Python tests start from the same small machine.
+const std::string kMachine = [] {
+  std::ifstream in(std::string(MTACC_TEST_DATA) + "/test-machine.yaml");
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}();
 
 TEST_F(CliBadInput, MalformedYaml) {
   const auto f = write("bad.yaml", "name: x\naxes: [1, 2\nstructure: t-Z-b-X-w\n");

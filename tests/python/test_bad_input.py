@@ -1,4 +1,5 @@
 """Bad input through Python raises a Python exception with the CLI's message, never a crash."""
+import pathlib
 import subprocess
 
 import numpy as np
@@ -6,15 +7,7 @@ import pytest
 
 import mtacc
 
-MACHINE = """name: test machine
-structure: t-(C)-Z-Y-b-X-B-C-w
-axes:
-  X: {direction: [1, 0, 0], travel: [-400 mm, 400 mm]}
-  Y: {direction: [0, 1, 0], travel: [-300 mm, 300 mm]}
-  Z: {direction: [0, 0, 1], travel: [-300 mm, 400 mm]}
-  B: {direction: [0, 1, 0], travel: [-120 deg, 120 deg]}
-  C: {direction: [0, 0, 1], travel: continuous}
-"""
+MACHINE = (pathlib.Path(__file__).resolve().parents[1] / "data" / "test-machine.yaml").read_text()
 
 CASES = {
     "malformed": "name: x\naxes: [1, 2\n",
