@@ -20,25 +20,29 @@ void rotatePrincipal(Mat3& r, int k, double angle) {
 
 // The six component errors of a motion-error operation at the current joint values.
 Vec6 motionComponents(const KinematicModel& m, const ChainOp& op, const double* q, const int* dir) {
-  const auto& motion = m.errors.axes[static_cast<size_t>(op.axis)].motion;
   const double qa = op.joint >= 0 ? q[op.joint] : 0.0;
-  const int d = (dir && op.joint >= 0) ? dir[op.joint] : 0;
-  Vec6 c = Vec6::Zero();
+  Vec6 c;
+  if (op.sixTablesOnOneGrid) {  // the common measured case: one table per component, one grid
+    const auto& g = op.tableGroups.front();
+    const auto at = locateInGrid(g.positions, g.uniform, g.inverseStep, qa);
+    const double* k0 = g.coefficients.data() + at.interval * 24;
+    for (int t = 0; t < 6; ++t) c[t] = k0[t] + at.s * (k0[t + 6] + at.s * (k0[t + 12] + at.s * k0[t + 18]));
+    return c;
+  }
+  c.setZero();
   for (const auto& group : op.tableGroups) {
     const auto at = locateInGrid(group.positions, group.uniform, group.inverseStep, qa);
     const size_t n = group.components.size();
     const double* k0 = group.coefficients.data() + at.interval * n * 4;
     const double *k1 = k0 + n, *k2 = k1 + n, *k3 = k2 + n;
-    const double s = at.s;
-    if (n == 6 && group.inOrder) {  // all six components on one grid: a fixed, vectorisable loop
-      for (int t = 0; t < 6; ++t) c[t] = k0[t] + s * (k1[t] + s * (k2[t] + s * k3[t]));
-      continue;
-    }
-    for (size_t t = 0; t < n; ++t) c[group.components[t]] += k0[t] + s * (k1[t] + s * (k2[t] + s * k3[t]));
+    for (size_t t = 0; t < n; ++t) c[group.components[t]] += k0[t] + at.s * (k1[t] + at.s * (k2[t] + at.s * k3[t]));
   }
-  if (op.residualMask)
+  if (op.residualMask) {
+    const auto& motion = m.errors.axes[static_cast<size_t>(op.axis)].motion;
+    const int d = (dir && op.joint >= 0) ? dir[op.joint] : 0;
     for (int k = 0; k < 6; ++k)
       if (op.residualMask & (1u << k)) c[k] += motion[static_cast<size_t>(k)].valueWithoutTables(qa, d);
+  }
   return c;
 }
 

@@ -90,11 +90,12 @@ std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<Cha
       }
       for (size_t g = 0; g < op.tableGroups.size(); ++g) {
         auto& group = op.tableGroups[g];
-        group.inOrder = group.components == std::vector<int>{0, 1, 2, 3, 4, 5};
         for (size_t i = 0; i + 1 < group.positions.size(); ++i)
           for (int power = 0; power < 4; ++power)
             for (const TableTerm* t : tables[g]) group.coefficients.push_back(t->cubic[i][static_cast<size_t>(power)]);
       }
+      op.sixTablesOnOneGrid = op.residualMask == 0 && op.tableGroups.size() == 1 &&
+                              op.tableGroups[0].components == std::vector<int>{0, 1, 2, 3, 4, 5};
       ops.push_back(op);
       pushConstant(translation(-e.location));
     };

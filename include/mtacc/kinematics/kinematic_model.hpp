@@ -54,10 +54,10 @@ struct ChainOp {
     double inverseStep = 0.0;
     std::vector<int> components;
     std::vector<double> coefficients;
-    bool inOrder = false;  // components are exactly 0..5, one table each
   };
   std::vector<TableGroup> tableGroups;
   unsigned residualMask = 0;
+  bool sixTablesOnOneGrid = false;  // exactly one group holding components 0..5 in order, nothing else
 };
 
 struct KinematicModel {
