@@ -1,0 +1,48 @@
+// Seed 002 §5.4: the numerical experiment. Table 6 (L1635-1748) eccentricities through the
+// closed-form identification Eqs 17-28 give Table 7's "identified" column (L1749-1838).
+// Reference seed002_ballbar_multitasking.md §12.2: exact to the printed digits, so the
+// tolerance is half a unit of the last printed digit (0.005 um, 0.005 arcsec).
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "mtacc/core/units.hpp"
+#include "mtacc/procedures/ballbar_seed002.hpp"
+
+namespace mtacc {
+namespace {
+
+TEST(Seed002, Table7FromTable6ThroughEqs17To28) {
+  const double um = 1e-3;
+  Seed002Eccentricities e{};
+  e.bxEx = 16.63 * um, e.bxEz = -4.02 * um;
+  e.byEx = -11.24 * um, e.byEz = 10.05 * um;
+  e.caEx = 0.29 * um, e.caEy = 0.05 * um;
+  e.crEx = 25.73 * um, e.crEy = -19.59 * um;
+  e.cr1Ex = 26.89 * um, e.cr1Ey = -20.00 * um;
+  e.cr2Ex = 28.97 * um, e.cr2Ey = -23.26 * um;
+  const Seed002Setup s{360.0, 410.0, 50.0, 300.0, 340.0};  // L570 and the footnotes of Table 6
+  const auto d = identifySeed002(e, s);
+  const double as = 1.0 / kArcsec;
+  EXPECT_NEAR(d.dxBT / um, 10.96, 0.005);     // L1758
+  EXPECT_NEAR(d.dzBT / um, 16.63, 0.005);     // L1765
+  EXPECT_NEAR(d.alphaBT * as, 7.69, 0.005);   // L1772
+  EXPECT_NEAR(d.alphaXB * as, 3.44, 0.005);   // L1779
+  EXPECT_NEAR(d.betaXB * as, 3.80, 0.005);    // L1786
+  EXPECT_NEAR(d.gammaXB * as, 6.44, 0.005);   // L1793
+  EXPECT_NEAR(d.alphaYZ * as, 2.32, 0.005);   // L1800
+  EXPECT_NEAR(d.betaYZ * as, 4.79, 0.005);    // L1807
+  EXPECT_NEAR(d.dxCZ / um, 13.01, 0.005);     // L1814
+  EXPECT_NEAR(d.dyCZ / um, 6.96, 0.005);      // L1821
+  EXPECT_NEAR(d.alphaCZ * as, 2.11, 0.005);   // L1828
+  EXPECT_NEAR(d.betaCZ * as, 5.98, 0.005);    // L1835
+}
+
+TEST(Seed002, UnseparableSetupIsRefused) {
+  const Seed002Eccentricities e{};
+  EXPECT_THROW(identifySeed002(e, Seed002Setup{360, 360, 50, 300, 340}), std::invalid_argument);
+  EXPECT_THROW(identifySeed002(e, Seed002Setup{360, 410, 50, 300, 300}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace mtacc
