@@ -9,6 +9,8 @@
 #include <random>
 
 #include "mtacc/kinematics/forward.hpp"
+#include "mtacc/measurement/identification.hpp"
+#include "mtacc/measurement/test_paths.hpp"
 #include "test_helpers.hpp"
 
 namespace mtacc {
@@ -86,6 +88,37 @@ TEST(Seed001, Table5AlignedWorkpieceHasNoDeviationAtBC0) {
     // Without M_WC the table frame is displaced even though B and C do not move (seed 001 §4.3).
     EXPECT_GT((toolPoint(onTable, q.data()).position - Vec3(q[0], q[1], q[2])).norm(), 1e-3);
   }
+}
+
+// §4.3 (L217): for the cubic machining test "the sensitivity coefficients alpha_BY and
+// alpha_CB are the same ... delta_yBY and delta_xCB are both 0". The plan: the nine zones of
+// Tables 1-2 (48 mm cube, top face 48 mm above the pivot, 6 mm ball-end mill), the height
+// deviation of each zone, workpiece aligned with M_WC (eqs. 10-12), the eight errors of
+// Table 5 named as in the seed.
+TEST(Seed001, CubicTestObservabilityReportsTheSeedAmbiguity) {
+  const auto model = modelWith(WorkpieceAlignment::Machine);
+  const auto nominal = compileNominal(model.machine);
+  IdentificationProblem problem;
+  problem.machine = model.machine;
+  problem.start = ErrorModel::zero(*model.machine);  // first order, as the seed's sensitivities
+  for (const char* n : {"dxBY", "dyBY", "dzBY", "alphaBY", "betaBY", "gammaBY", "alphaCB", "dxCB"})
+    problem.parameters.push_back(findParameter(*model.machine, problem.start, n));
+  problem.runs = {cubicMachiningZones(nominal, 48, 48, 3)};
+  const auto report = planObservability(problem);
+  // ISO names: dyBY = -Y0B, dxCB = -X0C, alphaBY = -A0B, alphaCB = -A0C. gammaBY (C0B)
+  // has no effect either, which the text does not say: every zone's C angle brings it into
+  // the X-Z plane, where a turn of the B axis about Z moves the surface only sideways.
+  EXPECT_EQ(report.noEffect, (std::vector<std::string>{"Y0B", "C0B", "X0C"}));
+  ASSERT_EQ(report.groups.size(), 1u);
+  EXPECT_EQ(report.groups[0].names, (std::vector<std::string>{"A0B", "A0C"}));
+  ASSERT_EQ(report.groups[0].observable.size(), 1u);
+  EXPECT_NEAR(report.groups[0].observable[0][0], 1.0, 1e-9);
+  EXPECT_NEAR(report.groups[0].observable[0][1], 1.0, 1e-9);
+  EXPECT_EQ(report.rank, 4);
+  const auto findings = report.findings();
+  ASSERT_EQ(findings.size(), 4u);
+  EXPECT_EQ(findings[0], "Y0B has no effect on this plan");
+  EXPECT_EQ(findings[3], "A0B and A0C act alike: only 1 A0B + 1 A0C observable");
 }
 
 }  // namespace

@@ -107,7 +107,7 @@ double parseValue(const py::object& value, Dimension dim, const std::string& nam
 // Values given under a source's alias convert with its sign (iso = sign * source).
 double aliasSign(const std::string& name) {
   const auto alias = findAlias(name);
-  return alias ? alias->sign : 1.0;
+  return alias && !alias->composite() ? alias->terms[0].sign : 1.0;
 }
 
 Parameter findParameterOrThrow(PyMachine& m, const std::string& name) {

@@ -92,7 +92,12 @@ void setParameterValue(ErrorModel& errors, const Parameter& p, double value) {
 
 Parameter findParameter(const Machine& machine, const ErrorModel& errors, const std::string& name) {
   std::string iso = name;
-  if (const auto alias = findAlias(name)) iso = alias->isoName;
+  if (const auto alias = findAlias(name)) {
+    if (alias->composite())
+      throw std::invalid_argument("'" + name + "' (" + alias->source + ") acts as " + alias->isoExpression() +
+                                  " in the ISO model; name those parameters");
+    iso = alias->terms[0].isoName;
+  }
   const auto all = parameterCatalogue(machine, errors);
   for (const auto& p : all)
     if (p.name == iso) return p;

@@ -132,26 +132,27 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
   for (const auto& kv : errors) {
     const auto name = kv.first.as<std::string>();
     const std::string key = "errors." + name;
-    std::string iso = name;
-    double sign = 1.0;
-    if (const auto alias = findAlias(name)) {
-      iso = alias->isoName;
-      sign = alias->sign;
-    }
-    if (const auto target = parseMotionName(machine, iso)) {
+    std::vector<AliasTerm> terms{{name, 1.0}};
+    if (const auto alias = findAlias(name)) terms = alias->terms;
+    const std::string& iso = terms[0].isoName;
+    if (const auto target = parseMotionName(machine, iso); target && terms.size() == 1) {
       auto& f = model.axes[static_cast<size_t>(target->axis)].motion[static_cast<size_t>(target->component)];
       if (!f.empty()) ctx.fail(kv.first, key, "error given twice (" + iso + ")");
+      if (terms[0].sign < 0) ctx.fail(kv.first, key, "a negated alias of a component error is not supported");
       readTerms(ctx, machine, *target, kv.second, key, f);
       continue;
     }
-    Parameter p;
-    try {
-      p = findParameter(machine, model, iso);
-    } catch (const std::invalid_argument& e) {
-      ctx.fail(kv.first, key, e.what());
+    for (const auto& term : terms) {
+      Parameter p;
+      try {
+        p = findParameter(machine, model, term.isoName);
+      } catch (const std::invalid_argument& e) {
+        ctx.fail(kv.first, key, e.what());
+      }
+      // Location errors add up: a composite alias and an ISO name may share a term.
+      model.axes[static_cast<size_t>(p.axis)].location[p.component] +=
+          term.sign * yamlin::quantity(ctx, kv.second, key, p.dimension);
     }
-    const Dimension dim = p.dimension;
-    model.axes[static_cast<size_t>(p.axis)].location[p.component] = sign * yamlin::quantity(ctx, kv.second, key, dim);
   }
   return model;
 }

@@ -40,14 +40,15 @@ ChainFactors expand(const KinematicModel& m, const std::vector<ChainElement>& ch
   return c;
 }
 
-// d(chain total) / d(parameter) for one chain; zero when the parameter is not in it.
-Mat4 chainDerivative(const KinematicModel& m, const ChainFactors& c, const std::vector<ChainElement>& chain,
-                     const Parameter& p, const double* q, const int* dir) {
-  Mat4 sum = Mat4::Zero();
+// Calls add(i, dF_i) for every factor i of the chain whose matrix depends on the parameter:
+// d(chain total)/dp = sum prefix[i] * dF_i * suffix[i].
+template <class Add>
+void forEachFactorDerivative(const KinematicModel& m, const ChainFactors& c, const std::vector<ChainElement>& chain,
+                             const Parameter& p, const double* q, const int* dir, Add&& add) {
   const ChainElement* element = nullptr;
   for (const auto& e : chain)
     if (e.axis == p.axis) element = &e;
-  if (!element) return sum;
+  if (!element) return;
   const double qa = element->joint >= 0 ? q[element->joint] : 0.0;
   const int d = (dir && element->joint >= 0) ? dir[element->joint] : 0;
   const auto& errs = m.errors.axes[static_cast<size_t>(p.axis)];
@@ -77,9 +78,35 @@ Mat4 chainDerivative(const KinematicModel& m, const ChainFactors& c, const std::
     } else {
       continue;
     }
-    sum += c.prefix[i] * df * c.suffix[i];
+    add(i, df);
   }
+}
+
+Mat4 chainDerivative(const KinematicModel& m, const ChainFactors& c, const std::vector<ChainElement>& chain,
+                     const Parameter& p, const double* q, const int* dir) {
+  Mat4 sum = Mat4::Zero();
+  forEachFactorDerivative(m, c, chain, p, q, dir,
+                          [&](size_t i, const Mat4& df) { sum += c.prefix[i] * df * c.suffix[i]; });
   return sum;
+}
+
+// d(chain total)/dp applied to the point v, with suffixV[i] = suffix[i] * v precomputed.
+Vec4 chainDerivativeAt(const KinematicModel& m, const ChainFactors& c, const std::vector<ChainElement>& chain,
+                       const Parameter& p, const double* q, const int* dir, const std::vector<Vec4>& suffixV) {
+  Vec4 sum = Vec4::Zero();
+  forEachFactorDerivative(m, c, chain, p, q, dir,
+                          [&](size_t i, const Mat4& df) { sum += c.prefix[i] * (df * suffixV[i]); });
+  return sum;
+}
+
+std::vector<Vec4> suffixApplied(const ChainFactors& c, const Vec4& v) {
+  std::vector<Vec4> out(c.factors.size());
+  Vec4 acc = v;
+  for (size_t i = c.factors.size(); i-- > 0;) {
+    out[i] = acc;
+    acc = c.factors[i].pose.matrix() * acc;
+  }
+  return out;
 }
 
 }  // namespace
@@ -123,6 +150,44 @@ ParameterJacobian parameterJacobian(const KinematicModel& m, const std::vector<P
     jac.block<3, 1>(3, static_cast<Eigen::Index>(k)) = jInv * omega;
   }
   return jac;
+}
+
+PointJacobian pointJacobian(const KinematicModel& m, const std::vector<Parameter>& parameters, const double* q,
+                            const int* dir, const Vec3& toolPoint) {
+  if (!m.withErrors) throw std::logic_error("pointJacobian needs a model compiled with errors");
+  const auto tool = expand(m, m.toolChain, m.toolFrame, q, dir);
+  const auto wp = expand(m, m.workpieceChain, m.workpieceFrame, q, dir);
+  const Mat4 wInv = wp.total.inverse();
+  const Mat4 align = m.alignment.matrix();
+  const Vec4 local = toolPoint.homogeneous();
+  const Vec4 inBed = tool.total * local;
+  const Vec4 beforeAlignment = wInv * inBed;
+  PointJacobian out;
+  out.point = (align * beforeAlignment).head<3>();
+  out.jacobian.resize(3, static_cast<Eigen::Index>(parameters.size()));
+
+  const auto toolV = suffixApplied(tool, local);
+  const auto wpV = suffixApplied(wp, beforeAlignment);
+  const bool aligned = m.machine->alignment == WorkpieceAlignment::Machine;
+  ChainFactors ref;
+  Mat4 nominalRefInv = Mat4::Identity();
+  std::vector<Vec4> refV;
+  if (aligned) {
+    ref = expand(m, m.workpieceChain, m.workpieceFrame, m.machine->referencePose.data(), nullptr);
+    nominalRefInv = align * ref.total.inverse();
+    refV = suffixApplied(ref, beforeAlignment);
+  }
+  const Mat4 alignWInv = align * wInv;
+  for (size_t k = 0; k < parameters.size(); ++k) {
+    const Parameter& p = parameters[k];
+    Vec4 d = alignWInv * (chainDerivativeAt(m, tool, m.toolChain, p, q, dir, toolV) -
+                          chainDerivativeAt(m, wp, m.workpieceChain, p, q, dir, wpV));
+    if (aligned)
+      d += nominalRefInv *
+           chainDerivativeAt(m, ref, m.workpieceChain, p, m.machine->referencePose.data(), nullptr, refV);
+    out.jacobian.col(static_cast<Eigen::Index>(k)) = d.head<3>();
+  }
+  return out;
 }
 
 std::vector<Pose> errorFrames(const KinematicModel& m, const double* q) {

@@ -19,6 +19,16 @@ using ParameterJacobian = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 ParameterJacobian parameterJacobian(const KinematicModel& model, const std::vector<Parameter>& parameters,
                                     const double* q, const int* dir = nullptr);
 
+// The derivative of one tool-frame point (e.g. a ball centre offset from the TCP) in the
+// workpiece frame with respect to the parameters (3 x n, mm per unit), and the point itself.
+// Cheaper than parameterJacobian: no orientation rows, no nominal model.
+struct PointJacobian {
+  Vec3 point;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> jacobian;
+};
+PointJacobian pointJacobian(const KinematicModel& model, const std::vector<Parameter>& parameters, const double* q,
+                            const int* dir, const Vec3& toolPoint);
+
 // The frame in which each axis's component errors act (after offset and location error,
 // before the joint for fixed frames and after it for moving frames, at the axis location
 // point), in the bed frame. Indexed like Machine::axes.

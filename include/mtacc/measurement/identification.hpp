@@ -1,0 +1,73 @@
+#pragma once
+// Generic identification: any chosen subset of error parameters (and the runs' set-up
+// errors) from any combination of measurement runs, by nonlinear least squares (Ceres
+// Solver) on the exact model, with standard uncertainties from the covariance. The plan is
+// checked for observability first; a parameter set it cannot determine is refused.
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mtacc/measurement/measurement.hpp"
+#include "mtacc/measurement/observability.hpp"
+
+namespace mtacc {
+
+struct IdentificationProblem {
+  std::shared_ptr<const Machine> machine;
+  ErrorModel start;                        // known errors; the estimated ones start from here
+  std::vector<Parameter> parameters;       // machine parameters to estimate
+  std::vector<Run> runs;                   // with readings; Run::estimate names their set-up unknowns
+};
+
+// Column names and typical sizes (1 um, 10 urad) of the stacked problem: the machine
+// parameters, then "<run>.<setup>" for each run.
+struct ProblemColumns {
+  std::vector<std::string> names;
+  std::vector<Dimension> dimensions;
+  Eigen::VectorXd typical;
+};
+ProblemColumns problemColumns(const IdentificationProblem& problem);
+
+// Readings x columns at the problem's current state (start errors, run set-up errors).
+Eigen::MatrixXd stackedJacobian(const IdentificationProblem& problem, int threads = 1);
+ObservabilityReport planObservability(const IdentificationProblem& problem, int threads = 1);
+
+struct IdentificationOptions {
+  bool robust = false;          // Huber loss
+  double robustScale = 2e-3;    // mm: residuals beyond count linearly
+  int maxIterations = 50;
+  int threads = 1;
+};
+
+struct IdentificationResult {
+  ProblemColumns columns;
+  Eigen::VectorXd values;       // mm, rad
+  Eigen::VectorXd uncertainty;  // standard uncertainty, from sigma^2 (J^T J)^-1
+  Eigen::MatrixXd covariance;
+  ErrorModel errors;            // start with the machine parameters replaced
+  std::vector<Run> runs;        // set-up errors replaced, readings as measured
+  double sigma = 0;             // residual standard deviation (mm), dof-corrected
+  double residualRms = 0, residualMax = 0;
+  int readings = 0, degreesOfFreedom = 0, iterations = 0;
+  bool converged = false;
+  std::string solverReport;
+  ObservabilityReport observability;
+};
+
+// Refusal of a parameter set the plan cannot determine; what() lists the findings.
+class NotIdentifiable : public std::runtime_error {
+ public:
+  NotIdentifiable(ObservabilityReport report, const std::string& what)
+      : std::runtime_error(what), report_(std::move(report)) {}
+  const ObservabilityReport& report() const { return report_; }
+
+ private:
+  ObservabilityReport report_;
+};
+
+// Throws NotIdentifiable, or std::invalid_argument for runs without readings or fewer
+// readings than unknowns.
+IdentificationResult identify(const IdentificationProblem& problem, const IdentificationOptions& options = {});
+
+}  // namespace mtacc

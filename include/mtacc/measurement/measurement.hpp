@@ -1,0 +1,99 @@
+#pragma once
+// What an instrument reads at a sequence of machine poses, on any machine with its errors:
+// the ballbar (seed 002, ISO 230-4), the R-test / CapBall (ISO 10791-6), a touch probe on a
+// sphere at rotary-axis indexes, and a directional probe (the TCP deviation along a given
+// direction; the model behind machined features such as seed 001's cubic zones).
+// Lengths in mm, angles in rad; every point lives in the workpiece frame unless stated.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mtacc/core/transform.hpp"
+#include "mtacc/errors/error_model.hpp"
+#include "mtacc/kinematics/forward.hpp"
+#include "mtacc/kinematics/jacobian.hpp"
+
+namespace mtacc {
+
+enum class Instrument { Ballbar, RTest, TouchProbe, Directional };
+// "ballbar", "rtest", "probe", "directional"
+std::string instrumentName(Instrument instrument);
+std::optional<Instrument> parseInstrument(const std::string& name);
+// Readings per pose: ballbar and directional 1 (mm), R-test and probe 3 (mm, machine axes).
+int readingSize(Instrument instrument);
+
+// Set-up errors of one run, the parameters an identification may estimate besides the
+// machine's. Names as in seed 002 §6 (Eqs 15-16) for both ball instruments.
+enum class SetupParameter {
+  ToolBallX, ToolBallY, ToolBallZ,  // xT yT zT: ball centre offset from its nominal, tool frame
+  TargetX, TargetY, TargetZ,        // xW yW zW: work ball / sphere on the nest, workpiece frame
+  NestA, NestB, NestC,              // aN bN cN: R-test sensor nest orientation (rad)
+  Length,                           // dL: ballbar length error (mm)
+};
+constexpr int kSetupParameterCount = 10;
+std::string setupParameterName(SetupParameter p);  // "xT", ..., "dL"
+std::optional<SetupParameter> parseSetupParameter(const std::string& name);
+bool appliesTo(SetupParameter p, Instrument instrument);
+Dimension setupParameterDimension(SetupParameter p);
+
+struct Setup {
+  // Nominal ball centre (or probe tip, or the point whose deviation a directional probe
+  // reads) relative to the TCP, in the tool frame.
+  Vec3 toolBall = Vec3::Zero();
+  // Ballbar: the work ball; R-test / probe: the sphere (R-test: the nest centre). Ignored
+  // by the ballbar when setAt is given.
+  Vec3 target = Vec3::Zero();
+  // Ballbar only: the work ball is set where the actual tool ball is at this pose (seed 002
+  // Eqs 11-12), e.g. the start pose; plus the xW yW zW mounting error.
+  std::optional<std::vector<double>> setAt;
+  double length = 0.0;           // ballbar nominal length L (mm)
+  Vec3 direction = Vec3::UnitZ();  // directional probe: unit sensing direction
+  // The set-up errors, indexed by SetupParameter.
+  std::array<double, kSetupParameterCount> errors{};
+};
+
+// One measurement run: its poses (and the directions of motion, for reversal errors) and
+// readings. `angle` is the plot angle of each sample (rad) in the plot plane spanned by
+// plotAxes (machine frame), for circular tests; empty otherwise.
+struct Run {
+  std::string name;
+  Instrument instrument = Instrument::Ballbar;
+  Setup setup;
+  JointMatrix q;
+  Eigen::MatrixXi direction;  // empty or like q
+  Eigen::MatrixXd readings;   // poses x readingSize, mm; empty until simulated or read
+  std::vector<double> angle;
+  std::vector<int> sense;     // +1 counter-clockwise, -1 clockwise in the plot plane (ballbar)
+  std::array<Vec3, 2> plotAxes{Vec3::UnitX(), Vec3::UnitY()};
+  double feed = 1000.0;       // mm/min along the path, for the disturbance models
+  // Set-up errors an identification estimates for this run (the others stay as given).
+  std::vector<SetupParameter> estimate;
+
+  Eigen::Index poses() const { return q.rows(); }
+};
+
+// The readings the instrument shows at pose i of the run on `model` (exact model,
+// including the run's set-up errors).
+Eigen::VectorXd predictReading(const KinematicModel& model, const KinematicModel& nominal, const Run& run,
+                               Eigen::Index i);
+Eigen::MatrixXd predictReadings(const KinematicModel& model, const KinematicModel& nominal, const Run& run,
+                                int threads = 1);
+
+// Reading and its derivative with respect to machine parameters and set-up parameters.
+struct ReadingJacobian {
+  Eigen::VectorXd reading;     // readingSize
+  Eigen::MatrixXd machine;     // readingSize x machine parameters
+  Eigen::MatrixXd setup;       // readingSize x setup parameters
+};
+// `model` must be compiled with errors. setAtJacobian: pointJacobian at run.setup.setAt
+// (ballbar with setAt only; computed once per run by the caller).
+ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicModel& nominal, const Run& run,
+                                Eigen::Index i, const std::vector<Parameter>& machineParameters,
+                                const std::vector<SetupParameter>& setupParameters,
+                                const PointJacobian* setAtJacobian);
+
+// The work ball of a ballbar run in the workpiece frame (set-up error included).
+Vec3 workBall(const KinematicModel& model, const Run& run);
+
+}  // namespace mtacc

@@ -1,0 +1,39 @@
+#pragma once
+// Which parameters a test plan can determine: the SVD of the plan's Jacobian with columns
+// scaled to unit norm; rank, condition number, the parameters without effect and the
+// groups the plan cannot separate, each with the combinations that remain observable.
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace mtacc {
+
+struct ParameterGroup {
+  std::vector<std::string> names;
+  // Observable combinations: coefficients (same order as names) of sum c_j p_j, scaled so
+  // that the largest |c_j| is 1.
+  std::vector<std::vector<double>> observable;
+};
+
+struct ObservabilityReport {
+  std::vector<std::string> names;
+  Eigen::VectorXd singularValues;  // of the column-normalised Jacobian, descending
+  int rank = 0;
+  double condition = 0;             // largest / smallest non-zero singular value
+  std::vector<std::string> noEffect;
+  std::vector<ParameterGroup> groups;
+
+  bool identifiable() const { return noEffect.empty() && groups.empty(); }
+  // One line per finding, e.g. "A0B and A0C act alike: only A0B + 1.000 A0C is observable".
+  std::vector<std::string> findings() const;
+};
+
+// `jacobian`: readings x parameters (any units; columns are normalised). A singular value
+// below relativeTolerance * the largest counts as zero; a column whose norm is below
+// relativeTolerance * the largest column norm (after multiplying by `typical`, the
+// parameters' typical sizes) has no effect.
+ObservabilityReport analyseObservability(const Eigen::MatrixXd& jacobian, const std::vector<std::string>& names,
+                                         const Eigen::VectorXd& typical, double relativeTolerance = 1e-8);
+
+}  // namespace mtacc

@@ -1,0 +1,191 @@
+#include "mtacc/measurement/measurement.hpp"
+
+#include <array>
+
+namespace mtacc {
+namespace {
+
+constexpr std::array<const char*, kSetupParameterCount> kSetupNames = {"xT", "yT", "zT", "xW", "yW",
+                                                                       "zW", "aN", "bN", "cN", "dL"};
+
+double err(const Run& run, SetupParameter p) { return run.setup.errors[static_cast<size_t>(p)]; }
+
+Vec3 toolBallActual(const Run& run) {
+  return run.setup.toolBall +
+         Vec3(err(run, SetupParameter::ToolBallX), err(run, SetupParameter::ToolBallY), err(run, SetupParameter::ToolBallZ));
+}
+Vec3 targetError(const Run& run) {
+  return Vec3(err(run, SetupParameter::TargetX), err(run, SetupParameter::TargetY), err(run, SetupParameter::TargetZ));
+}
+Mat3 nestRotation(const Run& run) {
+  return rotationXYZ(err(run, SetupParameter::NestA), err(run, SetupParameter::NestB), err(run, SetupParameter::NestC));
+}
+// Orientation of the nominal workpiece frame in the machine frame: how the R-test software
+// and the probing cycle turn their readings into machine axes.
+Mat3 nominalWorkpieceRotation(const KinematicModel& nominal, const double* q) {
+  return workpiecePose(nominal, q, nullptr).linear();
+}
+Vec3 actualToolBall(const KinematicModel& model, const Run& run, const double* q, const int* dir) {
+  return toolInWorkpiece(model, q, dir) * toolBallActual(run);
+}
+const int* dirRow(const Run& run, Eigen::Index i) { return run.direction.size() ? run.direction.row(i).data() : nullptr; }
+
+}  // namespace
+
+std::string instrumentName(Instrument instrument) {
+  switch (instrument) {
+    case Instrument::Ballbar: return "ballbar";
+    case Instrument::RTest: return "rtest";
+    case Instrument::TouchProbe: return "probe";
+    case Instrument::Directional: return "directional";
+  }
+  return "";
+}
+
+std::optional<Instrument> parseInstrument(const std::string& name) {
+  for (auto i : {Instrument::Ballbar, Instrument::RTest, Instrument::TouchProbe, Instrument::Directional})
+    if (instrumentName(i) == name) return i;
+  return std::nullopt;
+}
+
+int readingSize(Instrument instrument) {
+  return instrument == Instrument::RTest || instrument == Instrument::TouchProbe ? 3 : 1;
+}
+
+std::string setupParameterName(SetupParameter p) { return kSetupNames[static_cast<size_t>(p)]; }
+
+std::optional<SetupParameter> parseSetupParameter(const std::string& name) {
+  for (size_t i = 0; i < kSetupNames.size(); ++i)
+    if (name == kSetupNames[i]) return static_cast<SetupParameter>(i);
+  return std::nullopt;
+}
+
+bool appliesTo(SetupParameter p, Instrument instrument) {
+  switch (p) {
+    case SetupParameter::NestA:
+    case SetupParameter::NestB:
+    case SetupParameter::NestC: return instrument == Instrument::RTest;
+    case SetupParameter::Length: return instrument == Instrument::Ballbar;
+    case SetupParameter::TargetX:
+    case SetupParameter::TargetY:
+    case SetupParameter::TargetZ: return instrument != Instrument::Directional;
+    default: return true;
+  }
+}
+
+Dimension setupParameterDimension(SetupParameter p) {
+  return p == SetupParameter::NestA || p == SetupParameter::NestB || p == SetupParameter::NestC ? Dimension::Angle
+                                                                                                : Dimension::Length;
+}
+
+Vec3 workBall(const KinematicModel& model, const Run& run) {
+  const Vec3 base = run.setup.setAt ? actualToolBall(model, run, run.setup.setAt->data(), nullptr) : run.setup.target;
+  return base + targetError(run);
+}
+
+Eigen::VectorXd predictReading(const KinematicModel& model, const KinematicModel& nominal, const Run& run,
+                               Eigen::Index i) {
+  const double* q = run.q.row(i).data();
+  const Vec3 t = actualToolBall(model, run, q, dirRow(run, i));
+  Eigen::VectorXd r(readingSize(run.instrument));
+  switch (run.instrument) {
+    case Instrument::Ballbar:
+      r[0] = (t - workBall(model, run)).norm() - run.setup.length - err(run, SetupParameter::Length);
+      break;
+    case Instrument::RTest:
+      r = nominalWorkpieceRotation(nominal, q) * (nestRotation(run).transpose() *
+                                                  (t - run.setup.target - targetError(run)));
+      break;
+    case Instrument::TouchProbe:
+      r = -(nominalWorkpieceRotation(nominal, q) * (t - run.setup.target - targetError(run)));
+      break;
+    case Instrument::Directional:
+      r[0] = run.setup.direction.dot(t - toolInWorkpiece(nominal, q) * run.setup.toolBall);
+      break;
+  }
+  return r;
+}
+
+Eigen::MatrixXd predictReadings(const KinematicModel& model, const KinematicModel& nominal, const Run& run,
+                                int threads) {
+  Eigen::MatrixXd out(run.poses(), readingSize(run.instrument));
+  parallelFor(run.poses(), threads, [&](long b, long e) {
+    for (long i = b; i < e; ++i) out.row(i) = predictReading(model, nominal, run, i).transpose();
+  });
+  return out;
+}
+
+ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicModel& nominal, const Run& run,
+                                Eigen::Index i, const std::vector<Parameter>& machineParameters,
+                                const std::vector<SetupParameter>& setupParameters,
+                                const PointJacobian* setAtJacobian) {
+  const double* q = run.q.row(i).data();
+  const int* dir = dirRow(run, i);
+  const auto pj = pointJacobian(model, machineParameters, q, dir, toolBallActual(run));
+  const Vec3& t = pj.point;
+  // d(tool ball)/d(xT yT zT): the tool frame's rotation in the workpiece frame.
+  const Mat3 toolRotation = toolInWorkpiece(model, q, dir).linear();
+  const int m = readingSize(run.instrument);
+  ReadingJacobian out;
+  out.machine.resize(m, static_cast<Eigen::Index>(machineParameters.size()));
+  out.setup = Eigen::MatrixXd::Zero(m, static_cast<Eigen::Index>(setupParameters.size()));
+  out.reading.resize(m);
+
+  // Every reading is (a linear map of) the tool ball minus a target point; `sensitivity`
+  // is the map, dTarget the target's derivative with respect to xW yW zW.
+  Eigen::Matrix<double, Eigen::Dynamic, 3> sensitivity(m, 3);
+  Eigen::MatrixXd targetMachine = Eigen::MatrixXd::Zero(3, out.machine.cols());
+  Mat3 targetToolRotation = Mat3::Zero();  // d(target)/d(xT yT zT): a ballbar set at the tool ball
+  switch (run.instrument) {
+    case Instrument::Ballbar: {
+      const Vec3 w = workBall(model, run);
+      const Vec3 u = (t - w).normalized();
+      out.reading[0] = (t - w).norm() - run.setup.length - err(run, SetupParameter::Length);
+      sensitivity = u.transpose();
+      if (run.setup.setAt) {
+        if (setAtJacobian) targetMachine = setAtJacobian->jacobian;
+        targetToolRotation = toolInWorkpiece(model, run.setup.setAt->data(), nullptr).linear();
+      }
+      break;
+    }
+    case Instrument::RTest:
+    case Instrument::TouchProbe: {
+      const Mat3 r = nominalWorkpieceRotation(nominal, q);
+      const Mat3 n = nestRotation(run);
+      const Vec3 rel = t - run.setup.target - targetError(run);
+      const double sign = run.instrument == Instrument::RTest ? 1.0 : -1.0;
+      sensitivity = sign * r * n.transpose();
+      out.reading = sensitivity * rel;
+      for (size_t k = 0; k < setupParameters.size(); ++k) {
+        const auto p = setupParameters[k];
+        if (p != SetupParameter::NestA && p != SetupParameter::NestB && p != SetupParameter::NestC) continue;
+        const int which = static_cast<int>(p) - static_cast<int>(SetupParameter::NestA);
+        const Mat3 dn = rotationXYZDerivative(err(run, SetupParameter::NestA), err(run, SetupParameter::NestB),
+                                              err(run, SetupParameter::NestC), which);
+        out.setup.col(static_cast<Eigen::Index>(k)) = sign * r * dn.transpose() * rel;
+      }
+      break;
+    }
+    case Instrument::Directional:
+      sensitivity = run.setup.direction.transpose();
+      out.reading[0] = run.setup.direction.dot(t - toolInWorkpiece(nominal, q) * run.setup.toolBall);
+      break;
+  }
+  out.machine = sensitivity * (pj.jacobian - targetMachine);
+  for (size_t k = 0; k < setupParameters.size(); ++k) {
+    const auto p = setupParameters[k];
+    const auto col = static_cast<Eigen::Index>(k);
+    if (!appliesTo(p, run.instrument)) continue;
+    if (p <= SetupParameter::ToolBallZ) {
+      const Vec3 d = (toolRotation - targetToolRotation).col(static_cast<int>(p));
+      out.setup.col(col) = sensitivity * d;
+    } else if (p <= SetupParameter::TargetZ) {
+      out.setup.col(col) = -sensitivity.col(static_cast<int>(p) - static_cast<int>(SetupParameter::TargetX));
+    } else if (p == SetupParameter::Length) {
+      out.setup(0, col) = -1.0;
+    }
+  }
+  return out;
+}
+
+}  // namespace mtacc

@@ -1,0 +1,132 @@
+#include "mtacc/measurement/observability.hpp"
+
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+namespace mtacc {
+namespace {
+
+Eigen::MatrixXd rightSingularVectors(const Eigen::MatrixXd& a, Eigen::VectorXd& singular) {
+  // SVD of the small triangular factor: cheap for many readings and few parameters.
+  Eigen::MatrixXd r;
+  if (a.rows() > a.cols()) {
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(a);
+    r = qr.matrixQR().topRows(a.cols()).triangularView<Eigen::Upper>();
+  } else {
+    r = a;
+  }
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(r, Eigen::ComputeFullV);
+  singular = svd.singularValues();
+  return svd.matrixV();
+}
+
+int findRoot(std::vector<int>& parent, int i) {
+  while (parent[static_cast<size_t>(i)] != i) i = parent[static_cast<size_t>(i)] = parent[static_cast<size_t>(parent[static_cast<size_t>(i)])];
+  return i;
+}
+
+}  // namespace
+
+ObservabilityReport analyseObservability(const Eigen::MatrixXd& jacobian, const std::vector<std::string>& names,
+                                         const Eigen::VectorXd& typical, double tol) {
+  const Eigen::Index n = jacobian.cols();
+  if (static_cast<Eigen::Index>(names.size()) != n || typical.size() != n)
+    throw std::invalid_argument("analyseObservability: one name and one typical size per column");
+  ObservabilityReport rep;
+  rep.names = names;
+  if (n == 0) return rep;
+
+  Eigen::VectorXd norms = jacobian.colwise().norm().transpose();
+  const double largestEffect = (norms.array() * typical.array().abs()).maxCoeff();
+  std::vector<Eigen::Index> active;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    if (!(norms[j] * std::abs(typical[j]) > tol * largestEffect))
+      rep.noEffect.push_back(names[static_cast<size_t>(j)]);
+    else
+      active.push_back(j);
+  }
+  Eigen::MatrixXd scaled(jacobian.rows(), static_cast<Eigen::Index>(active.size()));
+  for (size_t k = 0; k < active.size(); ++k) scaled.col(static_cast<Eigen::Index>(k)) = jacobian.col(active[k]) / norms[active[k]];
+
+  Eigen::VectorXd sv;
+  const Eigen::MatrixXd v = active.empty() ? Eigen::MatrixXd() : rightSingularVectors(scaled, sv);
+  rep.singularValues = Eigen::VectorXd::Zero(n);
+  rep.singularValues.head(sv.size()) = sv;
+  const double largest = sv.size() ? sv[0] : 0.0;
+  for (Eigen::Index i = 0; i < sv.size(); ++i)
+    if (sv[i] > tol * largest) rep.rank = static_cast<int>(i + 1);
+  rep.condition = rep.rank > 0 ? largest / sv[rep.rank - 1] : 0.0;
+
+  // Parameters taking part in the same null vector cannot be separated from each other.
+  const auto m = static_cast<Eigen::Index>(active.size());
+  std::vector<int> parent(static_cast<size_t>(m));
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<bool> inNull(static_cast<size_t>(m), false);
+  for (Eigen::Index c = rep.rank; c < m; ++c) {
+    int first = -1;
+    for (Eigen::Index j = 0; j < m; ++j) {
+      if (std::abs(v(j, c)) < 1e-6) continue;
+      inNull[static_cast<size_t>(j)] = true;
+      if (first < 0) first = static_cast<int>(j);
+      else parent[static_cast<size_t>(findRoot(parent, static_cast<int>(j)))] = findRoot(parent, first);
+    }
+  }
+  for (Eigen::Index root = 0; root < m; ++root) {
+    if (!inNull[static_cast<size_t>(root)] || findRoot(parent, static_cast<int>(root)) != root) continue;
+    std::vector<Eigen::Index> members;
+    for (Eigen::Index j = 0; j < m; ++j)
+      if (inNull[static_cast<size_t>(j)] && findRoot(parent, static_cast<int>(j)) == root) members.push_back(j);
+    ParameterGroup g;
+    Eigen::MatrixXd sub(scaled.rows(), static_cast<Eigen::Index>(members.size()));
+    for (size_t k = 0; k < members.size(); ++k) {
+      g.names.push_back(names[static_cast<size_t>(active[static_cast<size_t>(members[k])])]);
+      sub.col(static_cast<Eigen::Index>(k)) = scaled.col(members[k]);
+    }
+    Eigen::VectorXd subSv;
+    const Eigen::MatrixXd subV = rightSingularVectors(sub, subSv);
+    for (Eigen::Index c = 0; c < subSv.size(); ++c) {
+      if (subSv[c] <= tol * largest) continue;
+      // v^T (norm_j p_j): back to the physical parameters.
+      std::vector<double> coef(members.size());
+      double big = 0;
+      for (size_t k = 0; k < members.size(); ++k) {
+        coef[k] = subV(static_cast<Eigen::Index>(k), c) * norms[active[static_cast<size_t>(members[k])]];
+        if (std::abs(coef[k]) > std::abs(big)) big = coef[k];
+      }
+      for (auto& x : coef) x /= big;
+      g.observable.push_back(coef);
+    }
+    rep.groups.push_back(std::move(g));
+  }
+  return rep;
+}
+
+std::vector<std::string> ObservabilityReport::findings() const {
+  std::vector<std::string> out;
+  for (const auto& n : noEffect) out.push_back(n + " has no effect on this plan");
+  for (const auto& g : groups) {
+    std::string list;
+    for (size_t k = 0; k < g.names.size(); ++k)
+      list += (k == 0 ? "" : (k + 1 == g.names.size() ? " and " : ", ")) + g.names[k];
+    std::string combos;
+    for (const auto& c : g.observable) {
+      std::string term;
+      for (size_t k = 0; k < c.size(); ++k) {
+        if (std::abs(c[k]) < 1e-9) continue;
+        term += term.empty() ? fmt::format("{:.4g} {}", c[k], g.names[k])
+                             : fmt::format(" {} {:.4g} {}", c[k] < 0 ? "-" : "+", std::abs(c[k]), g.names[k]);
+      }
+      combos += (combos.empty() ? "" : "; ") + term;
+    }
+    const bool alike = g.names.size() == 2 && g.observable.size() == 1;
+    out.push_back(list + (alike ? " act alike" : " cannot be separated") +
+                  (combos.empty() ? ": none of them is observable" : ": only " + combos + " observable"));
+  }
+  return out;
+}
+
+}  // namespace mtacc
