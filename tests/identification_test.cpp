@@ -28,10 +28,10 @@ std::vector<double> pose(const Machine& m, std::initializer_list<std::pair<const
 
 // R-test over each rotary axis with the sphere at two offset positions, plus the three
 // ISO 230-4 ballbar circles at the home pose (for the squareness of the linear axes).
-std::vector<Run> testPlan(const KinematicModel& nominal, const std::string& tilt, double tiltAngle) {
+std::vector<MeasurementRun> testPlan(const KinematicModel& nominal, const std::string& tilt, double tiltAngle) {
   const Machine& m = *nominal.machine;
-  std::vector<Run> runs;
-  auto add = [&](std::vector<Run> more, std::vector<SetupParameter> estimate) {
+  std::vector<MeasurementRun> runs;
+  auto add = [&](std::vector<MeasurementRun> more, std::vector<SetupParameter> estimate) {
     for (auto& r : more) {
       r.estimate = estimate;
       r.name += "-" + std::to_string(runs.size());
@@ -70,7 +70,7 @@ std::vector<Run> testPlan(const KinematicModel& nominal, const std::string& tilt
 }
 
 IdentificationProblem problemFor(const std::shared_ptr<const Machine>& machine, const std::vector<std::string>& names,
-                                 const std::vector<Run>& runs) {
+                                 const std::vector<MeasurementRun>& runs) {
   IdentificationProblem p;
   p.machine = machine;
   p.start = ErrorModel::zero(*machine);

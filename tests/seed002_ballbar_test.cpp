@@ -39,7 +39,7 @@ struct Geometry {
 };
 
 // One of the seed's tests (Table 2), simulated exactly over a full turn of 360 points.
-Run simulatedTest(const KinematicModel& model, const KinematicModel& nominal, const std::string& axis,
+MeasurementRun simulatedTest(const KinematicModel& model, const KinematicModel& nominal, const std::string& axis,
                   RotaryTestMode mode, const Geometry& g) {
   BallbarRotarySpec spec;
   spec.axis = axis;
@@ -120,8 +120,8 @@ const Deviations kTable7Identified{{"dxBT", 10.96 * um},  {"dzBT", 16.63 * um}, 
 const Geometry kStep1{100, 300, 360, 50}, kStep2{100, 340, 360, 50}, kStep3{100, 340, 410, 50};
 
 // The six runs of §5.3: B X, B Y, C axial and C radial at step 1, C radial at steps 2 and 3.
-std::vector<Run> sixRuns(const KinematicModel& model, const KinematicModel& nominal) {
-  std::vector<Run> runs = {simulatedTest(model, nominal, "B", RotaryTestMode::X, kStep1),
+std::vector<MeasurementRun> sixRuns(const KinematicModel& model, const KinematicModel& nominal) {
+  std::vector<MeasurementRun> runs = {simulatedTest(model, nominal, "B", RotaryTestMode::X, kStep1),
                            simulatedTest(model, nominal, "B", RotaryTestMode::Y, kStep1),
                            simulatedTest(model, nominal, "C", RotaryTestMode::Axial, kStep1),
                            simulatedTest(model, nominal, "C", RotaryTestMode::Radial, kStep1),

@@ -11,14 +11,14 @@
 namespace mtacc {
 namespace {
 
-void requireCircular(const Run& run) {
+void requireCircular(const MeasurementRun& run) {
   if (run.instrument != Instrument::Ballbar) throw std::invalid_argument(run.name + ": not a ballbar run");
   if (run.angle.size() != static_cast<size_t>(run.poses()) || run.readings.rows() != run.poses())
     throw std::invalid_argument(run.name + ": a circular evaluation needs an angle and a reading per pose");
   if (run.poses() < 8) throw std::invalid_argument(run.name + ": too few points for a circle (at least 8)");
 }
 
-int senseOf(const Run& run, size_t i) { return run.sense.size() > i ? run.sense[i] : 1; }
+int senseOf(const MeasurementRun& run, size_t i) { return run.sense.size() > i ? run.sense[i] : 1; }
 double sgn(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
 
 double wrapAngle(double a) {
@@ -42,7 +42,7 @@ double periodicInterpolate(std::vector<std::pair<double, double>> samples, doubl
 
 }  // namespace
 
-EccentricityFit fitEccentricity(const Run& run, bool secondHarmonics) {
+EccentricityFit fitEccentricity(const MeasurementRun& run, bool secondHarmonics) {
   requireCircular(run);
   const Eigen::Index n = run.poses();
   Eigen::MatrixXd a(n, secondHarmonics ? 5 : 3);
@@ -61,7 +61,7 @@ EccentricityFit fitEccentricity(const Run& run, bool secondHarmonics) {
   return f;
 }
 
-CircularTestResult evaluateCircularTest(const Run& run) {
+CircularTestResult evaluateCircularTest(const MeasurementRun& run) {
   requireCircular(run);
   CircularTestResult out;
   out.eccentricity = fitEccentricity(run, false);
@@ -94,10 +94,17 @@ CircularTestResult evaluateCircularTest(const Run& run) {
   // Diagnostics.
   const int columns = out.bothDirections ? 8 : 7;
   Eigen::MatrixXd a(n, columns);
+  // Directions of motion of a and b towards the next sample (as the path's axis directions).
+  double va = 0, vb = 0;
   for (Eigen::Index i = 0; i < n; ++i) {
     const double t = run.angle[static_cast<size_t>(i)];
     const double s = senseOf(run, static_cast<size_t>(i));
-    const double va = -s * sgn(std::sin(t)), vb = s * sgn(std::cos(t));  // directions of motion of a and b
+    if (i + 1 < n) {
+      const double next = run.angle[static_cast<size_t>(i + 1)];
+      const double da = std::cos(next) - std::cos(t), db = std::sin(next) - std::sin(t);
+      if (std::abs(da) > 1e-12) va = sgn(da);
+      if (std::abs(db) > 1e-12) vb = sgn(db);
+    }
     int c = 0;
     a(i, c++) = 1, a(i, c++) = std::cos(t), a(i, c++) = std::sin(t), a(i, c++) = std::cos(2 * t),
         a(i, c++) = std::sin(2 * t);

@@ -12,7 +12,7 @@ namespace {
 constexpr double kTypicalLength = 1e-3;  // 1 um
 constexpr double kTypicalAngle = 1e-5;   // 10 urad: 1 um over 100 mm
 
-std::vector<SetupParameter> setupOf(const Run& run) {
+std::vector<SetupParameter> setupOf(const MeasurementRun& run) {
   std::vector<SetupParameter> out;
   for (auto s : run.estimate)
     if (appliesTo(s, run.instrument)) out.push_back(s);
@@ -25,7 +25,7 @@ struct State {
   const IdentificationProblem* problem = nullptr;
   ErrorModel errors;
   KinematicModel model, nominal;
-  std::vector<Run> runs;
+  std::vector<MeasurementRun> runs;
   std::vector<std::vector<SetupParameter>> setup;    // per run
   std::vector<std::optional<PointJacobian>> setAt;  // per run, ballbar set at the tool ball
 
@@ -85,7 +85,7 @@ class PoseResidual : public ceres::CostFunction {
     if (setupCount > 0) mutable_parameter_block_sizes()->push_back(setupCount);
   }
   bool Evaluate(double const* const*, double* residuals, double** jacobians) const override {
-    const Run& run = state_.runs[run_];
+    const MeasurementRun& run = state_.runs[run_];
     const int m = num_residuals();
     if (!jacobians) {
       const Eigen::VectorXd r = predictReading(state_.model, state_.nominal, run, pose_);

@@ -8,16 +8,16 @@ namespace {
 constexpr std::array<const char*, kSetupParameterCount> kSetupNames = {"xT", "yT", "zT", "xW", "yW",
                                                                        "zW", "aN", "bN", "cN", "dL"};
 
-double err(const Run& run, SetupParameter p) { return run.setup.errors[static_cast<size_t>(p)]; }
+double err(const MeasurementRun& run, SetupParameter p) { return run.setup.errors[static_cast<size_t>(p)]; }
 
-Vec3 toolBallActual(const Run& run) {
+Vec3 toolBallActual(const MeasurementRun& run) {
   return run.setup.toolBall +
          Vec3(err(run, SetupParameter::ToolBallX), err(run, SetupParameter::ToolBallY), err(run, SetupParameter::ToolBallZ));
 }
-Vec3 targetError(const Run& run) {
+Vec3 targetError(const MeasurementRun& run) {
   return Vec3(err(run, SetupParameter::TargetX), err(run, SetupParameter::TargetY), err(run, SetupParameter::TargetZ));
 }
-Mat3 nestRotation(const Run& run) {
+Mat3 nestRotation(const MeasurementRun& run) {
   return rotationXYZ(err(run, SetupParameter::NestA), err(run, SetupParameter::NestB), err(run, SetupParameter::NestC));
 }
 // Orientation of the nominal workpiece frame in the machine frame: how the R-test software
@@ -25,10 +25,10 @@ Mat3 nestRotation(const Run& run) {
 Mat3 nominalWorkpieceRotation(const KinematicModel& nominal, const double* q) {
   return workpiecePose(nominal, q, nullptr).linear();
 }
-Vec3 actualToolBall(const KinematicModel& model, const Run& run, const double* q, const int* dir) {
+Vec3 actualToolBall(const KinematicModel& model, const MeasurementRun& run, const double* q, const int* dir) {
   return toolInWorkpiece(model, q, dir) * toolBallActual(run);
 }
-const int* dirRow(const Run& run, Eigen::Index i) { return run.direction.size() ? run.direction.row(i).data() : nullptr; }
+const int* dirRow(const MeasurementRun& run, Eigen::Index i) { return run.direction.size() ? run.direction.row(i).data() : nullptr; }
 
 }  // namespace
 
@@ -78,12 +78,12 @@ Dimension setupParameterDimension(SetupParameter p) {
                                                                                                 : Dimension::Length;
 }
 
-Vec3 workBall(const KinematicModel& model, const Run& run) {
+Vec3 workBall(const KinematicModel& model, const MeasurementRun& run) {
   const Vec3 base = run.setup.setAt ? actualToolBall(model, run, run.setup.setAt->data(), nullptr) : run.setup.target;
   return base + targetError(run);
 }
 
-Eigen::VectorXd predictReading(const KinematicModel& model, const KinematicModel& nominal, const Run& run,
+Eigen::VectorXd predictReading(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
                                Eigen::Index i) {
   const double* q = run.q.row(i).data();
   const Vec3 t = actualToolBall(model, run, q, dirRow(run, i));
@@ -106,7 +106,7 @@ Eigen::VectorXd predictReading(const KinematicModel& model, const KinematicModel
   return r;
 }
 
-Eigen::MatrixXd predictReadings(const KinematicModel& model, const KinematicModel& nominal, const Run& run,
+Eigen::MatrixXd predictReadings(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
                                 int threads) {
   Eigen::MatrixXd out(run.poses(), readingSize(run.instrument));
   parallelFor(run.poses(), threads, [&](long b, long e) {
@@ -115,7 +115,7 @@ Eigen::MatrixXd predictReadings(const KinematicModel& model, const KinematicMode
   return out;
 }
 
-ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicModel& nominal, const Run& run,
+ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
                                 Eigen::Index i, const std::vector<Parameter>& machineParameters,
                                 const std::vector<SetupParameter>& setupParameters,
                                 const PointJacobian* setAtJacobian) {

@@ -5,7 +5,7 @@
 
 namespace mtacc {
 
-std::vector<double> runTimes(const KinematicModel& nominal, const Run& run) {
+std::vector<double> runTimes(const KinematicModel& nominal, const MeasurementRun& run) {
   if (run.feed <= 0) throw std::invalid_argument("the feed must be positive");
   std::vector<double> t(static_cast<size_t>(run.poses()), 0.0);
   Vec3 previous = Vec3::Zero();
@@ -17,7 +17,7 @@ std::vector<double> runTimes(const KinematicModel& nominal, const Run& run) {
   return t;
 }
 
-JointMatrix disturbedPoses(const KinematicModel& nominal, const Run& run, const Disturbance& d) {
+JointMatrix disturbedPoses(const KinematicModel& nominal, const MeasurementRun& run, const Disturbance& d) {
   JointMatrix q = run.q;
   if (d.empty() || run.poses() < 2) return q;
   const auto t = runTimes(nominal, run);
@@ -33,7 +33,7 @@ JointMatrix disturbedPoses(const KinematicModel& nominal, const Run& run, const 
       const Eigen::Index a = std::max<Eigen::Index>(i - 1, 0), b = std::min<Eigen::Index>(i + 1, n - 1);
       const double dt = t[static_cast<size_t>(b)] - t[static_cast<size_t>(a)];
       const double v = dt > 0 ? (run.q(b, j) - run.q(a, j)) / dt : 0.0;
-      const int sign = std::abs(v) < 1e-9 ? lastSign : (v > 0 ? 1 : -1);
+      const int sign = run.direction.size() ? run.direction(i, j) : (std::abs(v) < 1e-9 ? lastSign : (v > 0 ? 1 : -1));
       if (sign != lastSign && lastSign != 0) lastReversal = t[static_cast<size_t>(i)];
       lastSign = sign;
       double error = -lag * v - 0.5 * backlash * sign;
@@ -45,9 +45,9 @@ JointMatrix disturbedPoses(const KinematicModel& nominal, const Run& run, const 
   return q;
 }
 
-void simulateRun(const KinematicModel& model, const KinematicModel& nominal, Run& run, const Disturbance& disturbance,
+void simulateRun(const KinematicModel& model, const KinematicModel& nominal, MeasurementRun& run, const Disturbance& disturbance,
                  double noise, std::mt19937_64* rng) {
-  Run actual = run;
+  MeasurementRun actual = run;
   actual.q = disturbedPoses(nominal, run, disturbance);
   run.readings = predictReadings(model, nominal, actual);
   if (noise > 0) {

@@ -30,17 +30,15 @@ Vec3 toolPointInWorkpiece(const KinematicModel& nominal, const std::vector<doubl
   return toolInWorkpiece(nominal, q.data()) * toolPoint;
 }
 
-// Sign of each axis's motion towards the next pose (the last pose keeps the previous one).
+// Sign of each axis's motion towards the next pose; where the axis does not move (and at
+// the last pose) it keeps the previous direction, as a drive does until it reverses.
 Eigen::MatrixXi motionDirections(const JointMatrix& q) {
   Eigen::MatrixXi d = Eigen::MatrixXi::Zero(q.rows(), q.cols());
-  for (Eigen::Index i = 0; i < q.rows(); ++i) {
-    const Eigen::Index a = i + 1 < q.rows() ? i : i - 1, b = a + 1;
-    if (a < 0) break;
+  for (Eigen::Index i = 0; i < q.rows(); ++i)
     for (Eigen::Index j = 0; j < q.cols(); ++j) {
-      const double dq = q(b, j) - q(a, j);
-      d(i, j) = dq > 1e-12 ? 1 : (dq < -1e-12 ? -1 : 0);
+      const double dq = i + 1 < q.rows() ? q(i + 1, j) - q(i, j) : 0.0;
+      d(i, j) = dq > 1e-12 ? 1 : (dq < -1e-12 ? -1 : (i > 0 ? d(i - 1, j) : 0));
     }
-  }
   return d;
 }
 
@@ -115,10 +113,10 @@ std::array<Vec3, 2> planeAxes(const std::string& plane) {
   throw std::invalid_argument("unknown plane '" + plane + "' (XY, YZ or ZX)");
 }
 
-Run ballbarCircle(const KinematicModel& nominal, const BallbarCircleSpec& spec) {
+MeasurementRun ballbarCircle(const KinematicModel& nominal, const BallbarCircleSpec& spec) {
   const Machine& m = *nominal.machine;
   if (spec.points < 8) throw std::invalid_argument("a circle needs at least 8 points per direction");
-  Run run;
+  MeasurementRun run;
   run.name = "circle-" + spec.plane;
   run.instrument = Instrument::Ballbar;
   run.setup.toolBall = spec.toolBall;
@@ -128,6 +126,11 @@ Run ballbarCircle(const KinematicModel& nominal, const BallbarCircleSpec& spec) 
   run.feed = spec.feed;
   const auto base = basePose(m, spec.pose);
   const Mat3 wpToMachine = workpiecePose(nominal, base.data(), nullptr).linear();
+  // The centre ball is set where the tool-side cup is with the centre commanded (ISO 230-4
+  // set-up with a setting fixture), so only the path's own deviations remain.
+  auto setAt = base;
+  placeToolPoint(nominal, setAt, spec.toolBall, spec.centre);
+  run.setup.setAt = setAt;
   std::vector<std::vector<double>> rows;
   for (int sense : {1, -1}) {
     if (sense < 0 && !spec.bothDirections) break;
@@ -156,12 +159,12 @@ RotaryTestMode parseRotaryTestMode(const std::string& name) {
   throw std::invalid_argument("unknown rotary test '" + name + "' (radial, tangential, axial, x, y or z)");
 }
 
-Run ballbarRotaryTest(const KinematicModel& nominal, const BallbarRotarySpec& spec) {
+MeasurementRun ballbarRotaryTest(const KinematicModel& nominal, const BallbarRotarySpec& spec) {
   const Machine& m = *nominal.machine;
   const int axis = commandedAxis(m, spec.axis);
   if (spec.points < 8) throw std::invalid_argument("a rotary test needs at least 8 points");
   const bool toolSide = m.axes[static_cast<size_t>(axis)].side == Side::Tool;
-  Run run;
+  MeasurementRun run;
   run.name = spec.axis + "-" + std::string(spec.mode == RotaryTestMode::Radial       ? "radial"
                                            : spec.mode == RotaryTestMode::Tangential ? "tangential"
                                            : spec.mode == RotaryTestMode::Axial      ? "axial"
@@ -217,7 +220,7 @@ Run ballbarRotaryTest(const KinematicModel& nominal, const BallbarRotarySpec& sp
   return run;
 }
 
-Run ballbarCone(const KinematicModel& nominal, const ConeSpec& spec, int points, TiltBranch branch, double feed) {
+MeasurementRun ballbarCone(const KinematicModel& nominal, const ConeSpec& spec, int points, TiltBranch branch, double feed) {
   const auto path = conePath(spec, points);
   const auto motion = coneMotion(nominal, spec, path, branch, feed);
   // The point nearest to all normal lines (they meet on the cone axis).
@@ -229,7 +232,7 @@ Run ballbarCone(const KinematicModel& nominal, const ConeSpec& spec, int points,
     b += p * path.points[i];
   }
   const Vec3 w = a.ldlt().solve(b);
-  Run run;
+  MeasurementRun run;
   run.name = "cone";
   run.instrument = Instrument::Ballbar;
   run.setup.target = w;
@@ -245,15 +248,15 @@ Run ballbarCone(const KinematicModel& nominal, const ConeSpec& spec, int points,
   return run;
 }
 
-std::vector<Run> sphereTest(const KinematicModel& nominal, const SphereTestSpec& spec) {
+std::vector<MeasurementRun> sphereTest(const KinematicModel& nominal, const SphereTestSpec& spec) {
   const Machine& m = *nominal.machine;
   const int axis = commandedAxis(m, spec.axis);
   if (spec.angles.empty() || spec.spheres.empty())
     throw std::invalid_argument("a sphere test needs at least one angle and one sphere position");
   const auto base = basePose(m, spec.pose);
-  std::vector<Run> runs;
+  std::vector<MeasurementRun> runs;
   for (size_t s = 0; s < spec.spheres.size(); ++s) {
-    Run run;
+    MeasurementRun run;
     run.name = instrumentName(spec.instrument) + "-" + spec.axis + "-" + std::to_string(s + 1);
     run.instrument = spec.instrument;
     run.setup.toolBall = spec.toolBall;
@@ -273,7 +276,7 @@ std::vector<Run> sphereTest(const KinematicModel& nominal, const SphereTestSpec&
   return runs;
 }
 
-Run cubicMachiningZones(const KinematicModel& nominal, double size, double height, double toolRadius) {
+MeasurementRun cubicMachiningZones(const KinematicModel& nominal, double size, double height, double toolRadius) {
   // Fig. 2 layout and Table 1 tool vectors (i, j, k): zone centres on a 3 x 3 grid, the tool
   // tilted by 30 deg towards the centre (45 deg turned for the corner zones).
   const double s = size / 3.0, h = 0.5, c = std::sqrt(2.0) / 4.0, k = std::sqrt(3.0) / 2.0;
@@ -281,7 +284,7 @@ Run cubicMachiningZones(const KinematicModel& nominal, double size, double heigh
   const Zone zones[9] = {{0, 0, 0, 0, 1},    {-s, 0, h, 0, k},  {0, -s, 0, h, k},   {s, 0, -h, 0, k},  {0, s, 0, -h, k},
                          {-s, -s, c, c, k},  {s, -s, -c, c, k}, {s, s, -c, -c, k},  {-s, s, c, -c, k}};
   const Vec3 toolAxis = nominal.machine->toolDirection;
-  Run run;
+  MeasurementRun run;
   run.name = "cubic-zones";
   run.instrument = Instrument::Directional;
   run.setup.toolBall = toolRadius * toolAxis;

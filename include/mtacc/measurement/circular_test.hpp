@@ -20,7 +20,7 @@ struct EccentricityFit {
   double rms = 0;                    // residual, mm
 };
 // Throws std::invalid_argument for a run without angles, or with fewer than 8 samples.
-EccentricityFit fitEccentricity(const Run& run, bool secondHarmonics = true);
+EccentricityFit fitEccentricity(const MeasurementRun& run, bool secondHarmonics = true);
 
 struct CircularDirection {
   int sense = 1;                  // +1 counter-clockwise, -1 clockwise
@@ -47,6 +47,6 @@ struct CircularTestResult {
   BallbarDiagnostics diagnostics;
 };
 
-CircularTestResult evaluateCircularTest(const Run& run);
+CircularTestResult evaluateCircularTest(const MeasurementRun& run);
 
 }  // namespace mtacc

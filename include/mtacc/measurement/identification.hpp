@@ -17,7 +17,7 @@ struct IdentificationProblem {
   std::shared_ptr<const Machine> machine;
   ErrorModel start;                        // known errors; the estimated ones start from here
   std::vector<Parameter> parameters;       // machine parameters to estimate
-  std::vector<Run> runs;                   // with readings; Run::estimate names their set-up unknowns
+  std::vector<MeasurementRun> runs;                   // with readings; MeasurementRun::estimate names their set-up unknowns
 };
 
 // Column names and typical sizes (1 um, 10 urad) of the stacked problem: the machine
@@ -46,7 +46,7 @@ struct IdentificationResult {
   Eigen::VectorXd uncertainty;  // standard uncertainty, from sigma^2 (J^T J)^-1
   Eigen::MatrixXd covariance;
   ErrorModel errors;            // start with the machine parameters replaced
-  std::vector<Run> runs;        // set-up errors replaced, readings as measured
+  std::vector<MeasurementRun> runs;        // set-up errors replaced, readings as measured
   double sigma = 0;             // residual standard deviation (mm), dof-corrected
   double residualRms = 0, residualMax = 0;
   int readings = 0, degreesOfFreedom = 0, iterations = 0;

@@ -56,7 +56,7 @@ struct Setup {
 // One measurement run: its poses (and the directions of motion, for reversal errors) and
 // readings. `angle` is the plot angle of each sample (rad) in the plot plane spanned by
 // plotAxes (machine frame), for circular tests; empty otherwise.
-struct Run {
+struct MeasurementRun {
   std::string name;
   Instrument instrument = Instrument::Ballbar;
   Setup setup;
@@ -75,9 +75,9 @@ struct Run {
 
 // The readings the instrument shows at pose i of the run on `model` (exact model,
 // including the run's set-up errors).
-Eigen::VectorXd predictReading(const KinematicModel& model, const KinematicModel& nominal, const Run& run,
+Eigen::VectorXd predictReading(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
                                Eigen::Index i);
-Eigen::MatrixXd predictReadings(const KinematicModel& model, const KinematicModel& nominal, const Run& run,
+Eigen::MatrixXd predictReadings(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
                                 int threads = 1);
 
 // Reading and its derivative with respect to machine parameters and set-up parameters.
@@ -88,12 +88,12 @@ struct ReadingJacobian {
 };
 // `model` must be compiled with errors. setAtJacobian: pointJacobian at run.setup.setAt
 // (ballbar with setAt only; computed once per run by the caller).
-ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicModel& nominal, const Run& run,
+ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
                                 Eigen::Index i, const std::vector<Parameter>& machineParameters,
                                 const std::vector<SetupParameter>& setupParameters,
                                 const PointJacobian* setAtJacobian);
 
 // The work ball of a ballbar run in the workpiece frame (set-up error included).
-Vec3 workBall(const KinematicModel& model, const Run& run);
+Vec3 workBall(const KinematicModel& model, const MeasurementRun& run);
 
 }  // namespace mtacc

@@ -27,12 +27,12 @@ struct Disturbance {
 
 // Time of each pose along the run at its feed (mm/min on the tool point's path relative to
 // the workpiece), in s.
-std::vector<double> runTimes(const KinematicModel& nominal, const Run& run);
+std::vector<double> runTimes(const KinematicModel& nominal, const MeasurementRun& run);
 // The axis positions the drives actually reach.
-JointMatrix disturbedPoses(const KinematicModel& nominal, const Run& run, const Disturbance& disturbance);
+JointMatrix disturbedPoses(const KinematicModel& nominal, const MeasurementRun& run, const Disturbance& disturbance);
 
 // Fills run.readings: exact readings on `model` (disturbed poses), plus N(0, noise) (mm).
-void simulateRun(const KinematicModel& model, const KinematicModel& nominal, Run& run,
+void simulateRun(const KinematicModel& model, const KinematicModel& nominal, MeasurementRun& run,
                  const Disturbance& disturbance = {}, double noise = 0.0, std::mt19937_64* rng = nullptr);
 
 }  // namespace mtacc

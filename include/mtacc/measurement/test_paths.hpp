@@ -21,9 +21,10 @@ void placeToolPoint(const KinematicModel& nominal, std::vector<double>& q, const
 // towards the second). Throws std::invalid_argument for other names.
 std::array<Vec3, 2> planeAxes(const std::string& plane);
 
+// The centre ball is set at the actual tool ball with the centre commanded.
 struct BallbarCircleSpec {
   std::string plane = "XY";
-  Vec3 centre = Vec3::Zero();  // work ball, workpiece frame (mm)
+  Vec3 centre = Vec3::Zero();  // work ball, nominal, workpiece frame (mm)
   double radius = 100.0;       // bar length (mm)
   std::vector<double> pose;    // the other axes (rotary ones fixed); empty = all zero
   int points = 360;            // per direction
@@ -31,7 +32,7 @@ struct BallbarCircleSpec {
   double feed = 1000.0;        // mm/min
   Vec3 toolBall = Vec3::Zero();
 };
-Run ballbarCircle(const KinematicModel& nominal, const BallbarCircleSpec& spec);
+MeasurementRun ballbarCircle(const KinematicModel& nominal, const BallbarCircleSpec& spec);
 
 enum class RotaryTestMode { Radial, Tangential, Axial, X, Y, Z };
 // "radial", "tangential", "axial", "x", "y", "z"
@@ -55,11 +56,11 @@ struct BallbarRotarySpec {
   std::vector<double> pose;  // the other axes; empty = all zero
   double feed = 1000.0;
 };
-Run ballbarRotaryTest(const KinematicModel& nominal, const BallbarRotarySpec& spec);
+MeasurementRun ballbarRotaryTest(const KinematicModel& nominal, const BallbarRotarySpec& spec);
 
 // Seed 000 ch. 4: the ballbar square to the cone surface. The tool ball follows the cone
 // path (TCP); the work ball sits where the surface normals along the path meet.
-Run ballbarCone(const KinematicModel& nominal, const ConeSpec& spec, int points, TiltBranch branch, double feed);
+MeasurementRun ballbarCone(const KinematicModel& nominal, const ConeSpec& spec, int points, TiltBranch branch, double feed);
 
 // R-test (or touch probe): one rotary axis steps through `angles` while the linear axes keep
 // the nominal ball at the sphere; one run per sphere position (workpiece frame).
@@ -71,11 +72,11 @@ struct SphereTestSpec {
   Vec3 toolBall = Vec3::Zero();
   std::vector<double> pose;  // the other axes; empty = all zero
 };
-std::vector<Run> sphereTest(const KinematicModel& nominal, const SphereTestSpec& spec);
+std::vector<MeasurementRun> sphereTest(const KinematicModel& nominal, const SphereTestSpec& spec);
 
 // Seed 001 §2 (Tables 1-2, Fig. 2): a cube of `size` whose top face lies at `height`; the
 // nine zones' centres, tool vectors tilted by 30 deg towards the centre, a ball-end mill of
 // `toolRadius`. The reading is the height deviation of the ball centre (workpiece z).
-Run cubicMachiningZones(const KinematicModel& nominal, double size, double height, double toolRadius);
+MeasurementRun cubicMachiningZones(const KinematicModel& nominal, double size, double height, double toolRadius);
 
 }  // namespace mtacc
