@@ -15,3 +15,6 @@ echo "== Benchmark: batch forward kinematics against orocos KDL =="
 echo
 echo "== Benchmark: cone-frustum Monte Carlo, 1000 samples, exact evaluation =="
 ./build/bench/bench_cone_monte_carlo --benchmark_color=false
+echo
+echo "== Benchmark: identification of 13 parameters from 10,000 R-test points, against SciPy =="
+./build/bench/bench_identify_vs_scipy

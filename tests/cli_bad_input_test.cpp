@@ -145,4 +145,48 @@ TEST_F(CliBadInput, GoodInputWritesTheFile) {
   EXPECT_NE(slurp(output()).find("dx_um"), std::string::npos);
 }
 
+// A ballbar export (angle and dL only; the circle named in the header) on the bundled
+// 3-axis machine.
+std::string ballbarFile(int points, const std::string& badRow = "") {
+  std::string t = "# instrument: ballbar\n# length: 100 mm\n# target: 300, 200, 250 mm\n# plane: XY\nangle_deg,dL_um\n";
+  for (int i = 0; i < points; ++i) t += std::to_string(360.0 * i / points) + "," + std::to_string(0.1 * (i % 3)) + "\n";
+  return t + badRow;
+}
+
+TEST_F(CliBadInput, MeasurementFileWithNaNOrWrongColumns) {
+  const auto nan = write("nan.csv", ballbarFile(36, "12,nan\n"));
+  expectCleanFailure(run("evaluate three-axis-vertical " + nan + " -o " + output()), {nan + ":42: dL_um", "not a finite number"});
+  const auto cols = write("cols.csv", ballbarFile(36, "12,0.1,7\n"));
+  expectCleanFailure(run("evaluate three-axis-vertical " + cols + " -o " + output()), {cols + ":42", "expected 2 columns, found 3"});
+  const auto noInstrument = write("none.csv", "# length: 100 mm\nangle_deg,dL_um\n0,0\n");
+  expectCleanFailure(run("evaluate three-axis-vertical " + noInstrument + " -o " + output()), {noInstrument + ":1: instrument", "missing"});
+  const auto badUnit = write("unit.csv", "# instrument: ballbar\n# length: 100\n# target: 0, 0, 0 mm\nangle_deg,dL_um\n0,0\n");
+  expectCleanFailure(run("evaluate three-axis-vertical " + badUnit + " -o " + output()), {badUnit + ":2: length"});
+}
+
+TEST_F(CliBadInput, TooFewPoints) {
+  const auto few = write("few.csv", ballbarFile(5));
+  expectCleanFailure(run("evaluate three-axis-vertical " + few + " -o " + output()), {few, "too few points"});
+  expectCleanFailure(run("identify three-axis-vertical --data " + few + " --params C0Y,A0Z,B0Z,EXX.c1,Y0Y,Z0Z -o " + output()),
+                     {"too few readings: 5 for 6 unknowns"});
+}
+
+TEST_F(CliBadInput, UnidentifiableSetIsRefused) {
+  const auto data = write("xy.csv", ballbarFile(72));
+  // One XY circle cannot see the Z axis's squareness errors.
+  expectCleanFailure(run("identify three-axis-vertical --data " + data + " --params C0Y,A0Z -o " + output()),
+                     {"refused", "A0Z has no effect on this plan"});
+}
+
+TEST_F(CliBadInput, SimulatedBallbarEvaluates) {
+  const auto data = (dir_ / "sim.csv").string();
+  auto r = run("simulate ballbar three-axis-vertical --centre 300,200,250 --radius 100mm --lag X=1ms -o " + data);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  r = run("evaluate three-axis-vertical " + data + " -o " + output());
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("servo mismatch"), std::string::npos);
+  ASSERT_TRUE(fs::exists(output()));
+  EXPECT_NE(slurp(output()).find("squareness"), std::string::npos);
+}
+
 }  // namespace

@@ -18,15 +18,22 @@ void addMachineOptions(CLI::App& cmd, MachineOptions& o) {
   cmd.add_option("--errors", o.errorsFile, "errors file (YAML with an 'errors:' mapping); default: the machine file's");
   cmd.add_flag("--json", o.json, "print one JSON object instead of tables");
   cmd.add_option("-o,--output", o.output, "write the result to FILE (CSV, or JSON with --json), atomically");
+  cmd.add_option("--alignment", o.alignment,
+                 "workpiece set-up: 'table' (fixed to the table frame) or 'machine' (aligned at the reference pose, "
+                 "seed 001 M_WC); default: the machine file's");
 }
 
 Loaded load(const MachineOptions& o) {
-  auto machine = std::make_shared<const Machine>(loadMachine(o.machine));
+  Machine loaded = loadMachine(o.machine);
+  if (o.alignment == "table") loaded.alignment = WorkpieceAlignment::Table;
+  else if (o.alignment == "machine") loaded.alignment = WorkpieceAlignment::Machine;
+  else if (!o.alignment.empty()) throw InputError(InputLocation{"", 0, "--alignment"}, "expected 'table' or 'machine'");
+  auto machine = std::make_shared<const Machine>(std::move(loaded));
   ErrorModel errors = o.errorsFile.empty() ? loadMachineErrors(*machine) : loadErrors(*machine, o.errorsFile);
   return {machine, std::move(errors)};
 }
 
-std::vector<double> parsePose(const Machine& m, const std::string& text) {
+std::vector<double> parsePose(const Machine& m, const std::string& text, bool partial) {
   std::vector<double> q(static_cast<size_t>(m.commandedCount()), 0.0);
   std::vector<bool> seen(q.size(), false);
   std::stringstream ss(text);
@@ -49,7 +56,7 @@ std::vector<double> parsePose(const Machine& m, const std::string& text) {
     q[static_cast<size_t>(i)] = m.axes[static_cast<size_t>(i)].isRotary() ? v * kDeg : v;
     seen[static_cast<size_t>(i)] = true;
   }
-  for (size_t i = 0; i < q.size(); ++i)
+  for (size_t i = 0; i < q.size() && !partial; ++i)
     if (!seen[i]) throw InputError(InputLocation{"", 0, "--pose"}, "axis " + m.axes[i].name + " missing (mm for linear, deg for rotary axes)");
   return q;
 }

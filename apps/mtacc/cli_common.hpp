@@ -18,6 +18,7 @@ struct MachineOptions {
   std::string errorsFile;
   bool json = false;
   std::string output;
+  std::string alignment;  // overrides the machine file's workpiece alignment
 };
 
 // Adds MACHINE, --errors, --json, -o to a subcommand.
@@ -30,8 +31,9 @@ struct Loaded {
 // Errors come from --errors when given, else from the machine file's `errors:`.
 Loaded load(const MachineOptions& o);
 
-// "X=10,Y=0,Z=5,B=-15,C=30" (mm and deg); every commanded axis must be given.
-std::vector<double> parsePose(const Machine& m, const std::string& text);
+// "X=10,Y=0,Z=5,B=-15,C=30" (mm and deg); every commanded axis must be given unless
+// `partial` (the others are then zero).
+std::vector<double> parsePose(const Machine& m, const std::string& text, bool partial = false);
 // "1,0,0"
 Vec3 parseVector(const std::string& text, const std::string& what);
 // "10um", "30 urad"
@@ -52,6 +54,9 @@ void addInverseCommand(CLI::App& app);   // ik
 void addSensitivityCommand(CLI::App& app);
 void addBudgetCommand(CLI::App& app);
 void addReportCommand(CLI::App& app);
-void addConeCommand(CLI::App& app);  // runs the Python report builder
+void addConeCommand(CLI::App& app);
+void addSimulateCommand(CLI::App& app);       // simulate ballbar | rtest | plan
+void addEvaluateCommand(CLI::App& app);
+void addIdentifyCommands(CLI::App& app);      // identify, observability
 
 }  // namespace mtacc::cli

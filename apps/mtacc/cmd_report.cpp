@@ -15,6 +15,7 @@ struct ReportOptions {
   std::string machine;
   std::string errorsFile;
   std::string output = ".";
+  std::string plan;
   int samples = 5;
 };
 
@@ -28,6 +29,10 @@ struct ReportOptions {
   if (!o.errorsFile.empty()) {
     args.push_back("--errors");
     args.push_back(o.errorsFile);
+  }
+  if (!o.plan.empty()) {
+    args.push_back("--plan");
+    args.push_back(o.plan);
   }
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -45,6 +50,7 @@ void addReportCommand(CLI::App& app) {
   cmd->add_option("-o,--output", o->output, "output directory (default: current)");
   cmd->add_option("--errors", o->errorsFile, "errors file (default: the machine file's)");
   cmd->add_option("--samples", o->samples, "positions per axis for the error budget (default 5)");
+  cmd->add_option("--plan", o->plan, "test plan to simulate, evaluate and identify from (e.g. tilting-table-rtest)");
   cmd->callback([o] { run(*o); });
 }
 

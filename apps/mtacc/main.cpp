@@ -16,6 +16,9 @@ int main(int argc, char** argv) {
   mtacc::cli::addSensitivityCommand(app);
   mtacc::cli::addBudgetCommand(app);
   mtacc::cli::addConeCommand(app);
+  mtacc::cli::addSimulateCommand(app);
+  mtacc::cli::addEvaluateCommand(app);
+  mtacc::cli::addIdentifyCommands(app);
   mtacc::cli::addReportCommand(app);
   try {
     app.parse(argc, argv);

@@ -111,6 +111,32 @@ class Machine:
         return self._core.cone(alpha, beta, radius, list(map(float, centre)), gamma, face_milling, points, branch, feed,
                                single_errors, monte_carlo, "" if limits is None else str(limits), seed)
 
+    def simulate(self, plan, noise_um=0.0, seed=1, output_dir=None):
+        """Every run of a test plan (YAML path or bundled name, e.g. "tilting-table-rtest") simulated
+        on this machine with its errors: list of dicts (poses in mm/deg, readings in um, ballbar
+        angle_deg and sense). With output_dir, also written as measurement CSV files."""
+        return self._core.simulate(str(plan), noise_um, seed, "" if output_dir is None else str(output_dir))
+
+    def read_measurement(self, path):
+        """A measurement CSV file (docs/file-formats.md) as the dict `simulate` returns."""
+        return self._core.read_measurement(str(path))
+
+    def evaluate_ballbar(self, path):
+        """ISO 230-4 circular deviation, radial deviation, hysteresis, eccentricity and the
+        ballbar diagnostics of a ballbar CSV file (um, urad, ms)."""
+        return self._core.evaluate_ballbar(str(path))
+
+    def observability(self, plan, parameters=None):
+        """Rank, condition number, singular values and the findings (parameters without effect,
+        groups the plan cannot separate) of a test plan for the given parameters (default:
+        the plan's own list)."""
+        return self._core.observability(str(plan), list(parameters or []))
+
+    def identify(self, files, parameters, robust=False):
+        """Least-squares estimates (um, urad) with standard uncertainties of `parameters` from
+        measurement CSV files; refuses (InputError) a set the data cannot determine."""
+        return self._core.identify([str(f) for f in files], list(parameters), robust)
+
     def working_volume_grid(self, samples=5):
         """Grid of `samples` positions per axis across its travel (mm, deg), as the budget uses."""
         return self._core.working_volume_grid(samples)

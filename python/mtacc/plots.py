@@ -218,3 +218,68 @@ def box_plot(groups, ylabel="equivalent cone form error [µm]"):
     ax.grid(axis="y", alpha=0.3)
     fig.tight_layout()
     return fig
+
+
+def ballbar_polar(result, title=None):
+    """Polar ballbar trace (both directions) magnified about the bar length, with the fitted
+    eccentric circle c0 + e . d(angle) (least-squares first harmonics, dashed)."""
+    angle = np.radians(np.asarray(result["angle_deg"], float))
+    dl = np.asarray(result["readings_um"], float)[:, 0]
+    sense = np.asarray(result["sense"] or [1] * len(dl))
+    e1, e2 = result["eccentricity_plot_um"]
+    fit = result["offset_um"] + e1 * np.cos(angle) + e2 * np.sin(angle)
+    half = max(float(np.max(np.abs(dl - dl.mean()))), float(np.max(np.abs(fit - dl.mean()))), 1e-3)
+    scale = 0.4 / half
+    fig = plt.figure(figsize=(5.0, 5.0))
+    ax = fig.add_subplot(projection="polar")
+    theta = np.linspace(0, 2 * np.pi, 361)
+    ax.plot(theta, np.ones_like(theta), color="#888", lw=1, label="nominal")
+    for s, colour, label in ((1, "#1f77b4", "counter-clockwise"), (-1, "#d62728", "clockwise")):
+        sel = sense == s
+        if sel.any():
+            ax.plot(angle[sel], 1.0 + scale * (dl[sel] - dl.mean()), color=colour, lw=1.4, label=label)
+    order = np.argsort(angle)
+    ax.plot(angle[order], 1.0 + scale * (fit[order] - dl.mean()), color="#2ca02c", lw=1.2, ls="--",
+            label="fitted eccentricity")
+    ax.set_ylim(0, 1.5)
+    ax.set_rticks([])
+    ax.set_title(f"{title or result['name']}\ndeviation ±{half:.2f} µm full scale about L = {result['length_mm']:g} mm; "
+                 f"eccentricity ({e1:+.2f}, {e2:+.2f}) µm", fontsize=9)
+    ax.legend(loc="lower left", fontsize=7)
+    fig.tight_layout()
+    return fig
+
+
+def identified_values(result, truth=None):
+    """Identified machine parameters with their 95 % intervals (1.96 u), lengths and angles on
+    separate axes; `truth` (name -> value in the same unit) adds the simulated values."""
+    names, values, u, units = result["names"], np.array(result["values"]), np.array(result["uncertainty"]), result["units"]
+    keep = [k for k, n in enumerate(names) if "." not in n]  # machine parameters, not set-up errors
+    groups = [(unit, [k for k in keep if units[k] == unit]) for unit in ("um", "urad")]
+    groups = [(unit, ks) for unit, ks in groups if ks]
+    fig, axes = plt.subplots(1, len(groups), figsize=(4.5 * len(groups), 3.6), squeeze=False)
+    for ax, (unit, ks) in zip(axes[0], groups):
+        x = np.arange(len(ks))
+        ax.errorbar(x, values[ks], yerr=1.96 * u[ks], fmt="o", color="#1f77b4", capsize=3, label="identified ± 95 %")
+        if truth:
+            ax.plot(x, [truth.get(names[k], np.nan) for k in ks], "x", color="#d62728", label="simulated")
+        ax.set_xticks(x, [names[k] for k in ks], rotation=45, fontsize=8)
+        ax.set_ylabel("µm" if unit == "um" else "µrad")
+        ax.axhline(0, color="#aaa", lw=0.8)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    return fig
+
+
+def singular_values(observability):
+    """Singular values of the plan's column-normalised Jacobian (log scale); a drop of many
+    decades marks a combination the plan cannot determine."""
+    sv = np.asarray(observability["singular_values"], float)
+    fig, ax = plt.subplots(figsize=(6.0, 3.0))
+    floor = sv[sv > 0].min() * 1e-3 if (sv > 0).any() else 1e-16
+    ax.semilogy(np.arange(1, len(sv) + 1), np.maximum(sv, floor), "o-", color="#1f77b4")
+    ax.set_xlabel("index")
+    ax.set_ylabel("singular value")
+    ax.set_title(f"rank {observability['rank']} of {len(sv)}, condition {observability['condition']:.3g}", fontsize=9)
+    fig.tight_layout()
+    return fig

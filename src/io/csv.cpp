@@ -42,6 +42,7 @@ CsvTable parseCsv(const std::string& text, const std::string& sourceName) {
     auto cells = split(s);
     if (t.header.empty()) {
       t.header = cells;
+      t.headerLine = lineNo;
       continue;
     }
     if (cells.size() != t.header.size())
@@ -77,13 +78,13 @@ std::vector<int> requireColumns(const CsvTable& t, const std::vector<std::string
     int found = -1;
     for (size_t c = 0; c < t.header.size(); ++c)
       if (t.header[c] == n) found = static_cast<int>(c);
-    if (found < 0) throw InputError(InputLocation{t.file, 1, n}, "missing column '" + n + "'");
+    if (found < 0) throw InputError(InputLocation{t.file, t.headerLine, n}, "missing column '" + n + "'");
     idx.push_back(found);
   }
   return idx;
 }
 
-PoseTable posesFromCsv(const Machine& m, const CsvTable& t) {
+PoseTable posesFromCsv(const Machine& m, const CsvTable& t, const std::vector<std::string>& otherColumns) {
   std::vector<std::string> names;
   for (const auto& a : m.axes)
     if (a.commanded()) names.push_back(a.name);
@@ -91,9 +92,11 @@ PoseTable posesFromCsv(const Machine& m, const CsvTable& t) {
   for (size_t c = 0; c < t.header.size(); ++c) {
     const auto& h = t.header[c];
     const bool known = std::find(names.begin(), names.end(), h) != names.end() ||
+                       std::find(otherColumns.begin(), otherColumns.end(), h) != otherColumns.end() ||
                        (h.size() > 4 && h.compare(h.size() - 4, 4, "_dir") == 0 &&
                         std::find(names.begin(), names.end(), h.substr(0, h.size() - 4)) != names.end());
-    if (!known) throw InputError(InputLocation{t.file, 1, h}, "unknown column '" + h + "' (axis names and <axis>_dir)");
+    if (!known) throw InputError(InputLocation{t.file, t.headerLine, h}, "unknown column '" + h + "' (axis names, <axis>_dir" +
+                                                                (otherColumns.empty() ? std::string(")") : ", readings)"));
   }
   PoseTable p;
   const long n = static_cast<long>(t.rows.size());

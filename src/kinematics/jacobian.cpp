@@ -9,104 +9,108 @@ namespace {
 
 struct ChainFactors {
   std::vector<Factor> factors;
-  std::vector<Mat4> prefix;  // prefix[i] = F_0 ... F_{i-1}
-  std::vector<Mat4> suffix;  // suffix[i] = F_{i+1} ... F_n (tail frame included)
-  Mat4 total;
+  // Per machine axis: its chain element (or null) and the range of its factors.
+  std::vector<const ChainElement*> element;
+  std::vector<std::pair<size_t, size_t>> range;
+  std::vector<Pose> prefix;  // prefix[i] = F_0 ... F_{i-1}; prefix[n] = total
+  std::vector<Pose> suffix;  // suffix[i] = F_{i+1} ... F_n (tail frame included)
+  Pose total;
 };
+
+// Fills c (reusing its storage) with the chain's factors and prefix products; the suffix
+// products only when asked (the point Jacobian maps one point through the prefixes instead).
+void expandInto(const KinematicModel& m, const std::vector<ChainElement>& chain, const Pose& tail, const double* q,
+                const int* dir, bool suffixes, ChainFactors& c) {
+  c.factors.clear();
+  c.element.assign(m.machine->axes.size(), nullptr);
+  c.range.assign(m.machine->axes.size(), {0, 0});
+  for (const auto& e : chain) {
+    const double qe = e.joint >= 0 ? q[e.joint] : 0.0;
+    const int d = (dir && e.joint >= 0) ? dir[e.joint] : 0;
+    const size_t begin = c.factors.size();
+    elementFactors(m, e, qe, d, c.factors);
+    c.element[static_cast<size_t>(e.axis)] = &e;
+    c.range[static_cast<size_t>(e.axis)] = {begin, c.factors.size()};
+  }
+  c.factors.push_back({tail, Hook::None, -1});  // the tool or workpiece frame
+  const size_t n = c.factors.size();
+  c.prefix.resize(n + 1);
+  c.prefix[0] = Pose::Identity();
+  for (size_t i = 0; i < n; ++i) c.prefix[i + 1] = c.prefix[i] * c.factors[i].pose;
+  c.total = c.prefix[n];
+  if (!suffixes) return;
+  c.suffix.resize(n);
+  Pose acc = Pose::Identity();
+  for (size_t i = n; i-- > 0;) {
+    c.suffix[i] = acc;
+    acc = c.factors[i].pose * acc;
+  }
+}
 
 ChainFactors expand(const KinematicModel& m, const std::vector<ChainElement>& chain, const Pose& tail, const double* q,
                     const int* dir) {
   ChainFactors c;
-  for (const auto& e : chain) {
-    const double qe = e.joint >= 0 ? q[e.joint] : 0.0;
-    const int d = (dir && e.joint >= 0) ? dir[e.joint] : 0;
-    elementFactors(m, e, qe, d, c.factors);
-  }
-  c.factors.push_back({tail, Hook::None, -1});  // the tool or workpiece frame
-  const size_t n = c.factors.size();
-  c.prefix.resize(n);
-  c.suffix.resize(n);
-  Mat4 acc = Mat4::Identity();
-  for (size_t i = 0; i < n; ++i) {
-    c.prefix[i] = acc;
-    acc = acc * c.factors[i].pose.matrix();
-  }
-  c.total = acc;
-  acc = Mat4::Identity();
-  for (size_t i = n; i-- > 0;) {
-    c.suffix[i] = acc;
-    acc = c.factors[i].pose.matrix() * acc;
-  }
+  expandInto(m, chain, tail, q, dir, true, c);
   return c;
 }
 
 // Calls add(i, dF_i) for every factor i of the chain whose matrix depends on the parameter:
 // d(chain total)/dp = sum prefix[i] * dF_i * suffix[i].
 template <class Add>
-void forEachFactorDerivative(const KinematicModel& m, const ChainFactors& c, const std::vector<ChainElement>& chain,
-                             const Parameter& p, const double* q, const int* dir, Add&& add) {
-  const ChainElement* element = nullptr;
-  for (const auto& e : chain)
-    if (e.axis == p.axis) element = &e;
+void forEachFactorDerivative(const KinematicModel& m, const ChainFactors& c, const Parameter& p, const double* q,
+                             const int* dir, Add&& add) {
+  const ChainElement* element = c.element[static_cast<size_t>(p.axis)];
   if (!element) return;
   const double qa = element->joint >= 0 ? q[element->joint] : 0.0;
   const int d = (dir && element->joint >= 0) ? dir[element->joint] : 0;
   const auto& errs = m.errors.axes[static_cast<size_t>(p.axis)];
-  for (size_t i = 0; i < c.factors.size(); ++i) {
+  for (size_t i = c.range[static_cast<size_t>(p.axis)].first; i < c.range[static_cast<size_t>(p.axis)].second; ++i) {
     const Factor& f = c.factors[i];
-    if (f.axis != p.axis || f.hook == Hook::None) continue;
-    Mat4 df = Mat4::Zero();
+    if (f.hook == Hook::None) continue;
     if (p.kind == ParameterKind::Location && f.hook == Hook::Location) {
-      df = errorTransformDerivative(errs.location, p.component);
+      add(i, m.locationDerivatives[static_cast<size_t>(p.axis)][static_cast<size_t>(p.component)]);
     } else if (p.kind == ParameterKind::Location && f.hook == Hook::LinearJoint) {
-      const Vec6& loc = errs.location;
-      const int own = m.machine->axes[static_cast<size_t>(p.axis)].ownComponent();
+      const auto axis = static_cast<size_t>(p.axis);
+      const int own = m.machine->axes[axis].ownComponent();
       Vec3 dt;
       if (p.component == own)
-        dt = element->sign * (rotationXYZ(loc[kA], loc[kB], loc[kC]) * element->direction);
+        dt = element->sign * m.tiltedDirections[axis];
       else if (p.component >= 3)
-        dt = element->sign * (qa + loc[own]) *
-             (rotationXYZDerivative(loc[kA], loc[kB], loc[kC], p.component - 3) * element->direction);
+        dt = element->sign * (qa + errs.location[own]) *
+             m.tiltedDirectionDerivatives[axis][static_cast<size_t>(p.component - 3)];
       else
         continue;
+      Mat4 df = Mat4::Zero();
       df.block<3, 1>(0, 3) = dt;
+      add(i, df);
     } else if (p.kind == ParameterKind::Motion && f.hook == Hook::Motion) {
       Vec6 comps;
       for (int k = 0; k < 6; ++k) comps[k] = errs.motion[static_cast<size_t>(k)].value(qa, d);
-      df = errorTransformDerivative(comps, p.component) *
-           errs.motion[static_cast<size_t>(p.component)].basis(p.index, qa, d);
-    } else {
-      continue;
+      add(i, Mat4(errorTransformDerivative(comps, p.component) *
+                  errs.motion[static_cast<size_t>(p.component)].basis(p.index, qa, d)));
     }
-    add(i, df);
   }
 }
 
-Mat4 chainDerivative(const KinematicModel& m, const ChainFactors& c, const std::vector<ChainElement>& chain,
-                     const Parameter& p, const double* q, const int* dir) {
+Mat4 chainDerivative(const KinematicModel& m, const ChainFactors& c, const Parameter& p, const double* q,
+                     const int* dir) {
   Mat4 sum = Mat4::Zero();
-  forEachFactorDerivative(m, c, chain, p, q, dir,
-                          [&](size_t i, const Mat4& df) { sum += c.prefix[i] * df * c.suffix[i]; });
+  forEachFactorDerivative(m, c, p, q, dir,
+                          [&](size_t i, const Mat4& df) { sum += c.prefix[i].matrix() * df * c.suffix[i].matrix(); });
   return sum;
 }
 
-// d(chain total)/dp applied to the point v, with suffixV[i] = suffix[i] * v precomputed.
-Vec4 chainDerivativeAt(const KinematicModel& m, const ChainFactors& c, const std::vector<ChainElement>& chain,
-                       const Parameter& p, const double* q, const int* dir, const std::vector<Vec4>& suffixV) {
-  Vec4 sum = Vec4::Zero();
-  forEachFactorDerivative(m, c, chain, p, q, dir,
-                          [&](size_t i, const Mat4& df) { sum += c.prefix[i] * (df * suffixV[i]); });
+// d(chain total)/dp applied to v, given the point total * v: with u = prefix[i+1]^-1 (total v)
+// the point after factor i, each factor adds prefix[i] dF_i u (a direction: dF's last row is 0).
+Vec3 chainDerivativeAt(const KinematicModel& m, const ChainFactors& c, const Parameter& p, const double* q,
+                       const int* dir, const Vec3& totalV) {
+  Vec3 sum = Vec3::Zero();
+  forEachFactorDerivative(m, c, p, q, dir, [&](size_t i, const Mat4& df) {
+    const Pose& after = c.prefix[i + 1];
+    const Vec3 u = after.linear().transpose() * (totalV - after.translation());
+    sum += c.prefix[i].linear() * (df.topLeftCorner<3, 3>() * u + df.block<3, 1>(0, 3));
+  });
   return sum;
-}
-
-std::vector<Vec4> suffixApplied(const ChainFactors& c, const Vec4& v) {
-  std::vector<Vec4> out(c.factors.size());
-  Vec4 acc = v;
-  for (size_t i = c.factors.size(); i-- > 0;) {
-    out[i] = acc;
-    acc = c.factors[i].pose.matrix() * acc;
-  }
-  return out;
 }
 
 }  // namespace
@@ -116,8 +120,9 @@ ParameterJacobian parameterJacobian(const KinematicModel& m, const std::vector<P
   if (!m.withErrors) throw std::logic_error("parameterJacobian needs a model compiled with errors");
   const auto tool = expand(m, m.toolChain, m.toolFrame, q, dir);
   const auto wp = expand(m, m.workpieceChain, m.workpieceFrame, q, dir);
-  const Mat4 wInv = wp.total.inverse();
-  const Mat4 pose = m.alignment.matrix() * wInv * tool.total;
+  const Mat4 wInv = wp.total.inverse().matrix();
+  const Mat4 toolTotal = tool.total.matrix();
+  const Mat4 pose = m.alignment.matrix() * wInv * toolTotal;
   const Mat3 r = pose.topLeftCorner<3, 3>();
 
   const bool aligned = m.machine->alignment == WorkpieceAlignment::Machine;
@@ -127,7 +132,7 @@ ParameterJacobian parameterJacobian(const KinematicModel& m, const std::vector<P
     const auto& qr = m.machine->referencePose;
     ref = expand(m, m.workpieceChain, m.workpieceFrame, qr.data(), nullptr);
     // M_WC = N^-1 * W_act(q_ref)  =>  N^-1 = M_WC * W_act(q_ref)^-1
-    nominalRefInv = m.alignment.matrix() * ref.total.inverse();
+    nominalRefInv = m.alignment.matrix() * ref.total.inverse().matrix();
   }
 
   Pose nominalPose = Pose::Identity();
@@ -141,9 +146,9 @@ ParameterJacobian parameterJacobian(const KinematicModel& m, const std::vector<P
   ParameterJacobian jac(6, static_cast<Eigen::Index>(parameters.size()));
   for (size_t k = 0; k < parameters.size(); ++k) {
     const Parameter& p = parameters[k];
-    Mat4 d = m.alignment.matrix() * wInv * chainDerivative(m, tool, m.toolChain, p, q, dir);
-    d -= m.alignment.matrix() * wInv * chainDerivative(m, wp, m.workpieceChain, p, q, dir) * wInv * tool.total;
-    if (aligned) d += nominalRefInv * chainDerivative(m, ref, m.workpieceChain, p, m.machine->referencePose.data(), nullptr) * wInv * tool.total;
+    Mat4 d = m.alignment.matrix() * wInv * chainDerivative(m, tool, p, q, dir);
+    d -= m.alignment.matrix() * wInv * chainDerivative(m, wp, p, q, dir) * wInv * toolTotal;
+    if (aligned) d += nominalRefInv * chainDerivative(m, ref, p, m.machine->referencePose.data(), nullptr) * wInv * toolTotal;
     const Mat3 omegaHat = d.topLeftCorner<3, 3>() * r.transpose();
     const Vec3 omega(omegaHat(2, 1), omegaHat(0, 2), omegaHat(1, 0));
     jac.block<3, 1>(0, static_cast<Eigen::Index>(k)) = d.block<3, 1>(0, 3);
@@ -155,37 +160,33 @@ ParameterJacobian parameterJacobian(const KinematicModel& m, const std::vector<P
 PointJacobian pointJacobian(const KinematicModel& m, const std::vector<Parameter>& parameters, const double* q,
                             const int* dir, const Vec3& toolPoint) {
   if (!m.withErrors) throw std::logic_error("pointJacobian needs a model compiled with errors");
-  const auto tool = expand(m, m.toolChain, m.toolFrame, q, dir);
-  const auto wp = expand(m, m.workpieceChain, m.workpieceFrame, q, dir);
-  const Mat4 wInv = wp.total.inverse();
-  const Mat4 align = m.alignment.matrix();
-  const Vec4 local = toolPoint.homogeneous();
-  const Vec4 inBed = tool.total * local;
-  const Vec4 beforeAlignment = wInv * inBed;
+  // Per-thread scratch: this runs once per reading in identifications.
+  thread_local ChainFactors tool, wp, ref;
+  expandInto(m, m.toolChain, m.toolFrame, q, dir, false, tool);
+  expandInto(m, m.workpieceChain, m.workpieceFrame, q, dir, false, wp);
+  const Pose wInv = wp.total.inverse();
+  const Vec3 inBed = tool.total * toolPoint;
+  const Vec3 beforeAlignment = wInv * inBed;
   PointJacobian out;
-  out.point = (align * beforeAlignment).head<3>();
+  out.point = m.alignment * beforeAlignment;
+  out.toolRotation = m.alignment.linear() * wInv.linear() * tool.total.linear();
   out.jacobian.resize(3, static_cast<Eigen::Index>(parameters.size()));
 
-  const auto toolV = suffixApplied(tool, local);
-  const auto wpV = suffixApplied(wp, beforeAlignment);
+  // d(W^-1 T x) = W^-1 (dT x - dW (W^-1 T x)): both chains see the same bed point.
   const bool aligned = m.machine->alignment == WorkpieceAlignment::Machine;
-  ChainFactors ref;
-  Mat4 nominalRefInv = Mat4::Identity();
-  std::vector<Vec4> refV;
+  Mat3 refToWorkpiece = Mat3::Identity();
+  Vec3 refPoint = Vec3::Zero();
   if (aligned) {
-    ref = expand(m, m.workpieceChain, m.workpieceFrame, m.machine->referencePose.data(), nullptr);
-    nominalRefInv = align * ref.total.inverse();
-    refV = suffixApplied(ref, beforeAlignment);
+    expandInto(m, m.workpieceChain, m.workpieceFrame, m.machine->referencePose.data(), nullptr, false, ref);
+    refToWorkpiece = m.alignment.linear() * ref.total.linear().transpose();
+    refPoint = ref.total * beforeAlignment;
   }
-  const Mat4 alignWInv = align * wInv;
+  const Mat3 bedToWorkpiece = m.alignment.linear() * wInv.linear();
   for (size_t k = 0; k < parameters.size(); ++k) {
     const Parameter& p = parameters[k];
-    Vec4 d = alignWInv * (chainDerivativeAt(m, tool, m.toolChain, p, q, dir, toolV) -
-                          chainDerivativeAt(m, wp, m.workpieceChain, p, q, dir, wpV));
-    if (aligned)
-      d += nominalRefInv *
-           chainDerivativeAt(m, ref, m.workpieceChain, p, m.machine->referencePose.data(), nullptr, refV);
-    out.jacobian.col(static_cast<Eigen::Index>(k)) = d.head<3>();
+    Vec3 d = bedToWorkpiece * (chainDerivativeAt(m, tool, p, q, dir, inBed) - chainDerivativeAt(m, wp, p, q, dir, inBed));
+    if (aligned) d += refToWorkpiece * chainDerivativeAt(m, ref, p, m.machine->referencePose.data(), nullptr, refPoint);
+    out.jacobian.col(static_cast<Eigen::Index>(k)) = d;
   }
   return out;
 }

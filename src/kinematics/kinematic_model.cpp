@@ -136,7 +136,7 @@ Vec3 linearJointTranslation(const KinematicModel& m, const ChainElement& e, doub
   if (!m.withErrors) return e.sign * q * e.direction;
   const Vec6& loc = m.errors.axes[static_cast<size_t>(e.axis)].location;
   const double zero = loc[m.machine->axes[static_cast<size_t>(e.axis)].ownComponent()];
-  return e.sign * (q + zero) * (rotationXYZ(loc[kA], loc[kB], loc[kC]) * e.direction);
+  return e.sign * (q + zero) * m.tiltedDirections[static_cast<size_t>(e.axis)];
 }
 
 Pose jointPose(const KinematicModel& m, const ChainElement& e, double q) {
@@ -152,16 +152,20 @@ Pose jointPose(const KinematicModel& m, const ChainElement& e, double q) {
 
 void elementFactors(const KinematicModel& m, const ChainElement& e, double q, int dir, std::vector<Factor>& out) {
   const bool motion = hasMotionErrors(m, e.axis);
-  auto pushMotion = [&]() {
-    out.push_back({translation(e.location), Hook::None, e.axis});
-    out.push_back({errorTransform(motionComponents(m, e.axis, q, dir)), Hook::Motion, e.axis});
-    out.push_back({translation(-e.location), Hook::None, e.axis});
+  // Constant translations by zero are left out.
+  auto pushTranslation = [&](const Vec3& t) {
+    if (!t.isZero(0.0)) out.push_back({translation(t), Hook::None, e.axis});
   };
-  out.push_back({translation(e.offset), Hook::None, e.axis});
+  auto pushMotion = [&]() {
+    pushTranslation(e.location);
+    out.push_back({errorTransform(motionComponents(m, e.axis, q, dir)), Hook::Motion, e.axis});
+    pushTranslation(-e.location);
+  };
+  pushTranslation(e.offset);
   if (m.withErrors && e.type != AxisType::Linear) {
-    out.push_back({translation(e.location), Hook::None, e.axis});
-    out.push_back({errorTransform(m.errors.axes[static_cast<size_t>(e.axis)].location), Hook::Location, e.axis});
-    out.push_back({translation(-e.location), Hook::None, e.axis});
+    pushTranslation(e.location);
+    out.push_back({m.locationTransforms[static_cast<size_t>(e.axis)], Hook::Location, e.axis});
+    pushTranslation(-e.location);
   }
   if (motion && e.frame == ErrorFrame::Fixed) pushMotion();
   if (e.type != AxisType::Spindle)
@@ -175,6 +179,19 @@ KinematicModel compile(std::shared_ptr<const Machine> machine, const ErrorModel&
   m.errors = errors;
   m.withErrors = withErrors;
   m.jointCount = machine->commandedCount();
+  if (withErrors)
+    for (size_t a = 0; a < errors.axes.size(); ++a) {
+      const Vec6& loc = errors.axes[a].location;
+      m.locationTransforms.push_back(errorTransform(loc));
+      std::array<Mat4, 6> d;
+      for (int k = 0; k < 6; ++k) d[static_cast<size_t>(k)] = errorTransformDerivative(loc, k);
+      m.locationDerivatives.push_back(d);
+      const Vec3& dir = machine->axes[a].direction;
+      m.tiltedDirections.push_back(rotationXYZ(loc[kA], loc[kB], loc[kC]) * dir);
+      std::array<Vec3, 3> t;
+      for (int k = 0; k < 3; ++k) t[static_cast<size_t>(k)] = rotationXYZDerivative(loc[kA], loc[kB], loc[kC], k) * dir;
+      m.tiltedDirectionDerivatives.push_back(t);
+    }
   m.toolChain = buildChain(*machine, machine->toolChain, +1.0);
   m.workpieceChain = buildChain(*machine, machine->workpieceChain, -1.0);
   m.toolFrame = translation(machine->toolOffset);

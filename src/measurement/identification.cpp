@@ -2,7 +2,9 @@
 
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include <Eigen/Dense>
 
@@ -11,6 +13,11 @@ namespace {
 
 constexpr double kTypicalLength = 1e-3;  // 1 um
 constexpr double kTypicalAngle = 1e-5;   // 10 urad: 1 um over 100 mm
+// Poses per residual block without a robust loss (with one, each pose is its own block so
+// that the loss acts per reading): fewer blocks, less solver bookkeeping.
+constexpr Eigen::Index kPosesPerBlock = 64;
+
+using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 std::vector<SetupParameter> setupOf(const MeasurementRun& run) {
   std::vector<SetupParameter> out;
@@ -19,126 +26,193 @@ std::vector<SetupParameter> setupOf(const MeasurementRun& run) {
   return out;
 }
 
-// The state every residual block reads: the model compiled at the current estimate, and
-// the runs with their current set-up errors.
+bool allZero(const IdentificationProblem& p) {
+  for (const auto& par : parameterCatalogue(*p.machine, p.start))
+    if (parameterValue(p.start, par) != 0.0) return false;
+  for (const auto& r : p.runs)
+    for (double e : r.setup.errors)
+      if (e != 0.0) return false;
+  return true;
+}
+
+// The stacked problem at one estimate: the model compiled there, the runs with their set-up
+// errors, and the layout of the stacked readings (rows) and unknowns (columns). `jacobian`
+// and `residual` hold the evaluation with derivatives at `point`: complete when `valid`,
+// being filled block by block during the solver's evaluation when `filling`. `current` is
+// the estimate the model is compiled at.
 struct State {
-  const IdentificationProblem* problem = nullptr;
+  const IdentificationProblem* problem;
   ErrorModel errors;
   KinematicModel model, nominal;
   std::vector<MeasurementRun> runs;
-  std::vector<std::vector<SetupParameter>> setup;    // per run
+  std::vector<std::vector<SetupParameter>> setup;   // per run
   std::vector<std::optional<PointJacobian>> setAt;  // per run, ballbar set at the tool ball
+  std::vector<Eigen::Index> rowStart, colStart;
+  Eigen::Index rows = 0, cols = 0;
 
-  explicit State(const IdentificationProblem& p) : problem(&p), errors(p.start), runs(p.runs) {
+  RowMajorMatrix jacobian;
+  Eigen::VectorXd residual;
+  std::vector<double> point;    // machine values then set-up values at which they hold
+  std::vector<double> current;  // the same for the compiled model
+  bool valid = false, filling = false;
+  bool setAtReady = false;  // setAt holds the derivatives at `current`
+
+  // aboutNominal: every error parameter and set-up error at zero, the functions kept.
+  State(const IdentificationProblem& p, bool aboutNominal) : problem(&p), errors(p.start), runs(p.runs) {
+    if (aboutNominal) {
+      for (const auto& par : parameterCatalogue(*p.machine, p.start)) setParameterValue(errors, par, 0.0);
+      for (auto& r : runs) r.setup.errors = {};
+    }
     nominal = compileNominal(p.machine);
-    for (const auto& r : runs) setup.push_back(setupOf(r));
+    cols = static_cast<Eigen::Index>(p.parameters.size());
+    for (const auto& r : runs) {
+      setup.push_back(setupOf(r));
+      rowStart.push_back(rows);
+      colStart.push_back(cols);
+      rows += r.poses() * readingSize(r.instrument);
+      cols += static_cast<Eigen::Index>(setup.back().size());
+    }
     setAt.resize(runs.size());
     recompile(true);
+    current = values();
   }
-  void setMachine(const double* values) {
-    for (size_t k = 0; k < problem->parameters.size(); ++k) setParameterValue(errors, problem->parameters[k], values[k]);
+  std::vector<double> values() const {
+    std::vector<double> v;
+    for (const auto& par : problem->parameters) v.push_back(parameterValue(errors, par));
+    for (size_t r = 0; r < runs.size(); ++r)
+      for (auto s : setup[r]) v.push_back(runs[r].setup.errors[static_cast<size_t>(s)]);
+    return v;
   }
-  void setSetup(size_t run, const double* values) {
-    for (size_t k = 0; k < setup[run].size(); ++k) runs[run].setup.errors[static_cast<size_t>(setup[run][k])] = values[k];
+  void set(const std::vector<double>& v) {
+    size_t k = 0;
+    for (const auto& par : problem->parameters) setParameterValue(errors, par, v[k++]);
+    for (size_t r = 0; r < runs.size(); ++r)
+      for (auto s : setup[r]) runs[r].setup.errors[static_cast<size_t>(s)] = v[k++];
   }
   void recompile(bool jacobians) {
     model = compile(problem->machine, errors, true);
+    setAtReady = jacobians;
     for (size_t r = 0; r < runs.size(); ++r)
       setAt[r] = jacobians && runs[r].setup.setAt
                      ? std::optional(pointJacobian(model, problem->parameters, runs[r].setup.setAt->data(), nullptr,
                                                    runs[r].setup.toolBall))
                      : std::nullopt;
   }
-  ReadingJacobian evaluate(size_t run, Eigen::Index i) const {
-    return readingJacobian(model, nominal, runs[run], i, problem->parameters, setup[run],
-                           setAt[run] ? &*setAt[run] : nullptr);
+  // Poses [begin, end) of one run into the stacked jacobian and residual.
+  void evaluate(size_t run, Eigen::Index begin, Eigen::Index end) {
+    const auto& r = runs[run];
+    const int m = readingSize(r.instrument);
+    const auto machineCols = static_cast<Eigen::Index>(problem->parameters.size());
+    for (Eigen::Index i = begin; i < end; ++i) {
+      const auto rj = readingJacobian(model, nominal, r, i, problem->parameters, setup[run], setAt[run] ? &*setAt[run] : nullptr);
+      const Eigen::Index row = rowStart[run] + i * m;
+      jacobian.block(row, 0, m, machineCols) = rj.machine;
+      if (rj.setup.cols()) jacobian.block(row, colStart[run], m, rj.setup.cols()) = rj.setup;
+      residual.segment(row, m) = rj.reading;
+      if (r.readings.rows() == r.poses()) residual.segment(row, m) -= r.readings.row(i).transpose();
+    }
   }
+  void evaluateAll(int threads) {
+    jacobian.setZero(rows, cols);
+    residual.resize(rows);
+    std::vector<Eigen::Index> poseStart{0};
+    for (const auto& r : runs) poseStart.push_back(poseStart.back() + r.poses());
+    parallelFor(poseStart.back(), threads, [&](long b, long e) {
+      size_t r = static_cast<size_t>(std::upper_bound(poseStart.begin(), poseStart.end(), b) - poseStart.begin()) - 1;
+      for (long i = b; i < e;) {
+        const long end = std::min<long>(e, poseStart[r + 1]);
+        evaluate(r, i - poseStart[r], end - poseStart[r]);
+        i = end;
+        ++r;
+      }
+    });
+    point = current;
+    valid = true;
+    filling = false;
+  }
+  bool residualsAtCurrent() const { return valid && point == current; }
 };
 
 class Callback : public ceres::EvaluationCallback {
  public:
   Callback(State& state, const std::vector<double>& machine, const std::vector<std::vector<double>>& setup)
       : state_(state), machine_(machine), setup_(setup) {}
-  void PrepareForEvaluation(bool jacobians, bool newPoint) override {
-    if (!newPoint && !(jacobians && !withJacobians_)) return;
-    if (!machine_.empty()) state_.setMachine(machine_.data());
-    for (size_t r = 0; r < setup_.size(); ++r)
-      if (!setup_[r].empty()) state_.setSetup(r, setup_[r].data());
-    state_.recompile(jacobians);
-    withJacobians_ = jacobians;
+  void PrepareForEvaluation(bool jacobians, bool) override {
+    finish(state_);
+    std::vector<double> v = machine_;
+    for (const auto& s : setup_) v.insert(v.end(), s.begin(), s.end());
+    if (v != state_.current || (jacobians && !state_.setAtReady)) {
+      state_.set(v);
+      state_.recompile(jacobians);
+      state_.current = v;
+    }
+    if (jacobians && !(state_.valid && state_.point == v)) {
+      // Every block fills its rows during this evaluation; set-up columns of other runs stay 0.
+      state_.jacobian.setZero(state_.rows, state_.cols);
+      state_.residual.resize(state_.rows);
+      state_.point = v;
+      state_.valid = false;
+      state_.filling = true;
+    }
+  }
+  // After an evaluation that filled every block's rows.
+  static void finish(State& state) {
+    if (state.filling) state.valid = true, state.filling = false;
   }
 
  private:
   State& state_;
   const std::vector<double>& machine_;
   const std::vector<std::vector<double>>& setup_;
-  bool withJacobians_ = false;
 };
 
-// One pose of one run: residual = predicted - measured.
-class PoseResidual : public ceres::CostFunction {
+// Poses [begin, end) of one run: residual = predicted - measured.
+class PoseBlock : public ceres::CostFunction {
  public:
-  PoseResidual(const State& state, size_t run, Eigen::Index pose, int machineCount, int setupCount)
-      : state_(state), run_(run), pose_(pose), hasMachine_(machineCount > 0) {
-    set_num_residuals(readingSize(state.runs[run].instrument));
-    if (machineCount > 0) mutable_parameter_block_sizes()->push_back(machineCount);
-    if (setupCount > 0) mutable_parameter_block_sizes()->push_back(setupCount);
+  PoseBlock(State& state, size_t run, Eigen::Index begin, Eigen::Index end)
+      : state_(state), run_(run), begin_(begin), end_(end) {
+    m_ = readingSize(state.runs[run].instrument);
+    set_num_residuals(static_cast<int>((end - begin) * m_));
+    if (!state.problem->parameters.empty())
+      mutable_parameter_block_sizes()->push_back(static_cast<int>(state.problem->parameters.size()));
+    if (!state.setup[run].empty()) mutable_parameter_block_sizes()->push_back(static_cast<int>(state.setup[run].size()));
   }
   bool Evaluate(double const* const*, double* residuals, double** jacobians) const override {
     const MeasurementRun& run = state_.runs[run_];
-    const int m = num_residuals();
+    const Eigen::Index row0 = state_.rowStart[run_] + begin_ * m_, n = num_residuals();
     if (!jacobians) {
-      const Eigen::VectorXd r = predictReading(state_.model, state_.nominal, run, pose_);
-      for (int k = 0; k < m; ++k) residuals[k] = r[k] - run.readings(pose_, k);
+      if (state_.residualsAtCurrent()) {
+        Eigen::Map<Eigen::VectorXd>(residuals, n) = state_.residual.segment(row0, n);
+        return true;
+      }
+      for (Eigen::Index i = begin_; i < end_; ++i) {
+        const Eigen::VectorXd r = predictReading(state_.model, state_.nominal, run, i);
+        for (int k = 0; k < m_; ++k) residuals[(i - begin_) * m_ + k] = r[k] - run.readings(i, k);
+      }
       return true;
     }
-    const auto j = state_.evaluate(run_, pose_);
-    for (int k = 0; k < m; ++k) residuals[k] = j.reading[k] - run.readings(pose_, k);
+    if (state_.filling) state_.evaluate(run_, begin_, end_);
+    Eigen::Map<Eigen::VectorXd>(residuals, n) = state_.residual.segment(row0, n);
     int block = 0;
-    auto copy = [&](const Eigen::MatrixXd& src) {
+    const auto machineCols = static_cast<Eigen::Index>(state_.problem->parameters.size());
+    if (machineCols > 0) {
       if (jacobians[block])
-        Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(jacobians[block], src.rows(),
-                                                                                          src.cols()) = src;
+        Eigen::Map<RowMajorMatrix>(jacobians[block], n, machineCols) = state_.jacobian.block(row0, 0, n, machineCols);
       ++block;
-    };
-    if (hasMachine_) copy(j.machine);
-    if (j.setup.cols() > 0) copy(j.setup);
+    }
+    const auto setupCols = static_cast<Eigen::Index>(state_.setup[run_].size());
+    if (setupCols > 0 && jacobians[block])
+      Eigen::Map<RowMajorMatrix>(jacobians[block], n, setupCols) =
+          state_.jacobian.block(row0, state_.colStart[run_], n, setupCols);
     return true;
   }
 
  private:
-  const State& state_;
+  State& state_;
   size_t run_;
-  Eigen::Index pose_;
-  bool hasMachine_;
+  Eigen::Index begin_, end_;
+  int m_ = 1;
 };
-
-Eigen::MatrixXd stack(const State& s, const IdentificationProblem& p, int threads, Eigen::VectorXd* residual) {
-  const auto cols = problemColumns(p);
-  std::vector<Eigen::Index> rowStart(s.runs.size() + 1, 0), colStart(s.runs.size(), 0);
-  Eigen::Index col = static_cast<Eigen::Index>(p.parameters.size());
-  for (size_t r = 0; r < s.runs.size(); ++r) {
-    rowStart[r + 1] = rowStart[r] + s.runs[r].poses() * readingSize(s.runs[r].instrument);
-    colStart[r] = col;
-    col += static_cast<Eigen::Index>(s.setup[r].size());
-  }
-  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(rowStart.back(), static_cast<Eigen::Index>(cols.names.size()));
-  if (residual) residual->resize(rowStart.back());
-  for (size_t r = 0; r < s.runs.size(); ++r) {
-    const int m = readingSize(s.runs[r].instrument);
-    parallelFor(s.runs[r].poses(), threads, [&](long b, long e) {
-      for (long i = b; i < e; ++i) {
-        const auto rj = s.evaluate(r, i);
-        const Eigen::Index row = rowStart[r] + i * m;
-        j.block(row, 0, m, rj.machine.cols()) = rj.machine;
-        if (rj.setup.cols()) j.block(row, colStart[r], m, rj.setup.cols()) = rj.setup;
-        if (residual && s.runs[r].readings.rows() == s.runs[r].poses())
-          residual->segment(row, m) = rj.reading - s.runs[r].readings.row(i).transpose();
-      }
-    });
-  }
-  return j;
-}
 
 void checkReadings(const IdentificationProblem& p, Eigen::Index columns) {
   Eigen::Index total = 0;
@@ -153,11 +227,14 @@ void checkReadings(const IdentificationProblem& p, Eigen::Index columns) {
                                 " unknowns");
 }
 
+int threadCount(int requested) {
+  return requested > 0 ? requested : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 }  // namespace
 
 ProblemColumns problemColumns(const IdentificationProblem& p) {
   ProblemColumns c;
-  std::vector<double> typical;
   for (const auto& par : p.parameters) {
     c.names.push_back(par.name);
     c.dimensions.push_back(par.dimension);
@@ -174,13 +251,16 @@ ProblemColumns problemColumns(const IdentificationProblem& p) {
 }
 
 Eigen::MatrixXd stackedJacobian(const IdentificationProblem& problem, int threads) {
-  const State state(problem);
-  return stack(state, problem, threads, nullptr);
+  State state(problem, false);
+  state.evaluateAll(threadCount(threads));
+  return state.jacobian;
 }
 
 ObservabilityReport planObservability(const IdentificationProblem& problem, int threads) {
+  State state(problem, true);
+  state.evaluateAll(threadCount(threads));
   const auto cols = problemColumns(problem);
-  return analyseObservability(stackedJacobian(problem, threads), cols.names, cols.typical);
+  return analyseObservability(state.jacobian, cols.names, cols.typical);
 }
 
 IdentificationResult identify(const IdentificationProblem& problem, const IdentificationOptions& options) {
@@ -189,21 +269,28 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
   const auto n = static_cast<Eigen::Index>(out.columns.names.size());
   if (n == 0) throw std::invalid_argument("no parameter to identify");
   checkReadings(problem, n);
+  const int threads = threadCount(options.threads);
 
-  State state(problem);
-  out.observability = analyseObservability(stack(state, problem, options.threads, nullptr), out.columns.names,
-                                           out.columns.typical);
+  // Observability about the nominal machine; when the start is the nominal machine, the same
+  // evaluation is the solver's first.
+  const bool startsAtNominal = allZero(problem);
+  State state(problem, true);
+  state.evaluateAll(threads);
+  out.observability = analyseObservability(state.jacobian, out.columns.names, out.columns.typical);
   if (!out.observability.identifiable()) {
     std::string why;
     for (const auto& f : out.observability.findings()) why += (why.empty() ? "" : "; ") + f;
     throw NotIdentifiable(out.observability, "the plan cannot determine this parameter set: " + why);
+  }
+  if (!startsAtNominal) {
+    state = State(problem, false);
   }
 
   std::vector<double> machine(problem.parameters.size());
   for (size_t k = 0; k < machine.size(); ++k) machine[k] = parameterValue(problem.start, problem.parameters[k]);
   std::vector<std::vector<double>> setup(state.runs.size());
   for (size_t r = 0; r < state.runs.size(); ++r)
-    for (auto s : state.setup[r]) setup[r].push_back(state.runs[r].setup.errors[static_cast<size_t>(s)]);
+    for (auto s : state.setup[r]) setup[r].push_back(problem.runs[r].setup.errors[static_cast<size_t>(s)]);
 
   Callback callback(state, machine, setup);
   ceres::Problem::Options po;
@@ -212,34 +299,40 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
   po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem cp(po);
   ceres::HuberLoss huber(options.robustScale);
+  const Eigen::Index chunk = options.robust ? 1 : kPosesPerBlock;
   for (size_t r = 0; r < state.runs.size(); ++r) {
     std::vector<double*> blocks;
     if (!machine.empty()) blocks.push_back(machine.data());
     if (!setup[r].empty()) blocks.push_back(setup[r].data());
-    for (Eigen::Index i = 0; i < state.runs[r].poses(); ++i)
-      cp.AddResidualBlock(new PoseResidual(state, r, i, static_cast<int>(machine.size()), static_cast<int>(setup[r].size())),
+    for (Eigen::Index b = 0; b < state.runs[r].poses(); b += chunk)
+      cp.AddResidualBlock(new PoseBlock(state, r, b, std::min(b + chunk, state.runs[r].poses())),
                           options.robust ? &huber : nullptr, blocks);
   }
   ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.num_threads = options.threads;
+  so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  so.num_threads = threads;
   so.max_num_iterations = options.maxIterations;
   so.logging_type = ceres::SILENT;
   so.function_tolerance = 1e-10;
   so.parameter_tolerance = 1e-10;
   ceres::Solver::Summary summary;
   ceres::Solve(so, &cp, &summary);
+  Callback::finish(state);
   out.converged = summary.termination_type == ceres::CONVERGENCE;
   out.iterations = static_cast<int>(summary.iterations.size()) - 1;
   out.solverReport = summary.BriefReport();
 
-  // Final state, then the covariance from the Jacobian there.
-  if (!machine.empty()) state.setMachine(machine.data());
-  for (size_t r = 0; r < setup.size(); ++r)
-    if (!setup[r].empty()) state.setSetup(r, setup[r].data());
-  state.recompile(true);
-  Eigen::VectorXd residual;
-  const Eigen::MatrixXd j = stack(state, problem, options.threads, &residual);
+  // The covariance from the Jacobian at the solution (the solver's last one when it is there).
+  std::vector<double> final = machine;
+  for (const auto& s : setup) final.insert(final.end(), s.begin(), s.end());
+  if (!state.valid || state.point != final) {
+    state.set(final);
+    state.recompile(true);
+    state.current = final;
+    state.evaluateAll(threads);
+  }
+  const Eigen::MatrixXd j = state.jacobian;
+  const Eigen::VectorXd& residual = state.residual;
   out.readings = static_cast<int>(residual.size());
   out.degreesOfFreedom = out.readings - static_cast<int>(n);
   out.sigma = std::sqrt(residual.squaredNorm() / out.degreesOfFreedom);
@@ -247,15 +340,13 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
   out.residualMax = residual.cwiseAbs().maxCoeff();
   const Eigen::VectorXd scale = j.colwise().norm().transpose();
   const Eigen::MatrixXd js = j * scale.cwiseInverse().asDiagonal();
-  const Eigen::MatrixXd inv = (js.transpose() * js).ldlt().solve(Eigen::MatrixXd::Identity(n, n));
+  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(n, n);
+  normal.selfadjointView<Eigen::Lower>().rankUpdate(js.transpose());
+  const Eigen::MatrixXd inv = normal.selfadjointView<Eigen::Lower>().ldlt().solve(Eigen::MatrixXd::Identity(n, n));
   out.covariance = out.sigma * out.sigma * scale.cwiseInverse().asDiagonal() * inv * scale.cwiseInverse().asDiagonal();
   out.uncertainty = out.covariance.diagonal().cwiseSqrt();
 
-  out.values.resize(n);
-  Eigen::Index k = 0;
-  for (double v : machine) out.values[k++] = v;
-  for (const auto& s : setup)
-    for (double v : s) out.values[k++] = v;
+  out.values = Eigen::Map<const Eigen::VectorXd>(final.data(), static_cast<Eigen::Index>(final.size()));
   out.errors = state.errors;
   out.runs = state.runs;
   return out;

@@ -124,7 +124,7 @@ ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicMode
   const auto pj = pointJacobian(model, machineParameters, q, dir, toolBallActual(run));
   const Vec3& t = pj.point;
   // d(tool ball)/d(xT yT zT): the tool frame's rotation in the workpiece frame.
-  const Mat3 toolRotation = toolInWorkpiece(model, q, dir).linear();
+  const Mat3& toolRotation = pj.toolRotation;
   const int m = readingSize(run.instrument);
   ReadingJacobian out;
   out.machine.resize(m, static_cast<Eigen::Index>(machineParameters.size()));
@@ -133,8 +133,8 @@ ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicMode
 
   // Every reading is (a linear map of) the tool ball minus a target point; `sensitivity`
   // is the map, dTarget the target's derivative with respect to xW yW zW.
-  Eigen::Matrix<double, Eigen::Dynamic, 3> sensitivity(m, 3);
-  Eigen::MatrixXd targetMachine = Eigen::MatrixXd::Zero(3, out.machine.cols());
+  Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 3, 3> sensitivity(m, 3);
+  const PointJacobian* target = nullptr;  // d(target)/d(machine): a ballbar set at the tool ball
   Mat3 targetToolRotation = Mat3::Zero();  // d(target)/d(xT yT zT): a ballbar set at the tool ball
   switch (run.instrument) {
     case Instrument::Ballbar: {
@@ -143,7 +143,7 @@ ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicMode
       out.reading[0] = (t - w).norm() - run.setup.length - err(run, SetupParameter::Length);
       sensitivity = u.transpose();
       if (run.setup.setAt) {
-        if (setAtJacobian) targetMachine = setAtJacobian->jacobian;
+        target = setAtJacobian;
         targetToolRotation = toolInWorkpiece(model, run.setup.setAt->data(), nullptr).linear();
       }
       break;
@@ -171,7 +171,8 @@ ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicMode
       out.reading[0] = run.setup.direction.dot(t - toolInWorkpiece(nominal, q) * run.setup.toolBall);
       break;
   }
-  out.machine = sensitivity * (pj.jacobian - targetMachine);
+  out.machine.noalias() = sensitivity * pj.jacobian;
+  if (target) out.machine.noalias() -= sensitivity * target->jacobian;
   for (size_t k = 0; k < setupParameters.size(); ++k) {
     const auto p = setupParameters[k];
     const auto col = static_cast<Eigen::Index>(k);

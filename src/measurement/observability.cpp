@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
+#include <thread>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
@@ -10,15 +11,27 @@
 namespace mtacc {
 namespace {
 
+// The triangular factor R of a = QR (a tall), from the factors of two halves computed side
+// by side (tall-skinny QR): R of [R_top; R_bottom].
+Eigen::MatrixXd triangularFactor(const Eigen::MatrixXd& a) {
+  auto factor = [](const Eigen::MatrixXd& m) -> Eigen::MatrixXd {
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(m);
+    return qr.matrixQR().topRows(m.cols()).triangularView<Eigen::Upper>();
+  };
+  const Eigen::Index n = a.cols(), half = a.rows() / 2;
+  if (half < 4 * n) return factor(a);
+  Eigen::MatrixXd top, bottom;
+  std::thread worker([&] { top = factor(a.topRows(half)); });
+  bottom = factor(a.bottomRows(a.rows() - half));
+  worker.join();
+  Eigen::MatrixXd both(2 * n, n);
+  both << top, bottom;
+  return factor(both);
+}
+
 Eigen::MatrixXd rightSingularVectors(const Eigen::MatrixXd& a, Eigen::VectorXd& singular) {
   // SVD of the small triangular factor: cheap for many readings and few parameters.
-  Eigen::MatrixXd r;
-  if (a.rows() > a.cols()) {
-    Eigen::HouseholderQR<Eigen::MatrixXd> qr(a);
-    r = qr.matrixQR().topRows(a.cols()).triangularView<Eigen::Upper>();
-  } else {
-    r = a;
-  }
+  const Eigen::MatrixXd r = a.rows() > a.cols() ? triangularFactor(a) : a;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(r, Eigen::ComputeFullV);
   singular = svd.singularValues();
   return svd.matrixV();
@@ -69,7 +82,7 @@ ObservabilityReport analyseObservability(const Eigen::MatrixXd& jacobian, const 
   for (Eigen::Index c = rep.rank; c < m; ++c) {
     int first = -1;
     for (Eigen::Index j = 0; j < m; ++j) {
-      if (std::abs(v(j, c)) < 1e-6) continue;
+      if (std::abs(v(j, c)) < 1e-3) continue;  // below: numerical mixing, not participation
       inNull[static_cast<size_t>(j)] = true;
       if (first < 0) first = static_cast<int>(j);
       else parent[static_cast<size_t>(findRoot(parent, static_cast<int>(j)))] = findRoot(parent, first);
@@ -113,14 +126,20 @@ std::vector<std::string> ObservabilityReport::findings() const {
     for (size_t k = 0; k < g.names.size(); ++k)
       list += (k == 0 ? "" : (k + 1 == g.names.size() ? " and " : ", ")) + g.names[k];
     std::string combos;
-    for (const auto& c : g.observable) {
-      std::string term;
-      for (size_t k = 0; k < c.size(); ++k) {
-        if (std::abs(c[k]) < 1e-9) continue;
-        term += term.empty() ? fmt::format("{:.4g} {}", c[k], g.names[k])
-                             : fmt::format(" {} {:.4g} {}", c[k] < 0 ? "-" : "+", std::abs(c[k]), g.names[k]);
+    if (g.names.size() <= 4) {
+      for (const auto& c : g.observable) {
+        std::string term;
+        for (size_t k = 0; k < c.size(); ++k) {
+          if (std::abs(c[k]) < 1e-9) continue;
+          const double a = std::abs(c[k]);
+          const std::string magnitude = std::abs(a - 1.0) < 1e-9 ? "" : fmt::format("{:.4g} ", a);
+          term += term.empty() ? (c[k] < 0 ? "-" : "") + magnitude + g.names[k]
+                               : fmt::format(" {} {}{}", c[k] < 0 ? "-" : "+", magnitude, g.names[k]);
+        }
+        combos += (combos.empty() ? "" : "; ") + term;
       }
-      combos += (combos.empty() ? "" : "; ") + term;
+    } else {
+      combos = fmt::format("{} combinations of the {}", g.observable.size(), g.names.size());
     }
     const bool alike = g.names.size() == 2 && g.observable.size() == 1;
     out.push_back(list + (alike ? " act alike" : " cannot be separated") +

@@ -18,13 +18,14 @@ FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-
 @pytest.fixture(scope="module")
 def tilting_table_report(tmp_path_factory):
     out = tmp_path_factory.mktemp("report")
-    return pathlib.Path(report.build_report("tilting-table", str(out)))
+    return pathlib.Path(report.build_report("tilting-table", str(out), plan="tilting-table-rtest"))
 
 
 def test_report_is_self_contained(tilting_table_report):
     text = tilting_table_report.read_text()
     assert text.count('<figure class="plot">') >= 15
     assert "Cone-frustum test piece (seed 000)" in text and "Monte Carlo:" in text
+    assert "Measurement and identification" in text and "Identified parameters" in text
     assert not re.search(r'(src|href)\s*=\s*["\']?(https?:)?//', text)
     assert "<link" not in text and "@import" not in text and "url(http" not in text
 

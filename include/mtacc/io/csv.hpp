@@ -14,6 +14,7 @@ struct CsvTable {
   std::vector<std::string> header;
   std::vector<std::vector<double>> rows;
   std::vector<int> lines;  // source line of each row
+  int headerLine = 1;
 };
 
 // Throws InputError naming file, line and column for a wrong column count, a value that is
@@ -27,7 +28,8 @@ struct PoseTable {
   JointMatrix q;            // mm, rad
   Eigen::MatrixXi direction;  // empty when no direction column was given
 };
-PoseTable posesFromCsv(const Machine& machine, const CsvTable& table);
+// Any other column is an error unless named in `otherColumns`.
+PoseTable posesFromCsv(const Machine& machine, const CsvTable& table, const std::vector<std::string>& otherColumns = {});
 
 // Looks up the required columns by name; throws InputError when one is missing.
 std::vector<int> requireColumns(const CsvTable& table, const std::vector<std::string>& names);

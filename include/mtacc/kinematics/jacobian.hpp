@@ -24,6 +24,7 @@ ParameterJacobian parameterJacobian(const KinematicModel& model, const std::vect
 // Cheaper than parameterJacobian: no orientation rows, no nominal model.
 struct PointJacobian {
   Vec3 point;
+  Mat3 toolRotation;  // of the tool frame in the workpiece frame
   Eigen::Matrix<double, 3, Eigen::Dynamic> jacobian;
 };
 PointJacobian pointJacobian(const KinematicModel& model, const std::vector<Parameter>& parameters, const double* q,

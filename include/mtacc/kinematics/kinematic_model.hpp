@@ -3,6 +3,7 @@
 // two chains as sequences of factors, constant factors merged, ready for fast evaluation.
 // Build once per machine and error state; evaluate many poses with the free functions of
 // forward.hpp, inverse.hpp and jacobian.hpp.
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -79,6 +80,14 @@ struct KinematicModel {
   Pose alignment = Pose::Identity();  // M_WC of seed 001 eq. 12 (identity for table alignment)
   bool aligned = false;               // alignment differs from the identity
   int jointCount = 0;
+  // Per axis (with errors): the location error transform and its derivatives with respect to
+  // its six components, which do not depend on the pose.
+  std::vector<Pose> locationTransforms;
+  std::vector<std::array<Mat4, 6>> locationDerivatives;
+  // Per linear axis: the direction tilted by its location errors, and its derivatives with
+  // respect to the three tilts (A, B, C).
+  std::vector<Vec3> tiltedDirections;
+  std::vector<std::array<Vec3, 3>> tiltedDirectionDerivatives;
 };
 
 // Compiles the machine with its errors. withErrors = false gives the nominal machine.
