@@ -54,6 +54,40 @@ ChainFactors expand(const KinematicModel& m, const std::vector<ChainElement>& ch
   return c;
 }
 
+// dF of a hooked factor of element e with respect to p; false when it does not depend on p.
+bool factorDerivative(const KinematicModel& m, const ChainElement& e, Hook hook, const Parameter& p, const double* q,
+                      const int* dir, Mat4& df) {
+  if (e.axis != p.axis) return false;
+  const auto axis = static_cast<size_t>(p.axis);
+  const double qa = e.joint >= 0 ? q[e.joint] : 0.0;
+  const int d = (dir && e.joint >= 0) ? dir[e.joint] : 0;
+  const auto& errs = m.errors.axes[axis];
+  if (p.kind == ParameterKind::Location && hook == Hook::Location) {
+    df = m.locationDerivatives[axis][static_cast<size_t>(p.component)];
+    return true;
+  }
+  if (p.kind == ParameterKind::Location && hook == Hook::LinearJoint) {
+    const int own = m.machine->axes[axis].ownComponent();
+    Vec3 dt;
+    if (p.component == own)
+      dt = e.sign * m.tiltedDirections[axis];
+    else if (p.component >= 3)
+      dt = e.sign * (qa + errs.location[own]) * m.tiltedDirectionDerivatives[axis][static_cast<size_t>(p.component - 3)];
+    else
+      return false;
+    df.setZero();
+    df.block<3, 1>(0, 3) = dt;
+    return true;
+  }
+  if (p.kind == ParameterKind::Motion && hook == Hook::Motion) {
+    Vec6 comps;
+    for (int k = 0; k < 6; ++k) comps[k] = errs.motion[static_cast<size_t>(k)].value(qa, d);
+    df = errorTransformDerivative(comps, p.component) * errs.motion[static_cast<size_t>(p.component)].basis(p.index, qa, d);
+    return true;
+  }
+  return false;
+}
+
 // Calls add(i, dF_i) for every factor i of the chain whose matrix depends on the parameter:
 // d(chain total)/dp = sum prefix[i] * dF_i * suffix[i].
 template <class Add>
@@ -61,35 +95,61 @@ void forEachFactorDerivative(const KinematicModel& m, const ChainFactors& c, con
                              const int* dir, Add&& add) {
   const ChainElement* element = c.element[static_cast<size_t>(p.axis)];
   if (!element) return;
-  const double qa = element->joint >= 0 ? q[element->joint] : 0.0;
-  const int d = (dir && element->joint >= 0) ? dir[element->joint] : 0;
-  const auto& errs = m.errors.axes[static_cast<size_t>(p.axis)];
-  for (size_t i = c.range[static_cast<size_t>(p.axis)].first; i < c.range[static_cast<size_t>(p.axis)].second; ++i) {
-    const Factor& f = c.factors[i];
-    if (f.hook == Hook::None) continue;
-    if (p.kind == ParameterKind::Location && f.hook == Hook::Location) {
-      add(i, m.locationDerivatives[static_cast<size_t>(p.axis)][static_cast<size_t>(p.component)]);
-    } else if (p.kind == ParameterKind::Location && f.hook == Hook::LinearJoint) {
-      const auto axis = static_cast<size_t>(p.axis);
-      const int own = m.machine->axes[axis].ownComponent();
-      Vec3 dt;
-      if (p.component == own)
-        dt = element->sign * m.tiltedDirections[axis];
-      else if (p.component >= 3)
-        dt = element->sign * (qa + errs.location[own]) *
-             m.tiltedDirectionDerivatives[axis][static_cast<size_t>(p.component - 3)];
-      else
+  Mat4 df;
+  for (size_t i = c.range[static_cast<size_t>(p.axis)].first; i < c.range[static_cast<size_t>(p.axis)].second; ++i)
+    if (c.factors[i].hook != Hook::None && factorDerivative(m, *element, c.factors[i].hook, p, q, dir, df)) add(i, df);
+}
+
+// The frames around every hooked factor of a chain (what the point Jacobian needs, without
+// the products of the whole chain at every factor).
+struct HookFrame {
+  const ChainElement* element;
+  Hook hook;
+  Pose before, after;
+};
+struct HookWalk {
+  std::vector<HookFrame> hooks;
+  std::vector<std::pair<size_t, size_t>> byAxis;  // hooks of each machine axis
+  std::vector<Factor> buffer;
+  Pose total;
+};
+
+void walkHooks(const KinematicModel& m, const std::vector<ChainElement>& chain, const Pose& tail, const double* q,
+               const int* dir, HookWalk& w) {
+  w.hooks.clear();
+  w.byAxis.assign(m.machine->axes.size(), {0, 0});
+  Pose acc = Pose::Identity();
+  for (const auto& e : chain) {
+    w.buffer.clear();
+    elementFactors(m, e, e.joint >= 0 ? q[e.joint] : 0.0, (dir && e.joint >= 0) ? dir[e.joint] : 0, w.buffer);
+    const size_t begin = w.hooks.size();
+    for (const auto& f : w.buffer) {
+      if (f.hook == Hook::None) {
+        acc = acc * f.pose;
         continue;
-      Mat4 df = Mat4::Zero();
-      df.block<3, 1>(0, 3) = dt;
-      add(i, df);
-    } else if (p.kind == ParameterKind::Motion && f.hook == Hook::Motion) {
-      Vec6 comps;
-      for (int k = 0; k < 6; ++k) comps[k] = errs.motion[static_cast<size_t>(k)].value(qa, d);
-      add(i, Mat4(errorTransformDerivative(comps, p.component) *
-                  errs.motion[static_cast<size_t>(p.component)].basis(p.index, qa, d)));
+      }
+      w.hooks.push_back({&e, f.hook, acc, acc * f.pose});
+      acc = w.hooks.back().after;
     }
+    w.byAxis[static_cast<size_t>(e.axis)] = {begin, w.hooks.size()};
   }
+  w.total = acc * tail;
+}
+
+// d(chain total)/dp applied to the point whose image under the chain is `point`: each hooked
+// factor adds before * dF * (after^-1 point), a direction (dF's last row is 0).
+Vec3 hookDerivativeAt(const KinematicModel& m, const HookWalk& w, const Parameter& p, const double* q, const int* dir,
+                      const Vec3& point) {
+  Vec3 sum = Vec3::Zero();
+  Mat4 df;
+  const auto [begin, end] = w.byAxis[static_cast<size_t>(p.axis)];
+  for (size_t h = begin; h < end; ++h) {
+    const HookFrame& f = w.hooks[h];
+    if (!factorDerivative(m, *f.element, f.hook, p, q, dir, df)) continue;
+    const Vec3 u = f.after.linear().transpose() * (point - f.after.translation());
+    sum += f.before.linear() * (df.topLeftCorner<3, 3>() * u + df.block<3, 1>(0, 3));
+  }
+  return sum;
 }
 
 Mat4 chainDerivative(const KinematicModel& m, const ChainFactors& c, const Parameter& p, const double* q,
@@ -97,19 +157,6 @@ Mat4 chainDerivative(const KinematicModel& m, const ChainFactors& c, const Param
   Mat4 sum = Mat4::Zero();
   forEachFactorDerivative(m, c, p, q, dir,
                           [&](size_t i, const Mat4& df) { sum += c.prefix[i].matrix() * df * c.suffix[i].matrix(); });
-  return sum;
-}
-
-// d(chain total)/dp applied to v, given the point total * v: with u = prefix[i+1]^-1 (total v)
-// the point after factor i, each factor adds prefix[i] dF_i u (a direction: dF's last row is 0).
-Vec3 chainDerivativeAt(const KinematicModel& m, const ChainFactors& c, const Parameter& p, const double* q,
-                       const int* dir, const Vec3& totalV) {
-  Vec3 sum = Vec3::Zero();
-  forEachFactorDerivative(m, c, p, q, dir, [&](size_t i, const Mat4& df) {
-    const Pose& after = c.prefix[i + 1];
-    const Vec3 u = after.linear().transpose() * (totalV - after.translation());
-    sum += c.prefix[i].linear() * (df.topLeftCorner<3, 3>() * u + df.block<3, 1>(0, 3));
-  });
   return sum;
 }
 
@@ -161,9 +208,9 @@ PointJacobian pointJacobian(const KinematicModel& m, const std::vector<Parameter
                             const int* dir, const Vec3& toolPoint) {
   if (!m.withErrors) throw std::logic_error("pointJacobian needs a model compiled with errors");
   // Per-thread scratch: this runs once per reading in identifications.
-  thread_local ChainFactors tool, wp, ref;
-  expandInto(m, m.toolChain, m.toolFrame, q, dir, false, tool);
-  expandInto(m, m.workpieceChain, m.workpieceFrame, q, dir, false, wp);
+  thread_local HookWalk tool, wp, ref;
+  walkHooks(m, m.toolChain, m.toolFrame, q, dir, tool);
+  walkHooks(m, m.workpieceChain, m.workpieceFrame, q, dir, wp);
   const Pose wInv = wp.total.inverse();
   const Vec3 inBed = tool.total * toolPoint;
   const Vec3 beforeAlignment = wInv * inBed;
@@ -177,15 +224,15 @@ PointJacobian pointJacobian(const KinematicModel& m, const std::vector<Parameter
   Mat3 refToWorkpiece = Mat3::Identity();
   Vec3 refPoint = Vec3::Zero();
   if (aligned) {
-    expandInto(m, m.workpieceChain, m.workpieceFrame, m.machine->referencePose.data(), nullptr, false, ref);
+    walkHooks(m, m.workpieceChain, m.workpieceFrame, m.machine->referencePose.data(), nullptr, ref);
     refToWorkpiece = m.alignment.linear() * ref.total.linear().transpose();
     refPoint = ref.total * beforeAlignment;
   }
   const Mat3 bedToWorkpiece = m.alignment.linear() * wInv.linear();
   for (size_t k = 0; k < parameters.size(); ++k) {
     const Parameter& p = parameters[k];
-    Vec3 d = bedToWorkpiece * (chainDerivativeAt(m, tool, p, q, dir, inBed) - chainDerivativeAt(m, wp, p, q, dir, inBed));
-    if (aligned) d += refToWorkpiece * chainDerivativeAt(m, ref, p, m.machine->referencePose.data(), nullptr, refPoint);
+    Vec3 d = bedToWorkpiece * (hookDerivativeAt(m, tool, p, q, dir, inBed) - hookDerivativeAt(m, wp, p, q, dir, inBed));
+    if (aligned) d += refToWorkpiece * hookDerivativeAt(m, ref, p, m.machine->referencePose.data(), nullptr, refPoint);
     out.jacobian.col(static_cast<Eigen::Index>(k)) = d;
   }
   return out;
