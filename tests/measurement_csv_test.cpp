@@ -1,0 +1,73 @@
+// Measurement files: what `simulate` writes reads back as the same run (poses to the 1e-9 mm /
+// deg of the printed digits, readings to the 1e-6 um printed), and a ballbar export without
+// axis columns gives the poses of the circle it names.
+#include <gtest/gtest.h>
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/measurement/measurement_csv.hpp"
+#include "mtacc/measurement/simulation.hpp"
+#include "mtacc/measurement/test_paths.hpp"
+#include "mtacc/measurement/test_plan.hpp"
+#include "test_helpers.hpp"
+
+namespace mtacc {
+namespace {
+
+TEST(MeasurementCsv, WrittenRunsReadBackUnchanged) {
+  const auto machine = test::bundled("tilting-table");
+  const auto nominal = compileNominal(machine);
+  const auto model = compile(machine, loadMachineErrors(*machine));
+  for (auto run : loadTestPlan(nominal, "tilting-table-rtest").runs) {
+    simulateRun(model, nominal, run);
+    const auto back = parseMeasurementCsv(nominal, measurementCsv(*machine, run), run.name + ".csv");
+    SCOPED_TRACE(run.name);
+    EXPECT_EQ(back.name, run.name);
+    EXPECT_EQ(back.instrument, run.instrument);
+    EXPECT_EQ(back.estimate, run.estimate);
+    ASSERT_EQ(back.poses(), run.poses());
+    EXPECT_LT((back.q - run.q).cwiseAbs().maxCoeff(), 1e-9);
+    EXPECT_EQ(back.direction, run.direction);
+    EXPECT_LT((back.readings - run.readings).cwiseAbs().maxCoeff(), 1e-9);
+    EXPECT_LT((back.setup.target - run.setup.target).norm(), 1e-9);
+    if (run.setup.setAt) {
+      ASSERT_TRUE(back.setup.setAt.has_value());
+      for (size_t j = 0; j < run.setup.setAt->size(); ++j) EXPECT_NEAR((*back.setup.setAt)[j], (*run.setup.setAt)[j], 1e-9);
+    }
+  }
+}
+
+TEST(MeasurementCsv, BallbarExportWithoutAxisColumns) {
+  const auto machine = test::bundled("three-axis-vertical");
+  const auto nominal = compileNominal(machine);
+  BallbarCircleSpec spec;
+  spec.centre = Vec3(300, 200, 250);
+  spec.points = 36;
+  spec.bothDirections = false;
+  auto run = ballbarCircle(nominal, spec);
+  std::string text = "# instrument: ballbar\n# length: 100 mm\n# target: 300, 200, 250 mm\n# plane: XY\nangle_deg,dL_um\n";
+  for (size_t i = 0; i < run.angle.size(); ++i) text += std::to_string(run.angle[i] / kDeg) + ",0.5\n";
+  const auto back = parseMeasurementCsv(nominal, text, "export.csv");
+  EXPECT_LT((back.q - run.q).cwiseAbs().maxCoeff(), 1e-5);  // angles printed to 1e-6 deg
+  EXPECT_NEAR(back.readings(3, 0), 0.5e-3, 1e-15);
+}
+
+TEST(MeasurementCsv, BadPlansNameTheKey) {
+  const auto nominal = compileNominal(test::bundled("tilting-table"));
+  try {
+    parseTestPlan(nominal, "runs:\n  - circle: {plane: XY, radius: 100}\n", "plan.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().line, 2);
+    EXPECT_EQ(e.where().key, "runs[0].circle.radius");
+  }
+  try {
+    parseTestPlan(nominal, "runs:\n  - sphere: {axis: A, from: 0 deg, to: 90 deg, spheres: [[0 mm, 0 mm, 0 mm]]}\n", "plan.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a rotary axis"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parseTestPlan(nominal, "runs:\n  - helix: {}\n", "plan.yaml"), InputError);
+}
+
+}  // namespace
+}  // namespace mtacc
