@@ -1,0 +1,52 @@
+#pragma once
+// Dynamics of a rigid-body structure model at given axis positions (seed 000 part II, §1.6-
+// 1.10 of the reference): assembly of M, K and viscous D (6 DOF per body: translation of the
+// centre of gravity and rotation vector, global axes), undamped and damped modes, the 3x3
+// FRF of the TCP relative to the workpiece (modal superposition and direct solve), static
+// compliance, and the quasi-static response to the acceleration of each axis. SI inside.
+#include <complex>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mtacc/dynamics/structure.hpp"
+
+namespace mtacc {
+
+constexpr double kStandardGravity = 9.80665;  // m/s^2 (seed 000 L5935)
+
+struct StructureMatrices {
+  Eigen::MatrixXd mass, stiffness, damping;   // 6N x 6N
+  Eigen::Matrix<double, 3, Eigen::Dynamic> selection;  // relative TCP - workpiece displacement = S q
+  Eigen::MatrixXd inertialLoads;  // 6N x axes: -M E_j, the load of a unit acceleration of axis j
+};
+
+// Axis positions in m, one per StructureModel::axes (empty = all at 0). Throws InputError for
+// a wrong count or a position beyond travel.
+StructureMatrices assembleStructure(const StructureModel& model, const std::vector<double>& positions = {});
+
+struct Modes {
+  Eigen::VectorXd frequencies;  // Hz, ascending
+  Eigen::MatrixXd shapes;       // columns, mass-normalised (phi^T M phi = 1)
+};
+// Throws InputError when K is singular (a body not held in some direction), naming the body
+// and the direction of the free motion.
+Modes undampedModes(const StructureModel& model, const StructureMatrices& m);
+
+struct DampedMode {
+  double frequency;     // Hz, |lambda| / 2 pi
+  double dampingRatio;  // -Re(lambda) / |lambda|
+};
+std::vector<DampedMode> dampedModes(const StructureMatrices& m);
+
+using Frf = std::vector<Eigen::Matrix3cd>;  // per frequency, m/N: H(i, j) = displacement i / force j
+// (K - w^2 M + j w D)^-1 between the TCP-workpiece force pair and the relative displacement.
+Frf frfDirect(const StructureMatrices& m, const std::vector<double>& frequencies);
+// Sum over all modes with modal damping phi_r^T D phi_r (exact for proportional damping).
+Frf frfModal(const StructureMatrices& m, const Modes& modes, const std::vector<double>& frequencies);
+Eigen::Matrix3d staticCompliance(const StructureMatrices& m);
+// Quasi-static relative displacement per acceleration of each axis: 3 x axes, m per (m/s^2);
+// multiply by kStandardGravity * 1e6 for um/g_n (the form of seed 000 Table 7.1).
+Eigen::Matrix<double, 3, Eigen::Dynamic> accelerationResponse(const StructureMatrices& m);
+
+}  // namespace mtacc

@@ -1,0 +1,81 @@
+#pragma once
+// The rigid-body model of a machine's structure (seed 000 part II, ch. 5-7): bodies with
+// mass, centre of gravity and inertia, connecting elements as 6-DOF spring-dampers, the axes
+// that move bodies, the tool centre point and the workpiece point. SI units inside (m, kg,
+// N, s); the YAML file (docs/file-formats.md, "Structure models") states its own.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "mtacc/core/transform.hpp"
+
+namespace mtacc {
+
+constexpr int kGround = -1;  // body index of the inertial system
+
+struct RigidBody {
+  std::string name;
+  double mass = 0;                 // kg
+  Vec3 centre = Vec3::Zero();      // centre of gravity at the home position, m
+  Mat3 inertia = Mat3::Zero();     // about the centre of gravity, global axes, kg m^2
+  Vec3 size = Vec3::Zero();        // bounding box for drawing, m (0 when unknown)
+  int line = 0;
+};
+
+// A primitive of a body; several are combined by the parallel-axis theorem.
+struct BodyPart {
+  double mass = 0;
+  Vec3 centre = Vec3::Zero();
+  Mat3 inertia = Mat3::Zero();  // about its own centre
+};
+BodyPart cuboidPart(const Vec3& size, double mass, const Vec3& centre);
+// axis 0, 1, 2 = x, y, z; inner radius 0 for a solid cylinder.
+BodyPart cylinderPart(double radius, double innerRadius, double length, int axis, double mass, const Vec3& centre);
+// Right triangular prism: legs a (along x) and b (along y) from the right-angle edge, extruded
+// by length along z; `centre` is its centroid.
+BodyPart prismPart(double a, double b, double length, double mass, const Vec3& centre);
+RigidBody combineParts(const std::string& name, const std::vector<BodyPart>& parts);
+
+// A 6-DOF spring-damper between body a and body b (either may be kGround) at `point`, with
+// local axes as the columns of `frame`: stiffness and damping along x, y, z, about x, y, z.
+// The point moves with body b.
+struct Connection {
+  std::string name;
+  std::string type;  // guide, drive, direct_drive, bearing, setup, spring, beam
+  int a = kGround, b = kGround;
+  Vec3 point = Vec3::Zero();   // at the home position, m
+  Mat3 frame = Mat3::Identity();
+  Vec6 stiffness = Vec6::Zero();  // N/m, N m/rad
+  Vec6 damping = Vec6::Zero();    // N s/m, N m s/rad
+  int line = 0;
+};
+
+struct StructureAxis {
+  std::string name;
+  Vec3 direction = Vec3::UnitX();
+  std::vector<int> moves;  // bodies the axis carries (the driven body and everything on it)
+  double min = 0, max = 0;  // travel, m
+};
+
+struct StructureModel {
+  std::string name;
+  std::string sourceFile;
+  std::vector<RigidBody> bodies;
+  std::vector<Connection> connections;
+  std::vector<StructureAxis> axes;
+  int tcpBody = kGround;
+  Vec3 tcpPoint = Vec3::Zero();
+  int workpieceBody = kGround;
+  Vec3 workpiecePoint = Vec3::Zero();
+
+  int dofs() const { return 6 * static_cast<int>(bodies.size()); }
+  int axisIndex(const std::string& name) const;
+  int bodyIndex(const std::string& name) const;  // kGround for "ground"; -2 if unknown
+};
+
+// By path, or by the name of a bundled model (data/structures/). Throws InputError naming file,
+// line and key: unknown body, element joining a body to itself, body without mass, ...
+StructureModel loadStructure(const std::string& pathOrName);
+StructureModel parseStructure(const std::string& yamlText, const std::string& sourceName);
+
+}  // namespace mtacc
