@@ -189,4 +189,17 @@ TEST_F(CliBadInput, SimulatedBallbarEvaluates) {
   EXPECT_NE(slurp(output()).find("squareness"), std::string::npos);
 }
 
+TEST_F(CliBadInput, MalformedStructureModels) {
+  const std::string body = "bodies:\n  - {name: b, mass: 10, inertia: [1, 1, 1, 0, 0, 0]}\n";
+  const auto self = write("self.yaml", body + "elements:\n  - {type: spring, bodies: [b, b], point: [0 mm, 0 mm, 0 mm], "
+                                              "stiffness: 1}\ntcp: {body: b, point: [0 mm, 0 mm, 0 mm]}\n");
+  expectCleanFailure(run("dynamics modes " + self + " -o " + output()), {self + ":4", "cannot join a body to itself"});
+  const auto loose = write("loose.yaml", body + "elements:\n  - {type: spring, bodies: [ground, b], point: [0 mm, 0 mm, 0 mm], "
+                                                "stiffness: [1, 1, 1, 0, 1, 1]}\ntcp: {body: b, point: [0 mm, 0 mm, 0 mm]}\n");
+  expectCleanFailure(run("dynamics frf " + loose + " -o " + output()), {"singular", "'b' is free to move about x"});
+  const auto massless = write("massless.yaml", "bodies:\n  - {name: b, inertia: [1, 1, 1, 0, 0, 0]}\nelements: []\n"
+                                               "tcp: {body: b, point: [0 mm, 0 mm, 0 mm]}\n");
+  expectCleanFailure(run("dynamics accel " + massless + " -o " + output()), {massless + ":2", "has no mass"});
+}
+
 }  // namespace

@@ -58,5 +58,6 @@ void addConeCommand(CLI::App& app);
 void addSimulateCommand(CLI::App& app);       // simulate ballbar | rtest | plan
 void addEvaluateCommand(CLI::App& app);
 void addIdentifyCommands(CLI::App& app);      // identify, observability
+void addDynamicsCommand(CLI::App& app);       // dynamics modes | frf | accel | map
 
 }  // namespace mtacc::cli

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   mtacc::cli::addSimulateCommand(app);
   mtacc::cli::addEvaluateCommand(app);
   mtacc::cli::addIdentifyCommands(app);
+  mtacc::cli::addDynamicsCommand(app);
   mtacc::cli::addReportCommand(app);
   try {
     app.parse(argc, argv);

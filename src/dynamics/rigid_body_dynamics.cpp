@@ -10,6 +10,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/kinematics/forward.hpp"
 
 namespace mtacc {
 namespace {
@@ -30,6 +31,16 @@ Vec3 shift(const StructureModel& model, int body, const std::vector<double>& pos
     for (int moved : model.axes[j].moves)
       if (moved == body) s += positions[j] * model.axes[j].direction;
   return s;
+}
+
+// The segment of a beam under point p (a beam moved as a whole keeps its shape).
+int segmentAt(const StructureModel& model, int beam, const Vec3& p, const std::vector<double>& positions) {
+  const auto& b = model.beams[static_cast<size_t>(beam)];
+  const double s = (p - b.from - shift(model, b.first, positions)).dot(b.axis) / b.length;
+  const double bounds[4] = {1.0 / 8, 3.0 / 8, 5.0 / 8, 7.0 / 8};
+  int k = 0;
+  while (k < 4 && s > bounds[k]) ++k;
+  return b.first + k;
 }
 
 }  // namespace
@@ -59,14 +70,15 @@ StructureMatrices assembleStructure(const StructureModel& model, const std::vect
     centres.push_back(b.centre + shift(model, static_cast<int>(i), positions));
   }
   for (const auto& c : model.connections) {
-    const Vec3 p = c.point + shift(model, c.b, positions);
+    const Vec3 p = c.point + shift(model, c.followsA ? c.a : c.b, positions);
+    const int bodies[2] = {c.beamA >= 0 ? segmentAt(model, c.beamA, p, positions) : c.a,
+                           c.beamB >= 0 ? segmentAt(model, c.beamB, p, positions) : c.b};
     Mat6 frame = Mat6::Zero();
     frame.block<3, 3>(0, 0) = c.frame;
     frame.block<3, 3>(3, 3) = c.frame;
     const Mat6 kl = frame * c.stiffness.asDiagonal() * frame.transpose();
     const Mat6 dl = frame * c.damping.asDiagonal() * frame.transpose();
     // Relative motion delta = A_b q_b - A_a q_a.
-    const int bodies[2] = {c.a, c.b};
     const double signs[2] = {-1.0, 1.0};
     for (int s = 0; s < 2; ++s) {
       if (bodies[s] == kGround) continue;
@@ -178,6 +190,71 @@ Eigen::Matrix3d staticCompliance(const StructureMatrices& m) {
 
 Eigen::Matrix<double, 3, Eigen::Dynamic> accelerationResponse(const StructureMatrices& m) {
   return m.selection * m.stiffness.ldlt().solve(m.inertialLoads);
+}
+
+}  // namespace mtacc
+
+namespace mtacc {
+
+DynamicsQuantity dynamicsQuantity(const StructureModel& model, const std::string& name) {
+  auto fail = [&]() -> DynamicsQuantity {
+    throw InputError(InputLocation{"", 0, "--quantity"},
+                     "unknown quantity '" + name + "' (H<x|y|z>/<axis> in um/g, C<x|y|z><x|y|z> in um/N, f<n> in Hz)");
+  };
+  auto component = [](char c) { return c == 'x' ? 0 : c == 'y' ? 1 : c == 'z' ? 2 : -1; };
+  if (name.size() >= 4 && name[0] == 'H' && name[2] == '/') {
+    const int i = component(name[1]);
+    const int j = model.axisIndex(name.substr(3));
+    if (i < 0 || j < 0) return fail();
+    return {name, "um/g", [i, j](const StructureModel&, const StructureMatrices& m) {
+              return std::abs(accelerationResponse(m)(i, j)) * kStandardGravity * 1e6;
+            }};
+  }
+  if (name.size() == 3 && name[0] == 'C') {
+    const int i = component(name[1]), j = component(name[2]);
+    if (i < 0 || j < 0) return fail();
+    return {name, "um/N", [i, j](const StructureModel&, const StructureMatrices& m) { return staticCompliance(m)(i, j) * 1e6; }};
+  }
+  if (name.size() >= 2 && name[0] == 'f') {
+    int k = 0;
+    try {
+      k = std::stoi(name.substr(1));
+    } catch (const std::exception&) {
+      return fail();
+    }
+    if (k < 1 || k > model.dofs()) return fail();
+    return {name, "Hz", [k](const StructureModel& s, const StructureMatrices& m) { return undampedModes(s, m).frequencies[k - 1]; }};
+  }
+  return fail();
+}
+
+DynamicsMap dynamicsMap(const StructureModel& model, const std::vector<double>& fixed, const std::string& axisA,
+                        const std::string& axisB, int countA, int countB, const DynamicsQuantity& quantity, int threads) {
+  const int ja = model.axisIndex(axisA), jb = model.axisIndex(axisB);
+  if (ja < 0 || jb < 0 || ja == jb)
+    throw InputError(InputLocation{model.sourceFile, 0, "axes"}, "a map needs two different axes of the model");
+  if (countA < 2 || countB < 2) throw InputError(InputLocation{"", 0, "grid"}, "a map needs at least 2 x 2 positions");
+  DynamicsMap out;
+  out.axisA = axisA, out.axisB = axisB;
+  auto spread = [](const StructureAxis& a, int n) {
+    std::vector<double> v;
+    for (int k = 0; k < n; ++k) v.push_back(a.min + (a.max - a.min) * k / (n - 1));
+    return v;
+  };
+  out.a = spread(model.axes[static_cast<size_t>(ja)], countA);
+  out.b = spread(model.axes[static_cast<size_t>(jb)], countB);
+  out.values.resize(countA, countB);
+  std::vector<double> base = fixed.empty() ? std::vector<double>(model.axes.size(), 0.0) : fixed;
+  parallelFor(static_cast<long>(countA) * countB, threads, [&](long begin, long end) {
+    for (long k = begin; k < end; ++k) {
+      auto q = base;
+      q[static_cast<size_t>(ja)] = out.a[static_cast<size_t>(k / countB)];
+      q[static_cast<size_t>(jb)] = out.b[static_cast<size_t>(k % countB)];
+      out.values(k / countB, k % countB) = quantity.evaluate(model, assembleStructure(model, q));
+    }
+  });
+  out.statistics = boxStatistics(std::vector<double>(out.values.data(), out.values.data() + out.values.size()));
+  return out;
 }
 
 }  // namespace mtacc

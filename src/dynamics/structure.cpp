@@ -1,5 +1,6 @@
 #include "mtacc/dynamics/structure.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -132,7 +133,10 @@ void readBeam(const Context& ctx, const YAML::Node& b, const std::string& key, S
   const double length = (to - from).norm();
   if (length <= 0) ctx.fail(b["to"], key + ".to", "the beam has no length");
   const Vec3 axis = (to - from) / length;
-  const auto section = numbers(ctx, b["section"], key + ".section", 2);  // mm
+  if (!b["section"] || !b["section"].IsSequence() || b["section"].size() != 2)
+    ctx.fail(b, key + ".section", "expected [width, height] of the cross-section, e.g. [400 mm, 400 mm]");
+  const double section[2] = {yamlin::quantity(ctx, b["section"][0], key + ".section", Dimension::Length),
+                             yamlin::quantity(ctx, b["section"][1], key + ".section", Dimension::Length)};  // mm
   const double perLength = positive(ctx, b["mass_per_length"], key + ".mass_per_length");
   const double e = positive(ctx, b["E"], key + ".E"), g = positive(ctx, b["G"], key + ".G");
   const double area = positive(ctx, b["A"], key + ".A"), it = positive(ctx, b["It"], key + ".It");
@@ -146,6 +150,7 @@ void readBeam(const Context& ctx, const YAML::Node& b, const std::string& key, S
     frame.col(1) = up.cross(axis).normalized();
     frame.col(2) = axis.cross(frame.col(1));
   }
+  m.beams.push_back({name, static_cast<int>(m.bodies.size()), from, axis, length});
   const double fractions[5] = {1, 2, 2, 2, 1};
   double s = 0;
   for (int k = 0; k < 5; ++k) {
@@ -189,16 +194,33 @@ int bodyRef(const Context& ctx, const StructureModel& m, const YAML::Node& node,
   return i;
 }
 
+int beamRef(const StructureModel& m, const std::string& name) {
+  for (size_t i = 0; i < m.beams.size(); ++i)
+    if (m.beams[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
 Connection readConnection(const Context& ctx, const StructureModel& m, const YAML::Node& e, const std::string& key) {
-  yamlin::rejectUnknownKeys(ctx, e, key, {"name", "type", "bodies", "point", "along", "up", "stiffness", "damping", "kv", "kp"});
+  yamlin::rejectUnknownKeys(ctx, e, key,
+                            {"name", "type", "bodies", "point", "along", "up", "stiffness", "damping", "kv", "kp", "moves_with"});
   Connection c;
   c.type = yamlin::scalar(ctx, e["type"], key + ".type");
   c.name = e["name"] ? yamlin::scalar(ctx, e["name"], key + ".name") : c.type + "-" + key;
   if (!e["bodies"] || !e["bodies"].IsSequence() || e["bodies"].size() != 2)
     ctx.fail(e, key + ".bodies", "expected [body a, body b] (b carries the point)");
-  c.a = bodyRef(ctx, m, e["bodies"][0], key + ".bodies");
-  c.b = bodyRef(ctx, m, e["bodies"][1], key + ".bodies");
-  if (c.a == c.b) ctx.fail(e["bodies"], key + ".bodies", "an element cannot join a body to itself");
+  for (int side = 0; side < 2; ++side) {
+    const auto node = e["bodies"][static_cast<size_t>(side)];
+    const int beam = beamRef(m, yamlin::scalar(ctx, node, key + ".bodies"));
+    const int body = beam >= 0 ? m.beams[static_cast<size_t>(beam)].first : bodyRef(ctx, m, node, key + ".bodies");
+    (side == 0 ? c.a : c.b) = body;
+    (side == 0 ? c.beamA : c.beamB) = beam;
+  }
+  if (c.a == c.b && c.beamA == c.beamB) ctx.fail(e["bodies"], key + ".bodies", "an element cannot join a body to itself");
+  if (e["moves_with"]) {
+    const std::string w = yamlin::scalar(ctx, e["moves_with"], key + ".moves_with");
+    if (w != "a" && w != "b") ctx.fail(e["moves_with"], key + ".moves_with", "expected a or b");
+    c.followsA = w == "a";
+  }
   c.point = yamlin::lengthVector(ctx, e["point"], key + ".point") * 1e-3;
   c.frame = frameFrom(ctx, e, key);
   c.line = e.Mark().line + 1;
@@ -328,13 +350,18 @@ StructureModel parseStructure(const std::string& text, const std::string& source
       m.axes.push_back(axis);
     }
   }
+  // A point on a beam belongs to the segment it lies in.
+  auto pointBody = [&](const YAML::Node& node, const std::string& key, Vec3& point) {
+    point = yamlin::lengthVector(ctx, node["point"], key + ".point") * 1e-3;
+    const int beam = beamRef(m, yamlin::scalar(ctx, node["body"], key + ".body"));
+    if (beam < 0) return bodyRef(ctx, m, node["body"], key + ".body");
+    const auto& b = m.beams[static_cast<size_t>(beam)];
+    const double s = (point - b.from).dot(b.axis) / b.length;
+    return b.first + std::min(4, static_cast<int>(std::floor((s * 8 + 1) / 2)));
+  };
   if (!root["tcp"]) ctx.fail(root, "tcp", "missing tcp: {body, point}");
-  m.tcpBody = bodyRef(ctx, m, root["tcp"]["body"], "tcp.body");
-  m.tcpPoint = yamlin::lengthVector(ctx, root["tcp"]["point"], "tcp.point") * 1e-3;
-  if (const auto w = root["workpiece"]) {
-    m.workpieceBody = bodyRef(ctx, m, w["body"], "workpiece.body");
-    m.workpiecePoint = yamlin::lengthVector(ctx, w["point"], "workpiece.point") * 1e-3;
-  }
+  m.tcpBody = pointBody(root["tcp"], "tcp", m.tcpPoint);
+  if (const auto w = root["workpiece"]) m.workpieceBody = pointBody(w, "workpiece", m.workpiecePoint);
   if (m.tcpBody == m.workpieceBody) ctx.fail(root["tcp"], "tcp.body", "the TCP and the workpiece point are on the same body");
   return m;
 }

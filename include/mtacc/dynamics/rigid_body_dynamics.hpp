@@ -5,10 +5,13 @@
 // FRF of the TCP relative to the workpiece (modal superposition and direct solve), static
 // compliance, and the quasi-static response to the acceleration of each axis. SI inside.
 #include <complex>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "mtacc/core/statistics.hpp"
 #include "mtacc/dynamics/structure.hpp"
 
 namespace mtacc {
@@ -48,5 +51,26 @@ Eigen::Matrix3d staticCompliance(const StructureMatrices& m);
 // Quasi-static relative displacement per acceleration of each axis: 3 x axes, m per (m/s^2);
 // multiply by kStandardGravity * 1e6 for um/g_n (the form of seed 000 Table 7.1).
 Eigen::Matrix<double, 3, Eigen::Dynamic> accelerationResponse(const StructureMatrices& m);
+
+// A scalar evaluated at one set of axis positions, e.g. |H_x / x''| in um/g_n.
+struct DynamicsQuantity {
+  std::string name;  // "Hx/X" (um/g_n), "Cxy" (static compliance, um/N), "f1" (Hz)
+  std::string unit;
+  std::function<double(const StructureModel&, const StructureMatrices&)> evaluate;
+};
+// Parses "H<x|y|z>/<axis>", "C<x|y|z><x|y|z>" or "f<n>"; throws InputError otherwise.
+DynamicsQuantity dynamicsQuantity(const StructureModel& model, const std::string& name);
+
+// The quantity over a grid of two axes (the others at `fixed`, m), e.g. 20 x 20 over Y-Z
+// (seed 000 L6213-6227), with its distribution statistics.
+struct DynamicsMap {
+  std::string axisA, axisB;
+  std::vector<double> a, b;   // grid positions, m
+  Eigen::MatrixXd values;     // a x b
+  BoxStatistics statistics;
+};
+DynamicsMap dynamicsMap(const StructureModel& model, const std::vector<double>& fixed, const std::string& axisA,
+                        const std::string& axisB, int countA, int countB, const DynamicsQuantity& quantity,
+                        int threads = 0);
 
 }  // namespace mtacc

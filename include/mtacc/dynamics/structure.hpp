@@ -38,11 +38,15 @@ RigidBody combineParts(const std::string& name, const std::vector<BodyPart>& par
 
 // A 6-DOF spring-damper between body a and body b (either may be kGround) at `point`, with
 // local axes as the columns of `frame`: stiffness and damping along x, y, z, about x, y, z.
-// The point moves with body b.
+// The point moves with body b (or with a: a carriage fixed on a that a moving beam slides
+// through). A side given as a flexible beam attaches to the segment under the point at each
+// position (a carriage riding along the beam).
 struct Connection {
   std::string name;
   std::string type;  // guide, drive, direct_drive, bearing, setup, spring, beam
   int a = kGround, b = kGround;
+  bool followsA = false;
+  int beamA = -1, beamB = -1;  // index into StructureModel::beams when a side is a beam
   Vec3 point = Vec3::Zero();   // at the home position, m
   Mat3 frame = Mat3::Identity();
   Vec6 stiffness = Vec6::Zero();  // N/m, N m/rad
@@ -57,8 +61,17 @@ struct StructureAxis {
   double min = 0, max = 0;  // travel, m
 };
 
+// A flexible beam's segments (consecutive bodies) and where they meet along its axis.
+struct BeamSegments {
+  std::string name;
+  int first = 0;                 // body index of segment 1; segments are first .. first + 4
+  Vec3 from = Vec3::Zero(), axis = Vec3::UnitX();  // at the home position, m
+  double length = 0;
+};
+
 struct StructureModel {
   std::string name;
+  std::vector<BeamSegments> beams;
   std::string sourceFile;
   std::vector<RigidBody> bodies;
   std::vector<Connection> connections;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mtacc/core/statistics.hpp"
 #include "mtacc/errors/error_model.hpp"
 #include "mtacc/procedures/cone.hpp"
 
@@ -40,12 +41,6 @@ struct AxisSpan {
 
 ErrorModel sampleErrors(const Machine& machine, const ErrorLimits& limits, const std::vector<AxisSpan>& spans,
                         std::mt19937_64& rng);
-
-struct BoxStatistics {
-  double min, lowerQuartile, median, upperQuartile, max;
-};
-// Quartiles by linear interpolation between order statistics.
-BoxStatistics boxStatistics(std::vector<double> values);
 
 struct ConeMonteCarlo {
   std::vector<double> formErrors;  // mm, one per sample
