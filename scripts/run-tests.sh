@@ -18,3 +18,6 @@ echo "== Benchmark: cone-frustum Monte Carlo, 1000 samples, exact evaluation =="
 echo
 echo "== Benchmark: identification of 13 parameters from 10,000 R-test points, against SciPy =="
 ./build/bench/bench_identify_vs_scipy
+echo
+echo "== Benchmark: 3x3 FRF at 500 frequencies at 10,000 positions of a 10-body model, against NumPy/SciPy =="
+./build/bench/bench_dynamics_vs_numpy

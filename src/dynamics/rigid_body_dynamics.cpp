@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <Eigen/Dense>
@@ -109,15 +110,65 @@ StructureMatrices assembleStructure(const StructureModel& model, const std::vect
   return m;
 }
 
+namespace {
+
+// LAPACK's MRRR symmetric eigensolver (faster than Eigen's QL for the dense 6N x 6N
+// problems here).
+extern "C" void dsyevr_(const char* jobz, const char* range, const char* uplo, const int* n, double* a, const int* lda,
+                        const double* vl, const double* vu, const int* il, const int* iu, const double* abstol, int* m,
+                        double* w, double* z, const int* ldz, int* isuppz, double* work, const int* lwork, int* iwork,
+                        const int* liwork, int* info);
+
+// K phi = w^2 M phi with M block diagonal (one 6 x 6 block per body): with M = L L^T per
+// block, the standard problem L^-1 K L^-T z = w^2 z, phi = L^-T z.
+bool solveModes(const StructureMatrices& m, Eigen::VectorXd& w2, Eigen::MatrixXd& phi) {
+  const int n = static_cast<int>(m.mass.rows()), bodies = n / 6;
+  std::vector<Mat6> linv(static_cast<size_t>(bodies));
+  for (int b = 0; b < bodies; ++b) {
+    Eigen::LLT<Mat6> llt(m.mass.block<6, 6>(6 * b, 6 * b));
+    if (llt.info() != Eigen::Success) return false;
+    linv[static_cast<size_t>(b)] = llt.matrixL().solve(Mat6::Identity());
+  }
+  Eigen::MatrixXd a(n, n);
+  for (int i = 0; i < bodies; ++i)
+    for (int j = 0; j <= i; ++j) {
+      const Mat6 block = linv[static_cast<size_t>(i)] * m.stiffness.block<6, 6>(6 * i, 6 * j) *
+                         linv[static_cast<size_t>(j)].transpose();
+      a.block<6, 6>(6 * i, 6 * j) = block;
+      a.block<6, 6>(6 * j, 6 * i) = block.transpose();
+    }
+  w2.resize(n);
+  Eigen::MatrixXd z(n, n);
+  thread_local std::vector<double> work;
+  thread_local std::vector<int> iwork, support;
+  const int lwork = 40 * n, liwork = 12 * n;
+  work.resize(static_cast<size_t>(lwork));
+  iwork.resize(static_cast<size_t>(liwork));
+  support.resize(static_cast<size_t>(2 * n));
+  const double none = 0.0;
+  const int first = 1;
+  int found = 0, info = 0;
+  dsyevr_("V", "A", "L", &n, a.data(), &n, &none, &none, &first, &n, &none, &found, w2.data(), z.data(), &n, support.data(),
+          work.data(), &lwork, iwork.data(), &liwork, &info);
+  if (info != 0 || found != n) return false;
+  phi.resize(n, n);
+  for (int b = 0; b < bodies; ++b) phi.middleRows<6>(6 * b) = linv[static_cast<size_t>(b)].transpose() * z.middleRows<6>(6 * b);
+  return true;
+}
+
+}  // namespace
+
 Modes undampedModes(const StructureModel& model, const StructureMatrices& m) {
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(m.stiffness, m.mass);
-  const Eigen::VectorXd w2 = eig.eigenvalues();
-  const double largest = std::abs(w2.maxCoeff());
-  if (eig.info() != Eigen::Success || !(w2.minCoeff() > 1e-10 * largest)) {
+  Eigen::VectorXd w2;
+  Eigen::MatrixXd phi;
+  const bool solved = solveModes(m, w2, phi);
+  const double largest = solved ? std::abs(w2.maxCoeff()) : 0.0;
+  if (!solved || !(w2.minCoeff() > 1e-10 * largest)) {
     // The free motion: the body that moves most in the lowest mode, and how.
-    const Eigen::VectorXd phi = eig.eigenvectors().col(0);
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(m.stiffness, m.mass);
+    const Eigen::VectorXd lowest = eig.eigenvectors().col(0);
     Eigen::Index dof = 0;
-    phi.cwiseAbs().maxCoeff(&dof);
+    lowest.cwiseAbs().maxCoeff(&dof);
     const char* names[6] = {"along x", "along y", "along z", "about x", "about y", "about z"};
     throw InputError(InputLocation{model.sourceFile, model.bodies[static_cast<size_t>(dof / 6)].line, "elements"},
                      fmt::format("the stiffness matrix is singular: body '{}' is free to move {} (add a connecting element)",
@@ -125,7 +176,7 @@ Modes undampedModes(const StructureModel& model, const StructureMatrices& m) {
   }
   Modes out;
   out.frequencies = w2.cwiseSqrt() / (2 * kPi);
-  out.shapes = eig.eigenvectors();
+  out.shapes = phi;
   return out;
 }
 
@@ -160,27 +211,78 @@ Frf frfDirect(const StructureMatrices& m, const std::vector<double>& frequencies
   return out;
 }
 
-Frf frfModal(const StructureMatrices& m, const Modes& modes, const std::vector<double>& frequencies) {
+namespace {
+
+// The six distinct entries of the symmetric H at every frequency, by modal superposition:
+// re[e][f] + j im[e][f] = sum_r outer(e, r) / (w_r^2 - w_f^2 + j w_f c_r).
+struct ModalSums {
+  std::array<std::vector<double>, 6> re, im;
+};
+ModalSums modalSums(const StructureMatrices& m, const Modes& modes, const std::vector<double>& frequencies) {
   const Eigen::Index r = modes.frequencies.size();
   const Eigen::Matrix<double, 3, Eigen::Dynamic> participation = m.selection * modes.shapes;  // S phi_r
-  const Eigen::VectorXd modalDamping = (modes.shapes.transpose() * m.damping * modes.shapes).diagonal();
-  const Eigen::VectorXd w2 = (2 * kPi * modes.frequencies).array().square();
-  // The six distinct entries of the symmetric H, per mode.
-  Eigen::Matrix<double, 6, Eigen::Dynamic> outer(6, r);
+  const Eigen::MatrixXd dampedShapes = m.damping * modes.shapes;
+  const Eigen::VectorXd modalDamping = modes.shapes.cwiseProduct(dampedShapes).colwise().sum().transpose();
+  // Per mode, contiguous: w_r^2, c_r and the six products of its participations.
+  std::vector<std::array<double, 8>> mode(static_cast<size_t>(r));
   for (Eigen::Index k = 0; k < r; ++k) {
     const Vec3 a = participation.col(k);
-    outer.col(k) << a.x() * a.x(), a.y() * a.y(), a.z() * a.z(), a.x() * a.y(), a.x() * a.z(), a.y() * a.z();
+    mode[static_cast<size_t>(k)] = {std::pow(2 * kPi * modes.frequencies[k], 2), modalDamping[k], a.x() * a.x(), a.y() * a.y(),
+                                    a.z() * a.z(), a.x() * a.y(), a.x() * a.z(), a.y() * a.z()};
   }
+  ModalSums out;
+  const size_t nf = frequencies.size();
+  for (size_t e = 0; e < 6; ++e) out.re[e].resize(nf), out.im[e].resize(nf);
+  // Two frequencies at a time, the twelve sums kept in registers over all modes.
+  using Pair = Eigen::Array2d;
+  for (size_t i = 0; i < nf; i += 2) {
+    const Pair w = 2 * kPi * Pair(frequencies[i], frequencies[std::min(i + 1, nf - 1)]), w2 = w * w;
+    Pair re[6], im[6];
+    for (int e = 0; e < 6; ++e) re[e].setZero(), im[e].setZero();
+    for (const auto& md : mode) {  // 1 / (a + j b) = (a - j b) / (a^2 + b^2)
+      const Pair a = md[0] - w2, b = w * md[1], d = (a * a + b * b).inverse(), dr = a * d, di = -b * d;
+      for (int e = 0; e < 6; ++e) re[e] += md[static_cast<size_t>(2 + e)] * dr, im[e] += md[static_cast<size_t>(2 + e)] * di;
+    }
+    for (size_t e = 0; e < 6; ++e) {
+      out.re[e][i] = re[e][0], out.im[e][i] = im[e][0];
+      if (i + 1 < nf) out.re[e][i + 1] = re[e][1], out.im[e][i + 1] = im[e][1];
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Frf frfModal(const StructureMatrices& m, const Modes& modes, const std::vector<double>& frequencies) {
+  const auto s = modalSums(m, modes, frequencies);
   Frf out;
   out.reserve(frequencies.size());
-  for (double f : frequencies) {
-    const double w = 2 * kPi * f;
-    Eigen::Matrix<std::complex<double>, 6, 1> h = Eigen::Matrix<std::complex<double>, 6, 1>::Zero();
-    for (Eigen::Index k = 0; k < r; ++k) h += outer.col(k) / std::complex<double>(w2[k] - w * w, w * modalDamping[k]);
+  for (size_t i = 0; i < frequencies.size(); ++i) {
+    std::complex<double> h[6];
+    for (size_t e = 0; e < 6; ++e) h[e] = {s.re[e][i], s.im[e][i]};
     Eigen::Matrix3cd hm;
     hm << h[0], h[3], h[4], h[3], h[1], h[5], h[4], h[5], h[2];
     out.push_back(hm);
   }
+  return out;
+}
+
+std::vector<Eigen::Matrix3d> frfPeaks(const StructureModel& model, const std::vector<std::vector<double>>& positions,
+                                      const std::vector<double>& frequencies, int threads) {
+  std::vector<Eigen::Matrix3d> out(positions.size());
+  parallelFor(static_cast<long>(positions.size()), threads, [&](long begin, long end) {
+    for (long p = begin; p < end; ++p) {
+      const auto m = assembleStructure(model, positions[static_cast<size_t>(p)]);
+      const auto s = modalSums(m, undampedModes(model, m), frequencies);
+      double peak[6] = {0, 0, 0, 0, 0, 0};
+      for (size_t e = 0; e < 6; ++e)
+        for (size_t i = 0; i < frequencies.size(); ++i)
+          peak[e] = std::max(peak[e], s.re[e][i] * s.re[e][i] + s.im[e][i] * s.im[e][i]);
+      Eigen::Matrix3d& h = out[static_cast<size_t>(p)];
+      h << peak[0], peak[3], peak[4], peak[3], peak[1], peak[5], peak[4], peak[5], peak[2];
+      h = h.cwiseSqrt();
+    }
+  });
   return out;
 }
 

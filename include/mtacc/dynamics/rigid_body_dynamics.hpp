@@ -48,6 +48,10 @@ Frf frfDirect(const StructureMatrices& m, const std::vector<double>& frequencies
 // Sum over all modes with modal damping phi_r^T D phi_r (exact for proportional damping).
 Frf frfModal(const StructureMatrices& m, const Modes& modes, const std::vector<double>& frequencies);
 Eigen::Matrix3d staticCompliance(const StructureMatrices& m);
+// At each set of axis positions: the largest |H_ij| over the frequencies (modal
+// superposition, all modes), m/N, threads = 0 for every core.
+std::vector<Eigen::Matrix3d> frfPeaks(const StructureModel& model, const std::vector<std::vector<double>>& positions,
+                                      const std::vector<double>& frequencies, int threads = 0);
 // Quasi-static relative displacement per acceleration of each axis: 3 x axes, m per (m/s^2);
 // multiply by kStandardGravity * 1e6 for um/g_n (the form of seed 000 Table 7.1).
 Eigen::Matrix<double, 3, Eigen::Dynamic> accelerationResponse(const StructureMatrices& m);
