@@ -9,5 +9,5 @@ bash scripts/build.sh
 echo
 ./build/mtacc budget tilting-table --rows 10
 echo
-report=$(./build/mtacc report tilting-table --plan tilting-table-rtest -o report)
+report=$(./build/mtacc report tilting-table --plan tilting-table-rtest --structure tzyx-arm-x --compare tzyx-arm-y -o report)
 echo "Report written: $(pwd)/$report — open it in a browser."

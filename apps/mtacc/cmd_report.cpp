@@ -15,7 +15,7 @@ struct ReportOptions {
   std::string machine;
   std::string errorsFile;
   std::string output = ".";
-  std::string plan;
+  std::string plan, structure, compare;
   int samples = 5;
 };
 
@@ -30,10 +30,11 @@ struct ReportOptions {
     args.push_back("--errors");
     args.push_back(o.errorsFile);
   }
-  if (!o.plan.empty()) {
-    args.push_back("--plan");
-    args.push_back(o.plan);
-  }
+  for (const auto& [flag, value] : {std::pair{"--plan", o.plan}, {"--structure", o.structure}, {"--compare", o.compare}})
+    if (!value.empty()) {
+      args.push_back(flag);
+      args.push_back(value);
+    }
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -51,6 +52,8 @@ void addReportCommand(CLI::App& app) {
   cmd->add_option("--errors", o->errorsFile, "errors file (default: the machine file's)");
   cmd->add_option("--samples", o->samples, "positions per axis for the error budget (default 5)");
   cmd->add_option("--plan", o->plan, "test plan to simulate, evaluate and identify from (e.g. tilting-table-rtest)");
+  cmd->add_option("--structure", o->structure, "structure model for the dynamics section (e.g. tzyx-arm-x)");
+  cmd->add_option("--compare", o->compare, "a second structure model to compare with (e.g. tzyx-arm-y)");
   cmd->callback([o] { run(*o); });
 }
 

@@ -23,6 +23,7 @@ namespace py = pybind11;
 using namespace mtacc;
 using mtacc::python::Array;
 using mtacc::python::PyMachine;
+using mtacc::python::bindDynamics;
 using mtacc::python::bindMeasurement;
 
 namespace {
@@ -83,6 +84,7 @@ PYBIND11_MODULE(_mtacc, mod) {
     }
   });
 
+  bindDynamics(mod);
   auto machineClass = py::class_<PyMachine>(mod, "Machine");
   bindMeasurement(machineClass);
   machineClass

@@ -73,5 +73,7 @@ class PyMachine {
 
 // Adds simulate, evaluate_ballbar, identify and observability to the Machine class.
 void bindMeasurement(py::class_<PyMachine>& cls);
+// Adds the Structure class (rigid-body dynamics).
+void bindDynamics(py::module_& mod);
 
 }  // namespace mtacc::python

@@ -15,7 +15,7 @@ from collections.abc import MutableMapping
 
 import numpy as np
 
-from ._mtacc import InputError, UnreachablePose
+from ._mtacc import InputError, Structure, UnreachablePose
 from ._mtacc import Machine as _CoreMachine
 
 __all__ = ["Machine", "Errors", "InputError", "UnreachablePose"]

@@ -283,3 +283,84 @@ def singular_values(observability):
     ax.set_title(f"rank {observability['rank']} of {len(sv)}, condition {observability['condition']:.3g}", fontsize=9)
     fig.tight_layout()
     return fig
+
+
+def frf_plot(frequencies, h, title="FRF of the TCP relative to the workpiece"):
+    """Magnitude (log) and phase of the direct terms Hxx, Hyy, Hzz and of the cross-talk, with
+    the grey 2 % of the direct response that seed 000 draws as the measurement uncertainty of
+    cross-talk (L5700-5716)."""
+    f = np.asarray(frequencies, float)
+    h = np.asarray(h)
+    fig, axes = plt.subplots(2, 2, figsize=(9.0, 5.6), sharex=True, gridspec_kw={"height_ratios": [2, 1]})
+    names = "xyz"
+    colours = ("#d62728", "#2ca02c", "#1f77b4")
+    for k in range(3):
+        axes[0, 0].semilogy(f, np.abs(h[:, k, k]), color=colours[k], label=f"H{names[k]}/F{names[k]}")
+        axes[1, 0].plot(f, np.degrees(np.angle(h[:, k, k])), color=colours[k])
+    pairs = [(1, 0), (2, 0), (2, 1)]
+    for (i, j), colour in zip(pairs, ("#9467bd", "#8c564b", "#e377c2")):
+        axes[0, 1].semilogy(f, np.abs(h[:, i, j]), color=colour, label=f"H{names[i]}/F{names[j]}")
+        axes[1, 1].plot(f, np.degrees(np.angle(h[:, i, j])), color=colour)
+    axes[0, 1].semilogy(f, 0.02 * np.abs(h[:, 0, 0]), color="#aaa", ls="--", label="2 % of Hx/Fx")
+    axes[0, 0].set_title("direct", fontsize=9)
+    axes[0, 1].set_title("cross-talk", fontsize=9)
+    for ax in axes[0]:
+        ax.set_ylabel("|H| [µm/N]")
+        ax.legend(fontsize=7)
+    for ax in axes[1]:
+        ax.set_ylabel("phase [°]")
+        ax.set_xlabel("frequency [Hz]")
+        ax.set_ylim(-185, 185)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+def mode_shape_view(structure, modes, index, at=None):
+    """The structure's bodies as boxes in two views (Y-Z and X-Y), undeformed (grey) and
+    displaced by mode `index` (coloured by the axis that moves them, seed 000 Fig. 6.2),
+    scaled to a visible deflection."""
+    at = at or {}
+    shape = np.asarray(modes["shapes"])[:, index]
+    bodies = structure.bodies
+    travel_shift = {a["name"]: at.get(a["name"], 0.0) for a in structure.axes}
+    direction = {"X": np.array([1.0, 0, 0]), "Y": np.array([0, 1.0, 0]), "Z": np.array([0, 0, 1.0])}
+    span = max(max(b["size_mm"]) for b in bodies)
+    motion = np.array([np.linalg.norm(shape[6 * i:6 * i + 3]) * 1e3 for i in range(len(bodies))])  # mm
+    scale = 0.15 * span / max(motion.max(), 1e-12)
+    colours = {"X": "#d62728", "Y": "#2ca02c", "Z": "#1f77b4"}
+    fig, axes = plt.subplots(1, 2, figsize=(9.0, 4.2))
+    for ax, (u, v), label in zip(axes, ((1, 2), (0, 1)), ("Y-Z view", "X-Y view")):
+        for i, b in enumerate(bodies):
+            move = sum((travel_shift.get(a, 0.0) * direction.get(a, 0) for a in b["moved_by"]), np.zeros(3))
+            c = np.array(b["centre_mm"]) + move  # centre of gravity: the body turns about it
+            box = np.array(b["box_centre_mm"]) + move - c
+            half = np.array(b["size_mm"]) / 2
+            corners = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1], [-1, -1]], float)
+            pts = np.tile(box, (5, 1))
+            pts[:, u] += corners[:, 0] * half[u]
+            pts[:, v] += corners[:, 1] * half[v]
+            ax.plot(c[u] + pts[:, u], c[v] + pts[:, v], color="#bbb", lw=0.8)
+            t, r = shape[6 * i:6 * i + 3] * 1e3 * scale, shape[6 * i + 3:6 * i + 6] * scale
+            moved = pts + t + np.cross(r, pts)
+            colour = colours.get(b["moved_by"][-1], "#555") if b["moved_by"] else "#555"
+            ax.plot(c[u] + moved[:, u], c[v] + moved[:, v], color=colour, lw=1.4)
+        ax.set_aspect("equal")
+        ax.set_title(label, fontsize=9)
+        ax.set_xlabel("XYZ"[u] + " [mm]")
+        ax.set_ylabel("XYZ"[v] + " [mm]")
+    fig.suptitle(f"mode {index + 1}: {modes['frequencies_hz'][index]:.1f} Hz (deflection magnified)", fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+def dynamics_map(result, title=None):
+    """A quantity over a grid of two axes as a colour map (seed 000 Fig. 7.7)."""
+    fig, ax = plt.subplots(figsize=(5.2, 4.2))
+    mesh = ax.pcolormesh(result["a_mm"], result["b_mm"], np.asarray(result["values"]).T, shading="nearest", cmap="viridis")
+    fig.colorbar(mesh, ax=ax, label=f"{result['quantity']} [{result['unit'].replace('um', 'µm')}]")
+    ax.set_xlabel(f"{result['axes'][0]} [mm]")
+    ax.set_ylabel(f"{result['axes'][1]} [mm]")
+    ax.set_title(title or result["quantity"], fontsize=9)
+    fig.tight_layout()
+    return fig

@@ -245,12 +245,50 @@ def identification_section(machine, plan):
     return out
 
 
-def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=None, plan=None):
+def dynamics_section(structure_name, compare=None):
+    """Modes, FRF, acceleration response (Table 7.1 form) at position 1 of a structure model,
+    and the Hx/X map over Y-Z compared with a second design."""
+    from . import Structure
+    s = Structure(structure_name)
+    at = {a["name"]: (a["travel_mm"][1] if a["name"] == "Y" else a["travel_mm"][0] if a["name"] == "Z" else 0.0)
+          for a in s.axes}
+    out = f"<h2>Structural dynamics: {html.escape(s.name)}</h2>"
+    out += ("<p>Rigid-body model (seed 000 part II): " + f"{len(s.bodies)} bodies, {6 * len(s.bodies)} DOF, evaluated at "
+            + ", ".join(f"{k} = {v:g} mm" for k, v in at.items()) + " (position 1: Y and Z extended, X centred).</p>")
+    modes = s.modes(at=at)
+    rows = [[k + 1, f"{f:.1f}", f"{fd:.1f}", f"{100 * z:.2f}"]
+            for k, (f, fd, z) in enumerate(zip(modes["frequencies_hz"][:8], modes["damped_frequencies_hz"][:8],
+                                               modes["damping_ratios"][:8]))]
+    out += table(["mode", "f [Hz]", "damped f [Hz]", "ζ [%]"], rows, left=0)
+    out += figure(plots.mode_shape_view(s, modes, 0, at), "First mode shape")
+    f = np.arange(1.0, 201.0)
+    out += figure(plots.frf_plot(f, s.frf(f, at=at)), "FRF of the TCP relative to the workpiece: direct terms and cross-talk")
+    r = s.acceleration_response(at=at)
+    names = [a["name"] for a in s.axes]
+    out += "<p>Quasi-static TCP displacement per axis acceleration [µm/g<sub>n</sub>] (the form of seed 000 Table 7.1):</p>"
+    out += table(["response"] + [f"{n}''" for n in names],
+                 [[f"H{c}"] + [f"{r[i, k]:.1f}" for k in range(len(names))] for i, c in enumerate("xyz")])
+    maps = [s.map("Hx/X")]
+    out += figure(plots.dynamics_map(maps[0], f"|Hx/X''| over Y-Z: {s.name}"), "Inertial compliance over the Y-Z section")
+    if compare:
+        other = Structure(compare)
+        maps.append(other.map("Hx/X"))
+        out += figure(plots.dynamics_map(maps[1], f"|Hx/X''| over Y-Z: {other.name}"), "The same for the second design")
+        out += figure(plots.box_plot({m_name: np.asarray(m["values"]).ravel() for m_name, m in
+                                      zip(("design 1", "design 2"), maps)}, ylabel="|Hx/X''| [µm/g]"),
+                      f"Distribution over the 400 positions: design 1 = {html.escape(s.name)}, design 2 = {html.escape(other.name)}")
+    return out
+
+
+def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=None, plan=None, structure=None,
+                 compare=None):
     """Writes <output_dir>/<machine>-report.html atomically and returns its path."""
     start = time.perf_counter()
     steps = ["machine", "error budget", "volumetric error maps", "circular test", "5-axis circle", "cone frustum", "writing"]
     if plan:
         steps.insert(-1, "identification")
+    if structure:
+        steps.insert(-1, "structural dynamics")
     done = []
 
     def step(name):
@@ -328,6 +366,9 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     if plan:
         parts.append(identification_section(machine, plan))
         step("identification")
+    if structure:
+        parts.append(dynamics_section(structure, compare))
+        step("structural dynamics")
 
     elapsed = time.perf_counter() - start
     parts.append(f'<p class="meta">Built in {elapsed:.1f} s.</p>')
@@ -358,10 +399,13 @@ def main(argv=None):
     parser.add_argument("--errors", help="errors file (default: the machine file's errors)")
     parser.add_argument("--samples", type=int, default=5, help="positions per axis for the budget grid")
     parser.add_argument("--plan", help="test plan (YAML or bundled name) to simulate, evaluate and identify from")
+    parser.add_argument("--structure", help="structure model (YAML or bundled name) for the dynamics section")
+    parser.add_argument("--compare", help="a second structure model to compare with")
     args = parser.parse_args(argv)
     try:
         path = build_report(args.machine, args.output, args.errors, args.samples,
-                            progress=lambda s: print(s, file=sys.stderr, flush=True), plan=args.plan)
+                            progress=lambda s: print(s, file=sys.stderr, flush=True), plan=args.plan,
+                            structure=args.structure, compare=args.compare)
     except (InputError, UnreachablePose) as e:
         print(f"mtacc: error: {e}", file=sys.stderr)
         return 2

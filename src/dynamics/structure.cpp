@@ -116,6 +116,7 @@ RigidBody readBody(const Context& ctx, const YAML::Node& b, const std::string& k
     if (eig.eigenvalues().minCoeff() <= 0)
       ctx.fail(b["inertia"], key + ".inertia", "the inertia tensor of '" + name + "' must be positive definite");
   }
+  if (!b["parts"]) body.boxCentre = body.centre;
   if (b["size"]) body.size = yamlin::lengthVector(ctx, b["size"], key + ".size") * 1e-3;
   body.line = b.Mark().line + 1;
   return body;
@@ -164,7 +165,8 @@ void readBeam(const Context& ctx, const YAML::Node& b, const std::string& key, S
     body.mass = part.mass;
     body.centre = centre;
     body.inertia = frame * part.inertia * frame.transpose();
-    body.size = local;
+    body.size = (frame * local).cwiseAbs();
+    body.boxCentre = centre;
     body.line = b.Mark().line + 1;
     m.bodies.push_back(body);
     s += l;
@@ -256,14 +258,15 @@ Connection readConnection(const Context& ctx, const StructureModel& m, const YAM
 }  // namespace
 
 BodyPart cuboidPart(const Vec3& s, double mass, const Vec3& centre) {
-  BodyPart p{mass, centre, Mat3::Zero()};
+  BodyPart p{mass, centre, Mat3::Zero(), s / 2};
   p.inertia.diagonal() << s.y() * s.y() + s.z() * s.z(), s.x() * s.x() + s.z() * s.z(), s.x() * s.x() + s.y() * s.y();
   p.inertia *= mass / 12;
   return p;
 }
 
 BodyPart cylinderPart(double r, double ri, double l, int axis, double mass, const Vec3& centre) {
-  BodyPart p{mass, centre, Mat3::Zero()};
+  BodyPart p{mass, centre, Mat3::Zero(), Vec3::Constant(r)};
+  p.halfExtent[axis] = l / 2;
   const double along = mass * (r * r + ri * ri) / 2, across = mass * (3 * (r * r + ri * ri) + l * l) / 12;
   p.inertia.diagonal().setConstant(across);
   p.inertia(axis, axis) = along;
@@ -271,7 +274,7 @@ BodyPart cylinderPart(double r, double ri, double l, int axis, double mass, cons
 }
 
 BodyPart prismPart(double a, double b, double l, double mass, const Vec3& centre) {
-  BodyPart p{mass, centre, Mat3::Zero()};
+  BodyPart p{mass, centre, Mat3::Zero(), Vec3(2 * a / 3, 2 * b / 3, l / 2)};
   p.inertia(0, 0) = mass * (b * b / 18 + l * l / 12);
   p.inertia(1, 1) = mass * (a * a / 18 + l * l / 12);
   p.inertia(2, 2) = mass * (a * a + b * b) / 18;
@@ -287,7 +290,14 @@ RigidBody combineParts(const std::string& name, const std::vector<BodyPart>& par
     b.centre += p.mass * p.centre;
   }
   b.centre /= b.mass;
-  for (const auto& p : parts) b.inertia += p.inertia + parallelAxis(p.mass, p.centre - b.centre);
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (const auto& p : parts) {
+    b.inertia += p.inertia + parallelAxis(p.mass, p.centre - b.centre);
+    lo = lo.cwiseMin(p.centre - p.halfExtent);
+    hi = hi.cwiseMax(p.centre + p.halfExtent);
+  }
+  b.size = hi - lo;
+  b.boxCentre = (hi + lo) / 2;
   return b;
 }
 

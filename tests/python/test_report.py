@@ -18,7 +18,8 @@ FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-
 @pytest.fixture(scope="module")
 def tilting_table_report(tmp_path_factory):
     out = tmp_path_factory.mktemp("report")
-    return pathlib.Path(report.build_report("tilting-table", str(out), plan="tilting-table-rtest"))
+    return pathlib.Path(report.build_report("tilting-table", str(out), plan="tilting-table-rtest", structure="tzyx-arm-x",
+                                            compare="tzyx-arm-y"))
 
 
 def test_report_is_self_contained(tilting_table_report):
@@ -26,6 +27,7 @@ def test_report_is_self_contained(tilting_table_report):
     assert text.count('<figure class="plot">') >= 15
     assert "Cone-frustum test piece (seed 000)" in text and "Monte Carlo:" in text
     assert "Measurement and identification" in text and "Identified parameters" in text
+    assert "Structural dynamics" in text and "First mode shape" in text
     assert not re.search(r'(src|href)\s*=\s*["\']?(https?:)?//', text)
     assert "<link" not in text and "@import" not in text and "url(http" not in text
 

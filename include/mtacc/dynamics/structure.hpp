@@ -19,6 +19,7 @@ struct RigidBody {
   Vec3 centre = Vec3::Zero();      // centre of gravity at the home position, m
   Mat3 inertia = Mat3::Zero();     // about the centre of gravity, global axes, kg m^2
   Vec3 size = Vec3::Zero();        // bounding box for drawing, m (0 when unknown)
+  Vec3 boxCentre = Vec3::Zero();   // its centre, m
   int line = 0;
 };
 
@@ -27,6 +28,7 @@ struct BodyPart {
   double mass = 0;
   Vec3 centre = Vec3::Zero();
   Mat3 inertia = Mat3::Zero();  // about its own centre
+  Vec3 halfExtent = Vec3::Zero();  // of its bounding box, for drawing
 };
 BodyPart cuboidPart(const Vec3& size, double mass, const Vec3& centre);
 // axis 0, 1, 2 = x, y, z; inner radius 0 for a solid cylinder.
