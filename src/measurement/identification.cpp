@@ -37,8 +37,7 @@ bool allZero(const IdentificationProblem& p) {
 
 // The stacked problem at one estimate: the model compiled there, the runs with their set-up
 // errors, and the layout of the stacked readings (rows) and unknowns (columns). `jacobian`
-// and `residual` hold the evaluation with derivatives at `point`: complete when `valid`,
-// being filled block by block during the solver's evaluation when `filling`. `current` is
+// and `residual` hold the evaluation with derivatives at `point` (when `valid`); `current` is
 // the estimate the model is compiled at.
 struct State {
   const IdentificationProblem* problem;
@@ -54,8 +53,11 @@ struct State {
   Eigen::VectorXd residual;
   std::vector<double> point;    // machine values then set-up values at which they hold
   std::vector<double> current;  // the same for the compiled model
-  bool valid = false, filling = false;
+  bool valid = false;
   bool setAtReady = false;  // setAt holds the derivatives at `current`
+  Eigen::VectorXd residualOnly;  // residuals at `residualPoint`, without derivatives
+  std::vector<double> residualPoint;
+  int threads = 1;
 
   // aboutNominal: every error parameter and set-up error at zero, the functions kept.
   State(const IdentificationProblem& p, bool aboutNominal) : problem(&p), errors(p.start), runs(p.runs) {
@@ -112,7 +114,7 @@ struct State {
       if (r.readings.rows() == r.poses()) residual.segment(row, m) -= r.readings.row(i).transpose();
     }
   }
-  void evaluateAll(int threads) {
+  void evaluateAll() {
     jacobian.setZero(rows, cols);
     residual.resize(rows);
     std::vector<Eigen::Index> poseStart{0};
@@ -128,36 +130,43 @@ struct State {
     });
     point = current;
     valid = true;
-    filling = false;
   }
-  bool residualsAtCurrent() const { return valid && point == current; }
+  void evaluateResiduals() {
+    residualOnly.resize(rows);
+    std::vector<Eigen::Index> poseStart{0};
+    for (const auto& r : runs) poseStart.push_back(poseStart.back() + r.poses());
+    parallelFor(poseStart.back(), threads, [&](long b, long e) {
+      size_t r = static_cast<size_t>(std::upper_bound(poseStart.begin(), poseStart.end(), b) - poseStart.begin()) - 1;
+      for (long i = b; i < e; ++i) {
+        while (i >= poseStart[r + 1]) ++r;
+        const auto& run = runs[r];
+        const Eigen::Index pose = i - poseStart[r], m = readingSize(run.instrument);
+        residualOnly.segment(rowStart[r] + pose * m, m) = predictReading(model, nominal, run, pose) - run.readings.row(pose).transpose();
+      }
+    });
+    residualPoint = current;
+  }
+  // The residuals at the current estimate (with or without derivatives).
+  const Eigen::VectorXd& residualsAtCurrent() const { return valid && point == current ? residual : residualOnly; }
 };
 
 class Callback : public ceres::EvaluationCallback {
  public:
   Callback(State& state, const std::vector<double>& machine, const std::vector<std::vector<double>>& setup)
       : state_(state), machine_(machine), setup_(setup) {}
+  // Everything the blocks of this evaluation need, computed here on all threads at once;
+  // the blocks then only copy their rows.
   void PrepareForEvaluation(bool jacobians, bool) override {
-    finish(state_);
     std::vector<double> v = machine_;
     for (const auto& s : setup_) v.insert(v.end(), s.begin(), s.end());
-    if (v != state_.current || (jacobians && !state_.setAtReady)) {
+    const bool derivativesThere = state_.valid && state_.point == v;
+    if (v != state_.current || (jacobians && !derivativesThere && !state_.setAtReady)) {
       state_.set(v);
       state_.recompile(jacobians);
       state_.current = v;
     }
-    if (jacobians && !(state_.valid && state_.point == v)) {
-      // Every block fills its rows during this evaluation; set-up columns of other runs stay 0.
-      state_.jacobian.setZero(state_.rows, state_.cols);
-      state_.residual.resize(state_.rows);
-      state_.point = v;
-      state_.valid = false;
-      state_.filling = true;
-    }
-  }
-  // After an evaluation that filled every block's rows.
-  static void finish(State& state) {
-    if (state.filling) state.valid = true, state.filling = false;
+    if (jacobians && !derivativesThere) state_.evaluateAll();
+    if (!jacobians && !derivativesThere && state_.residualPoint != v) state_.evaluateResiduals();
   }
 
  private:
@@ -178,21 +187,9 @@ class PoseBlock : public ceres::CostFunction {
     if (!state.setup[run].empty()) mutable_parameter_block_sizes()->push_back(static_cast<int>(state.setup[run].size()));
   }
   bool Evaluate(double const* const*, double* residuals, double** jacobians) const override {
-    const MeasurementRun& run = state_.runs[run_];
     const Eigen::Index row0 = state_.rowStart[run_] + begin_ * m_, n = num_residuals();
-    if (!jacobians) {
-      if (state_.residualsAtCurrent()) {
-        Eigen::Map<Eigen::VectorXd>(residuals, n) = state_.residual.segment(row0, n);
-        return true;
-      }
-      for (Eigen::Index i = begin_; i < end_; ++i) {
-        const Eigen::VectorXd r = predictReading(state_.model, state_.nominal, run, i);
-        for (int k = 0; k < m_; ++k) residuals[(i - begin_) * m_ + k] = r[k] - run.readings(i, k);
-      }
-      return true;
-    }
-    if (state_.filling) state_.evaluate(run_, begin_, end_);
-    Eigen::Map<Eigen::VectorXd>(residuals, n) = state_.residual.segment(row0, n);
+    Eigen::Map<Eigen::VectorXd>(residuals, n) = state_.residualsAtCurrent().segment(row0, n);
+    if (!jacobians) return true;
     int block = 0;
     const auto machineCols = static_cast<Eigen::Index>(state_.problem->parameters.size());
     if (machineCols > 0) {
@@ -252,13 +249,15 @@ ProblemColumns problemColumns(const IdentificationProblem& p) {
 
 Eigen::MatrixXd stackedJacobian(const IdentificationProblem& problem, int threads) {
   State state(problem, false);
-  state.evaluateAll(threadCount(threads));
+  state.threads = threadCount(threads);
+  state.evaluateAll();
   return state.jacobian;
 }
 
 ObservabilityReport planObservability(const IdentificationProblem& problem, int threads) {
   State state(problem, true);
-  state.evaluateAll(threadCount(threads));
+  state.threads = threadCount(threads);
+  state.evaluateAll();
   const auto cols = problemColumns(problem);
   return analyseObservability(state.jacobian, cols.names, cols.typical);
 }
@@ -275,7 +274,8 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
   // evaluation is the solver's first.
   const bool startsAtNominal = allZero(problem);
   State state(problem, true);
-  state.evaluateAll(threads);
+  state.threads = threads;
+  state.evaluateAll();
   out.observability = analyseObservability(state.jacobian, out.columns.names, out.columns.typical);
   if (!out.observability.identifiable()) {
     std::string why;
@@ -284,6 +284,7 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
   }
   if (!startsAtNominal) {
     state = State(problem, false);
+    state.threads = threads;
   }
 
   std::vector<double> machine(problem.parameters.size());
@@ -310,14 +311,13 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
   }
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-  so.num_threads = threads;
+  so.num_threads = 1;  // the callback evaluates on all threads
   so.max_num_iterations = options.maxIterations;
   so.logging_type = ceres::SILENT;
   so.function_tolerance = 1e-10;
   so.parameter_tolerance = 1e-10;
   ceres::Solver::Summary summary;
   ceres::Solve(so, &cp, &summary);
-  Callback::finish(state);
   out.converged = summary.termination_type == ceres::CONVERGENCE;
   out.iterations = static_cast<int>(summary.iterations.size()) - 1;
   out.solverReport = summary.BriefReport();
@@ -329,7 +329,7 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
     state.set(final);
     state.recompile(true);
     state.current = final;
-    state.evaluateAll(threads);
+    state.evaluateAll();
   }
   const Eigen::MatrixXd j = state.jacobian;
   const Eigen::VectorXd& residual = state.residual;
