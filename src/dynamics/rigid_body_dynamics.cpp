@@ -221,7 +221,14 @@ struct ModalSums {
 ModalSums modalSums(const StructureMatrices& m, const Modes& modes, const std::vector<double>& frequencies) {
   const Eigen::Index r = modes.frequencies.size();
   const Eigen::Matrix<double, 3, Eigen::Dynamic> participation = m.selection * modes.shapes;  // S phi_r
-  const Eigen::MatrixXd dampedShapes = m.damping * modes.shapes;
+  // D phi block by block: D couples only bodies joined by an element.
+  const Eigen::Index bodies = m.damping.rows() / 6;
+  Eigen::MatrixXd dampedShapes = Eigen::MatrixXd::Zero(m.damping.rows(), r);
+  for (Eigen::Index i = 0; i < bodies; ++i)
+    for (Eigen::Index j = 0; j < bodies; ++j) {
+      const auto block = m.damping.block<6, 6>(6 * i, 6 * j);
+      if (!block.isZero(0.0)) dampedShapes.middleRows<6>(6 * i).noalias() += block * modes.shapes.middleRows<6>(6 * j);
+    }
   const Eigen::VectorXd modalDamping = modes.shapes.cwiseProduct(dampedShapes).colwise().sum().transpose();
   // Per mode, contiguous: w_r^2, c_r and the six products of its participations.
   std::vector<std::array<double, 8>> mode(static_cast<size_t>(r));
