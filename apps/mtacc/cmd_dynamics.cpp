@@ -14,9 +14,9 @@
 namespace mtacc::cli {
 namespace {
 
-struct DynamicsOptions {
-  std::string model, at, output, method = "modal", quantity = "Hx/X", axes = "Y,Z", grid = "20x20", compare;
-  bool json = false;
+// MachineOptions::machine holds the structure model; --errors does not apply.
+struct DynamicsOptions : MachineOptions {
+  std::string at, method = "modal", quantity = "Hx/X", axes = "Y,Z", grid = "20x20", compare;
   double from = 0, to = 200, step = 1;
   int count = 12;
 };
@@ -40,19 +40,8 @@ std::vector<double> positions(const StructureModel& m, const std::string& text) 
   return q;
 }
 
-void output(const DynamicsOptions& o, const nlohmann::json& j, const std::string& human, const std::string& csv) {
-  if (o.json) {
-    const std::string text = j.dump(2) + "\n";
-    if (o.output.empty()) std::cout << text;
-    else writeFileAtomically(o.output, text);
-    return;
-  }
-  std::cout << human;
-  if (!o.output.empty()) writeFileAtomically(o.output, csv);
-}
-
 void modes(const DynamicsOptions& o) {
-  const auto model = loadStructure(o.model);
+  const auto model = loadStructure(o.machine);
   const auto mats = assembleStructure(model, positions(model, o.at));
   const auto undamped = undampedModes(model, mats);
   const auto damped = dampedModes(mats);
@@ -75,11 +64,11 @@ void modes(const DynamicsOptions& o) {
     j["modes"].push_back({{"frequency_hz", undamped.frequencies[r]}, {"damped_frequency_hz", d.frequency},
                           {"damping_ratio", d.dampingRatio}, {"body", body}, {"dof", dofs[k % 6]}});
   }
-  output(o, j, human, csv);
+  emit(o, j, human, csv);
 }
 
 void frf(const DynamicsOptions& o) {
-  const auto model = loadStructure(o.model);
+  const auto model = loadStructure(o.machine);
   const auto mats = assembleStructure(model, positions(model, o.at));
   if (!(o.step > 0) || o.to < o.from || o.from < 0)
     throw InputError(InputLocation{"", 0, "--step"}, "need 0 <= from <= to and a positive step (Hz)");
@@ -119,11 +108,11 @@ void frf(const DynamicsOptions& o) {
                        st(0, 0), st(0, 1), st(0, 2), st(1, 0), st(1, 1), st(1, 2), st(2, 0), st(2, 1), st(2, 2));
   human += fmt::format("largest |Hxx| {:.4f} um/N at {:g} Hz; -o FILE writes magnitude and phase of all nine terms\n",
                        peak * 1e6, peakF);
-  output(o, j, human, csv);
+  emit(o, j, human, csv);
 }
 
 void accel(const DynamicsOptions& o) {
-  const auto model = loadStructure(o.model);
+  const auto model = loadStructure(o.machine);
   const auto mats = assembleStructure(model, positions(model, o.at));
   const Eigen::MatrixXd r = accelerationResponse(mats) * kStandardGravity * 1e6;
   nlohmann::json j;
@@ -144,11 +133,11 @@ void accel(const DynamicsOptions& o) {
     }
     human += "\n", csv += "\n";
   }
-  output(o, j, human, csv);
+  emit(o, j, human, csv);
 }
 
 void map(const DynamicsOptions& o) {
-  std::vector<StructureModel> models = {loadStructure(o.model)};
+  std::vector<StructureModel> models = {loadStructure(o.machine)};
   if (!o.compare.empty()) models.push_back(loadStructure(o.compare));
   const auto comma = o.axes.find(',');
   const auto x = o.grid.find('x');
@@ -178,7 +167,7 @@ void map(const DynamicsOptions& o) {
                          {"statistics", {{"min", s.min}, {"lower_quartile", s.lowerQuartile}, {"median", s.median},
                                          {"upper_quartile", s.upperQuartile}, {"max", s.max}}}});
   }
-  output(o, j, human, csv);
+  emit(o, j, human, csv);
 }
 
 }  // namespace
@@ -188,7 +177,7 @@ void addDynamicsCommand(CLI::App& app) {
   auto* dyn = app.add_subcommand("dynamics", "Rigid-body structural dynamics of a structure model (seed 000 part II)");
   dyn->require_subcommand(1);
   auto common = [&](CLI::App* c) {
-    c->add_option("model", o->model, "Structure model (YAML) or bundled name, e.g. tzyx-arm-x")->required();
+    c->add_option("model", o->machine, "Structure model (YAML) or bundled name, e.g. tzyx-arm-x")->required();
     c->add_option("--at", o->at, "Axis positions in mm, e.g. Y=400,Z=-300 (others 0)");
     c->add_flag("--json", o->json, "One JSON object instead of tables");
     c->add_option("-o,--output", o->output, "Write the result to FILE (CSV, or JSON with --json), atomically");
