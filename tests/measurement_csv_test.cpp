@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/errors/error_yaml.hpp"
 #include "mtacc/measurement/measurement_csv.hpp"
 #include "mtacc/measurement/simulation.hpp"
 #include "mtacc/measurement/test_paths.hpp"
@@ -67,6 +68,31 @@ TEST(MeasurementCsv, BadPlansNameTheKey) {
     EXPECT_NE(std::string(e.what()).find("not a rotary axis"), std::string::npos) << e.what();
   }
   EXPECT_THROW(parseTestPlan(nominal, "runs:\n  - helix: {}\n", "plan.yaml"), InputError);
+}
+
+// Seed 000 ch. 4: the ballbar square to the cone surface. On the nominal machine the bar
+// keeps its length along the whole 5-axis path, and every bar direction is the surface normal;
+// with an error, dL follows the normal deviation n . (P_actual - P_nominal) to first order.
+TEST(BallbarPaths, ConeFrustumEquivalentPath) {
+  const auto machine = test::bundled("tilting-table");
+  const auto nominal = compileNominal(machine);
+  const auto plan = parseTestPlan(nominal, "runs:\n  - cone: {preset: tilting-table, points: 180}\n", "plan.yaml");
+  auto run = plan.runs.at(0);
+  simulateRun(nominal, nominal, run);
+  EXPECT_LT(run.readings.cwiseAbs().maxCoeff(), 1e-9);
+  const auto spec = *conePreset("tilting-table");
+  const auto path = conePath(spec, 180);
+  for (size_t i = 0; i < path.points.size(); ++i)
+    EXPECT_NEAR((path.points[i] - run.setup.target).normalized().dot(path.normals[i]), 1.0, 1e-9);
+  auto withError = run;
+  const auto errors = parseErrors(*machine, "errors:\n  X0C: 10 um\n", "test");
+  const auto model = compile(machine, errors);
+  simulateRun(model, nominal, withError);
+  for (Eigen::Index i = 0; i < run.poses(); ++i) {
+    const Vec3 d = toolPoint(model, run.q.row(i).data()).position - toolPoint(nominal, run.q.row(i).data()).position;
+    // Second order: a tangential deviation t adds t^2 / 2L <= (10 um)^2 / 113 mm = 0.9e-6 mm.
+    EXPECT_NEAR(withError.readings(i, 0), path.normals[static_cast<size_t>(i)].dot(d), 2e-6);
+  }
 }
 
 }  // namespace
