@@ -97,7 +97,7 @@ struct State {
     for (size_t r = 0; r < runs.size(); ++r)
       setAt[r] = jacobians && runs[r].setup.setAt
                      ? std::optional(pointJacobian(model, problem->parameters, runs[r].setup.setAt->data(), nullptr,
-                                                   runs[r].setup.toolBall))
+                                                   toolBallWithSetupError(runs[r])))
                      : std::nullopt;
   }
   // Poses [begin, end) of one run into the stacked jacobian and residual.

@@ -10,10 +10,6 @@ constexpr std::array<const char*, kSetupParameterCount> kSetupNames = {"xT", "yT
 
 double err(const MeasurementRun& run, SetupParameter p) { return run.setup.errors[static_cast<size_t>(p)]; }
 
-Vec3 toolBallActual(const MeasurementRun& run) {
-  return run.setup.toolBall +
-         Vec3(err(run, SetupParameter::ToolBallX), err(run, SetupParameter::ToolBallY), err(run, SetupParameter::ToolBallZ));
-}
 Vec3 targetError(const MeasurementRun& run) {
   return Vec3(err(run, SetupParameter::TargetX), err(run, SetupParameter::TargetY), err(run, SetupParameter::TargetZ));
 }
@@ -26,7 +22,7 @@ Mat3 nominalWorkpieceRotation(const KinematicModel& nominal, const double* q) {
   return workpiecePose(nominal, q, nullptr).linear();
 }
 Vec3 actualToolBall(const KinematicModel& model, const MeasurementRun& run, const double* q, const int* dir) {
-  return toolInWorkpiece(model, q, dir) * toolBallActual(run);
+  return toolInWorkpiece(model, q, dir) * toolBallWithSetupError(run);
 }
 const int* dirRow(const MeasurementRun& run, Eigen::Index i) { return run.direction.size() ? run.direction.row(i).data() : nullptr; }
 
@@ -78,6 +74,11 @@ Dimension setupParameterDimension(SetupParameter p) {
                                                                                                 : Dimension::Length;
 }
 
+Vec3 toolBallWithSetupError(const MeasurementRun& run) {
+  return run.setup.toolBall +
+         Vec3(err(run, SetupParameter::ToolBallX), err(run, SetupParameter::ToolBallY), err(run, SetupParameter::ToolBallZ));
+}
+
 Vec3 workBall(const KinematicModel& model, const MeasurementRun& run) {
   const Vec3 base = run.setup.setAt ? actualToolBall(model, run, run.setup.setAt->data(), nullptr) : run.setup.target;
   return base + targetError(run);
@@ -121,7 +122,7 @@ ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicMode
                                 const PointJacobian* setAtJacobian) {
   const double* q = run.q.row(i).data();
   const int* dir = dirRow(run, i);
-  const auto pj = pointJacobian(model, machineParameters, q, dir, toolBallActual(run));
+  const auto pj = pointJacobian(model, machineParameters, q, dir, toolBallWithSetupError(run));
   const Vec3& t = pj.point;
   // d(tool ball)/d(xT yT zT): the tool frame's rotation in the workpiece frame.
   const Mat3& toolRotation = pj.toolRotation;

@@ -95,5 +95,8 @@ ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicMode
 
 // The work ball of a ballbar run in the workpiece frame (set-up error included).
 Vec3 workBall(const KinematicModel& model, const MeasurementRun& run);
+// The tool ball relative to the TCP in the tool frame, set-up error xT yT zT included (the
+// point whose pointJacobian at setAt readingJacobian expects).
+Vec3 toolBallWithSetupError(const MeasurementRun& run);
 
 }  // namespace mtacc

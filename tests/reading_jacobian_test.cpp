@@ -1,0 +1,81 @@
+// The derivative of every instrument's reading with respect to machine and set-up parameters
+// against central differences of the exact readings, at a non-zero error state. Tolerance:
+// 1e-6 relative plus the difference quotient's own error (h^2 curvature, rounding / h).
+#include <gtest/gtest.h>
+
+#include "mtacc/errors/error_yaml.hpp"
+#include "mtacc/measurement/test_paths.hpp"
+#include "test_helpers.hpp"
+
+namespace mtacc {
+namespace {
+
+TEST(ReadingJacobian, AllInstrumentsAgainstCentralDifferences) {
+  const auto machine = test::bundled("tilting-table");
+  const auto nominal = compileNominal(machine);
+  const ErrorModel errors = loadMachineErrors(*machine);  // location and component errors
+  std::vector<Parameter> params;
+  for (const char* n : {"X0B", "A0C", "C0Y", "EXX.c1", "EBB.h1c"}) {
+    try {
+      params.push_back(findParameter(*machine, errors, n));
+    } catch (const std::invalid_argument&) {
+    }
+  }
+  ASSERT_GE(params.size(), 4u);
+  const auto model = compile(machine, errors);
+
+  BallbarRotarySpec b;
+  b.axis = "C";
+  b.length = 80;
+  b.workBall = Vec3(60, 20, 40);
+  b.points = 12;
+  b.pose = {0, 0, 0, -20 * kDeg, 0};
+  SphereTestSpec r;
+  r.axis = "B";
+  r.angles = {-10 * kDeg, -40 * kDeg};
+  r.spheres = {Vec3(80, -30, 60)};
+  std::vector<MeasurementRun> runs = {ballbarRotaryTest(nominal, b), sphereTest(nominal, r)[0]};
+  r.instrument = Instrument::TouchProbe;
+  runs.push_back(sphereTest(nominal, r)[0]);
+  runs.push_back(cubicMachiningZones(nominal, 48, 48, 3));
+  std::vector<SetupParameter> all;
+  for (int k = 0; k < kSetupParameterCount; ++k) all.push_back(static_cast<SetupParameter>(k));
+
+  for (auto& run : runs) {
+    SCOPED_TRACE(instrumentName(run.instrument));
+    std::vector<SetupParameter> setup;
+    for (auto p : all)
+      if (appliesTo(p, run.instrument)) setup.push_back(p);
+    for (auto p : setup) run.setup.errors[static_cast<size_t>(p)] = setupParameterDimension(p) == Dimension::Length ? 7e-3 : 30e-6;
+    const std::optional<PointJacobian> setAt =
+        run.setup.setAt ? std::optional(pointJacobian(model, params, run.setup.setAt->data(), nullptr, toolBallWithSetupError(run)))
+                        : std::nullopt;
+    for (Eigen::Index i = 0; i < run.poses(); i += 3) {
+      const auto j = readingJacobian(model, nominal, run, i, params, setup, setAt ? &*setAt : nullptr);
+      EXPECT_LT((j.reading - predictReading(model, nominal, run, i)).cwiseAbs().maxCoeff(), 1e-12);
+      for (size_t k = 0; k < params.size(); ++k) {
+        const double h = params[k].dimension == Dimension::Length ? 1e-4 : 1e-6;
+        auto plus = errors, minus = errors;
+        setParameterValue(plus, params[k], parameterValue(errors, params[k]) + h);
+        setParameterValue(minus, params[k], parameterValue(errors, params[k]) - h);
+        const Eigen::VectorXd fd = (predictReading(compile(machine, plus), nominal, run, i) -
+                                    predictReading(compile(machine, minus), nominal, run, i)) / (2 * h);
+        const Eigen::VectorXd an = j.machine.col(static_cast<Eigen::Index>(k));
+        EXPECT_LE((fd - an).cwiseAbs().maxCoeff(), 1e-6 * an.cwiseAbs().maxCoeff() + 1e-9 / h) << params[k].name;
+      }
+      for (size_t k = 0; k < setup.size(); ++k) {
+        const double h = setupParameterDimension(setup[k]) == Dimension::Length ? 1e-4 : 1e-6;
+        auto plus = run, minus = run;
+        plus.setup.errors[static_cast<size_t>(setup[k])] += h;
+        minus.setup.errors[static_cast<size_t>(setup[k])] -= h;
+        const Eigen::VectorXd fd =
+            (predictReading(model, nominal, plus, i) - predictReading(model, nominal, minus, i)) / (2 * h);
+        const Eigen::VectorXd an = j.setup.col(static_cast<Eigen::Index>(k));
+        EXPECT_LE((fd - an).cwiseAbs().maxCoeff(), 1e-6 * an.cwiseAbs().maxCoeff() + 1e-9 / h) << setupParameterName(setup[k]);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace mtacc
