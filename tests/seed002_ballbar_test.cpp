@@ -96,7 +96,7 @@ TEST(Seed002, Table5FirstOrderRelationsFromTheExactSimulation) {
     const auto e = table5(d, g);
     const double tol = 1e-5;
     SCOPED_TRACE(name);
-    EXPECT_LT((eccentricity(model, *&nominal, "B", RotaryTestMode::X, g) - e.bx).norm(), tol) << "B X-direction";
+    EXPECT_LT((eccentricity(model, nominal, "B", RotaryTestMode::X, g) - e.bx).norm(), tol) << "B X-direction";
     EXPECT_LT((eccentricity(model, nominal, "B", RotaryTestMode::Y, g) - e.by).norm(), tol) << "B Y-direction";
     EXPECT_LT((eccentricity(model, nominal, "B", RotaryTestMode::Z, g) - e.bz).norm(), tol) << "B Z-direction";
     EXPECT_LT((eccentricity(model, nominal, "C", RotaryTestMode::Radial, g) - e.cr).norm(), tol) << "C radial";

@@ -17,11 +17,10 @@ struct ChainFactors {
   Pose total;
 };
 
-// Fills c (reusing its storage) with the chain's factors and prefix products; the suffix
-// products only when asked (the point Jacobian maps one point through the prefixes instead).
-void expandInto(const KinematicModel& m, const std::vector<ChainElement>& chain, const Pose& tail, const double* q,
-                const int* dir, bool suffixes, ChainFactors& c) {
-  c.factors.clear();
+// The chain's factors with their prefix and suffix products.
+ChainFactors expand(const KinematicModel& m, const std::vector<ChainElement>& chain, const Pose& tail, const double* q,
+                    const int* dir) {
+  ChainFactors c;
   c.element.assign(m.machine->axes.size(), nullptr);
   c.range.assign(m.machine->axes.size(), {0, 0});
   for (const auto& e : chain) {
@@ -38,19 +37,12 @@ void expandInto(const KinematicModel& m, const std::vector<ChainElement>& chain,
   c.prefix[0] = Pose::Identity();
   for (size_t i = 0; i < n; ++i) c.prefix[i + 1] = c.prefix[i] * c.factors[i].pose;
   c.total = c.prefix[n];
-  if (!suffixes) return;
   c.suffix.resize(n);
   Pose acc = Pose::Identity();
   for (size_t i = n; i-- > 0;) {
     c.suffix[i] = acc;
     acc = c.factors[i].pose * acc;
   }
-}
-
-ChainFactors expand(const KinematicModel& m, const std::vector<ChainElement>& chain, const Pose& tail, const double* q,
-                    const int* dir) {
-  ChainFactors c;
-  expandInto(m, chain, tail, q, dir, true, c);
   return c;
 }
 

@@ -1,6 +1,7 @@
 #include "mtacc/measurement/measurement.hpp"
 
 #include <array>
+#include <stdexcept>
 
 namespace mtacc {
 namespace {
@@ -139,13 +140,15 @@ ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicMode
   Mat3 targetToolRotation = Mat3::Zero();  // d(target)/d(xT yT zT): a ballbar set at the tool ball
   switch (run.instrument) {
     case Instrument::Ballbar: {
-      const Vec3 w = workBall(model, run);
+      if (run.setup.setAt && !setAtJacobian)
+        throw std::invalid_argument("readingJacobian: a ballbar set at the tool ball needs the point Jacobian there");
+      const Vec3 w = run.setup.setAt ? Vec3(setAtJacobian->point + targetError(run)) : workBall(model, run);
       const Vec3 u = (t - w).normalized();
       out.reading[0] = (t - w).norm() - run.setup.length - err(run, SetupParameter::Length);
       sensitivity = u.transpose();
       if (run.setup.setAt) {
         target = setAtJacobian;
-        targetToolRotation = toolInWorkpiece(model, run.setup.setAt->data(), nullptr).linear();
+        targetToolRotation = setAtJacobian->toolRotation;
       }
       break;
     }

@@ -86,8 +86,9 @@ struct ReadingJacobian {
   Eigen::MatrixXd machine;     // readingSize x machine parameters
   Eigen::MatrixXd setup;       // readingSize x setup parameters
 };
-// `model` must be compiled with errors. setAtJacobian: pointJacobian at run.setup.setAt
-// (ballbar with setAt only; computed once per run by the caller).
+// `model` must be compiled with errors. setAtJacobian: pointJacobian of
+// toolBallWithSetupError(run) at run.setup.setAt, computed once per run by the caller;
+// required for a ballbar with setAt (std::invalid_argument otherwise), ignored else.
 ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
                                 Eigen::Index i, const std::vector<Parameter>& machineParameters,
                                 const std::vector<SetupParameter>& setupParameters,
