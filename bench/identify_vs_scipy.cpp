@@ -1,5 +1,5 @@
 // Identification of 13 location errors of the tilting table from 10,000 simulated R-test
-// points (0.5 um noise), with mtacc's Ceres least squares (observability check and
+// points (0.5 um noise), with mtacc's least squares (Ceres TinySolver; observability check and
 // covariance included) and, side by side in the same run, with NumPy +
 // scipy.optimize.least_squares on the identical problem and data (bench/identify_scipy.py).
 // Target: under 50 ms, and at least 20x faster than SciPy. Medians of 7 repetitions each.
@@ -134,7 +134,7 @@ int main() {
                                 result.uncertainty[static_cast<Eigen::Index>(k)]);
   }
   fmt::print("largest difference between the two estimates: {:.2g} standard uncertainties\n", worst);
-  fmt::print("mtacc (Ceres, 2 threads, observability + covariance): median {:.1f} ms over {} runs, {} iterations\n",
+  fmt::print("mtacc (Ceres TinySolver, 2 threads, observability + covariance): median {:.1f} ms over {} runs, {} iterations\n",
              ours * 1e3, kRepeats, result.iterations);
   fmt::print("scipy.optimize.least_squares (NumPy model, 2-point Jacobian): median {:.1f} ms, {} evaluations\n",
              theirs * 1e3, py["nfev"].get<int>());

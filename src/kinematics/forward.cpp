@@ -120,6 +120,7 @@ inline void applyOp(const KinematicModel& m, const ChainOp& op, const double* q,
       transformBy<Inverse>(rotationXYZ(c[kA], c[kB], c[kC]), c.head<3>(), x);
       break;
     }
+    case ChainOp::HookMarker: break;
   }
 }
 
@@ -135,7 +136,8 @@ struct Frame {
   }
 };
 
-Pose runProgram(const KinematicModel& m, const std::vector<ChainOp>& program, const double* q, const int* dir) {
+Pose runProgram(const KinematicModel& m, const std::vector<ChainOp>& program, const double* q, const int* dir,
+                std::vector<ChainFrame>* hooks = nullptr) {
   Frame t;
   for (const auto& op : program) {
     switch (op.kind) {
@@ -160,6 +162,9 @@ Pose runProgram(const KinematicModel& m, const std::vector<ChainOp>& program, co
         t.apply(rotationXYZ(c[kA], c[kB], c[kC]), c.head<3>());
         break;
       }
+      case ChainOp::HookMarker:
+        hooks->push_back({t.r, t.p});
+        break;
     }
   }
   Pose out = Pose::Identity();
@@ -176,6 +181,12 @@ Pose toolChainPose(const KinematicModel& m, const double* q, const int* dir) {
 
 Pose workpiecePose(const KinematicModel& m, const double* q, const int* dir) {
   return runProgram(m, m.workpieceProgram, q, dir);
+}
+
+Pose runHookProgram(const KinematicModel& m, const std::vector<ChainOp>& program, const double* q, const int* dir,
+                    std::vector<ChainFrame>& hooks) {
+  hooks.clear();
+  return runProgram(m, program, q, dir, &hooks);
 }
 
 Pose toolInWorkpiece(const KinematicModel& m, const double* q, const int* dir) {

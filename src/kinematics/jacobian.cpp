@@ -1,5 +1,7 @@
 #include "mtacc/kinematics/jacobian.hpp"
 
+#include <algorithm>
+#include <array>
 #include <stdexcept>
 
 #include "mtacc/kinematics/forward.hpp"
@@ -46,18 +48,16 @@ ChainFactors expand(const KinematicModel& m, const std::vector<ChainElement>& ch
   return c;
 }
 
-// dF of a hooked factor of element e with respect to p; false when it does not depend on p.
-bool factorDerivative(const KinematicModel& m, const ChainElement& e, Hook hook, const Parameter& p, const double* q,
-                      const int* dir, Mat4& df) {
-  if (e.axis != p.axis) return false;
+// dF of a hooked factor of element e with respect to p (the model's own matrix for location
+// errors, else computed into `scratch`); null when the factor does not depend on p.
+const Mat4* factorDerivative(const KinematicModel& m, const ChainElement& e, Hook hook, const Parameter& p, const double* q,
+                             const int* dir, Mat4& scratch) {
+  if (e.axis != p.axis) return nullptr;
   const auto axis = static_cast<size_t>(p.axis);
   const double qa = e.joint >= 0 ? q[e.joint] : 0.0;
   const int d = (dir && e.joint >= 0) ? dir[e.joint] : 0;
   const auto& errs = m.errors.axes[axis];
-  if (p.kind == ParameterKind::Location && hook == Hook::Location) {
-    df = m.locationDerivatives[axis][static_cast<size_t>(p.component)];
-    return true;
-  }
+  if (p.kind == ParameterKind::Location && hook == Hook::Location) return &m.locationDerivatives[axis][static_cast<size_t>(p.component)];
   if (p.kind == ParameterKind::Location && hook == Hook::LinearJoint) {
     const int own = m.machine->axes[axis].ownComponent();
     Vec3 dt;
@@ -66,18 +66,18 @@ bool factorDerivative(const KinematicModel& m, const ChainElement& e, Hook hook,
     else if (p.component >= 3)
       dt = e.sign * (qa + errs.location[own]) * m.tiltedDirectionDerivatives[axis][static_cast<size_t>(p.component - 3)];
     else
-      return false;
-    df.setZero();
-    df.block<3, 1>(0, 3) = dt;
-    return true;
+      return nullptr;
+    scratch.setZero();
+    scratch.block<3, 1>(0, 3) = dt;
+    return &scratch;
   }
   if (p.kind == ParameterKind::Motion && hook == Hook::Motion) {
     Vec6 comps;
     for (int k = 0; k < 6; ++k) comps[k] = errs.motion[static_cast<size_t>(k)].value(qa, d);
-    df = errorTransformDerivative(comps, p.component) * errs.motion[static_cast<size_t>(p.component)].basis(p.index, qa, d);
-    return true;
+    scratch = errorTransformDerivative(comps, p.component) * errs.motion[static_cast<size_t>(p.component)].basis(p.index, qa, d);
+    return &scratch;
   }
-  return false;
+  return nullptr;
 }
 
 // Calls add(i, dF_i) for every factor i of the chain whose matrix depends on the parameter:
@@ -87,61 +87,10 @@ void forEachFactorDerivative(const KinematicModel& m, const ChainFactors& c, con
                              const int* dir, Add&& add) {
   const ChainElement* element = c.element[static_cast<size_t>(p.axis)];
   if (!element) return;
-  Mat4 df;
+  Mat4 scratch;
   for (size_t i = c.range[static_cast<size_t>(p.axis)].first; i < c.range[static_cast<size_t>(p.axis)].second; ++i)
-    if (c.factors[i].hook != Hook::None && factorDerivative(m, *element, c.factors[i].hook, p, q, dir, df)) add(i, df);
-}
-
-// The frames around every hooked factor of a chain (what the point Jacobian needs, without
-// the products of the whole chain at every factor).
-struct HookFrame {
-  const ChainElement* element;
-  Hook hook;
-  Pose before, after;
-};
-struct HookWalk {
-  std::vector<HookFrame> hooks;
-  std::vector<std::pair<size_t, size_t>> byAxis;  // hooks of each machine axis
-  std::vector<Factor> buffer;
-  Pose total;
-};
-
-void walkHooks(const KinematicModel& m, const std::vector<ChainElement>& chain, const Pose& tail, const double* q,
-               const int* dir, HookWalk& w) {
-  w.hooks.clear();
-  w.byAxis.assign(m.machine->axes.size(), {0, 0});
-  Pose acc = Pose::Identity();
-  for (const auto& e : chain) {
-    w.buffer.clear();
-    elementFactors(m, e, e.joint >= 0 ? q[e.joint] : 0.0, (dir && e.joint >= 0) ? dir[e.joint] : 0, w.buffer);
-    const size_t begin = w.hooks.size();
-    for (const auto& f : w.buffer) {
-      if (f.hook == Hook::None) {
-        acc = acc * f.pose;
-        continue;
-      }
-      w.hooks.push_back({&e, f.hook, acc, acc * f.pose});
-      acc = w.hooks.back().after;
-    }
-    w.byAxis[static_cast<size_t>(e.axis)] = {begin, w.hooks.size()};
-  }
-  w.total = acc * tail;
-}
-
-// d(chain total)/dp applied to the point whose image under the chain is `point`: each hooked
-// factor adds before * dF * (after^-1 point), a direction (dF's last row is 0).
-Vec3 hookDerivativeAt(const KinematicModel& m, const HookWalk& w, const Parameter& p, const double* q, const int* dir,
-                      const Vec3& point) {
-  Vec3 sum = Vec3::Zero();
-  Mat4 df;
-  const auto [begin, end] = w.byAxis[static_cast<size_t>(p.axis)];
-  for (size_t h = begin; h < end; ++h) {
-    const HookFrame& f = w.hooks[h];
-    if (!factorDerivative(m, *f.element, f.hook, p, q, dir, df)) continue;
-    const Vec3 u = f.after.linear().transpose() * (point - f.after.translation());
-    sum += f.before.linear() * (df.topLeftCorner<3, 3>() * u + df.block<3, 1>(0, 3));
-  }
-  return sum;
+    if (c.factors[i].hook == Hook::None) continue;
+    else if (const Mat4* df = factorDerivative(m, *element, c.factors[i].hook, p, q, dir, scratch)) add(i, *df);
 }
 
 Mat4 chainDerivative(const KinematicModel& m, const ChainFactors& c, const Parameter& p, const double* q,
@@ -196,37 +145,90 @@ ParameterJacobian parameterJacobian(const KinematicModel& m, const std::vector<P
   return jac;
 }
 
-PointJacobian pointJacobian(const KinematicModel& m, const std::vector<Parameter>& parameters, const double* q,
-                            const int* dir, const Vec3& toolPoint) {
+PointJacobianPlan planPointJacobian(const KinematicModel& m, const std::vector<Parameter>& parameters) {
   if (!m.withErrors) throw std::logic_error("pointJacobian needs a model compiled with errors");
-  // Per-thread scratch: this runs once per reading in identifications.
-  thread_local HookWalk tool, wp, ref;
-  walkHooks(m, m.toolChain, m.toolFrame, q, dir, tool);
-  walkHooks(m, m.workpieceChain, m.workpieceFrame, q, dir, wp);
-  const Pose wInv = wp.total.inverse();
-  const Vec3 inBed = tool.total * toolPoint;
-  const Vec3 beforeAlignment = wInv * inBed;
-  PointJacobian out;
-  out.point = m.alignment * beforeAlignment;
-  out.toolRotation = m.alignment.linear() * wInv.linear() * tool.total.linear();
-  out.jacobian.resize(3, static_cast<Eigen::Index>(parameters.size()));
+  PointJacobianPlan plan;
+  plan.model = &m;
+  plan.parameters = parameters;
+  plan.terms.resize(parameters.size());
+  const std::vector<double> zero(static_cast<size_t>(m.jointCount), 0.0);
+  Mat4 scratch;
+  auto addChain = [&](int chain, const std::vector<ChainOp>& program, const std::vector<ChainElement>& elements) {
+    int marker = 0;
+    for (size_t i = 0; i < program.size(); ++i) {
+      const ChainOp& op = program[i];
+      if (op.kind != ChainOp::HookMarker) continue;
+      // Markers come in pairs around their factor: terms refer to the first of each pair.
+      const int first = marker;
+      marker += 2;
+      ++i;
+      while (program[i].kind != ChainOp::HookMarker) ++i;
+      const auto element = std::find_if(elements.begin(), elements.end(), [&](const ChainElement& e) { return e.axis == op.axis; });
+      for (size_t k = 0; k < parameters.size(); ++k) {
+        const Mat4* df = factorDerivative(m, *element, op.hook, parameters[k], zero.data(), nullptr, scratch);
+        if (!df) continue;
+        // A location error's derivative does not depend on the pose; the others are taken at each pose.
+        plan.terms[k].push_back({chain, first, &*element, op.hook, op.hook == Hook::Location ? df : nullptr});
+      }
+    }
+  };
+  addChain(0, m.toolHookProgram, m.toolChain);
+  addChain(1, m.workpieceHookProgram, m.workpieceChain);
+  if (m.machine->alignment == WorkpieceAlignment::Machine) addChain(2, m.workpieceHookProgram, m.workpieceChain);
+  return plan;
+}
 
-  // d(W^-1 T x) = W^-1 (dT x - dW (W^-1 T x)): both chains see the same bed point.
+void pointJacobian(const PointJacobianPlan& plan, const double* q, const int* dir, const Vec3& toolPoint, PointJacobian& out) {
+  const KinematicModel& m = *plan.model;
+  // Per-thread scratch: this runs once per reading in identifications.
+  thread_local std::array<std::vector<ChainFrame>, 3> frames;
+  thread_local std::array<std::vector<Vec3>, 3> local;  // the point in the frame after each hooked factor
+  const Pose tool = runHookProgram(m, m.toolHookProgram, q, dir, frames[0]);
+  const Pose wpInv = runHookProgram(m, m.workpieceHookProgram, q, dir, frames[1]).inverse(Eigen::Isometry);
+  const Vec3 inBed = tool * toolPoint;
+  const Vec3 beforeAlignment = wpInv * inBed;
+  out.point = m.alignment * beforeAlignment;
+  out.toolRotation = m.alignment.linear() * wpInv.linear() * tool.linear();
+  out.jacobian.resize(3, static_cast<Eigen::Index>(plan.parameters.size()));
+
+  // d(W^-1 T x) = W^-1 (dT x - dW (W^-1 T x)): both chains see the same bed point. A hooked
+  // factor F between the frames B (before) and A (after) adds B dF A^-1 x.
   const bool aligned = m.machine->alignment == WorkpieceAlignment::Machine;
-  Mat3 refToWorkpiece = Mat3::Identity();
-  Vec3 refPoint = Vec3::Zero();
+  Vec3 points[3] = {inBed, inBed, Vec3::Zero()};
+  Mat3 refToWorkpiece = Mat3::Zero();
   if (aligned) {
-    walkHooks(m, m.workpieceChain, m.workpieceFrame, m.machine->referencePose.data(), nullptr, ref);
-    refToWorkpiece = m.alignment.linear() * ref.total.linear().transpose();
-    refPoint = ref.total * beforeAlignment;
+    const Pose ref = runHookProgram(m, m.workpieceHookProgram, m.machine->referencePose.data(), nullptr, frames[2]);
+    refToWorkpiece = m.alignment.linear() * ref.linear().transpose();
+    points[2] = ref * beforeAlignment;
   }
-  const Mat3 bedToWorkpiece = m.alignment.linear() * wInv.linear();
-  for (size_t k = 0; k < parameters.size(); ++k) {
-    const Parameter& p = parameters[k];
-    Vec3 d = bedToWorkpiece * (hookDerivativeAt(m, tool, p, q, dir, inBed) - hookDerivativeAt(m, wp, p, q, dir, inBed));
-    if (aligned) d += refToWorkpiece * hookDerivativeAt(m, ref, p, m.machine->referencePose.data(), nullptr, refPoint);
+  for (int c = 0; c < (aligned ? 3 : 2); ++c) {
+    const auto& f = frames[static_cast<size_t>(c)];
+    auto& l = local[static_cast<size_t>(c)];
+    l.resize(f.size());
+    for (size_t h = 1; h < f.size(); h += 2) l[h] = f[h].rotation.transpose() * (points[c] - f[h].origin);
+  }
+  const Mat3 toWorkpiece[3] = {m.alignment.linear() * wpInv.linear(), -m.alignment.linear() * wpInv.linear(), refToWorkpiece};
+  const double* qOf[3] = {q, q, m.machine->referencePose.data()};
+  const int* dirOf[3] = {dir, dir, nullptr};
+  Mat4 scratch;
+  for (size_t k = 0; k < plan.parameters.size(); ++k) {
+    Vec3 d = Vec3::Zero();
+    for (const auto& t : plan.terms[k]) {
+      const auto c = static_cast<size_t>(t.chain);
+      const Mat4& df = t.derivative ? *t.derivative
+                                    : *factorDerivative(m, *t.element, t.hook, plan.parameters[k], qOf[c], dirOf[c], scratch);
+      const ChainFrame& before = frames[c][static_cast<size_t>(t.marker)];
+      d += toWorkpiece[c] * (before.rotation * (df.topLeftCorner<3, 3>() * local[c][static_cast<size_t>(t.marker) + 1] +
+                                                df.block<3, 1>(0, 3)));
+    }
     out.jacobian.col(static_cast<Eigen::Index>(k)) = d;
   }
+}
+
+PointJacobian pointJacobian(const KinematicModel& m, const std::vector<Parameter>& parameters, const double* q,
+                            const int* dir, const Vec3& toolPoint) {
+  PointJacobian out;
+  pointJacobian(planPointJacobian(m, parameters), q, dir, toolPoint, out);
   return out;
 }
 

@@ -45,8 +45,10 @@ std::vector<ChainElement> buildChain(const Machine& machine, const std::vector<i
   return chain;
 }
 
-// Merges runs of constant factors; joint and motion-error factors become operations.
-std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<ChainElement>& chain, const Pose& tail) {
+// Merges runs of constant factors; joint and motion-error factors become operations. With
+// markHooks, every factor carrying error parameters stands alone between two hook markers.
+std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<ChainElement>& chain, const Pose& tail,
+                                  bool markHooks) {
   std::vector<ChainOp> ops;
   auto pushConstant = [&](const Pose& p) {
     if (p.isApprox(Pose::Identity(), 0.0)) return;
@@ -60,8 +62,17 @@ std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<Cha
   };
   for (const auto& e : chain) {
     const bool motion = hasMotionErrors(m, e.axis);
+    auto pushMarker = [&](Hook hook) {
+      if (!markHooks) return;
+      ChainOp op;
+      op.kind = ChainOp::HookMarker;
+      op.axis = e.axis;
+      op.hook = hook;
+      ops.push_back(op);
+    };
     auto pushMotion = [&]() {
       pushConstant(translation(e.location));
+      pushMarker(Hook::Motion);
       ChainOp op;
       op.kind = ChainOp::MotionError;
       op.joint = e.joint;
@@ -97,12 +108,22 @@ std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<Cha
       op.sixTablesOnOneGrid = op.residualMask == 0 && op.tableGroups.size() == 1 &&
                               op.tableGroups[0].components == std::vector<int>{0, 1, 2, 3, 4, 5};
       ops.push_back(op);
+      pushMarker(Hook::Motion);
       pushConstant(translation(-e.location));
     };
     pushConstant(translation(e.offset));
     if (m.withErrors && e.type != AxisType::Linear) {
-      const Vec6& loc = m.errors.axes[static_cast<size_t>(e.axis)].location;
-      pushConstant(translation(e.location) * errorTransform(loc) * translation(-e.location));
+      const Pose& error = m.locationTransforms[static_cast<size_t>(e.axis)];
+      if (markHooks) {
+        pushConstant(translation(e.location));
+        pushMarker(Hook::Location);
+        ops.push_back(ChainOp{});  // the error factor alone, even when it is the identity
+        ops.back().constant = error;
+        pushMarker(Hook::Location);
+        pushConstant(translation(-e.location));
+      } else {
+        pushConstant(translation(e.location) * error * translation(-e.location));
+      }
     }
     if (motion && e.frame == ErrorFrame::Fixed) pushMotion();
     if (e.type == AxisType::Linear) {
@@ -111,7 +132,9 @@ std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<Cha
       op.joint = e.joint;
       op.base = linearJointTranslation(m, e, 0.0);
       op.vector = linearJointTranslation(m, e, 1.0) - op.base;
+      pushMarker(Hook::LinearJoint);
       ops.push_back(op);
+      pushMarker(Hook::LinearJoint);
     } else if (e.type == AxisType::Rotary) {
       ChainOp op;
       op.kind = ChainOp::RotaryJoint;
@@ -154,7 +177,7 @@ void elementFactors(const KinematicModel& m, const ChainElement& e, double q, in
   const bool motion = hasMotionErrors(m, e.axis);
   // Constant translations by zero are left out.
   auto pushTranslation = [&](const Vec3& t) {
-    if (!t.isZero(0.0)) out.push_back({translation(t), Hook::None, e.axis});
+    if (!t.isZero(0.0)) out.push_back({translation(t), Hook::None, e.axis, true});
   };
   auto pushMotion = [&]() {
     pushTranslation(e.location);
@@ -169,7 +192,8 @@ void elementFactors(const KinematicModel& m, const ChainElement& e, double q, in
   }
   if (motion && e.frame == ErrorFrame::Fixed) pushMotion();
   if (e.type != AxisType::Spindle)
-    out.push_back({jointPose(m, e, q), e.type == AxisType::Linear ? Hook::LinearJoint : Hook::None, e.axis});
+    out.push_back({jointPose(m, e, q), e.type == AxisType::Linear ? Hook::LinearJoint : Hook::None, e.axis,
+                   e.type == AxisType::Linear});
   if (motion && e.frame == ErrorFrame::Moving) pushMotion();
 }
 
@@ -196,8 +220,12 @@ KinematicModel compile(std::shared_ptr<const Machine> machine, const ErrorModel&
   m.workpieceChain = buildChain(*machine, machine->workpieceChain, -1.0);
   m.toolFrame = translation(machine->toolOffset);
   m.workpieceFrame = translation(machine->workpieceOffset);
-  m.toolProgram = buildProgram(m, m.toolChain, m.toolFrame);
-  m.workpieceProgram = buildProgram(m, m.workpieceChain, m.workpieceFrame);
+  m.toolProgram = buildProgram(m, m.toolChain, m.toolFrame, false);
+  m.workpieceProgram = buildProgram(m, m.workpieceChain, m.workpieceFrame, false);
+  if (withErrors) {
+    m.toolHookProgram = buildProgram(m, m.toolChain, m.toolFrame, true);
+    m.workpieceHookProgram = buildProgram(m, m.workpieceChain, m.workpieceFrame, true);
+  }
   m.toolDirection = machine->toolDirection;
   m.tcpStart = Vec3::Zero();
   m.toolDirectionStart = m.toolDirection;

@@ -1,9 +1,12 @@
 #include "mtacc/measurement/identification.hpp"
 
 #include <ceres/ceres.h>
+#include <ceres/tiny_solver.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <thread>
 
 #include <Eigen/Dense>
@@ -13,9 +16,6 @@ namespace {
 
 constexpr double kTypicalLength = 1e-3;  // 1 um
 constexpr double kTypicalAngle = 1e-5;   // 10 urad: 1 um over 100 mm
-// Poses per residual block without a robust loss (with one, each pose is its own block so
-// that the loss acts per reading): fewer blocks, less solver bookkeeping.
-constexpr Eigen::Index kPosesPerBlock = 64;
 
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -43,13 +43,15 @@ struct State {
   const IdentificationProblem* problem;
   ErrorModel errors;
   KinematicModel model, nominal;
+  PointJacobianPlan plan;  // for `model` when it was compiled with derivatives
   std::vector<MeasurementRun> runs;
   std::vector<std::vector<SetupParameter>> setup;   // per run
   std::vector<std::optional<PointJacobian>> setAt;  // per run, ballbar set at the tool ball
+  std::vector<std::vector<NominalFrame>> frames;    // per run and pose
   std::vector<Eigen::Index> rowStart, colStart;
   Eigen::Index rows = 0, cols = 0;
 
-  RowMajorMatrix jacobian;
+  Eigen::MatrixXd jacobian;
   Eigen::VectorXd residual;
   std::vector<double> point;    // machine values then set-up values at which they hold
   std::vector<double> current;  // the same for the compiled model
@@ -60,7 +62,10 @@ struct State {
   int threads = 1;
 
   // aboutNominal: every error parameter and set-up error at zero, the functions kept.
-  State(const IdentificationProblem& p, bool aboutNominal) : problem(&p), errors(p.start), runs(p.runs) {
+  State(const State&) = delete;  // `plan` points into `model`
+  State& operator=(const State&) = delete;
+  State(const IdentificationProblem& p, bool aboutNominal, int threadsToUse)
+      : problem(&p), errors(p.start), runs(p.runs), threads(threadsToUse) {
     if (aboutNominal) {
       for (const auto& par : parameterCatalogue(*p.machine, p.start)) setParameterValue(errors, par, 0.0);
       for (auto& r : runs) r.setup.errors = {};
@@ -75,6 +80,9 @@ struct State {
       cols += static_cast<Eigen::Index>(setup.back().size());
     }
     setAt.resize(runs.size());
+    frames.resize(runs.size());
+    for (size_t r = 0; r < runs.size(); ++r) frames[r].resize(static_cast<size_t>(runs[r].poses()));
+    forEachPose([&](size_t r, Eigen::Index i) { frames[r][static_cast<size_t>(i)] = nominalFrame(nominal, runs[r], i); });
     recompile(true);
     current = values();
   }
@@ -94,19 +102,21 @@ struct State {
   void recompile(bool jacobians) {
     model = compile(problem->machine, errors, true);
     setAtReady = jacobians;
-    for (size_t r = 0; r < runs.size(); ++r)
-      setAt[r] = jacobians && runs[r].setup.setAt
-                     ? std::optional(pointJacobian(model, problem->parameters, runs[r].setup.setAt->data(), nullptr,
-                                                   toolBallWithSetupError(runs[r])))
-                     : std::nullopt;
+    if (jacobians) plan = planPointJacobian(model, problem->parameters);
+    for (size_t r = 0; r < runs.size(); ++r) {
+      setAt[r].reset();
+      if (jacobians && runs[r].setup.setAt)
+        pointJacobian(plan, runs[r].setup.setAt->data(), nullptr, toolBallWithSetupError(runs[r]), setAt[r].emplace());
+    }
   }
   // Poses [begin, end) of one run into the stacked jacobian and residual.
   void evaluate(size_t run, Eigen::Index begin, Eigen::Index end) {
     const auto& r = runs[run];
     const int m = readingSize(r.instrument);
     const auto machineCols = static_cast<Eigen::Index>(problem->parameters.size());
+    thread_local ReadingJacobian rj;
     for (Eigen::Index i = begin; i < end; ++i) {
-      const auto rj = readingJacobian(model, nominal, r, i, problem->parameters, setup[run], setAt[run] ? &*setAt[run] : nullptr);
+      readingJacobian(plan, frames[run][static_cast<size_t>(i)], r, i, setup[run], setAt[run] ? &*setAt[run] : nullptr, rj);
       const Eigen::Index row = rowStart[run] + i * m;
       jacobian.block(row, 0, m, machineCols) = rj.machine;
       if (rj.setup.cols()) jacobian.block(row, colStart[run], m, rj.setup.cols()) = rj.setup;
@@ -114,37 +124,54 @@ struct State {
       if (r.readings.rows() == r.poses()) residual.segment(row, m) -= r.readings.row(i).transpose();
     }
   }
-  void evaluateAll() {
-    jacobian.setZero(rows, cols);
-    residual.resize(rows);
+  // f(run, first pose, end pose) over all poses of all runs, on all threads.
+  template <class F>
+  void forEachPoseRange(F&& f) const {
     std::vector<Eigen::Index> poseStart{0};
     for (const auto& r : runs) poseStart.push_back(poseStart.back() + r.poses());
     parallelFor(poseStart.back(), threads, [&](long b, long e) {
       size_t r = static_cast<size_t>(std::upper_bound(poseStart.begin(), poseStart.end(), b) - poseStart.begin()) - 1;
-      for (long i = b; i < e;) {
+      for (long i = b; i < e; ++r) {
         const long end = std::min<long>(e, poseStart[r + 1]);
-        evaluate(r, i - poseStart[r], end - poseStart[r]);
-        i = end;
-        ++r;
+        if (end > i) f(r, i - poseStart[r], end - poseStart[r]);
+        i = std::max<long>(i, end);
       }
     });
+  }
+  template <class F>
+  void forEachPose(F&& f) const {
+    forEachPoseRange([&](size_t r, Eigen::Index b, Eigen::Index e) {
+      for (Eigen::Index i = b; i < e; ++i) f(r, i);
+    });
+  }
+  void evaluateAll() {
+    jacobian.setZero(rows, cols);
+    residual.resize(rows);
+    forEachPoseRange([&](size_t r, Eigen::Index b, Eigen::Index e) { evaluate(r, b, e); });
     point = current;
     valid = true;
   }
   void evaluateResiduals() {
     residualOnly.resize(rows);
-    std::vector<Eigen::Index> poseStart{0};
-    for (const auto& r : runs) poseStart.push_back(poseStart.back() + r.poses());
-    parallelFor(poseStart.back(), threads, [&](long b, long e) {
-      size_t r = static_cast<size_t>(std::upper_bound(poseStart.begin(), poseStart.end(), b) - poseStart.begin()) - 1;
-      for (long i = b; i < e; ++i) {
-        while (i >= poseStart[r + 1]) ++r;
-        const auto& run = runs[r];
-        const Eigen::Index pose = i - poseStart[r], m = readingSize(run.instrument);
-        residualOnly.segment(rowStart[r] + pose * m, m) = predictReading(model, nominal, run, pose) - run.readings.row(pose).transpose();
-      }
+    forEachPose([&](size_t r, Eigen::Index i) {
+      const auto& run = runs[r];
+      const Eigen::Index m = readingSize(run.instrument);
+      residualOnly.segment(rowStart[r] + i * m, m) =
+          predictReading(model, frames[r][static_cast<size_t>(i)], run, i) - run.readings.row(i).transpose();
     });
     residualPoint = current;
+  }
+  // Moves the estimate to v and evaluates there what the solver asks for (the derivatives
+  // only when they are not there already).
+  void prepare(const std::vector<double>& v, bool jacobians) {
+    const bool derivativesThere = valid && point == v;
+    if (v != current || (jacobians && !derivativesThere && !setAtReady)) {
+      set(v);
+      recompile(jacobians);
+      current = v;
+    }
+    if (jacobians && !derivativesThere) evaluateAll();
+    if (!jacobians && !derivativesThere && residualPoint != v) evaluateResiduals();
   }
   // The residuals at the current estimate (with or without derivatives).
   const Eigen::VectorXd& residualsAtCurrent() const { return valid && point == current ? residual : residualOnly; }
@@ -159,14 +186,7 @@ class Callback : public ceres::EvaluationCallback {
   void PrepareForEvaluation(bool jacobians, bool) override {
     std::vector<double> v = machine_;
     for (const auto& s : setup_) v.insert(v.end(), s.begin(), s.end());
-    const bool derivativesThere = state_.valid && state_.point == v;
-    if (v != state_.current || (jacobians && !derivativesThere && !state_.setAtReady)) {
-      state_.set(v);
-      state_.recompile(jacobians);
-      state_.current = v;
-    }
-    if (jacobians && !derivativesThere) state_.evaluateAll();
-    if (!jacobians && !derivativesThere && state_.residualPoint != v) state_.evaluateResiduals();
+    state_.prepare(v, jacobians);
   }
 
  private:
@@ -175,19 +195,18 @@ class Callback : public ceres::EvaluationCallback {
   const std::vector<std::vector<double>>& setup_;
 };
 
-// Poses [begin, end) of one run: residual = predicted - measured.
+// One pose of one run: residual = predicted - measured.
 class PoseBlock : public ceres::CostFunction {
  public:
-  PoseBlock(State& state, size_t run, Eigen::Index begin, Eigen::Index end)
-      : state_(state), run_(run), begin_(begin), end_(end) {
+  PoseBlock(State& state, size_t run, Eigen::Index pose) : state_(state), run_(run), pose_(pose) {
     m_ = readingSize(state.runs[run].instrument);
-    set_num_residuals(static_cast<int>((end - begin) * m_));
+    set_num_residuals(m_);
     if (!state.problem->parameters.empty())
       mutable_parameter_block_sizes()->push_back(static_cast<int>(state.problem->parameters.size()));
     if (!state.setup[run].empty()) mutable_parameter_block_sizes()->push_back(static_cast<int>(state.setup[run].size()));
   }
   bool Evaluate(double const* const*, double* residuals, double** jacobians) const override {
-    const Eigen::Index row0 = state_.rowStart[run_] + begin_ * m_, n = num_residuals();
+    const Eigen::Index row0 = state_.rowStart[run_] + pose_ * m_, n = num_residuals();
     Eigen::Map<Eigen::VectorXd>(residuals, n) = state_.residualsAtCurrent().segment(row0, n);
     if (!jacobians) return true;
     int block = 0;
@@ -207,7 +226,7 @@ class PoseBlock : public ceres::CostFunction {
  private:
   State& state_;
   size_t run_;
-  Eigen::Index begin_, end_;
+  Eigen::Index pose_;
   int m_ = 1;
 };
 
@@ -226,6 +245,92 @@ void checkReadings(const IdentificationProblem& p, Eigen::Index columns) {
 
 int threadCount(int requested) {
   return requested > 0 ? requested : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+// Plain least squares with Ceres' TinySolver, its dense Levenberg-Marquardt for few unknowns:
+// the stacked Jacobian goes to it whole, without the per-block bookkeeping of a
+// ceres::Problem. The unknowns are in typical units (1 um, 10 urad), so that its step
+// tolerance reads "a millionth of the estimate".
+struct StackedReadings {
+  using Scalar = double;
+  enum { NUM_RESIDUALS = Eigen::Dynamic, NUM_PARAMETERS = Eigen::Dynamic };
+  State& state;
+  const Eigen::VectorXd& typical;
+
+  int NumResiduals() const { return static_cast<int>(state.rows); }
+  int NumParameters() const { return static_cast<int>(state.cols); }
+  std::vector<double> unscaled(const double* x) const {
+    std::vector<double> v(static_cast<size_t>(state.cols));
+    for (Eigen::Index k = 0; k < state.cols; ++k) v[static_cast<size_t>(k)] = x[k] * typical[k];
+    return v;
+  }
+  bool operator()(const double* x, double* residuals, double* jacobian) const {
+    state.prepare(unscaled(x), jacobian != nullptr);
+    Eigen::Map<Eigen::VectorXd>(residuals, state.rows) = state.residualsAtCurrent();
+    if (jacobian) Eigen::Map<Eigen::MatrixXd>(jacobian, state.rows, state.cols) = state.jacobian * typical.asDiagonal();
+    return true;
+  }
+};
+
+std::vector<double> solveLeastSquares(State& state, const Eigen::VectorXd& typical, const IdentificationOptions& options,
+                                      IdentificationResult& out) {
+  StackedReadings readings{state, typical};
+  const std::vector<double> start = state.values();
+  Eigen::VectorXd x(state.cols);
+  for (Eigen::Index k = 0; k < state.cols; ++k) x[k] = start[static_cast<size_t>(k)] / typical[k];
+  ceres::TinySolver<StackedReadings> solver;
+  solver.options.max_num_iterations = options.maxIterations;
+  solver.options.parameter_tolerance = 1e-6;
+  solver.options.function_tolerance = 0.0;  // stop on the step size (its cost test is absolute)
+  solver.options.gradient_tolerance = 0.0;
+  solver.options.initial_trust_region_radius = 1e10;  // a Gauss-Newton step first: these problems are nearly linear
+  const auto& summary = solver.Solve(readings, &x);
+  using Status = ceres::TinySolver<StackedReadings>::Status;
+  out.converged = summary.status != Status::HIT_MAX_ITERATIONS;
+  out.iterations = summary.iterations;
+  out.solverReport = fmt::format("Ceres TinySolver: {} iterations, cost {:.6e} -> {:.6e}{}", summary.iterations,
+                                 summary.initial_cost, summary.final_cost, out.converged ? "" : " (iteration limit)");
+  return readings.unscaled(x.data());
+}
+
+// With a robust loss: a ceres::Problem with one residual block per pose, so that the Huber
+// loss acts per reading.
+std::vector<double> solveRobust(State& state, const IdentificationOptions& options, IdentificationResult& out) {
+  const std::vector<double> start = state.values();
+  const size_t machineCount = state.problem->parameters.size();
+  std::vector<double> machine(start.begin(), start.begin() + static_cast<long>(machineCount));
+  std::vector<std::vector<double>> setup(state.runs.size());
+  for (size_t r = 0, k = machineCount; r < state.runs.size(); ++r)
+    for (size_t i = 0; i < state.setup[r].size(); ++i) setup[r].push_back(start[k++]);
+
+  Callback callback(state, machine, setup);
+  ceres::Problem::Options po;
+  po.evaluation_callback = &callback;
+  po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem cp(po);
+  ceres::HuberLoss huber(options.robustScale);
+  for (size_t r = 0; r < state.runs.size(); ++r) {
+    std::vector<double*> blocks;
+    if (!machine.empty()) blocks.push_back(machine.data());
+    if (!setup[r].empty()) blocks.push_back(setup[r].data());
+    for (Eigen::Index i = 0; i < state.runs[r].poses(); ++i) cp.AddResidualBlock(new PoseBlock(state, r, i), &huber, blocks);
+  }
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  so.num_threads = 1;  // the callback evaluates on all threads
+  so.max_num_iterations = options.maxIterations;
+  so.logging_type = ceres::SILENT;
+  so.function_tolerance = 1e-10;
+  so.parameter_tolerance = 1e-10;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &cp, &summary);
+  out.converged = summary.termination_type == ceres::CONVERGENCE;
+  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  out.solverReport = summary.BriefReport();
+  std::vector<double> final = machine;
+  for (const auto& s : setup) final.insert(final.end(), s.begin(), s.end());
+  return final;
 }
 
 }  // namespace
@@ -248,15 +353,13 @@ ProblemColumns problemColumns(const IdentificationProblem& p) {
 }
 
 Eigen::MatrixXd stackedJacobian(const IdentificationProblem& problem, int threads) {
-  State state(problem, false);
-  state.threads = threadCount(threads);
+  State state(problem, false, threadCount(threads));
   state.evaluateAll();
   return state.jacobian;
 }
 
 ObservabilityReport planObservability(const IdentificationProblem& problem, int threads) {
-  State state(problem, true);
-  state.threads = threadCount(threads);
+  State state(problem, true, threadCount(threads));
   state.evaluateAll();
   const auto cols = problemColumns(problem);
   return analyseObservability(state.jacobian, cols.names, cols.typical);
@@ -273,75 +376,40 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
   // Observability about the nominal machine; when the start is the nominal machine, the same
   // evaluation is the solver's first.
   const bool startsAtNominal = allZero(problem);
-  State state(problem, true);
-  state.threads = threads;
-  state.evaluateAll();
-  out.observability = analyseObservability(state.jacobian, out.columns.names, out.columns.typical);
+  std::optional<State> holder(std::in_place, problem, true, threads);
+  holder->evaluateAll();
+  out.observability = analyseObservability(holder->jacobian, out.columns.names, out.columns.typical);
   if (!out.observability.identifiable()) {
     std::string why;
     for (const auto& f : out.observability.findings()) why += (why.empty() ? "" : "; ") + f;
     throw NotIdentifiable(out.observability, "the plan cannot determine this parameter set: " + why);
   }
-  if (!startsAtNominal) {
-    state = State(problem, false);
-    state.threads = threads;
-  }
+  if (!startsAtNominal) holder.emplace(problem, false, threads);
+  State& state = *holder;
 
-  std::vector<double> machine(problem.parameters.size());
-  for (size_t k = 0; k < machine.size(); ++k) machine[k] = parameterValue(problem.start, problem.parameters[k]);
-  std::vector<std::vector<double>> setup(state.runs.size());
-  for (size_t r = 0; r < state.runs.size(); ++r)
-    for (auto s : state.setup[r]) setup[r].push_back(problem.runs[r].setup.errors[static_cast<size_t>(s)]);
-
-  Callback callback(state, machine, setup);
-  ceres::Problem::Options po;
-  po.evaluation_callback = &callback;
-  po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
-  po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  ceres::Problem cp(po);
-  ceres::HuberLoss huber(options.robustScale);
-  const Eigen::Index chunk = options.robust ? 1 : kPosesPerBlock;
-  for (size_t r = 0; r < state.runs.size(); ++r) {
-    std::vector<double*> blocks;
-    if (!machine.empty()) blocks.push_back(machine.data());
-    if (!setup[r].empty()) blocks.push_back(setup[r].data());
-    for (Eigen::Index b = 0; b < state.runs[r].poses(); b += chunk)
-      cp.AddResidualBlock(new PoseBlock(state, r, b, std::min(b + chunk, state.runs[r].poses())),
-                          options.robust ? &huber : nullptr, blocks);
-  }
-  ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-  so.num_threads = 1;  // the callback evaluates on all threads
-  so.max_num_iterations = options.maxIterations;
-  so.logging_type = ceres::SILENT;
-  so.function_tolerance = 1e-10;
-  so.parameter_tolerance = 1e-10;
-  ceres::Solver::Summary summary;
-  ceres::Solve(so, &cp, &summary);
-  out.converged = summary.termination_type == ceres::CONVERGENCE;
-  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  out.solverReport = summary.BriefReport();
+  const std::vector<double> final = options.robust ? solveRobust(state, options, out)
+                                                   : solveLeastSquares(state, out.columns.typical, options, out);
 
   // The covariance from the Jacobian at the solution (the solver's last one when it is there).
-  std::vector<double> final = machine;
-  for (const auto& s : setup) final.insert(final.end(), s.begin(), s.end());
   if (!state.valid || state.point != final) {
     state.set(final);
     state.recompile(true);
     state.current = final;
     state.evaluateAll();
   }
-  const Eigen::MatrixXd j = state.jacobian;
+  const Eigen::MatrixXd& j = state.jacobian;
   const Eigen::VectorXd& residual = state.residual;
   out.readings = static_cast<int>(residual.size());
   out.degreesOfFreedom = out.readings - static_cast<int>(n);
   out.sigma = std::sqrt(residual.squaredNorm() / out.degreesOfFreedom);
   out.residualRms = std::sqrt(residual.squaredNorm() / static_cast<double>(residual.size()));
   out.residualMax = residual.cwiseAbs().maxCoeff();
-  const Eigen::VectorXd scale = j.colwise().norm().transpose();
-  const Eigen::MatrixXd js = j * scale.cwiseInverse().asDiagonal();
-  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(n, n);
-  normal.selfadjointView<Eigen::Lower>().rankUpdate(js.transpose());
+  // The normal matrix with unit columns (Jacobi scaling), so that mm and rad mix safely.
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(n, n);
+  gram.selfadjointView<Eigen::Lower>().rankUpdate(j.transpose());
+  const Eigen::VectorXd scale = gram.diagonal().cwiseSqrt();
+  const Eigen::MatrixXd normal = scale.cwiseInverse().asDiagonal() * Eigen::MatrixXd(gram.selfadjointView<Eigen::Lower>()) *
+                                 scale.cwiseInverse().asDiagonal();
   const Eigen::MatrixXd inv = normal.selfadjointView<Eigen::Lower>().ldlt().solve(Eigen::MatrixXd::Identity(n, n));
   out.covariance = out.sigma * out.sigma * scale.cwiseInverse().asDiagonal() * inv * scale.cwiseInverse().asDiagonal();
   out.uncertainty = out.covariance.diagonal().cwiseSqrt();

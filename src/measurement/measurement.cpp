@@ -17,11 +17,6 @@ Vec3 targetError(const MeasurementRun& run) {
 Mat3 nestRotation(const MeasurementRun& run) {
   return rotationXYZ(err(run, SetupParameter::NestA), err(run, SetupParameter::NestB), err(run, SetupParameter::NestC));
 }
-// Orientation of the nominal workpiece frame in the machine frame: how the R-test software
-// and the probing cycle turn their readings into machine axes.
-Mat3 nominalWorkpieceRotation(const KinematicModel& nominal, const double* q) {
-  return workpiecePose(nominal, q, nullptr).linear();
-}
 Vec3 actualToolBall(const KinematicModel& model, const MeasurementRun& run, const double* q, const int* dir) {
   return toolInWorkpiece(model, q, dir) * toolBallWithSetupError(run);
 }
@@ -85,24 +80,37 @@ Vec3 workBall(const KinematicModel& model, const MeasurementRun& run) {
   return base + targetError(run);
 }
 
-Eigen::VectorXd predictReading(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
-                               Eigen::Index i) {
+NominalFrame nominalFrame(const KinematicModel& nominal, const MeasurementRun& run, Eigen::Index i) {
   const double* q = run.q.row(i).data();
-  const Vec3 t = actualToolBall(model, run, q, dirRow(run, i));
-  Eigen::VectorXd r(readingSize(run.instrument));
+  NominalFrame f;
+  switch (run.instrument) {
+    case Instrument::RTest:
+    case Instrument::TouchProbe: f.workpieceRotation = workpiecePose(nominal, q, nullptr).linear(); break;
+    case Instrument::Directional: f.toolBall = toolInWorkpiece(nominal, q) * run.setup.toolBall; break;
+    case Instrument::Ballbar: break;
+  }
+  return f;
+}
+
+Reading predictReading(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run, Eigen::Index i) {
+  return predictReading(model, nominalFrame(nominal, run, i), run, i);
+}
+
+Reading predictReading(const KinematicModel& model, const NominalFrame& nominal, const MeasurementRun& run, Eigen::Index i) {
+  const Vec3 t = actualToolBall(model, run, run.q.row(i).data(), dirRow(run, i));
+  Reading r(readingSize(run.instrument));
   switch (run.instrument) {
     case Instrument::Ballbar:
       r[0] = (t - workBall(model, run)).norm() - run.setup.length - err(run, SetupParameter::Length);
       break;
     case Instrument::RTest:
-      r = nominalWorkpieceRotation(nominal, q) * (nestRotation(run).transpose() *
-                                                  (t - run.setup.target - targetError(run)));
+      r = nominal.workpieceRotation * (nestRotation(run).transpose() * (t - run.setup.target - targetError(run)));
       break;
     case Instrument::TouchProbe:
-      r = -(nominalWorkpieceRotation(nominal, q) * (t - run.setup.target - targetError(run)));
+      r = -(nominal.workpieceRotation * (t - run.setup.target - targetError(run)));
       break;
     case Instrument::Directional:
-      r[0] = run.setup.direction.dot(t - toolInWorkpiece(nominal, q) * run.setup.toolBall);
+      r[0] = run.setup.direction.dot(t - nominal.toolBall);
       break;
   }
   return r;
@@ -121,21 +129,29 @@ ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicMode
                                 Eigen::Index i, const std::vector<Parameter>& machineParameters,
                                 const std::vector<SetupParameter>& setupParameters,
                                 const PointJacobian* setAtJacobian) {
-  const double* q = run.q.row(i).data();
-  const int* dir = dirRow(run, i);
-  const auto pj = pointJacobian(model, machineParameters, q, dir, toolBallWithSetupError(run));
+  ReadingJacobian out;
+  readingJacobian(planPointJacobian(model, machineParameters), nominalFrame(nominal, run, i), run, i, setupParameters,
+                  setAtJacobian, out);
+  return out;
+}
+
+void readingJacobian(const PointJacobianPlan& plan, const NominalFrame& nominal, const MeasurementRun& run, Eigen::Index i,
+                     const std::vector<SetupParameter>& setupParameters, const PointJacobian* setAtJacobian,
+                     ReadingJacobian& out) {
+  const KinematicModel& model = *plan.model;
+  thread_local PointJacobian pj;
+  pointJacobian(plan, run.q.row(i).data(), dirRow(run, i), toolBallWithSetupError(run), pj);
   const Vec3& t = pj.point;
   // d(tool ball)/d(xT yT zT): the tool frame's rotation in the workpiece frame.
   const Mat3& toolRotation = pj.toolRotation;
   const int m = readingSize(run.instrument);
-  ReadingJacobian out;
-  out.machine.resize(m, static_cast<Eigen::Index>(machineParameters.size()));
-  out.setup = Eigen::MatrixXd::Zero(m, static_cast<Eigen::Index>(setupParameters.size()));
+  out.machine.resize(m, static_cast<Eigen::Index>(plan.parameters.size()));
+  out.setup.setZero(m, static_cast<Eigen::Index>(setupParameters.size()));
   out.reading.resize(m);
 
   // Every reading is (a linear map of) the tool ball minus a target point; `sensitivity`
-  // is the map, dTarget the target's derivative with respect to xW yW zW.
-  Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 3, 3> sensitivity(m, 3);
+  // is the map (its first m rows; fixed-size so that the products below are unrolled).
+  Mat3 sensitivity = Mat3::Zero();
   const PointJacobian* target = nullptr;  // d(target)/d(machine): a ballbar set at the tool ball
   Mat3 targetToolRotation = Mat3::Zero();  // d(target)/d(xT yT zT): a ballbar set at the tool ball
   switch (run.instrument) {
@@ -145,7 +161,7 @@ ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicMode
       const Vec3 w = run.setup.setAt ? Vec3(setAtJacobian->point + targetError(run)) : workBall(model, run);
       const Vec3 u = (t - w).normalized();
       out.reading[0] = (t - w).norm() - run.setup.length - err(run, SetupParameter::Length);
-      sensitivity = u.transpose();
+      sensitivity.row(0) = u.transpose();
       if (run.setup.setAt) {
         target = setAtJacobian;
         targetToolRotation = setAtJacobian->toolRotation;
@@ -154,7 +170,7 @@ ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicMode
     }
     case Instrument::RTest:
     case Instrument::TouchProbe: {
-      const Mat3 r = nominalWorkpieceRotation(nominal, q);
+      const Mat3& r = nominal.workpieceRotation;
       const Mat3 n = nestRotation(run);
       const Vec3 rel = t - run.setup.target - targetError(run);
       const double sign = run.instrument == Instrument::RTest ? 1.0 : -1.0;
@@ -171,26 +187,28 @@ ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicMode
       break;
     }
     case Instrument::Directional:
-      sensitivity = run.setup.direction.transpose();
-      out.reading[0] = run.setup.direction.dot(t - toolInWorkpiece(nominal, q) * run.setup.toolBall);
+      sensitivity.row(0) = run.setup.direction.transpose();
+      out.reading[0] = run.setup.direction.dot(t - nominal.toolBall);
       break;
   }
-  out.machine.noalias() = sensitivity * pj.jacobian;
-  if (target) out.machine.noalias() -= sensitivity * target->jacobian;
+  for (Eigen::Index c = 0; c < out.machine.cols(); ++c) {
+    Vec3 d = pj.jacobian.col(c);
+    if (target) d -= target->jacobian.col(c);
+    out.machine.col(c) = (sensitivity * d).head(m);
+  }
   for (size_t k = 0; k < setupParameters.size(); ++k) {
     const auto p = setupParameters[k];
     const auto col = static_cast<Eigen::Index>(k);
     if (!appliesTo(p, run.instrument)) continue;
     if (p <= SetupParameter::ToolBallZ) {
       const Vec3 d = (toolRotation - targetToolRotation).col(static_cast<int>(p));
-      out.setup.col(col) = sensitivity * d;
+      out.setup.col(col) = (sensitivity * d).head(m);
     } else if (p <= SetupParameter::TargetZ) {
-      out.setup.col(col) = -sensitivity.col(static_cast<int>(p) - static_cast<int>(SetupParameter::TargetX));
+      out.setup.col(col) = -sensitivity.col(static_cast<int>(p) - static_cast<int>(SetupParameter::TargetX)).head(m);
     } else if (p == SetupParameter::Length) {
       out.setup(0, col) = -1.0;
     }
   }
-  return out;
 }
 
 }  // namespace mtacc

@@ -17,6 +17,16 @@ using PointMatrix = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 // Bed -> tool frame (TCP) and bed -> workpiece frame.
 Pose toolChainPose(const KinematicModel& model, const double* q, const int* dir);
 Pose workpiecePose(const KinematicModel& model, const double* q, const int* dir);
+// A frame along a chain: x_bed = rotation * x + origin.
+struct ChainFrame {
+  Mat3 rotation;
+  Vec3 origin;
+};
+// Runs a program with hook markers (KinematicModel::toolHookProgram, workpieceHookProgram):
+// the chain's pose, and in `hooks` the frame at each marker, in program order.
+Pose runHookProgram(const KinematicModel& model, const std::vector<ChainOp>& program, const double* q, const int* dir,
+                    std::vector<ChainFrame>& hooks);
+
 // Tool frame in the workpiece frame (includes M_WC when the workpiece is aligned).
 Pose toolInWorkpiece(const KinematicModel& model, const double* q, const int* dir = nullptr);
 

@@ -30,6 +30,25 @@ struct PointJacobian {
 PointJacobian pointJacobian(const KinematicModel& model, const std::vector<Parameter>& parameters, const double* q,
                             const int* dir, const Vec3& toolPoint);
 
+// What pointJacobian needs of a model and a parameter list, prepared once for many poses:
+// for each parameter, the factors of the chains that carry it. Refers to the model, which
+// must outlive the plan.
+struct PointJacobianPlan {
+  struct Term {
+    int chain;                  // 0 tool, 1 workpiece, 2 workpiece at the reference pose (machine alignment)
+    int marker;                 // the hook marker before the factor, in that chain's hook program
+    const ChainElement* element;
+    Hook hook;
+    const Mat4* derivative;     // dF when it does not depend on the pose (location errors), else null
+  };
+  const KinematicModel* model = nullptr;
+  std::vector<Parameter> parameters;
+  std::vector<std::vector<Term>> terms;  // per parameter
+};
+PointJacobianPlan planPointJacobian(const KinematicModel& model, const std::vector<Parameter>& parameters);
+// The same into `out`, reusing its storage (no allocation once sized).
+void pointJacobian(const PointJacobianPlan& plan, const double* q, const int* dir, const Vec3& toolPoint, PointJacobian& out);
+
 // The frame in which each axis's component errors act (after offset and location error,
 // before the joint for fixed frames and after it for moving frames, at the axis location
 // point), in the bed frame. Indexed like Machine::axes.

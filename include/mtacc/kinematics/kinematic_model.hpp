@@ -32,11 +32,15 @@ struct Factor {
   Pose pose;
   Hook hook = Hook::None;
   int axis = -1;
+  bool translationOnly = false;  // pose is a pure translation (a cheaper product)
 };
 
 // One operation of the compiled evaluation program.
 struct ChainOp {
-  enum Kind { Constant, LinearJoint, RotaryJoint, MotionError } kind = Constant;
+  // HookMarker (programs built for point Jacobians only): the frame here is recorded; markers
+  // come in pairs around each factor that carries error parameters (of `axis`, as `hook`).
+  enum Kind { Constant, LinearJoint, RotaryJoint, MotionError, HookMarker } kind = Constant;
+  Hook hook = Hook::None;      // HookMarker
   Pose constant = Pose::Identity();  // Constant
   int joint = -1;
   int axis = -1;
@@ -69,6 +73,8 @@ struct KinematicModel {
   std::vector<ChainElement> workpieceChain;  // bed -> workpiece
   std::vector<ChainOp> toolProgram;
   std::vector<ChainOp> workpieceProgram;
+  // The same with hook markers (models compiled with errors): for point Jacobians.
+  std::vector<ChainOp> toolHookProgram, workpieceHookProgram;
   // The TCP and tool direction after the tool program's trailing constant (which does not
   // depend on the pose), and how many tool operations remain to apply per pose.
   Vec3 tcpStart = Vec3::Zero();

@@ -73,16 +73,28 @@ struct MeasurementRun {
   Eigen::Index poses() const { return q.rows(); }
 };
 
+// One reading: 3 values (R-test, touch probe) or 1 (ballbar, directional probe), mm.
+using Reading = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
+
+// What a reading takes from the nominal machine at one pose, constant while errors are
+// identified: the nominal workpiece rotation (R-test and probe readings are turned into
+// machine axes with it) or the nominal tool ball (the directional probe's reference).
+struct NominalFrame {
+  Mat3 workpieceRotation = Mat3::Identity();
+  Vec3 toolBall = Vec3::Zero();
+};
+NominalFrame nominalFrame(const KinematicModel& nominal, const MeasurementRun& run, Eigen::Index i);
+
 // The readings the instrument shows at pose i of the run on `model` (exact model,
 // including the run's set-up errors).
-Eigen::VectorXd predictReading(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
-                               Eigen::Index i);
+Reading predictReading(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run, Eigen::Index i);
+Reading predictReading(const KinematicModel& model, const NominalFrame& nominal, const MeasurementRun& run, Eigen::Index i);
 Eigen::MatrixXd predictReadings(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
                                 int threads = 1);
 
 // Reading and its derivative with respect to machine parameters and set-up parameters.
 struct ReadingJacobian {
-  Eigen::VectorXd reading;     // readingSize
+  Reading reading;
   Eigen::MatrixXd machine;     // readingSize x machine parameters
   Eigen::MatrixXd setup;       // readingSize x setup parameters
 };
@@ -93,6 +105,11 @@ ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicMode
                                 Eigen::Index i, const std::vector<Parameter>& machineParameters,
                                 const std::vector<SetupParameter>& setupParameters,
                                 const PointJacobian* setAtJacobian);
+// The same into `out`, reusing its storage (identifications call this once per reading);
+// the machine parameters are the plan's.
+void readingJacobian(const PointJacobianPlan& plan, const NominalFrame& nominal, const MeasurementRun& run, Eigen::Index i,
+                     const std::vector<SetupParameter>& setupParameters, const PointJacobian* setAtJacobian,
+                     ReadingJacobian& out);
 
 // The work ball of a ballbar run in the workpiece frame (set-up error included).
 Vec3 workBall(const KinematicModel& model, const MeasurementRun& run);
