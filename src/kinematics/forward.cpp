@@ -142,7 +142,10 @@ Pose runProgram(const KinematicModel& m, const std::vector<ChainOp>& program, co
   for (const auto& op : program) {
     switch (op.kind) {
       case ChainOp::Constant:
-        t.apply(op.constant.linear(), op.constant.translation());
+        if (op.translationOnly)
+          t.p.noalias() += t.r * op.constant.translation();
+        else
+          t.apply(op.constant.linear(), op.constant.translation());
         break;
       case ChainOp::LinearJoint:
         t.p.noalias() += t.r * (op.base + q[op.joint] * op.vector);

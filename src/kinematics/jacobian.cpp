@@ -154,22 +154,22 @@ PointJacobianPlan planPointJacobian(const KinematicModel& m, const std::vector<P
   const std::vector<double> zero(static_cast<size_t>(m.jointCount), 0.0);
   Mat4 scratch;
   auto addChain = [&](int chain, const std::vector<ChainOp>& program, const std::vector<ChainElement>& elements) {
-    int marker = 0;
+    int factor = 0;
     for (size_t i = 0; i < program.size(); ++i) {
       const ChainOp& op = program[i];
       if (op.kind != ChainOp::HookMarker) continue;
-      // Markers come in pairs around their factor: terms refer to the first of each pair.
-      const int first = marker;
-      marker += 2;
-      ++i;
+      ++i;  // markers come in pairs around their factor
       while (program[i].kind != ChainOp::HookMarker) ++i;
       const auto element = std::find_if(elements.begin(), elements.end(), [&](const ChainElement& e) { return e.axis == op.axis; });
       for (size_t k = 0; k < parameters.size(); ++k) {
         const Mat4* df = factorDerivative(m, *element, op.hook, parameters[k], zero.data(), nullptr, scratch);
         if (!df) continue;
         // A location error's derivative does not depend on the pose; the others are taken at each pose.
-        plan.terms[k].push_back({chain, first, &*element, op.hook, op.hook == Hook::Location ? df : nullptr});
+        PointJacobianPlan::Term t{chain, factor, &*element, op.hook, op.hook == Hook::Location};
+        if (t.constant) t.rotation = df->topLeftCorner<3, 3>(), t.translation = df->block<3, 1>(0, 3);
+        plan.terms[k].push_back(t);
       }
+      ++factor;
     }
   };
   addChain(0, m.toolHookProgram, m.toolChain);
@@ -182,7 +182,8 @@ void pointJacobian(const PointJacobianPlan& plan, const double* q, const int* di
   const KinematicModel& m = *plan.model;
   // Per-thread scratch: this runs once per reading in identifications.
   thread_local std::array<std::vector<ChainFrame>, 3> frames;
-  thread_local std::array<std::vector<Vec3>, 3> local;  // the point in the frame after each hooked factor
+  thread_local std::array<std::vector<Mat3>, 3> maps;
+  thread_local std::array<std::vector<Vec3>, 3> local;
   const Pose tool = runHookProgram(m, m.toolHookProgram, q, dir, frames[0]);
   const Pose wpInv = runHookProgram(m, m.workpieceHookProgram, q, dir, frames[1]).inverse(Eigen::Isometry);
   const Vec3 inBed = tool * toolPoint;
@@ -201,25 +202,33 @@ void pointJacobian(const PointJacobianPlan& plan, const double* q, const int* di
     refToWorkpiece = m.alignment.linear() * ref.linear().transpose();
     points[2] = ref * beforeAlignment;
   }
-  for (int c = 0; c < (aligned ? 3 : 2); ++c) {
-    const auto& f = frames[static_cast<size_t>(c)];
-    auto& l = local[static_cast<size_t>(c)];
-    l.resize(f.size());
-    for (size_t h = 1; h < f.size(); h += 2) l[h] = f[h].rotation.transpose() * (points[c] - f[h].origin);
-  }
+  // Per hooked factor: the map of a direction before it to the workpiece frame, and the point
+  // in the frame after it.
   const Mat3 toWorkpiece[3] = {m.alignment.linear() * wpInv.linear(), -m.alignment.linear() * wpInv.linear(), refToWorkpiece};
+  for (size_t c = 0; c < (aligned ? 3u : 2u); ++c) {
+    const auto& f = frames[c];
+    auto& map = maps[c];
+    auto& l = local[c];
+    map.resize(f.size() / 2);
+    l.resize(f.size() / 2);
+    for (size_t h = 0; h < map.size(); ++h) {
+      map[h].noalias() = toWorkpiece[c] * f[2 * h].rotation;
+      l[h].noalias() = f[2 * h + 1].rotation.transpose() * (points[c] - f[2 * h + 1].origin);
+    }
+  }
   const double* qOf[3] = {q, q, m.machine->referencePose.data()};
   const int* dirOf[3] = {dir, dir, nullptr};
   Mat4 scratch;
   for (size_t k = 0; k < plan.parameters.size(); ++k) {
     Vec3 d = Vec3::Zero();
     for (const auto& t : plan.terms[k]) {
-      const auto c = static_cast<size_t>(t.chain);
-      const Mat4& df = t.derivative ? *t.derivative
-                                    : *factorDerivative(m, *t.element, t.hook, plan.parameters[k], qOf[c], dirOf[c], scratch);
-      const ChainFrame& before = frames[c][static_cast<size_t>(t.marker)];
-      d += toWorkpiece[c] * (before.rotation * (df.topLeftCorner<3, 3>() * local[c][static_cast<size_t>(t.marker) + 1] +
-                                                df.block<3, 1>(0, 3)));
+      const auto c = static_cast<size_t>(t.chain), h = static_cast<size_t>(t.factor);
+      if (t.constant) {
+        d.noalias() += maps[c][h] * (t.rotation * local[c][h] + t.translation);
+      } else {
+        const Mat4& df = *factorDerivative(m, *t.element, t.hook, plan.parameters[k], qOf[c], dirOf[c], scratch);
+        d.noalias() += maps[c][h] * (df.topLeftCorner<3, 3>() * local[c][h] + df.block<3, 1>(0, 3));
+      }
     }
     out.jacobian.col(static_cast<Eigen::Index>(k)) = d;
   }

@@ -150,6 +150,8 @@ std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<Cha
     if (motion && e.frame == ErrorFrame::Moving) pushMotion();
   }
   pushConstant(tail);
+  for (auto& op : ops)
+    if (op.kind == ChainOp::Constant) op.translationOnly = op.constant.linear().isIdentity(0.0);
   return ops;
 }
 

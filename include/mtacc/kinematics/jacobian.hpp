@@ -35,11 +35,13 @@ PointJacobian pointJacobian(const KinematicModel& model, const std::vector<Param
 // must outlive the plan.
 struct PointJacobianPlan {
   struct Term {
-    int chain;                  // 0 tool, 1 workpiece, 2 workpiece at the reference pose (machine alignment)
-    int marker;                 // the hook marker before the factor, in that chain's hook program
+    int chain;                   // 0 tool, 1 workpiece, 2 workpiece at the reference pose (machine alignment)
+    int factor;                  // the hooked factor, in that chain's program order
     const ChainElement* element;
     Hook hook;
-    const Mat4* derivative;     // dF when it does not depend on the pose (location errors), else null
+    bool constant;               // dF does not depend on the pose (location errors): taken from below
+    Mat3 rotation = Mat3::Zero();     // dF = [rotation translation; 0 0]
+    Vec3 translation = Vec3::Zero();
   };
   const KinematicModel* model = nullptr;
   std::vector<Parameter> parameters;

@@ -42,6 +42,7 @@ struct ChainOp {
   enum Kind { Constant, LinearJoint, RotaryJoint, MotionError, HookMarker } kind = Constant;
   Hook hook = Hook::None;      // HookMarker
   Pose constant = Pose::Identity();  // Constant
+  bool translationOnly = false;      // Constant: no rotation (the rotation product is skipped)
   int joint = -1;
   int axis = -1;
   Vec3 vector = Vec3::Zero();  // LinearJoint: translation per unit q; RotaryJoint: unit axis
