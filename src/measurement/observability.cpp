@@ -12,25 +12,26 @@ namespace mtacc {
 namespace {
 
 // The triangular factor R of a = QR (a tall), from the factors of two halves computed side
-// by side (tall-skinny QR): R of [R_top; R_bottom].
-Eigen::MatrixXd triangularFactor(const Eigen::MatrixXd& a) {
-  auto factor = [](const Eigen::MatrixXd& m) -> Eigen::MatrixXd {
-    Eigen::HouseholderQR<Eigen::MatrixXd> qr(m);
+// by side, in place (tall-skinny QR): R of [R_top; R_bottom]. `a` is overwritten.
+Eigen::MatrixXd triangularFactor(Eigen::Ref<Eigen::MatrixXd> a) {
+  auto factor = [](Eigen::Ref<Eigen::MatrixXd> m) -> Eigen::MatrixXd {
+    const Eigen::HouseholderQR<Eigen::Ref<Eigen::MatrixXd>> qr(m);
     return qr.matrixQR().topRows(m.cols()).triangularView<Eigen::Upper>();
   };
   const Eigen::Index n = a.cols(), half = a.rows() / 2;
   if (half < 4 * n) return factor(a);
-  Eigen::MatrixXd top, bottom;
+  Eigen::MatrixXd top;
   std::thread worker([&] { top = factor(a.topRows(half)); });
-  bottom = factor(a.bottomRows(a.rows() - half));
+  const Eigen::MatrixXd bottom = factor(a.bottomRows(a.rows() - half));
   worker.join();
   Eigen::MatrixXd both(2 * n, n);
   both << top, bottom;
   return factor(both);
 }
 
-Eigen::MatrixXd rightSingularVectors(const Eigen::MatrixXd& a, Eigen::VectorXd& singular) {
-  // SVD of the small triangular factor: cheap for many readings and few parameters.
+// The SVD of the small triangular factor: cheap for many readings and few parameters. `a`
+// is overwritten.
+Eigen::MatrixXd rightSingularVectors(Eigen::MatrixXd& a, Eigen::VectorXd& singular) {
   const Eigen::MatrixXd r = a.rows() > a.cols() ? triangularFactor(a) : a;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(r, Eigen::ComputeFullV);
   singular = svd.singularValues();
@@ -66,7 +67,7 @@ ObservabilityReport analyseObservability(const Eigen::MatrixXd& jacobian, const 
   for (size_t k = 0; k < active.size(); ++k) scaled.col(static_cast<Eigen::Index>(k)) = jacobian.col(active[k]) / norms[active[k]];
 
   Eigen::VectorXd sv;
-  const Eigen::MatrixXd v = active.empty() ? Eigen::MatrixXd() : rightSingularVectors(scaled, sv);
+  const Eigen::MatrixXd v = active.empty() ? Eigen::MatrixXd() : rightSingularVectors(scaled, sv);  // overwrites scaled
   rep.singularValues = Eigen::VectorXd::Zero(n);
   rep.singularValues.head(sv.size()) = sv;
   const double largest = sv.size() ? sv[0] : 0.0;
@@ -94,10 +95,11 @@ ObservabilityReport analyseObservability(const Eigen::MatrixXd& jacobian, const 
     for (Eigen::Index j = 0; j < m; ++j)
       if (inNull[static_cast<size_t>(j)] && findRoot(parent, static_cast<int>(j)) == root) members.push_back(j);
     ParameterGroup g;
-    Eigen::MatrixXd sub(scaled.rows(), static_cast<Eigen::Index>(members.size()));
+    Eigen::MatrixXd sub(jacobian.rows(), static_cast<Eigen::Index>(members.size()));
     for (size_t k = 0; k < members.size(); ++k) {
-      g.names.push_back(names[static_cast<size_t>(active[static_cast<size_t>(members[k])])]);
-      sub.col(static_cast<Eigen::Index>(k)) = scaled.col(members[k]);
+      const Eigen::Index column = active[static_cast<size_t>(members[k])];
+      g.names.push_back(names[static_cast<size_t>(column)]);
+      sub.col(static_cast<Eigen::Index>(k)) = jacobian.col(column) / norms[column];
     }
     Eigen::VectorXd subSv;
     const Eigen::MatrixXd subV = rightSingularVectors(sub, subSv);
