@@ -4,7 +4,8 @@
 // by side in the same run, the NumPy/SciPy implementation of the same computation
 // (bench/dynamics_numpy.py) on the same model, positions and frequencies; it runs on the
 // first kBaselinePositions positions and its time is scaled to all of them (per-position work
-// is identical). Target: at least 20x faster.
+// is identical). Target: at least 20x faster. The machine is shared and its speed drifts, so
+// mtacc runs once before and once after the baseline and the mean of the two is compared.
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -61,9 +62,13 @@ int main() {
     for (int j = 0; j < 20; ++j)
       for (int k = 0; k < 20; ++k) positions.push_back({-0.6 + 1.2 * i / 24, -0.4 + 0.8 * j / 19, -0.3 + 0.6 * k / 19});
 
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto peaks = frfPeaks(model, positions, frequencies, 2);
-  const double ours = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  auto timed = [&](std::vector<Eigen::Matrix3d>& peaks) {
+    const auto t0 = std::chrono::steady_clock::now();
+    peaks = frfPeaks(model, positions, frequencies, 2);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  std::vector<Eigen::Matrix3d> peaks;
+  const double before = timed(peaks);
 
   const auto dir = std::filesystem::temp_directory_path() / ("mtacc-bench-dyn-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
@@ -79,6 +84,7 @@ int main() {
     if (::pclose(p) != 0) pyOut.clear();
   }
   std::filesystem::remove_all(dir);
+  const double after = timed(peaks), ours = (before + after) / 2;
   if (pyOut.empty()) {
     fmt::print(stderr, "bench_dynamics_vs_numpy: the NumPy baseline failed ({})\n", cmd);
     return 1;
@@ -98,7 +104,8 @@ int main() {
              positions.size(), model.bodies.size(), model.dofs());
   fmt::print("largest |Hxx| over all positions: {:.4f} um/N; NumPy agrees to {:.1e} (relative) on its {} positions\n",
              largest * 1e6, worst, pp.size());
-  fmt::print("mtacc (2 threads): {:.2f} s ({}) the 5 s target\n", ours, ours < 5 ? "meets" : "MISSES");
+  fmt::print("mtacc (2 threads): {:.2f} s, mean of {:.2f} s before and {:.2f} s after the baseline ({} the 5 s target)\n", ours,
+             before, after, ours < 5 ? "meets" : "MISSES");
   fmt::print("NumPy/SciPy: {:.2f} s for {} positions, {:.1f} s scaled to {}\n", py["seconds"].get<double>(), kBaselinePositions,
              theirs, positions.size());
   fmt::print("ratio: mtacc is {:.1f}x faster (target >= 20x)\n", theirs / ours);
