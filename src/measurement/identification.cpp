@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <thread>
 
 #include <Eigen/Dense>
@@ -35,6 +36,37 @@ bool allZero(const IdentificationProblem& p) {
   return true;
 }
 
+// J^T J (full), J^T r and r^T r of a stacked system, the two halves of the rows side by side.
+struct NormalEquations {
+  Eigen::MatrixXd gram;
+  Eigen::VectorXd gradient;
+  double squaredNorm = 0;
+};
+NormalEquations normalEquations(const Eigen::MatrixXd& j, const Eigen::VectorXd& r, int threads) {
+  auto part = [&](Eigen::Index begin, Eigen::Index count) {
+    NormalEquations ne;
+    const auto rows = j.middleRows(begin, count);
+    ne.gram = Eigen::MatrixXd::Zero(j.cols(), j.cols());
+    ne.gram.selfadjointView<Eigen::Lower>().rankUpdate(rows.transpose());
+    ne.gradient = rows.transpose() * r.segment(begin, count);
+    ne.squaredNorm = r.segment(begin, count).squaredNorm();
+    return ne;
+  };
+  const Eigen::Index half = j.rows() / 2;
+  NormalEquations out;
+  if (threads > 1 && half > 1000) {
+    NormalEquations top;
+    std::thread worker([&] { top = part(0, half); });
+    out = part(half, j.rows() - half);
+    worker.join();
+    out.gram += top.gram, out.gradient += top.gradient, out.squaredNorm += top.squaredNorm;
+  } else {
+    out = part(0, j.rows());
+  }
+  out.gram = out.gram.selfadjointView<Eigen::Lower>();
+  return out;
+}
+
 // The stacked problem at one estimate: the model compiled there, the runs with their set-up
 // errors, and the layout of the stacked readings (rows) and unknowns (columns). `jacobian`
 // and `residual` hold the evaluation with derivatives at `point` (when `valid`); `current` is
@@ -53,6 +85,7 @@ struct State {
 
   Eigen::MatrixXd jacobian;
   Eigen::VectorXd residual;
+  NormalEquations normal;  // of jacobian and residual
   std::vector<double> point;    // machine values then set-up values at which they hold
   std::vector<double> current;  // the same for the compiled model
   bool valid = false;
@@ -148,6 +181,7 @@ struct State {
     jacobian.setZero(rows, cols);
     residual.resize(rows);
     forEachPoseRange([&](size_t r, Eigen::Index b, Eigen::Index e) { evaluate(r, b, e); });
+    normal = normalEquations(jacobian, residual, threads);
     point = current;
     valid = true;
   }
@@ -247,17 +281,21 @@ int threadCount(int requested) {
   return requested > 0 ? requested : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
-// Plain least squares with Ceres' TinySolver, its dense Levenberg-Marquardt for few unknowns:
-// the stacked Jacobian goes to it whole, without the per-block bookkeeping of a
-// ceres::Problem. The unknowns are in typical units (1 um, 10 urad), so that its step
-// tolerance reads "a millionth of the estimate".
+// Plain least squares with Ceres' TinySolver, its dense Levenberg-Marquardt for few unknowns,
+// in typical units (1 um, 10 urad), so that its step tolerance reads "a millionth of the
+// estimate". TinySolver uses the readings only through J^T J, J^T r and the cost |r|^2 / 2, so
+// it is given an equivalent system of n + 1 rows instead of all of them: with C^T C = D J^T J D
+// (Cholesky; D the typical sizes) the Jacobian [C; 0] and the residuals
+// [C^-T D J^T r; sqrt(|r|^2 - |C^-T D J^T r|^2)] have the same three, so every step and every
+// decision is the one it would take on the stacked readings; a call for the cost alone gets
+// [|r|, 0, ..., 0]. The normal equations are formed on all threads with the evaluation.
 struct StackedReadings {
   using Scalar = double;
   enum { NUM_RESIDUALS = Eigen::Dynamic, NUM_PARAMETERS = Eigen::Dynamic };
   State& state;
   const Eigen::VectorXd& typical;
 
-  int NumResiduals() const { return static_cast<int>(state.rows); }
+  int NumResiduals() const { return static_cast<int>(state.cols) + 1; }
   int NumParameters() const { return static_cast<int>(state.cols); }
   std::vector<double> unscaled(const double* x) const {
     std::vector<double> v(static_cast<size_t>(state.cols));
@@ -265,9 +303,22 @@ struct StackedReadings {
     return v;
   }
   bool operator()(const double* x, double* residuals, double* jacobian) const {
+    const Eigen::Index n = state.cols;
     state.prepare(unscaled(x), jacobian != nullptr);
-    Eigen::Map<Eigen::VectorXd>(residuals, state.rows) = state.residualsAtCurrent();
-    if (jacobian) Eigen::Map<Eigen::MatrixXd>(jacobian, state.rows, state.cols) = state.jacobian * typical.asDiagonal();
+    Eigen::Map<Eigen::VectorXd> r(residuals, n + 1);
+    r.setZero();
+    if (!jacobian) {
+      r[0] = state.residualsAtCurrent().norm();
+      return true;
+    }
+    const NormalEquations& ne = state.normal;
+    const Eigen::LLT<Eigen::MatrixXd> c(typical.asDiagonal() * ne.gram * typical.asDiagonal());
+    if (c.info() != Eigen::Success) throw std::runtime_error("identification: the normal matrix became singular");
+    r.head(n) = c.matrixL().solve(typical.cwiseProduct(ne.gradient));
+    r[n] = std::sqrt(std::max(0.0, ne.squaredNorm - r.head(n).squaredNorm()));
+    Eigen::Map<Eigen::MatrixXd> j(jacobian, n + 1, n);
+    j.setZero();
+    j.topRows(n) = c.matrixU();
     return true;
   }
 };
@@ -397,7 +448,6 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
     state.current = final;
     state.evaluateAll();
   }
-  const Eigen::MatrixXd& j = state.jacobian;
   const Eigen::VectorXd& residual = state.residual;
   out.readings = static_cast<int>(residual.size());
   out.degreesOfFreedom = out.readings - static_cast<int>(n);
@@ -405,11 +455,9 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
   out.residualRms = std::sqrt(residual.squaredNorm() / static_cast<double>(residual.size()));
   out.residualMax = residual.cwiseAbs().maxCoeff();
   // The normal matrix with unit columns (Jacobi scaling), so that mm and rad mix safely.
-  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(n, n);
-  gram.selfadjointView<Eigen::Lower>().rankUpdate(j.transpose());
+  const Eigen::MatrixXd& gram = state.normal.gram;
   const Eigen::VectorXd scale = gram.diagonal().cwiseSqrt();
-  const Eigen::MatrixXd normal = scale.cwiseInverse().asDiagonal() * Eigen::MatrixXd(gram.selfadjointView<Eigen::Lower>()) *
-                                 scale.cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd normal = scale.cwiseInverse().asDiagonal() * gram * scale.cwiseInverse().asDiagonal();
   const Eigen::MatrixXd inv = normal.selfadjointView<Eigen::Lower>().ldlt().solve(Eigen::MatrixXd::Identity(n, n));
   out.covariance = out.sigma * out.sigma * scale.cwiseInverse().asDiagonal() * inv * scale.cwiseInverse().asDiagonal();
   out.uncertainty = out.covariance.diagonal().cwiseSqrt();
