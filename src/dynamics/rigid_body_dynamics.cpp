@@ -212,7 +212,6 @@ ModalSums modalSums(const StructureMatrices& m, const Modes& modes, const std::v
       if (!block.isZero(0.0)) dampedShapes.middleRows<6>(6 * i).noalias() += block * modes.shapes.middleRows<6>(6 * j);
     }
   const Eigen::VectorXd modalDamping = modes.shapes.cwiseProduct(dampedShapes).colwise().sum().transpose();
-  // Two frequencies at a time, the twelve sums kept in registers over all modes.
   using Pair = Eigen::Array2d;
   // Per mode, contiguous and already in both lanes: w_r^2, c_r and the six products of its
   // participations.
@@ -226,6 +225,7 @@ ModalSums modalSums(const StructureMatrices& m, const Modes& modes, const std::v
   ModalSums out;
   const size_t nf = frequencies.size();
   for (size_t e = 0; e < 6; ++e) out.re[e].resize(nf), out.im[e].resize(nf);
+  // Two frequencies at a time, the twelve sums kept in registers over all modes.
   for (size_t i = 0; i < nf; i += 2) {
     const Pair w = 2 * kPi * Pair(frequencies[i], frequencies[std::min(i + 1, nf - 1)]), w2 = w * w;
     Pair re[6], im[6];

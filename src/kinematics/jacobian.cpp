@@ -88,9 +88,10 @@ void forEachFactorDerivative(const KinematicModel& m, const ChainFactors& c, con
   const ChainElement* element = c.element[static_cast<size_t>(p.axis)];
   if (!element) return;
   Mat4 scratch;
-  for (size_t i = c.range[static_cast<size_t>(p.axis)].first; i < c.range[static_cast<size_t>(p.axis)].second; ++i)
+  for (size_t i = c.range[static_cast<size_t>(p.axis)].first; i < c.range[static_cast<size_t>(p.axis)].second; ++i) {
     if (c.factors[i].hook == Hook::None) continue;
-    else if (const Mat4* df = factorDerivative(m, *element, c.factors[i].hook, p, q, dir, scratch)) add(i, *df);
+    if (const Mat4* df = factorDerivative(m, *element, c.factors[i].hook, p, q, dir, scratch)) add(i, *df);
+  }
 }
 
 Mat4 chainDerivative(const KinematicModel& m, const ChainFactors& c, const Parameter& p, const double* q,

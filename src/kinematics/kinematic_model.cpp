@@ -179,7 +179,7 @@ void elementFactors(const KinematicModel& m, const ChainElement& e, double q, in
   const bool motion = hasMotionErrors(m, e.axis);
   // Constant translations by zero are left out.
   auto pushTranslation = [&](const Vec3& t) {
-    if (!t.isZero(0.0)) out.push_back({translation(t), Hook::None, e.axis, true});
+    if (!t.isZero(0.0)) out.push_back({translation(t), Hook::None, e.axis});
   };
   auto pushMotion = [&]() {
     pushTranslation(e.location);
@@ -194,8 +194,7 @@ void elementFactors(const KinematicModel& m, const ChainElement& e, double q, in
   }
   if (motion && e.frame == ErrorFrame::Fixed) pushMotion();
   if (e.type != AxisType::Spindle)
-    out.push_back({jointPose(m, e, q), e.type == AxisType::Linear ? Hook::LinearJoint : Hook::None, e.axis,
-                   e.type == AxisType::Linear});
+    out.push_back({jointPose(m, e, q), e.type == AxisType::Linear ? Hook::LinearJoint : Hook::None, e.axis});
   if (motion && e.frame == ErrorFrame::Moving) pushMotion();
 }
 

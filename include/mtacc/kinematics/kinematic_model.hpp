@@ -32,7 +32,6 @@ struct Factor {
   Pose pose;
   Hook hook = Hook::None;
   int axis = -1;
-  bool translationOnly = false;  // pose is a pure translation (a cheaper product)
 };
 
 // One operation of the compiled evaluation program.
