@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <thread>
 #include <vector>
 
@@ -137,7 +138,7 @@ struct Frame {
 };
 
 Pose runProgram(const KinematicModel& m, const std::vector<ChainOp>& program, const double* q, const int* dir,
-                std::vector<ChainFrame>* hooks = nullptr) {
+                ChainFrame* hooks = nullptr) {
   Frame t;
   for (const auto& op : program) {
     switch (op.kind) {
@@ -166,7 +167,9 @@ Pose runProgram(const KinematicModel& m, const std::vector<ChainOp>& program, co
         break;
       }
       case ChainOp::HookMarker:
-        hooks->push_back({t.r, t.p});
+        hooks->rotation = t.r;
+        hooks->origin = t.p;
+        ++hooks;
         break;
     }
   }
@@ -187,9 +190,8 @@ Pose workpiecePose(const KinematicModel& m, const double* q, const int* dir) {
 }
 
 Pose runHookProgram(const KinematicModel& m, const std::vector<ChainOp>& program, const double* q, const int* dir,
-                    std::vector<ChainFrame>& hooks) {
-  hooks.clear();
-  return runProgram(m, program, q, dir, &hooks);
+                    ChainFrame* hooks) {
+  return runProgram(m, program, q, dir, hooks);
 }
 
 Pose toolInWorkpiece(const KinematicModel& m, const double* q, const int* dir) {
@@ -223,12 +225,20 @@ void parallelFor(long n, int threads, const std::function<void(long, long)>& bod
   }
   std::vector<std::thread> pool;
   const long chunk = (n + t - 1) / t;
-  for (int i = 0; i < t; ++i) {
+  for (int i = 1; i < t; ++i) {
     const long begin = i * chunk;
     const long end = std::min(n, begin + chunk);
     if (begin < end) pool.emplace_back(body, begin, end);
   }
+  // The calling thread takes the first chunk.
+  std::exception_ptr failure;
+  try {
+    body(0, std::min(n, chunk));
+  } catch (...) {
+    failure = std::current_exception();
+  }
   for (auto& th : pool) th.join();
+  if (failure) std::rethrow_exception(failure);
 }
 
 void toolPoints(const KinematicModel& m, const JointMatrix& q, const Eigen::MatrixXi& dir, PointMatrix& positions,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <stdexcept>
+#include <string>
 
 #include "mtacc/kinematics/forward.hpp"
 
@@ -148,10 +149,10 @@ ParameterJacobian parameterJacobian(const KinematicModel& m, const std::vector<P
 
 PointJacobianPlan planPointJacobian(const KinematicModel& m, const std::vector<Parameter>& parameters) {
   if (!m.withErrors) throw std::logic_error("pointJacobian needs a model compiled with errors");
+  using Term = PointJacobianPlan::Term;
   PointJacobianPlan plan;
   plan.model = &m;
   plan.parameters = parameters;
-  plan.terms.resize(parameters.size());
   const std::vector<double> zero(static_cast<size_t>(m.jointCount), 0.0);
   Mat4 scratch;
   auto addChain = [&](int chain, const std::vector<ChainOp>& program, const std::vector<ChainElement>& elements) {
@@ -161,77 +162,92 @@ PointJacobianPlan planPointJacobian(const KinematicModel& m, const std::vector<P
       if (op.kind != ChainOp::HookMarker) continue;
       ++i;  // markers come in pairs around their factor
       while (program[i].kind != ChainOp::HookMarker) ++i;
+      if (factor == PointJacobianPlan::kMaxFactors)
+        throw std::invalid_argument("pointJacobian: a chain has more than " +
+                                    std::to_string(PointJacobianPlan::kMaxFactors) + " factors with error parameters");
       const auto element = std::find_if(elements.begin(), elements.end(), [&](const ChainElement& e) { return e.axis == op.axis; });
       for (size_t k = 0; k < parameters.size(); ++k) {
-        const Mat4* df = factorDerivative(m, *element, op.hook, parameters[k], zero.data(), nullptr, scratch);
+        const Parameter& p = parameters[k];
+        const Mat4* df = factorDerivative(m, *element, op.hook, p, zero.data(), nullptr, scratch);
         if (!df) continue;
-        // A location error's derivative does not depend on the pose; the others are taken at each pose.
-        PointJacobianPlan::Term t{chain, factor, &*element, op.hook, op.hook == Hook::Location};
-        if (t.constant) t.rotation = df->topLeftCorner<3, 3>(), t.translation = df->block<3, 1>(0, 3);
-        plan.terms[k].push_back(t);
+        Term t{static_cast<int>(k), chain, factor, &*element, op.hook, Term::PerPose};
+        if (op.hook == Hook::Location) {
+          t.kind = Term::Constant;
+          t.rotation = df->topLeftCorner<3, 3>();
+          t.translation = df->block<3, 1>(0, 3);
+          t.rotates = !t.rotation.isZero(0.0);
+        } else if (op.hook == Hook::LinearJoint) {
+          // factorDerivative is affine in the joint value: sample it at 0 and 1.
+          t.kind = Term::JointTranslation;
+          t.translation = df->block<3, 1>(0, 3);
+          std::vector<double> one = zero;
+          one[static_cast<size_t>(element->joint)] = 1.0;
+          t.translationPerUnit = factorDerivative(m, *element, op.hook, p, one.data(), nullptr, scratch)->block<3, 1>(0, 3) -
+                                 t.translation;
+        }
+        plan.terms.push_back(t);
       }
       ++factor;
     }
   };
   addChain(0, m.toolHookProgram, m.toolChain);
   addChain(1, m.workpieceHookProgram, m.workpieceChain);
-  if (m.machine->alignment == WorkpieceAlignment::Machine) addChain(2, m.workpieceHookProgram, m.workpieceChain);
+  if (m.machine->alignment == WorkpieceAlignment::Machine) {
+    addChain(2, m.workpieceHookProgram, m.workpieceChain);
+    plan.referenceFrames.resize(2 * PointJacobianPlan::kMaxFactors);
+    plan.reference = runHookProgram(m, m.workpieceHookProgram, m.machine->referencePose.data(), nullptr,
+                                    plan.referenceFrames.data());
+  }
   return plan;
 }
 
 void pointJacobian(const PointJacobianPlan& plan, const double* q, const int* dir, const Vec3& toolPoint, PointJacobian& out) {
+  constexpr int kMax = PointJacobianPlan::kMaxFactors;
   const KinematicModel& m = *plan.model;
-  // Per-thread scratch: this runs once per reading in identifications.
-  thread_local std::array<std::vector<ChainFrame>, 3> frames;
-  thread_local std::array<std::vector<Mat3>, 3> maps;
-  thread_local std::array<std::vector<Vec3>, 3> local;
-  const Pose tool = runHookProgram(m, m.toolHookProgram, q, dir, frames[0]);
-  const Pose wpInv = runHookProgram(m, m.workpieceHookProgram, q, dir, frames[1]).inverse(Eigen::Isometry);
+  std::array<ChainFrame, 2 * kMax> toolFrames, workpieceFrames;
+  const Pose tool = runHookProgram(m, m.toolHookProgram, q, dir, toolFrames.data());
+  const Pose wpInv = runHookProgram(m, m.workpieceHookProgram, q, dir, workpieceFrames.data()).inverse(Eigen::Isometry);
   const Vec3 inBed = tool * toolPoint;
   const Vec3 beforeAlignment = wpInv * inBed;
   out.point = m.alignment * beforeAlignment;
   out.toolRotation = m.alignment.linear() * wpInv.linear() * tool.linear();
-  out.jacobian.resize(3, static_cast<Eigen::Index>(plan.parameters.size()));
 
   // d(W^-1 T x) = W^-1 (dT x - dW (W^-1 T x)): both chains see the same bed point. A hooked
   // factor F between the frames B (before) and A (after) adds B dF A^-1 x.
   const bool aligned = m.machine->alignment == WorkpieceAlignment::Machine;
-  Vec3 points[3] = {inBed, inBed, Vec3::Zero()};
-  Mat3 refToWorkpiece = Mat3::Zero();
-  if (aligned) {
-    const Pose ref = runHookProgram(m, m.workpieceHookProgram, m.machine->referencePose.data(), nullptr, frames[2]);
-    refToWorkpiece = m.alignment.linear() * ref.linear().transpose();
-    points[2] = ref * beforeAlignment;
-  }
+  const ChainFrame* frames[3] = {toolFrames.data(), workpieceFrames.data(), plan.referenceFrames.data()};
+  const Vec3 points[3] = {inBed, inBed, aligned ? Vec3(plan.reference * beforeAlignment) : Vec3::Zero()};
+  const Mat3 toWorkpiece[3] = {m.alignment.linear() * wpInv.linear(), -m.alignment.linear() * wpInv.linear(),
+                               m.alignment.linear() * plan.reference.linear().transpose()};
   // Per hooked factor: the map of a direction before it to the workpiece frame, and the point
-  // in the frame after it.
-  const Mat3 toWorkpiece[3] = {m.alignment.linear() * wpInv.linear(), -m.alignment.linear() * wpInv.linear(), refToWorkpiece};
-  for (size_t c = 0; c < (aligned ? 3u : 2u); ++c) {
-    const auto& f = frames[c];
-    auto& map = maps[c];
-    auto& l = local[c];
-    map.resize(f.size() / 2);
-    l.resize(f.size() / 2);
-    for (size_t h = 0; h < map.size(); ++h) {
-      map[h].noalias() = toWorkpiece[c] * f[2 * h].rotation;
-      l[h].noalias() = f[2 * h + 1].rotation.transpose() * (points[c] - f[2 * h + 1].origin);
-    }
-  }
+  // in the frame after it (computed when a term first asks for them).
+  std::array<Mat3, kMax> maps[3];
+  std::array<Vec3, kMax> local[3];
+  std::array<bool, kMax> ready[3] = {};
   const double* qOf[3] = {q, q, m.machine->referencePose.data()};
   const int* dirOf[3] = {dir, dir, nullptr};
+  out.jacobian.setZero(3, static_cast<Eigen::Index>(plan.parameters.size()));
   Mat4 scratch;
-  for (size_t k = 0; k < plan.parameters.size(); ++k) {
-    Vec3 d = Vec3::Zero();
-    for (const auto& t : plan.terms[k]) {
-      const auto c = static_cast<size_t>(t.chain), h = static_cast<size_t>(t.factor);
-      if (t.constant) {
-        d.noalias() += maps[c][h] * (t.rotation * local[c][h] + t.translation);
-      } else {
-        const Mat4& df = *factorDerivative(m, *t.element, t.hook, plan.parameters[k], qOf[c], dirOf[c], scratch);
-        d.noalias() += maps[c][h] * (df.topLeftCorner<3, 3>() * local[c][h] + df.block<3, 1>(0, 3));
-      }
+  for (const auto& t : plan.terms) {
+    const auto c = static_cast<size_t>(t.chain), h = static_cast<size_t>(t.factor);
+    if (!ready[c][h]) {
+      const ChainFrame& before = frames[c][2 * h];
+      const ChainFrame& after = frames[c][2 * h + 1];
+      maps[c][h].noalias() = toWorkpiece[c] * before.rotation;
+      local[c][h].noalias() = after.rotation.transpose() * (points[c] - after.origin);
+      ready[c][h] = true;
     }
-    out.jacobian.col(static_cast<Eigen::Index>(k)) = d;
+    Vec3 d;
+    if (t.kind == PointJacobianPlan::Term::Constant) {
+      d = t.rotates ? Vec3(t.rotation * local[c][h] + t.translation) : t.translation;
+    } else if (t.kind == PointJacobianPlan::Term::JointTranslation) {
+      d = t.translation + qOf[c][t.element->joint] * t.translationPerUnit;
+    } else {
+      const Mat4& df = *factorDerivative(m, *t.element, t.hook, plan.parameters[static_cast<size_t>(t.parameter)], qOf[c],
+                                         dirOf[c], scratch);
+      d = df.topLeftCorner<3, 3>() * local[c][h] + df.block<3, 1>(0, 3);
+    }
+    out.jacobian.col(t.parameter).noalias() += maps[c][h] * d;
   }
 }
 

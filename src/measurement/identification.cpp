@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <mutex>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -36,36 +37,24 @@ bool allZero(const IdentificationProblem& p) {
   return true;
 }
 
-// J^T J (full), J^T r and r^T r of a stacked system, the two halves of the rows side by side.
+// J^T J (lower triangle until completed), J^T r and r^T r of a stacked system, summed block
+// by block.
 struct NormalEquations {
   Eigen::MatrixXd gram;
   Eigen::VectorXd gradient;
   double squaredNorm = 0;
-};
-NormalEquations normalEquations(const Eigen::MatrixXd& j, const Eigen::VectorXd& r, int threads) {
-  auto part = [&](Eigen::Index begin, Eigen::Index count) {
-    NormalEquations ne;
-    const auto rows = j.middleRows(begin, count);
-    ne.gram = Eigen::MatrixXd::Zero(j.cols(), j.cols());
-    ne.gram.selfadjointView<Eigen::Lower>().rankUpdate(rows.transpose());
-    ne.gradient = rows.transpose() * r.segment(begin, count);
-    ne.squaredNorm = r.segment(begin, count).squaredNorm();
-    return ne;
-  };
-  const Eigen::Index half = j.rows() / 2;
-  NormalEquations out;
-  if (threads > 1 && half > 1000) {
-    NormalEquations top;
-    std::thread worker([&] { top = part(0, half); });
-    out = part(half, j.rows() - half);
-    worker.join();
-    out.gram += top.gram, out.gradient += top.gradient, out.squaredNorm += top.squaredNorm;
-  } else {
-    out = part(0, j.rows());
+
+  explicit NormalEquations(Eigen::Index n = 0) : gram(Eigen::MatrixXd::Zero(n, n)), gradient(Eigen::VectorXd::Zero(n)) {}
+  template <class Rows, class Residuals>
+  void add(const Rows& j, const Residuals& r) {
+    gram.selfadjointView<Eigen::Lower>().rankUpdate(j.transpose());
+    gradient.noalias() += j.transpose() * r;
+    squaredNorm += r.squaredNorm();
   }
-  out.gram = out.gram.selfadjointView<Eigen::Lower>();
-  return out;
-}
+  void add(const NormalEquations& other) {
+    gram += other.gram, gradient += other.gradient, squaredNorm += other.squaredNorm;
+  }
+};
 
 // The stacked problem at one estimate: the model compiled there, the runs with their set-up
 // errors, and the layout of the stacked readings (rows) and unknowns (columns). `jacobian`
@@ -80,12 +69,14 @@ struct State {
   std::vector<std::vector<SetupParameter>> setup;   // per run
   std::vector<std::optional<PointJacobian>> setAt;  // per run, ballbar set at the tool ball
   std::vector<std::vector<NominalFrame>> frames;    // per run and pose
-  std::vector<Eigen::Index> rowStart, colStart;
+  std::vector<RunGeometry> geometry;                // per run, at `current`
+  std::vector<Eigen::Index> poseStart, rowStart, colStart;  // per run (poseStart: and the total)
   Eigen::Index rows = 0, cols = 0;
 
+  bool storeJacobian = true;  // keep the stacked Jacobian (else only its normal equations)
   Eigen::MatrixXd jacobian;
   Eigen::VectorXd residual;
-  NormalEquations normal;  // of jacobian and residual
+  NormalEquations normal;  // of the Jacobian and residual, completed to the full matrix
   std::vector<double> point;    // machine values then set-up values at which they hold
   std::vector<double> current;  // the same for the compiled model
   bool valid = false;
@@ -105,8 +96,10 @@ struct State {
     }
     nominal = compileNominal(p.machine);
     cols = static_cast<Eigen::Index>(p.parameters.size());
+    poseStart.push_back(0);
     for (const auto& r : runs) {
       setup.push_back(setupOf(r));
+      poseStart.push_back(poseStart.back() + r.poses());
       rowStart.push_back(rows);
       colStart.push_back(cols);
       rows += r.poses() * readingSize(r.instrument);
@@ -136,52 +129,80 @@ struct State {
     model = compile(problem->machine, errors, true);
     setAtReady = jacobians;
     if (jacobians) plan = planPointJacobian(model, problem->parameters);
+    geometry.clear();
     for (size_t r = 0; r < runs.size(); ++r) {
+      geometry.push_back(runGeometry(model, runs[r]));
       setAt[r].reset();
       if (jacobians && runs[r].setup.setAt)
         pointJacobian(plan, runs[r].setup.setAt->data(), nullptr, toolBallWithSetupError(runs[r]), setAt[r].emplace());
     }
   }
-  // Poses [begin, end) of one run into the stacked jacobian and residual.
-  void evaluate(size_t run, Eigen::Index begin, Eigen::Index end) {
-    const auto& r = runs[run];
-    const int m = readingSize(r.instrument);
+  // The rows of poses [begin, end) (counted over all runs) into `block` (their Jacobian) and
+  // the residual.
+  void evaluate(long begin, long end, RowMajorMatrix& block) {
     const auto machineCols = static_cast<Eigen::Index>(problem->parameters.size());
+    const Eigen::Index row0 = rowOf(begin);
+    block.rightCols(cols - machineCols).setZero();
     thread_local ReadingJacobian rj;
-    for (Eigen::Index i = begin; i < end; ++i) {
-      readingJacobian(plan, frames[run][static_cast<size_t>(i)], r, i, setup[run], setAt[run] ? &*setAt[run] : nullptr, rj);
-      const Eigen::Index row = rowStart[run] + i * m;
-      jacobian.block(row, 0, m, machineCols) = rj.machine;
-      if (rj.setup.cols()) jacobian.block(row, colStart[run], m, rj.setup.cols()) = rj.setup;
-      residual.segment(row, m) = rj.reading;
-      if (r.readings.rows() == r.poses()) residual.segment(row, m) -= r.readings.row(i).transpose();
+    size_t run = runOf(begin);
+    for (long p = begin; p < end; ++p) {
+      while (p >= poseStart[run + 1]) ++run;
+      const auto& r = runs[run];
+      const Eigen::Index i = p - poseStart[run], row = rowOf(p), m = readingSize(r.instrument);
+      readingJacobian(plan, geometry[run], frames[run][static_cast<size_t>(i)], r, i, setup[run],
+                      setAt[run] ? &*setAt[run] : nullptr, rj);
+      for (Eigen::Index k = 0; k < m; ++k) {
+        double* out = block.row(row - row0 + k).data();
+        std::copy_n(rj.machine.row(k).data(), machineCols, out);
+        std::copy_n(rj.setup.row(k).data(), rj.setup.cols(), out + colStart[run]);
+        residual[row + k] = rj.reading[k] - (r.readings.rows() == r.poses() ? r.readings(i, k) : 0.0);
+      }
     }
   }
-  // f(run, first pose, end pose) over all poses of all runs, on all threads.
-  template <class F>
-  void forEachPoseRange(F&& f) const {
-    std::vector<Eigen::Index> poseStart{0};
-    for (const auto& r : runs) poseStart.push_back(poseStart.back() + r.poses());
-    parallelFor(poseStart.back(), threads, [&](long b, long e) {
-      size_t r = static_cast<size_t>(std::upper_bound(poseStart.begin(), poseStart.end(), b) - poseStart.begin()) - 1;
-      for (long i = b; i < e; ++r) {
-        const long end = std::min<long>(e, poseStart[r + 1]);
-        if (end > i) f(r, i - poseStart[r], end - poseStart[r]);
-        i = std::max<long>(i, end);
-      }
-    });
+  size_t runOf(long pose) const {
+    return static_cast<size_t>(std::upper_bound(poseStart.begin(), poseStart.end(), pose) - poseStart.begin()) - 1;
+  }
+  Eigen::Index rowOf(long pose) const {
+    if (pose == poseStart.back()) return rows;
+    const size_t r = runOf(pose);
+    return rowStart[r] + (pose - poseStart[r]) * readingSize(runs[r].instrument);
   }
   template <class F>
   void forEachPose(F&& f) const {
-    forEachPoseRange([&](size_t r, Eigen::Index b, Eigen::Index e) {
-      for (Eigen::Index i = b; i < e; ++i) f(r, i);
+    parallelFor(poseStart.back(), threads, [&](long b, long e) {
+      for (long p = b; p < e; ++p) {
+        const size_t r = runOf(p);
+        f(r, p - poseStart[r]);
+      }
     });
   }
+  // The Jacobian (kept when storeJacobian), residuals and normal equations at `current`, on
+  // all threads: each forms the normal equations of its poses a block at a time while the
+  // block is in cache; the parts are summed in pose order, so that the result does not
+  // depend on timing.
   void evaluateAll() {
-    jacobian.setZero(rows, cols);
+    constexpr long kBlockPoses = 128;
+    if (storeJacobian) jacobian.resize(rows, cols);
     residual.resize(rows);
-    forEachPoseRange([&](size_t r, Eigen::Index b, Eigen::Index e) { evaluate(r, b, e); });
-    normal = normalEquations(jacobian, residual, threads);
+    std::mutex mutex;
+    std::vector<std::pair<long, NormalEquations>> parts;
+    parallelFor(poseStart.back(), threads, [&](long begin, long end) {
+      NormalEquations part(cols);
+      RowMajorMatrix block(3 * kBlockPoses, cols);
+      for (long b = begin; b < end; b += kBlockPoses) {
+        const long e = std::min(end, b + kBlockPoses);
+        evaluate(b, e, block);
+        const Eigen::Index row0 = rowOf(b), n = rowOf(e) - row0;
+        part.add(block.topRows(n), residual.segment(row0, n));
+        if (storeJacobian) jacobian.middleRows(row0, n) = block.topRows(n);
+      }
+      const std::lock_guard lock(mutex);
+      parts.emplace_back(begin, std::move(part));
+    });
+    std::sort(parts.begin(), parts.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    normal = NormalEquations(cols);
+    for (const auto& part : parts) normal.add(part.second);
+    normal.gram = normal.gram.selfadjointView<Eigen::Lower>();
     point = current;
     valid = true;
   }
@@ -191,7 +212,7 @@ struct State {
       const auto& run = runs[r];
       const Eigen::Index m = readingSize(run.instrument);
       residualOnly.segment(rowStart[r] + i * m, m) =
-          predictReading(model, frames[r][static_cast<size_t>(i)], run, i) - run.readings.row(i).transpose();
+          predictReading(model, geometry[r], frames[r][static_cast<size_t>(i)], run, i) - run.readings.row(i).transpose();
     });
     residualPoint = current;
   }
@@ -289,6 +310,9 @@ int threadCount(int requested) {
 // [C^-T D J^T r; sqrt(|r|^2 - |C^-T D J^T r|^2)] have the same three, so every step and every
 // decision is the one it would take on the stacked readings; a call for the cost alone gets
 // [|r|, 0, ..., 0]. The normal equations are formed on all threads with the evaluation.
+// A call for the cost alone is a trial step, and TinySolver asks for the Jacobian at every
+// step it accepts, which is nearly every step on these problems: such a call therefore
+// evaluates the derivatives as well, ready for that next request.
 struct StackedReadings {
   using Scalar = double;
   enum { NUM_RESIDUALS = Eigen::Dynamic, NUM_PARAMETERS = Eigen::Dynamic };
@@ -304,11 +328,11 @@ struct StackedReadings {
   }
   bool operator()(const double* x, double* residuals, double* jacobian) const {
     const Eigen::Index n = state.cols;
-    state.prepare(unscaled(x), jacobian != nullptr);
+    state.prepare(unscaled(x), true);
     Eigen::Map<Eigen::VectorXd> r(residuals, n + 1);
     r.setZero();
     if (!jacobian) {
-      r[0] = state.residualsAtCurrent().norm();
+      r[0] = std::sqrt(state.normal.squaredNorm);
       return true;
     }
     const NormalEquations& ne = state.normal;
@@ -413,7 +437,7 @@ ObservabilityReport planObservability(const IdentificationProblem& problem, int 
   State state(problem, true, threadCount(threads));
   state.evaluateAll();
   const auto cols = problemColumns(problem);
-  return analyseObservability(state.jacobian, cols.names, cols.typical);
+  return analyseObservability(std::move(state.jacobian), cols.names, cols.typical);
 }
 
 IdentificationResult identify(const IdentificationProblem& problem, const IdentificationOptions& options) {
@@ -429,7 +453,11 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
   const bool startsAtNominal = allZero(problem);
   std::optional<State> holder(std::in_place, problem, true, threads);
   holder->evaluateAll();
-  out.observability = analyseObservability(holder->jacobian, out.columns.names, out.columns.typical);
+  // Plain least squares use every evaluation only through its normal equations, so the
+  // Jacobian can be factored in place; the robust solver reads its rows.
+  const bool keepJacobian = options.robust;
+  out.observability = analyseObservability(keepJacobian ? Eigen::MatrixXd(holder->jacobian) : std::move(holder->jacobian),
+                                           out.columns.names, out.columns.typical);
   if (!out.observability.identifiable()) {
     std::string why;
     for (const auto& f : out.observability.findings()) why += (why.empty() ? "" : "; ") + f;
@@ -437,6 +465,7 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
   }
   if (!startsAtNominal) holder.emplace(problem, false, threads);
   State& state = *holder;
+  state.storeJacobian = keepJacobian;
 
   const std::vector<double> final = options.robust ? solveRobust(state, options, out)
                                                    : solveLeastSquares(state, out.columns.typical, options, out);

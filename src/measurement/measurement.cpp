@@ -14,9 +14,6 @@ double err(const MeasurementRun& run, SetupParameter p) { return run.setup.error
 Vec3 targetError(const MeasurementRun& run) {
   return Vec3(err(run, SetupParameter::TargetX), err(run, SetupParameter::TargetY), err(run, SetupParameter::TargetZ));
 }
-Mat3 nestRotation(const MeasurementRun& run) {
-  return rotationXYZ(err(run, SetupParameter::NestA), err(run, SetupParameter::NestB), err(run, SetupParameter::NestC));
-}
 Vec3 actualToolBall(const KinematicModel& model, const MeasurementRun& run, const double* q, const int* dir) {
   return toolInWorkpiece(model, q, dir) * toolBallWithSetupError(run);
 }
@@ -80,6 +77,19 @@ Vec3 workBall(const KinematicModel& model, const MeasurementRun& run) {
   return base + targetError(run);
 }
 
+RunGeometry runGeometry(const KinematicModel& model, const MeasurementRun& run) {
+  RunGeometry g;
+  g.toolBall = toolBallWithSetupError(run);
+  g.target = run.instrument == Instrument::Ballbar ? workBall(model, run) : Vec3(run.setup.target + targetError(run));
+  if (run.instrument == Instrument::RTest) {
+    const double a = err(run, SetupParameter::NestA), b = err(run, SetupParameter::NestB), c = err(run, SetupParameter::NestC);
+    g.nestTranspose = rotationXYZ(a, b, c).transpose();
+    for (int k = 0; k < 3; ++k) g.nestTransposeDerivatives[static_cast<size_t>(k)] = rotationXYZDerivative(a, b, c, k).transpose();
+  }
+  g.length = run.setup.length + err(run, SetupParameter::Length);
+  return g;
+}
+
 NominalFrame nominalFrame(const KinematicModel& nominal, const MeasurementRun& run, Eigen::Index i) {
   const double* q = run.q.row(i).data();
   NominalFrame f;
@@ -93,25 +103,18 @@ NominalFrame nominalFrame(const KinematicModel& nominal, const MeasurementRun& r
 }
 
 Reading predictReading(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run, Eigen::Index i) {
-  return predictReading(model, nominalFrame(nominal, run, i), run, i);
+  return predictReading(model, runGeometry(model, run), nominalFrame(nominal, run, i), run, i);
 }
 
-Reading predictReading(const KinematicModel& model, const NominalFrame& nominal, const MeasurementRun& run, Eigen::Index i) {
-  const Vec3 t = actualToolBall(model, run, run.q.row(i).data(), dirRow(run, i));
+Reading predictReading(const KinematicModel& model, const RunGeometry& geometry, const NominalFrame& nominal,
+                       const MeasurementRun& run, Eigen::Index i) {
+  const Vec3 t = toolInWorkpiece(model, run.q.row(i).data(), dirRow(run, i)) * geometry.toolBall;
   Reading r(readingSize(run.instrument));
   switch (run.instrument) {
-    case Instrument::Ballbar:
-      r[0] = (t - workBall(model, run)).norm() - run.setup.length - err(run, SetupParameter::Length);
-      break;
-    case Instrument::RTest:
-      r = nominal.workpieceRotation * (nestRotation(run).transpose() * (t - run.setup.target - targetError(run)));
-      break;
-    case Instrument::TouchProbe:
-      r = -(nominal.workpieceRotation * (t - run.setup.target - targetError(run)));
-      break;
-    case Instrument::Directional:
-      r[0] = run.setup.direction.dot(t - nominal.toolBall);
-      break;
+    case Instrument::Ballbar: r[0] = (t - geometry.target).norm() - geometry.length; break;
+    case Instrument::RTest: r = nominal.workpieceRotation * (geometry.nestTranspose * (t - geometry.target)); break;
+    case Instrument::TouchProbe: r = -(nominal.workpieceRotation * (t - geometry.target)); break;
+    case Instrument::Directional: r[0] = run.setup.direction.dot(t - nominal.toolBall); break;
   }
   return r;
 }
@@ -119,8 +122,9 @@ Reading predictReading(const KinematicModel& model, const NominalFrame& nominal,
 Eigen::MatrixXd predictReadings(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
                                 int threads) {
   Eigen::MatrixXd out(run.poses(), readingSize(run.instrument));
+  const RunGeometry geometry = runGeometry(model, run);
   parallelFor(run.poses(), threads, [&](long b, long e) {
-    for (long i = b; i < e; ++i) out.row(i) = predictReading(model, nominal, run, i).transpose();
+    for (long i = b; i < e; ++i) out.row(i) = predictReading(model, geometry, nominalFrame(nominal, run, i), run, i).transpose();
   });
   return out;
 }
@@ -130,17 +134,16 @@ ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicMode
                                 const std::vector<SetupParameter>& setupParameters,
                                 const PointJacobian* setAtJacobian) {
   ReadingJacobian out;
-  readingJacobian(planPointJacobian(model, machineParameters), nominalFrame(nominal, run, i), run, i, setupParameters,
-                  setAtJacobian, out);
+  readingJacobian(planPointJacobian(model, machineParameters), runGeometry(model, run), nominalFrame(nominal, run, i), run,
+                  i, setupParameters, setAtJacobian, out);
   return out;
 }
 
-void readingJacobian(const PointJacobianPlan& plan, const NominalFrame& nominal, const MeasurementRun& run, Eigen::Index i,
-                     const std::vector<SetupParameter>& setupParameters, const PointJacobian* setAtJacobian,
-                     ReadingJacobian& out) {
-  const KinematicModel& model = *plan.model;
+void readingJacobian(const PointJacobianPlan& plan, const RunGeometry& geometry, const NominalFrame& nominal,
+                     const MeasurementRun& run, Eigen::Index i, const std::vector<SetupParameter>& setupParameters,
+                     const PointJacobian* setAtJacobian, ReadingJacobian& out) {
   thread_local PointJacobian pj;
-  pointJacobian(plan, run.q.row(i).data(), dirRow(run, i), toolBallWithSetupError(run), pj);
+  pointJacobian(plan, run.q.row(i).data(), dirRow(run, i), geometry.toolBall, pj);
   const Vec3& t = pj.point;
   // d(tool ball)/d(xT yT zT): the tool frame's rotation in the workpiece frame.
   const Mat3& toolRotation = pj.toolRotation;
@@ -158,9 +161,8 @@ void readingJacobian(const PointJacobianPlan& plan, const NominalFrame& nominal,
     case Instrument::Ballbar: {
       if (run.setup.setAt && !setAtJacobian)
         throw std::invalid_argument("readingJacobian: a ballbar set at the tool ball needs the point Jacobian there");
-      const Vec3 w = run.setup.setAt ? Vec3(setAtJacobian->point + targetError(run)) : workBall(model, run);
-      const Vec3 u = (t - w).normalized();
-      out.reading[0] = (t - w).norm() - run.setup.length - err(run, SetupParameter::Length);
+      const Vec3 u = (t - geometry.target).normalized();
+      out.reading[0] = (t - geometry.target).norm() - geometry.length;
       sensitivity.row(0) = u.transpose();
       if (run.setup.setAt) {
         target = setAtJacobian;
@@ -171,18 +173,16 @@ void readingJacobian(const PointJacobianPlan& plan, const NominalFrame& nominal,
     case Instrument::RTest:
     case Instrument::TouchProbe: {
       const Mat3& r = nominal.workpieceRotation;
-      const Mat3 n = nestRotation(run);
-      const Vec3 rel = t - run.setup.target - targetError(run);
-      const double sign = run.instrument == Instrument::RTest ? 1.0 : -1.0;
-      sensitivity = sign * r * n.transpose();
+      const Vec3 rel = t - geometry.target;
+      const bool rTest = run.instrument == Instrument::RTest;
+      sensitivity = rTest ? Mat3(r * geometry.nestTranspose) : Mat3(-r);
       out.reading = sensitivity * rel;
+      if (!rTest) break;
       for (size_t k = 0; k < setupParameters.size(); ++k) {
         const auto p = setupParameters[k];
         if (p != SetupParameter::NestA && p != SetupParameter::NestB && p != SetupParameter::NestC) continue;
-        const int which = static_cast<int>(p) - static_cast<int>(SetupParameter::NestA);
-        const Mat3 dn = rotationXYZDerivative(err(run, SetupParameter::NestA), err(run, SetupParameter::NestB),
-                                              err(run, SetupParameter::NestC), which);
-        out.setup.col(static_cast<Eigen::Index>(k)) = sign * r * dn.transpose() * rel;
+        const auto which = static_cast<size_t>(p) - static_cast<size_t>(SetupParameter::NestA);
+        out.setup.col(static_cast<Eigen::Index>(k)) = r * (geometry.nestTransposeDerivatives[which] * rel);
       }
       break;
     }
@@ -191,10 +191,9 @@ void readingJacobian(const PointJacobianPlan& plan, const NominalFrame& nominal,
       out.reading[0] = run.setup.direction.dot(t - nominal.toolBall);
       break;
   }
-  for (Eigen::Index c = 0; c < out.machine.cols(); ++c) {
-    Vec3 d = pj.jacobian.col(c);
-    if (target) d -= target->jacobian.col(c);
-    out.machine.col(c) = (sensitivity * d).head(m);
+  for (int row = 0; row < m; ++row) {
+    out.machine.row(row).noalias() = sensitivity.row(row).lazyProduct(pj.jacobian);
+    if (target) out.machine.row(row).noalias() -= sensitivity.row(row).lazyProduct(target->jacobian);
   }
   for (size_t k = 0; k < setupParameters.size(); ++k) {
     const auto p = setupParameters[k];

@@ -29,11 +29,9 @@ Eigen::MatrixXd triangularFactor(Eigen::Ref<Eigen::MatrixXd> a) {
   return factor(both);
 }
 
-// The SVD of the small triangular factor: cheap for many readings and few parameters. `a`
-// is overwritten.
-Eigen::MatrixXd rightSingularVectors(Eigen::MatrixXd& a, Eigen::VectorXd& singular) {
-  const Eigen::MatrixXd r = a.rows() > a.cols() ? triangularFactor(a) : a;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(r, Eigen::ComputeFullV);
+// The singular values and right singular vectors of a small matrix.
+Eigen::MatrixXd rightSingularVectors(const Eigen::MatrixXd& a, Eigen::VectorXd& singular) {
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeFullV);
   singular = svd.singularValues();
   return svd.matrixV();
 }
@@ -45,7 +43,7 @@ int findRoot(std::vector<int>& parent, int i) {
 
 }  // namespace
 
-ObservabilityReport analyseObservability(const Eigen::MatrixXd& jacobian, const std::vector<std::string>& names,
+ObservabilityReport analyseObservability(Eigen::MatrixXd jacobian, const std::vector<std::string>& names,
                                          const Eigen::VectorXd& typical, double tol) {
   const Eigen::Index n = jacobian.cols();
   if (static_cast<Eigen::Index>(names.size()) != n || typical.size() != n)
@@ -54,7 +52,11 @@ ObservabilityReport analyseObservability(const Eigen::MatrixXd& jacobian, const 
   rep.names = names;
   if (n == 0) return rep;
 
-  Eigen::VectorXd norms = jacobian.colwise().norm().transpose();
+  // J = QR with Q orthonormal: R has the column norms of J and, for any column scaling D and
+  // column subset, the singular values and right singular vectors of J D. All below works on
+  // the small R.
+  const Eigen::MatrixXd r = jacobian.rows() > n ? triangularFactor(jacobian) : jacobian;
+  const Eigen::VectorXd norms = r.colwise().norm().transpose();
   const double largestEffect = (norms.array() * typical.array().abs()).maxCoeff();
   std::vector<Eigen::Index> active;
   for (Eigen::Index j = 0; j < n; ++j) {
@@ -63,11 +65,11 @@ ObservabilityReport analyseObservability(const Eigen::MatrixXd& jacobian, const 
     else
       active.push_back(j);
   }
-  Eigen::MatrixXd scaled(jacobian.rows(), static_cast<Eigen::Index>(active.size()));
-  for (size_t k = 0; k < active.size(); ++k) scaled.col(static_cast<Eigen::Index>(k)) = jacobian.col(active[k]) / norms[active[k]];
+  Eigen::MatrixXd scaled(r.rows(), static_cast<Eigen::Index>(active.size()));
+  for (size_t k = 0; k < active.size(); ++k) scaled.col(static_cast<Eigen::Index>(k)) = r.col(active[k]) / norms[active[k]];
 
   Eigen::VectorXd sv;
-  const Eigen::MatrixXd v = active.empty() ? Eigen::MatrixXd() : rightSingularVectors(scaled, sv);  // overwrites scaled
+  const Eigen::MatrixXd v = active.empty() ? Eigen::MatrixXd() : rightSingularVectors(scaled, sv);
   rep.singularValues = Eigen::VectorXd::Zero(n);
   rep.singularValues.head(sv.size()) = sv;
   const double largest = sv.size() ? sv[0] : 0.0;
@@ -95,11 +97,11 @@ ObservabilityReport analyseObservability(const Eigen::MatrixXd& jacobian, const 
     for (Eigen::Index j = 0; j < m; ++j)
       if (inNull[static_cast<size_t>(j)] && findRoot(parent, static_cast<int>(j)) == root) members.push_back(j);
     ParameterGroup g;
-    Eigen::MatrixXd sub(jacobian.rows(), static_cast<Eigen::Index>(members.size()));
+    Eigen::MatrixXd sub(r.rows(), static_cast<Eigen::Index>(members.size()));
     for (size_t k = 0; k < members.size(); ++k) {
       const Eigen::Index column = active[static_cast<size_t>(members[k])];
       g.names.push_back(names[static_cast<size_t>(column)]);
-      sub.col(static_cast<Eigen::Index>(k)) = jacobian.col(column) / norms[column];
+      sub.col(static_cast<Eigen::Index>(k)) = r.col(column) / norms[column];
     }
     Eigen::VectorXd subSv;
     const Eigen::MatrixXd subV = rightSingularVectors(sub, subSv);

@@ -23,9 +23,10 @@ struct ChainFrame {
   Vec3 origin;
 };
 // Runs a program with hook markers (KinematicModel::toolHookProgram, workpieceHookProgram):
-// the chain's pose, and in `hooks` the frame at each marker, in program order.
+// the chain's pose, and in `hooks` (room for one per marker) the frame at each marker, in
+// program order.
 Pose runHookProgram(const KinematicModel& model, const std::vector<ChainOp>& program, const double* q, const int* dir,
-                    std::vector<ChainFrame>& hooks);
+                    ChainFrame* hooks);
 
 // Tool frame in the workpiece frame (includes M_WC when the workpiece is aligned).
 Pose toolInWorkpiece(const KinematicModel& model, const double* q, const int* dir = nullptr);

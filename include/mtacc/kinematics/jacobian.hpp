@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "mtacc/errors/error_model.hpp"
+#include "mtacc/kinematics/forward.hpp"
 #include "mtacc/kinematics/kinematic_model.hpp"
 
 namespace mtacc {
@@ -31,21 +32,32 @@ PointJacobian pointJacobian(const KinematicModel& model, const std::vector<Param
                             const int* dir, const Vec3& toolPoint);
 
 // What pointJacobian needs of a model and a parameter list, prepared once for many poses:
-// for each parameter, the factors of the chains that carry it. Refers to the model, which
-// must outlive the plan.
+// for each parameter, the factors of the chains that carry it, with what of their
+// derivatives does not depend on the pose. Refers to the model, which must outlive the plan.
 struct PointJacobianPlan {
+  // The hooked factors a chain may have (checked when planning).
+  static constexpr int kMaxFactors = 32;
   struct Term {
+    int parameter;               // column of the Jacobian
     int chain;                   // 0 tool, 1 workpiece, 2 workpiece at the reference pose (machine alignment)
     int factor;                  // the hooked factor, in that chain's program order
     const ChainElement* element;
     Hook hook;
-    bool constant;               // dF does not depend on the pose (location errors): taken from below
-    Mat3 rotation = Mat3::Zero();     // dF = [rotation translation; 0 0]
+    // Constant: dF = [rotation translation; 0 0] (location errors of rotary axes and the
+    // spindle). JointTranslation: dF = [0, translation + q * translationPerUnit] (location
+    // errors of a linear axis, q its joint value). PerPose: taken at each pose (motion errors).
+    enum Kind { Constant, JointTranslation, PerPose } kind;
+    bool rotates = false;        // Constant with a nonzero rotation part
+    Mat3 rotation = Mat3::Zero();
     Vec3 translation = Vec3::Zero();
+    Vec3 translationPerUnit = Vec3::Zero();
   };
   const KinematicModel* model = nullptr;
   std::vector<Parameter> parameters;
-  std::vector<std::vector<Term>> terms;  // per parameter
+  std::vector<Term> terms;
+  // Machine alignment: the workpiece chain at the reference pose, the same for every pose.
+  std::vector<ChainFrame> referenceFrames;
+  Pose reference = Pose::Identity();
 };
 PointJacobianPlan planPointJacobian(const KinematicModel& model, const std::vector<Parameter>& parameters);
 // The same into `out`, reusing its storage (no allocation once sized).

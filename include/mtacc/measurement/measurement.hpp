@@ -85,18 +85,33 @@ struct NominalFrame {
 };
 NominalFrame nominalFrame(const KinematicModel& nominal, const MeasurementRun& run, Eigen::Index i);
 
+// What a reading takes from the run's set-up at its current set-up errors, the same at every
+// pose (computed once per run rather than at each pose).
+struct RunGeometry {
+  Vec3 toolBall = Vec3::Zero();  // toolBallWithSetupError
+  Vec3 target = Vec3::Zero();    // work ball, sphere or probed sphere with its xW yW zW error, workpiece frame
+  Mat3 nestTranspose = Mat3::Identity();  // R-test: N^T, N the nest orientation (aN bN cN)
+  std::array<Mat3, 3> nestTransposeDerivatives{};  // R-test: dN^T / d(aN, bN, cN)
+  double length = 0.0;           // ballbar: L + dL
+};
+RunGeometry runGeometry(const KinematicModel& model, const MeasurementRun& run);
+
 // The readings the instrument shows at pose i of the run on `model` (exact model,
 // including the run's set-up errors).
 Reading predictReading(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run, Eigen::Index i);
-Reading predictReading(const KinematicModel& model, const NominalFrame& nominal, const MeasurementRun& run, Eigen::Index i);
+// The same from what is fixed per run and per pose (many poses).
+Reading predictReading(const KinematicModel& model, const RunGeometry& geometry, const NominalFrame& nominal,
+                       const MeasurementRun& run, Eigen::Index i);
 Eigen::MatrixXd predictReadings(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
                                 int threads = 1);
 
-// Reading and its derivative with respect to machine parameters and set-up parameters.
+// Reading and its derivative with respect to machine parameters and set-up parameters
+// (row-major: each reading's derivatives side by side, as stacked systems store them).
+using ReadingRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, 3, Eigen::Dynamic>;
 struct ReadingJacobian {
   Reading reading;
-  Eigen::MatrixXd machine;     // readingSize x machine parameters
-  Eigen::MatrixXd setup;       // readingSize x setup parameters
+  ReadingRows machine;  // readingSize x machine parameters
+  ReadingRows setup;    // readingSize x setup parameters
 };
 // `model` must be compiled with errors. setAtJacobian: pointJacobian of
 // toolBallWithSetupError(run) at run.setup.setAt, computed once per run by the caller;
@@ -106,10 +121,10 @@ ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicMode
                                 const std::vector<SetupParameter>& setupParameters,
                                 const PointJacobian* setAtJacobian);
 // The same into `out`, reusing its storage (identifications call this once per reading);
-// the machine parameters are the plan's.
-void readingJacobian(const PointJacobianPlan& plan, const NominalFrame& nominal, const MeasurementRun& run, Eigen::Index i,
-                     const std::vector<SetupParameter>& setupParameters, const PointJacobian* setAtJacobian,
-                     ReadingJacobian& out);
+// the machine parameters are the plan's, `geometry` is runGeometry(*plan.model, run).
+void readingJacobian(const PointJacobianPlan& plan, const RunGeometry& geometry, const NominalFrame& nominal,
+                     const MeasurementRun& run, Eigen::Index i, const std::vector<SetupParameter>& setupParameters,
+                     const PointJacobian* setAtJacobian, ReadingJacobian& out);
 
 // The work ball of a ballbar run in the workpiece frame (set-up error included).
 Vec3 workBall(const KinematicModel& model, const MeasurementRun& run);

@@ -32,8 +32,9 @@ struct ObservabilityReport {
 // `jacobian`: readings x parameters (any units; columns are normalised). A singular value
 // below relativeTolerance * the largest counts as zero; a column whose norm is below
 // relativeTolerance * the largest column norm (after multiplying by `typical`, the
-// parameters' typical sizes) has no effect.
-ObservabilityReport analyseObservability(const Eigen::MatrixXd& jacobian, const std::vector<std::string>& names,
+// parameters' typical sizes) has no effect. Pass the Jacobian with std::move when it is no
+// longer needed: it is then factored in place instead of copied.
+ObservabilityReport analyseObservability(Eigen::MatrixXd jacobian, const std::vector<std::string>& names,
                                          const Eigen::VectorXd& typical, double relativeTolerance = 1e-8);
 
 }  // namespace mtacc
