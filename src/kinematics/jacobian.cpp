@@ -197,6 +197,7 @@ PointJacobianPlan planPointJacobian(const KinematicModel& m, const std::vector<P
     plan.referenceFrames.resize(2 * PointJacobianPlan::kMaxFactors);
     plan.reference = runHookProgram(m, m.workpieceHookProgram, m.machine->referencePose.data(), nullptr,
                                     plan.referenceFrames.data());
+    plan.referenceToWorkpiece = m.alignment.linear() * plan.reference.linear().transpose();
   }
   return plan;
 }
@@ -209,16 +210,17 @@ void pointJacobian(const PointJacobianPlan& plan, const double* q, const int* di
   const Pose wpInv = runHookProgram(m, m.workpieceHookProgram, q, dir, workpieceFrames.data()).inverse(Eigen::Isometry);
   const Vec3 inBed = tool * toolPoint;
   const Vec3 beforeAlignment = wpInv * inBed;
-  out.point = m.alignment * beforeAlignment;
-  out.toolRotation = m.alignment.linear() * wpInv.linear() * tool.linear();
+  // The map of a direction in the bed frame to the workpiece frame.
+  const Mat3 bedToWorkpiece = m.aligned ? Mat3(m.alignment.linear() * wpInv.linear()) : wpInv.linear();
+  out.point = m.aligned ? Vec3(m.alignment * beforeAlignment) : beforeAlignment;
+  out.toolRotation = bedToWorkpiece * tool.linear();
 
   // d(W^-1 T x) = W^-1 (dT x - dW (W^-1 T x)): both chains see the same bed point. A hooked
   // factor F between the frames B (before) and A (after) adds B dF A^-1 x.
   const bool aligned = m.machine->alignment == WorkpieceAlignment::Machine;
   const ChainFrame* frames[3] = {toolFrames.data(), workpieceFrames.data(), plan.referenceFrames.data()};
   const Vec3 points[3] = {inBed, inBed, aligned ? Vec3(plan.reference * beforeAlignment) : Vec3::Zero()};
-  const Mat3 toWorkpiece[3] = {m.alignment.linear() * wpInv.linear(), -m.alignment.linear() * wpInv.linear(),
-                               m.alignment.linear() * plan.reference.linear().transpose()};
+  const Mat3 toWorkpiece[3] = {bedToWorkpiece, -bedToWorkpiece, plan.referenceToWorkpiece};
   // Per hooked factor: the map of a direction before it to the workpiece frame, and the point
   // in the frame after it (computed when a term first asks for them).
   std::array<Mat3, kMax> maps[3];

@@ -58,6 +58,7 @@ struct PointJacobianPlan {
   // Machine alignment: the workpiece chain at the reference pose, the same for every pose.
   std::vector<ChainFrame> referenceFrames;
   Pose reference = Pose::Identity();
+  Mat3 referenceToWorkpiece = Mat3::Zero();  // M_WC's rotation times the reference pose's inverse rotation
 };
 PointJacobianPlan planPointJacobian(const KinematicModel& model, const std::vector<Parameter>& parameters);
 // The same into `out`, reusing its storage (no allocation once sized).
