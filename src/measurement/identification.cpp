@@ -5,8 +5,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <mutex>
 #include <cmath>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <thread>
@@ -148,7 +148,7 @@ struct State {
     for (long p = begin; p < end; ++p) {
       while (p >= poseStart[run + 1]) ++run;
       const auto& r = runs[run];
-      const Eigen::Index i = p - poseStart[run], row = rowOf(p), m = readingSize(r.instrument);
+      const Eigen::Index i = p - poseStart[run], m = readingSize(r.instrument), row = rowStart[run] + i * m;
       readingJacobian(plan, geometry[run], frames[run][static_cast<size_t>(i)], r, i, setup[run],
                       setAt[run] ? &*setAt[run] : nullptr, rj);
       for (Eigen::Index k = 0; k < m; ++k) {
