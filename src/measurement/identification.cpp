@@ -170,8 +170,9 @@ struct State {
   template <class F>
   void forEachPose(F&& f) const {
     parallelFor(poseStart.back(), threads, [&](long b, long e) {
+      size_t r = runOf(b);
       for (long p = b; p < e; ++p) {
-        const size_t r = runOf(p);
+        while (p >= poseStart[r + 1]) ++r;
         f(r, p - poseStart[r]);
       }
     });
