@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <map>
 
-#include "mtacc/machine/machine_yaml.hpp"
+#include "mtacc/io/limits_yaml.hpp"
+#include "mtacc/io/bundled_data.hpp"
+#include "mtacc/io/machine_yaml.hpp"
 #include "mtacc/procedures/monte_carlo.hpp"
 
 namespace {

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "mtacc/io/structure_yaml.hpp"
 #include "mtacc/dynamics/rigid_body_dynamics.hpp"
 
 using namespace mtacc;

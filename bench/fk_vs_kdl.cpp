@@ -12,9 +12,9 @@
 #include <map>
 #include <random>
 
-#include "mtacc/errors/error_yaml.hpp"
+#include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/kinematics/forward.hpp"
-#include "mtacc/machine/machine_yaml.hpp"
+#include "mtacc/io/machine_yaml.hpp"
 
 namespace {
 

@@ -17,10 +17,10 @@
 #include <random>
 
 #include "mtacc/core/units.hpp"
-#include "mtacc/machine/machine_yaml.hpp"
+#include "mtacc/io/machine_yaml.hpp"
 #include "mtacc/measurement/identification.hpp"
 #include "mtacc/measurement/simulation.hpp"
-#include "mtacc/measurement/test_paths.hpp"
+#include "mtacc/measurement/standard_paths.hpp"
 
 using namespace mtacc;
 

@@ -1,14 +1,12 @@
 #!/usr/bin/env bash
-# Whole test suite: install what is missing, build, run every unit and reference test (C++
-# and Python, including the report in headless Chromium), then the benchmarks.
+# Whole test suite: install what is missing, build, run every test through ctest (C++ unit and
+# reference tests, the layer check, and the Python tests including the report in headless
+# Chromium; screenshots kept in build/test-artifacts/), then the benchmarks.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh
 (cd build && ctest --output-on-failure -j"$(nproc)")
-echo
-echo "== Python tests (screenshots kept in build/test-artifacts/) =="
-MTACC_CLI="$(pwd)/build/mtacc" MTACC_TEST_ARTIFACTS="$(pwd)/build/test-artifacts" /usr/bin/python3 -m pytest -q tests/python
 echo
 echo "== Benchmark: batch forward kinematics against orocos KDL =="
 ./build/bench/bench_fk_vs_kdl --benchmark_min_time=0.2 --benchmark_color=false

@@ -4,10 +4,10 @@
 // the tolerances only allow for second-order terms (e^2 / R, a few nm).
 #include <gtest/gtest.h>
 
-#include "mtacc/errors/error_yaml.hpp"
-#include "mtacc/measurement/circular_test.hpp"
+#include "mtacc/io/errors_yaml.hpp"
+#include "mtacc/measurement/circular_evaluation.hpp"
 #include "mtacc/measurement/simulation.hpp"
-#include "mtacc/measurement/test_paths.hpp"
+#include "mtacc/measurement/standard_paths.hpp"
 #include "test_helpers.hpp"
 
 namespace mtacc {

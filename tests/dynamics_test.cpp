@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mtacc/io/structure_yaml.hpp"
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/dynamics/rigid_body_dynamics.hpp"

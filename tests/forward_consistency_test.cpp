@@ -6,7 +6,7 @@
 #include <random>
 
 #include "mtacc/kinematics/forward.hpp"
-#include "mtacc/machine/machine_yaml.hpp"
+#include "mtacc/io/machine_yaml.hpp"
 #include "test_helpers.hpp"
 
 namespace mtacc {
@@ -59,7 +59,7 @@ INSTANTIATE_TEST_SUITE_P(Bundled, ForwardConsistency,
                                            "multitasking-b-c", "maho", "three-axis-vertical"),
                          test::MachineName());
 
-TEST(ForwardKinematics, BatchOnTwoThreadsEqualsOneThread) {
+TEST(ForwardConsistency, BatchOnTwoThreadsEqualsOneThread) {
   const auto machine = test::bundled("tilting-table");
   const auto model = compile(machine, loadMachineErrors(*machine));
   JointMatrix q(5000, 5);

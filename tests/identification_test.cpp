@@ -8,7 +8,7 @@
 
 #include "mtacc/measurement/identification.hpp"
 #include "mtacc/measurement/simulation.hpp"
-#include "mtacc/measurement/test_paths.hpp"
+#include "mtacc/measurement/standard_paths.hpp"
 #include "test_helpers.hpp"
 
 namespace mtacc {
@@ -94,12 +94,12 @@ struct RoundTripCase {
   std::vector<std::string> parameters;
 };
 
-class RoundTrip : public ::testing::TestWithParam<RoundTripCase> {};
+class Identification : public ::testing::TestWithParam<RoundTripCase> {};
 
 // 100 noisy trials: every estimate must lie within its reported uncertainty's reach
 // (|error| < 4.5 u, far beyond chance for 100 x 13 normal draws), and the 95 % intervals
 // (1.96 u) must cover the true value in at least 90 % of the cases.
-TEST_P(RoundTrip, IdentifiedWithinUncertaintyAndIntervalsCover) {
+TEST_P(Identification, IdentifiedWithinUncertaintyAndIntervalsCover) {
   const auto& c = GetParam();
   const auto machine = test::bundled(c.machine);
   const auto nominal = compileNominal(machine);
@@ -138,7 +138,7 @@ TEST_P(RoundTrip, IdentifiedWithinUncertaintyAndIntervalsCover) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Machines, RoundTrip,
+    Machines, Identification,
     ::testing::Values(RoundTripCase{"tilting-table", "B", -60 * kDeg,
                                     {"X0B", "Z0B", "A0B", "C0B", "X0C", "Y0C", "A0C", "B0C", "C0Y", "A0Z", "B0Z"}},
                       RoundTripCase{"inclined-a-table", "A", 90 * kDeg,

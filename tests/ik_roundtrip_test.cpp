@@ -48,7 +48,7 @@ TEST_P(IkRoundTrip, TenThousandRandomPoses) {
 INSTANTIATE_TEST_SUITE_P(BundledFiveAxis, IkRoundTrip, ::testing::ValuesIn(test::kFiveAxisMachines),
                          test::MachineName());
 
-TEST(IkSingularity, TiltingTableAtBZeroIsReportedAndKeepsTheHint) {
+TEST(IkRoundtrip, TiltingTableAtBZeroIsReportedAndKeepsTheHint) {
   const auto model = compileNominal(test::bundled("tilting-table"));
   IkOptions o;
   o.hint = std::vector<double>{0, 0, 0, 0, 0.7};
@@ -59,7 +59,7 @@ TEST(IkSingularity, TiltingTableAtBZeroIsReportedAndKeepsTheHint) {
   EXPECT_NEAR(s.q[3], 0.0, 1e-12);
 }
 
-TEST(IkLimits, PoseBeyondTravelIsRejectedWithTheAxis) {
+TEST(IkRoundtrip, PoseBeyondTravelIsRejectedWithTheAxis) {
   const auto model = compileNominal(test::bundled("tilting-table"));
   try {
     solveIk(model, Vec3(1000, 0, 0), Vec3::UnitZ());

@@ -50,12 +50,12 @@ void checkJacobian(std::shared_ptr<const Machine> machine, ErrorModel errors, in
   }
 }
 
-TEST(ParameterJacobian, TiltingTableRealisticErrorsTableAlignment) {
+TEST(Jacobian, TiltingTableRealisticErrorsTableAlignment) {
   const auto machine = test::bundled("tilting-table");
   checkJacobian(machine, loadMachineErrors(*machine), 5);
 }
 
-TEST(ParameterJacobian, TiltingTableRealisticErrorsMachineAlignment) {
+TEST(Jacobian, TiltingTableRealisticErrorsMachineAlignment) {
   auto machine = std::make_shared<Machine>(loadMachine("tilting-table"));
   machine->alignment = WorkpieceAlignment::Machine;
   machine->referencePose = {10, -20, 30, 0, 0};
@@ -79,7 +79,7 @@ TEST_P(JacobianAllMachines, RandomLocationErrors) {
 INSTANTIATE_TEST_SUITE_P(Bundled, JacobianAllMachines, ::testing::ValuesIn(test::kFiveAxisMachines),
                          test::MachineName());
 
-TEST(ParameterJacobian, MahoMotionErrorsOnFixedAndMovingFrames) {
+TEST(Jacobian, MahoMotionErrorsOnFixedAndMovingFrames) {
   const auto machine = test::bundled("maho");
   const auto errors = parseErrors(*machine, R"(errors:
   zry: {linear: {value: 20 urad, over: 600 mm}, constant: 3 urad}

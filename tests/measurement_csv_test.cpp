@@ -4,11 +4,11 @@
 #include <gtest/gtest.h>
 
 #include "mtacc/core/input_error.hpp"
-#include "mtacc/errors/error_yaml.hpp"
-#include "mtacc/measurement/measurement_csv.hpp"
+#include "mtacc/io/errors_yaml.hpp"
+#include "mtacc/io/measurement_csv.hpp"
 #include "mtacc/measurement/simulation.hpp"
-#include "mtacc/measurement/test_paths.hpp"
-#include "mtacc/measurement/test_plan.hpp"
+#include "mtacc/measurement/standard_paths.hpp"
+#include "mtacc/io/plan_yaml.hpp"
 #include "test_helpers.hpp"
 
 namespace mtacc {
@@ -73,7 +73,7 @@ TEST(MeasurementCsv, BadPlansNameTheKey) {
 // Seed 000 ch. 4: the ballbar square to the cone surface. On the nominal machine the bar
 // keeps its length along the whole 5-axis path, and every bar direction is the surface normal;
 // with an error, dL follows the normal deviation n . (P_actual - P_nominal) to first order.
-TEST(BallbarPaths, ConeFrustumEquivalentPath) {
+TEST(MeasurementCsv, ConeFrustumEquivalentPath) {
   const auto machine = test::bundled("tilting-table");
   const auto nominal = compileNominal(machine);
   const auto plan = parseTestPlan(nominal, "runs:\n  - cone: {preset: tilting-table, points: 180}\n", "plan.yaml");

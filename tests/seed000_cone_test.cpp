@@ -31,7 +31,7 @@ const AxisMotion& axis(const ConeMotion& m, const std::string& name) {
 }
 
 // Table 3.6 (L4202-4222), alpha and beta swapped in print (erratum 9); printed to 0.1 mm.
-TEST(Seed000, Table3_6ThroughTheConeProcedure) {
+TEST(Seed000Cone, Table3_6ThroughTheConeProcedure) {
   const auto proposed = motionOn(spec(45, 30));
   EXPECT_NEAR(axis(proposed, "X").range, 185.7, 0.05);
   EXPECT_NEAR(axis(proposed, "Y").range, 90.0, 0.05);
@@ -48,7 +48,7 @@ TEST(Seed000, Table3_6ThroughTheConeProcedure) {
 }
 
 // Table 3.1 (L2352-2363) and §3.4: closed forms against the sampled path; reference §10.2.
-TEST(Seed000, Table3_1RotaryRanges) {
+TEST(Seed000Cone, Table3_1RotaryRanges) {
   struct Case {
     double alpha, beta, tiltMin, tiltMax, rotaryRange;
   } cases[] = {{30, 20, 10, 50, 360}, {30, 50, 20, 80, 81.49}, {45, 60, 15, 105, 109.47}, {45, 30, 15, 75, 360}};
@@ -75,7 +75,7 @@ TEST(Seed000, Table3_1RotaryRanges) {
 // §3.6.2 (L2871-2932) with erratum 6: double pivot head, alpha = -45, beta = 30, gamma = 45:
 // dZ = r_Q = r + l / sqrt(2), dX = dY = r_Q sqrt(7/2); with the bundled head's l = 200 mm
 // (reference §10.2): 181.42 and 339.41 mm.
-TEST(Seed000, DoublePivotHeadProposedSetup) {
+TEST(Seed000Cone, DoublePivotHeadProposedSetup) {
   const auto s = *conePreset("double-pivot");
   const auto nominal = compileNominal(test::bundled("double-pivot-head"));
   const auto m = coneMotion(nominal, s, conePath(s, 3600));
@@ -86,13 +86,12 @@ TEST(Seed000, DoublePivotHeadProposedSetup) {
   EXPECT_NEAR(axis(m, "B").range / kDeg, 60.0, 1e-6);
 }
 
-TEST(Seed000, SingularAndNearSingularSetupsWarnNeverNaN) {
+TEST(Seed000Cone, SingularAndNearSingularSetupsWarnNeverNaN) {
   for (const double beta : {45.0, 44.5, 45.3}) {
     const auto m = motionOn(spec(45, beta), 720);
     ASSERT_EQ(m.warnings.size(), 1u) << beta;
     EXPECT_NE(m.warnings[0].find(beta == 45.0 ? "singular set-up alpha = beta" : "near-singular"), std::string::npos);
-    for (const auto& q : m.q)
-      for (double v : q) EXPECT_TRUE(std::isfinite(v));
+    EXPECT_TRUE(m.q.allFinite());
     for (const auto& a : m.axes) EXPECT_TRUE(std::isfinite(a.maxSpeed));
   }
   EXPECT_TRUE(motionOn(spec(45, 30), 720).warnings.empty());

@@ -4,6 +4,7 @@
 // and the frequency range of the first dominant modes it reports.
 #include <gtest/gtest.h>
 
+#include "mtacc/io/structure_yaml.hpp"
 #include "mtacc/dynamics/rigid_body_dynamics.hpp"
 
 namespace mtacc {
@@ -20,7 +21,7 @@ Eigen::MatrixXd table71(const std::string& name) {
 // "Dominant frequency = frequency of a maximum in a spectral density curve" (L5064-5084): at
 // position 1, where Table 7.1 is evaluated, the largest peak of |Hxx| over 0-200 Hz lies in
 // the 50-120 Hz the thesis reports (106 Hz for the original, 105 Hz for the alternative).
-TEST(Seed000, Chapter7DominantFrequencies) {
+TEST(Seed000Dynamics, Chapter7DominantFrequencies) {
   std::vector<double> f;
   for (int i = 1; i <= 200; ++i) f.push_back(i);
   for (const char* name : {"tzyx-arm-x", "tzyx-arm-y"}) {
@@ -36,7 +37,7 @@ TEST(Seed000, Chapter7DominantFrequencies) {
   }
 }
 
-TEST(Seed000, Table7_1QualitativeRelations) {
+TEST(Seed000Dynamics, Table7_1QualitativeRelations) {
   const auto orig = table71("tzyx-arm-x"), alt = table71("tzyx-arm-y");
   // Hx/x'' is the largest entry of both and larger for the alternative (L6106-6120).
   EXPECT_EQ(orig.maxCoeff(), orig(0, 0));
@@ -50,7 +51,7 @@ TEST(Seed000, Table7_1QualitativeRelations) {
   EXPECT_GT(alt(2, 1), orig(2, 1));
 }
 
-TEST(Seed000, Figure7_7OriginalBetterAtMostPositions) {
+TEST(Seed000Dynamics, Figure7_7OriginalBetterAtMostPositions) {
   const auto orig = loadStructure("tzyx-arm-x"), alt = loadStructure("tzyx-arm-y");
   const auto mo = dynamicsMap(orig, {}, "Y", "Z", 20, 20, dynamicsQuantity(orig, "Hx/X"));
   const auto ma = dynamicsMap(alt, {}, "Y", "Z", 20, 20, dynamicsQuantity(alt, "Hx/X"));

@@ -2,7 +2,9 @@
 // data/limits/seed000-table3.9.yaml.
 #include <gtest/gtest.h>
 
-#include "mtacc/machine/machine_yaml.hpp"
+#include "mtacc/io/limits_yaml.hpp"
+#include "mtacc/io/bundled_data.hpp"
+#include "mtacc/io/machine_yaml.hpp"
 #include "mtacc/procedures/monte_carlo.hpp"
 #include "test_helpers.hpp"
 
@@ -11,13 +13,13 @@ namespace {
 
 std::string limitsFile() { return bundledDataDir() + "/limits/seed000-table3.9.yaml"; }
 
-TEST(MonteCarlo, Table3_9LimitsLoad) {
+TEST(Seed000MonteCarlo, Table3_9LimitsLoad) {
   const auto machine = test::bundled("tilting-table");
   const auto limits = loadErrorLimits(*machine, limitsFile());
   EXPECT_EQ(limits.limits.size(), 99u);  // 21 X + 21 Y + 21 Z + 19 B + 17 C rows
 }
 
-TEST(MonteCarlo, ExactAndFirstOrderAgreeForTable3_9SizedErrors) {
+TEST(Seed000MonteCarlo, ExactAndFirstOrderAgreeForTable3_9SizedErrors) {
   const auto machine = test::bundled("tilting-table");
   const auto limits = loadErrorLimits(*machine, limitsFile());
   const ConeSpec spec;  // proposed set-up
@@ -39,7 +41,7 @@ TEST(MonteCarlo, ExactAndFirstOrderAgreeForTable3_9SizedErrors) {
 // 6.9 / 11.0 um. The reference (§6.6) notes that conventions and random phases of the thesis'
 // model are not fully given, so only the order of magnitude is comparable: the median must lie
 // within a factor of two of 8.8 um, and the quartiles must bracket it.
-TEST(Seed000, Table3_5MonteCarloOrderOfMagnitude) {
+TEST(Seed000MonteCarlo, Table3_5MonteCarloOrderOfMagnitude) {
   const auto machine = test::bundled("tilting-table");
   const auto limits = loadErrorLimits(*machine, limitsFile());
   const ConeSpec spec;
@@ -57,7 +59,7 @@ TEST(Seed000, Table3_5MonteCarloOrderOfMagnitude) {
               st.lowerQuartile * 1e3, st.median * 1e3, st.upperQuartile * 1e3, st.max * 1e3);
 }
 
-TEST(MonteCarlo, BoxStatistics) {
+TEST(Seed000MonteCarlo, BoxStatistics) {
   const auto b = boxStatistics({5, 1, 4, 2, 3});
   EXPECT_EQ(b.min, 1);
   EXPECT_EQ(b.lowerQuartile, 2);

@@ -10,7 +10,7 @@
 
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/measurement/identification.hpp"
-#include "mtacc/measurement/test_paths.hpp"
+#include "mtacc/measurement/standard_paths.hpp"
 #include "test_helpers.hpp"
 
 namespace mtacc {
@@ -61,7 +61,7 @@ std::vector<std::array<double, 5>> randomPoses(int n) {
   return poses;
 }
 
-TEST(Seed001, Table5GenericModelEqualsEq2) {
+TEST(Seed001WorkpieceFrame, Table5GenericModelEqualsEq2) {
   const auto model = modelWith(WorkpieceAlignment::Table);
   for (const auto& q : randomPoses(200)) {
     const Vec3 pm(q[0], q[1], q[2]);
@@ -70,7 +70,7 @@ TEST(Seed001, Table5GenericModelEqualsEq2) {
   }
 }
 
-TEST(Seed001, Table5GenericModelEqualsEq10To12) {
+TEST(Seed001WorkpieceFrame, Table5GenericModelEqualsEq10To12) {
   const auto model = modelWith(WorkpieceAlignment::Machine);
   for (const auto& q : randomPoses(200)) {
     const Vec3 pm(q[0], q[1], q[2]);
@@ -79,7 +79,7 @@ TEST(Seed001, Table5GenericModelEqualsEq10To12) {
   }
 }
 
-TEST(Seed001, Table5AlignedWorkpieceHasNoDeviationAtBC0) {
+TEST(Seed001WorkpieceFrame, Table5AlignedWorkpieceHasNoDeviationAtBC0) {
   const auto aligned = modelWith(WorkpieceAlignment::Machine);
   const auto onTable = modelWith(WorkpieceAlignment::Table);
   for (auto q : randomPoses(50)) {
@@ -95,7 +95,7 @@ TEST(Seed001, Table5AlignedWorkpieceHasNoDeviationAtBC0) {
 // Tables 1-2 (48 mm cube, top face 48 mm above the pivot, 6 mm ball-end mill), the height
 // deviation of each zone, workpiece aligned with M_WC (eqs. 10-12), the eight errors of
 // Table 5 named as in the seed.
-TEST(Seed001, CubicTestObservabilityReportsTheSeedAmbiguity) {
+TEST(Seed001WorkpieceFrame, CubicTestObservabilityReportsTheSeedAmbiguity) {
   const auto model = modelWith(WorkpieceAlignment::Machine);
   const auto nominal = compileNominal(model.machine);
   IdentificationProblem problem;

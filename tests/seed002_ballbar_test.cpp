@@ -8,10 +8,10 @@
 #include <map>
 
 #include "mtacc/errors/aliases.hpp"
-#include "mtacc/measurement/circular_test.hpp"
+#include "mtacc/measurement/circular_evaluation.hpp"
 #include "mtacc/measurement/identification.hpp"
 #include "mtacc/measurement/simulation.hpp"
-#include "mtacc/measurement/test_paths.hpp"
+#include "mtacc/measurement/standard_paths.hpp"
 #include "mtacc/procedures/ballbar_seed002.hpp"
 #include "test_helpers.hpp"
 
@@ -85,7 +85,7 @@ const char* kNames[] = {"dxBT", "dzBT", "alphaBT", "alphaXB", "betaXB", "gammaXB
 // §4 (L303): L_B = 100, Z_C = 100, R_B = 200, R_C = 50 mm; each deviation alone at +20 um
 // or +0.005 deg. Table 5 is first order; the exact model differs by second-order terms of
 // about e^2 / L_B = 4e-6 mm, so the tolerance is 0.01 um.
-TEST(Seed002, Table5FirstOrderRelationsFromTheExactSimulation) {
+TEST(Seed002Ballbar, Table5FirstOrderRelationsFromTheExactSimulation) {
   const auto machine = test::bundled("multitasking-b-c");
   const auto nominal = compileNominal(machine);
   const Geometry g{100, 100, 200, 50};
@@ -145,7 +145,7 @@ const std::vector<std::string> kIsoTwelve = {"X0C1", "Z0C1", "A0C1", "A0B", "B0B
 
 // Reference §12.2: the closed forms applied to an exact simulation of the initial values
 // return them within 0.052 arcsec and 0.013 um (second-order terms, e^2 / L_B).
-TEST(Seed002, Eqs17To28RecoverTable7InitialFromTheExactSimulation) {
+TEST(Seed002Ballbar, Eqs17To28RecoverTable7InitialFromTheExactSimulation) {
   const auto machine = test::bundled("multitasking-b-c");
   const auto nominal = compileNominal(machine);
   const auto model = compile(machine, seed002Errors(*machine, kTable7Initial));
@@ -169,7 +169,7 @@ TEST(Seed002, Eqs17To28RecoverTable7InitialFromTheExactSimulation) {
 // 7's initial values (noise-free data: to 1e-6 um / 1e-6 arcsec), hence within the paper's
 // own identified values' stated differences (L574: 0.37 um, 0.12 arcsec, met with equality
 // by betaXB, plus half the printed digit).
-TEST(Seed002, Table7FromGenericLeastSquaresOnTheSixRuns) {
+TEST(Seed002Ballbar, Table7FromGenericLeastSquaresOnTheSixRuns) {
   const auto machine = test::bundled("multitasking-b-c");
   const auto nominal = compileNominal(machine);
   const auto truth = seed002Errors(*machine, kTable7Initial);
@@ -189,7 +189,7 @@ TEST(Seed002, Table7FromGenericLeastSquaresOnTheSixRuns) {
   }
 }
 
-TEST(Seed002, SixRunsDetermineTheTwelveDeviations) {
+TEST(Seed002Ballbar, SixRunsDetermineTheTwelveDeviations) {
   const auto machine = test::bundled("multitasking-b-c");
   const auto nominal = compileNominal(machine);
   IdentificationProblem problem;

@@ -12,7 +12,7 @@
 namespace mtacc {
 namespace {
 
-TEST(Seed002, Table7FromTable6ThroughEqs17To28) {
+TEST(Seed002Identification, Table7FromTable6ThroughEqs17To28) {
   const double um = 1e-3;
   Seed002Eccentricities e{};
   e.bxEx = 16.63 * um, e.bxEz = -4.02 * um;
@@ -38,7 +38,7 @@ TEST(Seed002, Table7FromTable6ThroughEqs17To28) {
   EXPECT_NEAR(d.betaCZ * as, 5.98, 0.005);    // L1835
 }
 
-TEST(Seed002, UnseparableSetupIsRefused) {
+TEST(Seed002Identification, UnseparableSetupIsRefused) {
   const Seed002Eccentricities e{};
   EXPECT_THROW(identifySeed002(e, Seed002Setup{360, 360, 50, 300, 340}), std::invalid_argument);
   EXPECT_THROW(identifySeed002(e, Seed002Setup{360, 410, 50, 300, 300}), std::invalid_argument);

@@ -15,7 +15,7 @@
 namespace mtacc {
 namespace {
 
-TEST(Seed003, AppendixAFrameTranslations) {
+TEST(Seed003AppendixA, AppendixAFrameTranslations) {
   const auto machine = test::bundled("maho");
   const auto model = compileNominal(machine);
   const double L = 150.0;  // tool length of the bundled description
@@ -58,7 +58,7 @@ TEST(Seed003, AppendixAFrameTranslations) {
   EXPECT_LT((toolPoint(model, home.data()).position - Vec3(350 - 100, L - 105 - 50, 200 - 310)).norm(), 1e-9);
 }
 
-TEST(Seed003, AppendixAReferenceVectorsAtHome) {
+TEST(Seed003AppendixA, AppendixAReferenceVectorsAtHome) {
   // Reference §13 item 1: at q = 0 and L = 150, tlt_a1 = (0, -140, 805), tlt_b2 = (-350, 350, 685),
   // tlt_b3 = tlt_0 = (-350, -45, 310).
   const auto machine = test::bundled("maho");

@@ -11,7 +11,7 @@
 namespace mtacc {
 namespace {
 
-TEST(Sensitivity, ExactCoefficientTendsToTheJacobianProjection) {
+TEST(SensitivityBudget, ExactCoefficientTendsToTheJacobianProjection) {
   const auto machine = test::bundled("tilting-table");
   const auto errors = loadMachineErrors(*machine);
   const auto zero = compile(machine, ErrorModel::zero(*machine));
@@ -38,7 +38,7 @@ TEST(Sensitivity, ExactCoefficientTendsToTheJacobianProjection) {
 // Seed 001 §4.3 (seed lines 214-219): with the workpiece coordinate transformation M_WC,
 // "the machined surface of ZONE I is not affected by the geometric errors of the rotary
 // axes because no rotary axes are moving"; without it, it is (Fig. 10 vs Fig. 12).
-TEST(Seed001, ZoneIUnaffectedByRotaryAxisErrorsWithMwc) {
+TEST(SensitivityBudget, ZoneIUnaffectedByRotaryAxisErrorsWithMwc) {
   const char* names[] = {"δxBY", "δyBY", "δzBY", "αBY", "βBY", "γBY", "αCB", "δxCB"};
   for (const auto alignment : {WorkpieceAlignment::Machine, WorkpieceAlignment::Table}) {
     auto machine = std::make_shared<Machine>(loadMachine("tilting-table"));
@@ -61,7 +61,7 @@ TEST(Seed001, ZoneIUnaffectedByRotaryAxisErrorsWithMwc) {
   }
 }
 
-TEST(ErrorBudget, ClosedFormsForSingleErrors) {
+TEST(SensitivityBudget, ClosedFormsForSingleErrors) {
   const auto machine = test::bundled("tilting-table");
   const auto items = budgetItemsAtMagnitude(*machine, 0.010, 30e-6);
   const auto grid = workingVolumeGrid(*machine, 5);

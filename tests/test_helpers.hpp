@@ -5,9 +5,9 @@
 #include <string>
 
 #include "mtacc/core/units.hpp"
-#include "mtacc/errors/error_yaml.hpp"
+#include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/kinematics/kinematic_model.hpp"
-#include "mtacc/machine/machine_yaml.hpp"
+#include "mtacc/io/machine_yaml.hpp"
 
 namespace mtacc::test {
 

@@ -1,51 +1,36 @@
 #pragma once
-// Shared plumbing of the mtacc subcommands: loading, argument parsing, output.
+// Shared plumbing of the mtacc subcommands: the options every machine command takes, and the
+// output (JSON, human tables, CSV). Each command parses its options, calls one workflow of the
+// library and formats its result.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include <memory>
 #include <string>
-#include <vector>
 
-#include "mtacc/errors/error_model.hpp"
-#include "mtacc/kinematics/forward.hpp"
-#include "mtacc/machine/machine.hpp"
+#include "mtacc/workflows/machine_setup.hpp"
 
 namespace mtacc::cli {
 
 struct MachineOptions {
-  std::string machine;
-  std::string errorsFile;
+  MachineSource source;
   bool json = false;
   std::string output;
-  std::string alignment;  // overrides the machine file's workpiece alignment
 };
 
-// Adds MACHINE, --errors, --json, -o to a subcommand.
+// Adds MACHINE, --errors, --alignment, --json, -o to a subcommand.
 void addMachineOptions(CLI::App& cmd, MachineOptions& o);
-
-struct Loaded {
-  std::shared_ptr<const Machine> machine;
-  ErrorModel errors;
-};
-// Errors come from --errors when given, else from the machine file's `errors:`.
-Loaded load(const MachineOptions& o);
-
-// "X=10,Y=0,Z=5,B=-15,C=30" (mm and deg); every commanded axis must be given unless
-// `partial` (the others are then zero).
-std::vector<double> parsePose(const Machine& m, const std::string& text, bool partial = false);
-// "1,0,0"
-Vec3 parseVector(const std::string& text, const std::string& what);
-// "10um", "30 urad"
-double parseQuantityArg(const std::string& text, Dimension expected, const std::string& what);
+// Adds --json and -o only.
+void addOutputOptions(CLI::App& cmd, MachineOptions& o);
 
 // JSON to stdout (or -o); otherwise the human text to stdout and, with -o, the CSV.
 void emit(const MachineOptions& o, const nlohmann::json& json, const std::string& human, const std::string& csv);
 
-nlohmann::json poseJson(const Machine& m, const double* q);
+// "   10.0000    -15.0000" (mm, deg) and the matching header of axis names.
 std::string formatPose(const Machine& m, const double* q);
-std::string unitOf(Dimension d);        // "um" or "urad"
-double toDisplay(double v, Dimension d);  // mm -> um, rad -> urad
+std::string poseHeader(const Machine& m);
+// "10,-15," (mm, deg), and the header "X,B,".
+std::string poseCsv(const Machine& m, const double* q);
+std::string poseCsvHeader(const Machine& m);
 
 // Registration of each subcommand.
 void addCheckCommand(CLI::App& app);

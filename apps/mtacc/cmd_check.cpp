@@ -3,13 +3,10 @@
 
 #include "cli_common.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/workflows/check.hpp"
 
 namespace mtacc::cli {
 namespace {
-
-const char* typeName(AxisType t) {
-  return t == AxisType::Linear ? "linear" : t == AxisType::Rotary ? "rotary" : "spindle";
-}
 
 std::string chainText(const Machine& m, const std::vector<int>& chain) {
   std::string s;
@@ -24,18 +21,10 @@ std::string travelText(const Axis& a) {
 }
 
 void run(const MachineOptions& o) {
-  const auto loaded = load(o);
-  const Machine& m = *loaded.machine;
-  const auto catalogue = parameterCatalogue(m, loaded.errors);
-  const auto nonZero = nonZeroParameters(m, loaded.errors);
-
-  nlohmann::json j;
-  j["name"] = m.name;
-  j["file"] = m.sourceFile;
-  j["structure"] = m.structure.text;
-  j["structure_tool_first"] = m.structure.toolFirst();
-  std::string human = fmt::format("Machine    {}\nFile       {}\nStructure  {}  (tool first: {})\n", m.name,
-                                  m.sourceFile, m.structure.text, m.structure.toolFirst());
+  const auto c = checkMachine(loadMachineSetup(o.source));
+  const Machine& m = *c.setup.machine;
+  std::string human = fmt::format("Machine    {}\nFile       {}\nStructure  {}  (tool first: {})\n", m.name, m.sourceFile,
+                                  m.structure.text, m.structure.toolFirst());
   human += fmt::format("Tool chain       bed -> {} -> tool\n", chainText(m, m.toolChain));
   human += fmt::format("Workpiece chain  bed -> {} -> workpiece\n\n", chainText(m, m.workpieceChain));
   human += fmt::format("{:<5} {:<8} {:<10} {:<26} {:<28} {:<22} {}\n", "axis", "type", "side", "direction",
@@ -43,49 +32,28 @@ void run(const MachineOptions& o) {
   std::string csv = "axis,type,side,dx,dy,dz,location_x,location_y,location_z,travel_min,travel_max,error_frame\n";
   for (const auto& a : m.axes) {
     const Vec3 place = a.type == AxisType::Linear ? a.offset : a.location + a.offset;
-    human += fmt::format("{:<5} {:<8} {:<10} ({:6.3f}, {:6.3f}, {:6.3f})    ({:7.1f}, {:7.1f}, {:7.1f})    {:<22} {}\n",
-                         a.name, typeName(a.type), a.side == Side::Tool ? "tool" : "workpiece", a.direction.x(),
-                         a.direction.y(), a.direction.z(), place.x(), place.y(), place.z(), travelText(a),
-                         a.errorFrame == ErrorFrame::Fixed ? "fixed frame" : "moving frame");
-    nlohmann::json aj = {{"name", a.name},
-                         {"type", typeName(a.type)},
-                         {"side", a.side == Side::Tool ? "tool" : "workpiece"},
-                         {"direction", {a.direction.x(), a.direction.y(), a.direction.z()}},
-                         {"location_mm", {a.location.x(), a.location.y(), a.location.z()}},
-                         {"offset_mm", {a.offset.x(), a.offset.y(), a.offset.z()}},
-                         {"error_frame", a.errorFrame == ErrorFrame::Fixed ? "fixed" : "moving"}};
+    const char* side = a.side == Side::Tool ? "tool" : "workpiece";
+    const char* frame = a.errorFrame == ErrorFrame::Fixed ? "fixed" : "moving";
+    human += fmt::format("{:<5} {:<8} {:<10} ({:6.3f}, {:6.3f}, {:6.3f})    ({:7.1f}, {:7.1f}, {:7.1f})    {:<22} {} frame\n",
+                         a.name, axisTypeName(a.type), side, a.direction.x(), a.direction.y(), a.direction.z(), place.x(),
+                         place.y(), place.z(), travelText(a), frame);
     const double f = a.isRotary() ? 1.0 / kDeg : 1.0;
-    if (a.travel) aj["travel"] = {a.travel->min * f, a.travel->max * f};
-    j["axes"].push_back(aj);
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", a.name, typeName(a.type),
-                       a.side == Side::Tool ? "tool" : "workpiece", a.direction.x(), a.direction.y(), a.direction.z(),
-                       a.location.x(), a.location.y(), a.location.z(), a.travel ? a.travel->min * f : 0.0,
-                       a.travel ? a.travel->max * f : 0.0, a.errorFrame == ErrorFrame::Fixed ? "fixed" : "moving");
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", a.name, axisTypeName(a.type), side, a.direction.x(),
+                       a.direction.y(), a.direction.z(), a.location.x(), a.location.y(), a.location.z(),
+                       a.travel ? a.travel->min * f : 0.0, a.travel ? a.travel->max * f : 0.0, frame);
   }
-  human += fmt::format("\nTool       TCP offset ({:g}, {:g}, {:g}) mm, direction ({:.3f}, {:.3f}, {:.3f})\n",
-                       m.toolOffset.x(), m.toolOffset.y(), m.toolOffset.z(), m.toolDirection.x(), m.toolDirection.y(),
-                       m.toolDirection.z());
+  human += fmt::format("\nTool       TCP offset ({:g}, {:g}, {:g}) mm, direction ({:.3f}, {:.3f}, {:.3f})\n", m.toolOffset.x(),
+                       m.toolOffset.y(), m.toolOffset.z(), m.toolDirection.x(), m.toolDirection.y(), m.toolDirection.z());
   human += fmt::format("Workpiece  offset ({:g}, {:g}, {:g}) mm, {}\n", m.workpieceOffset.x(), m.workpieceOffset.y(),
                        m.workpieceOffset.z(),
                        m.alignment == WorkpieceAlignment::Table ? "fixed to the table frame (seed 001 eq. 2)"
                                                                 : "aligned with the machine at the reference pose (seed 001 eqs. 10-12)");
-  j["tool"] = {{"offset_mm", {m.toolOffset.x(), m.toolOffset.y(), m.toolOffset.z()}},
-               {"direction", {m.toolDirection.x(), m.toolDirection.y(), m.toolDirection.z()}}};
-  j["workpiece"] = {{"offset_mm", {m.workpieceOffset.x(), m.workpieceOffset.y(), m.workpieceOffset.z()}},
-                    {"alignment", m.alignment == WorkpieceAlignment::Table ? "table" : "machine"}};
-
-  int location = 0;
-  for (const auto& p : catalogue) location += p.kind == ParameterKind::Location ? 1 : 0;
-  human += fmt::format("\nError parameters: {} location, {} component-error coefficients; {} non-zero\n", location,
-                       catalogue.size() - static_cast<size_t>(location), nonZero.size());
-  for (const auto& p : nonZero) {
-    const double v = parameterValue(loaded.errors, p);
-    human += fmt::format("  {:<10} {:>10.3f} {}\n", p.name, toDisplay(v, p.dimension), unitOf(p.dimension));
-    j["errors"][p.name] = {{"value", toDisplay(v, p.dimension)}, {"unit", unitOf(p.dimension)}};
-  }
-  j["parameter_count"] = catalogue.size();
-  j["valid"] = true;
-  emit(o, j, human, csv);
+  human += fmt::format("\nError parameters: {} location, {} component-error coefficients; {} non-zero\n", c.locationCount,
+                       c.parameters.size() - static_cast<size_t>(c.locationCount), c.nonZero.size());
+  for (const auto& p : c.nonZero)
+    human += fmt::format("  {:<10} {:>10.3f} {}\n", p.name, toDisplay(parameterValue(c.setup.errors, p), p.dimension),
+                         displayUnit(p.dimension));
+  emit(o, toJson(c), human, csv);
 }
 
 }  // namespace

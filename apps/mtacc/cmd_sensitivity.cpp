@@ -2,93 +2,50 @@
 // and the sensitivity coefficient k = E / epsilon of seed 001 eq. 15 along a direction.
 #include <fmt/format.h>
 
-#include <sstream>
-
 #include "cli_common.hpp"
-#include "mtacc/core/input_error.hpp"
-#include "mtacc/kinematics/budget.hpp"
-#include "mtacc/kinematics/jacobian.hpp"
+#include "mtacc/core/text.hpp"
+#include "mtacc/core/units.hpp"
+#include "mtacc/io/pose_text.hpp"
+#include "mtacc/workflows/budget.hpp"
 
 namespace mtacc::cli {
 namespace {
 
-struct SensitivityOptions : MachineOptions {
-  std::string pose;
-  std::string direction;
-  std::string params;
-  std::string epsilonLength = "10 um";
-  std::string epsilonAngle = "30 urad";
+struct SensitivityCliOptions : MachineOptions {
+  std::string pose, direction, params, epsilonLength = "10 um", epsilonAngle = "30 urad";
 };
 
-void run(const SensitivityOptions& o) {
-  const auto loaded = load(o);
-  const Machine& m = *loaded.machine;
-  const auto q = parsePose(m, o.pose);
-  const auto model = compile(loaded.machine, loaded.errors);
-  const auto tp = toolPoint(compileNominal(loaded.machine), q.data());
-  const Vec3 direction = o.direction.empty() ? tp.direction : parseVector(o.direction, "--direction");
-  if (direction.norm() < 1e-12) throw InputError(InputLocation{"", 0, "--direction"}, "direction has zero length");
-  const double epsLength = parseQuantityArg(o.epsilonLength, Dimension::Length, "--epsilon-length");
-  const double epsAngle = parseQuantityArg(o.epsilonAngle, Dimension::Angle, "--epsilon-angle");
-
-  std::vector<Parameter> params;
-  if (o.params.empty()) {
-    params = parameterCatalogue(m, loaded.errors);
-  } else {
-    std::stringstream ss(o.params);
-    std::string name;
-    while (std::getline(ss, name, ',')) {
-      try {
-        params.push_back(findParameter(m, loaded.errors, name));
-      } catch (const std::invalid_argument& e) {
-        throw InputError(InputLocation{"", 0, "--params"}, e.what());
-      }
-    }
-  }
-  const auto jac = parameterJacobian(model, params, q.data());
-  const Vec3 n = direction.normalized();
-
-  nlohmann::json j;
-  j["machine"] = m.name;
-  j["pose"] = poseJson(m, q.data());
-  j["direction"] = {n.x(), n.y(), n.z()};
-  j["units"] = "position rows in um per parameter unit (um or urad), orientation rows in urad per unit; "
-               "k = E/epsilon along the direction";
-  std::string human = fmt::format("Sensitivities at {}; direction ({:.4f}, {:.4f}, {:.4f})\n", formatPose(m, q.data()),
-                                  n.x(), n.y(), n.z());
-  human += fmt::format("{:<12} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10}\n", "parameter", "dx", "dy", "dz", "ea",
-                       "eb", "ec", "k (1st)", "k=E/eps");
+void run(const SensitivityCliOptions& o) {
+  const auto setup = loadMachineSetup(o.source);
+  const Machine& m = *setup.machine;
+  SensitivityRequest request;
+  request.q = parsePose(m, o.pose, "--pose");
+  if (!o.direction.empty()) request.direction = parseVector(o.direction, "--direction");
+  request.parameters = splitList(o.params);
+  request.epsilonLength = parseQuantityAs(o.epsilonLength, Dimension::Length, "--epsilon-length");
+  request.epsilonAngle = parseQuantityAs(o.epsilonAngle, Dimension::Angle, "--epsilon-angle");
+  const auto r = sensitivities(setup, request);
+  const Vec3& n = r.direction;
+  std::string human = fmt::format("Sensitivities at {}; direction ({:.4f}, {:.4f}, {:.4f})\n", formatPose(m, r.q.data()), n.x(),
+                                  n.y(), n.z());
+  human += fmt::format("{:<12} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10}\n", "parameter", "dx", "dy", "dz", "ea", "eb",
+                       "ec", "k (1st)", "k=E/eps");
   std::string csv = "parameter,unit,dx,dy,dz,ea,eb,ec,k_first_order,k_exact\n";
-  for (size_t k = 0; k < params.size(); ++k) {
-    const auto& p = params[k];
-    // Per unit of the parameter in its display unit: um/um or um/urad (= mm/mm or mm/mrad ...).
-    const double unitScale = p.dimension == Dimension::Length ? 1.0 : 1e-3;
-    const Vec6 col = jac.col(static_cast<Eigen::Index>(k));
-    const Vec3 dpos = col.head<3>() * unitScale;
-    const Vec3 drot = col.tail<3>() * (p.dimension == Dimension::Length ? 1e3 : 1.0);
-    const double kFirst = n.dot(col.head<3>());
-    const double eps = p.dimension == Dimension::Length ? epsLength : epsAngle;
-    const double kExact = sensitivityCoefficient(loaded.machine, loaded.errors, p, eps, q.data(), n);
-    const double kScale = p.dimension == Dimension::Length ? 1.0 : 1e-3;
-    human += fmt::format("{:<12} {:9.4f} {:9.4f} {:9.4f} {:9.4f} {:9.4f} {:9.4f} {:10.4f} {:10.4f}  {}/{}\n", p.name,
-                         dpos.x(), dpos.y(), dpos.z(), drot.x(), drot.y(), drot.z(), kFirst * kScale, kExact * kScale,
-                         "um", unitOf(p.dimension));
-    csv += fmt::format("{},um/{},{},{},{},{},{},{},{},{}\n", p.name, unitOf(p.dimension), dpos.x(), dpos.y(), dpos.z(),
-                       drot.x(), drot.y(), drot.z(), kFirst * kScale, kExact * kScale);
-    j["parameters"].push_back({{"name", p.name},
-                               {"unit", "um/" + unitOf(p.dimension)},
-                               {"position", {dpos.x(), dpos.y(), dpos.z()}},
-                               {"orientation", {drot.x(), drot.y(), drot.z()}},
-                               {"k_first_order", kFirst * kScale},
-                               {"k_exact", kExact * kScale}});
+  for (const auto& row : r.rows) {
+    const auto &p = row.position, &a = row.orientation;
+    const char* unit = displayUnit(row.parameter.dimension);
+    human += fmt::format("{:<12} {:9.4f} {:9.4f} {:9.4f} {:9.4f} {:9.4f} {:9.4f} {:10.4f} {:10.4f}  um/{}\n", row.parameter.name,
+                         p.x(), p.y(), p.z(), a.x(), a.y(), a.z(), row.kFirstOrder, row.kExact, unit);
+    csv += fmt::format("{},um/{},{},{},{},{},{},{},{},{}\n", row.parameter.name, unit, p.x(), p.y(), p.z(), a.x(), a.y(), a.z(),
+                       row.kFirstOrder, row.kExact);
   }
-  emit(o, j, human, csv);
+  emit(o, toJson(r), human, csv);
 }
 
 }  // namespace
 
 void addSensitivityCommand(CLI::App& app) {
-  auto o = std::make_shared<SensitivityOptions>();
+  auto o = std::make_shared<SensitivityCliOptions>();
   auto* cmd = app.add_subcommand("sensitivity", "TCP sensitivity to every error parameter at one pose");
   addMachineOptions(*cmd, *o);
   cmd->add_option("--pose", o->pose, "axis positions, e.g. X=10,Y=0,Z=5,B=-15,C=30 (mm, deg)")->required();

@@ -2,34 +2,26 @@
 // the same CSV format as measured data (docs/file-formats.md), so both take the same path.
 #include <fmt/format.h>
 
-#include <filesystem>
 #include <iostream>
-#include <random>
 
 #include "cli_common.hpp"
 #include "mtacc/core/input_error.hpp"
-#include "mtacc/io/atomic_file.hpp"
-#include "mtacc/measurement/measurement_csv.hpp"
-#include "mtacc/measurement/simulation.hpp"
-#include "mtacc/measurement/test_paths.hpp"
-#include "mtacc/measurement/test_plan.hpp"
+#include "mtacc/core/text.hpp"
+#include "mtacc/core/units.hpp"
+#include "mtacc/io/pose_text.hpp"
+#include "mtacc/workflows/measurement_runs.hpp"
 
 namespace mtacc::cli {
 namespace {
 
-struct SimulateOptions : MachineOptions {
-  std::string noise = "0 um";
-  unsigned seed = 1;
-  std::string setupErrors;  // "xW=10um,zT=-5um"
-  std::string pose;
-  std::string toolBall = "0,0,0";
+struct SimulateCliOptions : MachineOptions {
+  std::string noise = "0 um", setupErrors, pose, toolBall = "0,0,0";
+  std::uint64_t seed = 1;
   // ballbar
-  std::string plane = "XY", centre = "0,0,0", radius = "100 mm";
+  std::string plane = "XY", centre = "0,0,0", radius = "100 mm", lag, backlash, spike;
   int points = 360;
-  double feed = 1000;
+  double feed = 1000, spikeTime = 0.02;
   bool oneDirection = false;
-  std::string lag, backlash, spike;
-  double spikeTime = 0.02;
   // rtest
   std::string axis = "C", from = "0 deg", to = "330 deg", sphere;
   int angles = 12;
@@ -38,79 +30,37 @@ struct SimulateOptions : MachineOptions {
   std::string plan;
 };
 
-// "X=1ms,Y=0.5ms" -> per commanded axis, scaled by `unit` after the number's own unit.
-std::vector<double> perAxis(const Machine& m, const std::string& text, const std::string& what, bool time) {
-  std::vector<double> out;
-  if (text.empty()) return out;
-  out.assign(static_cast<size_t>(m.commandedCount()), 0.0);
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    const auto eq = item.find('=');
-    const int j = eq == std::string::npos ? -1 : m.axisIndex(item.substr(0, eq));
-    if (j < 0) throw InputError(InputLocation{"", 0, what}, "expected AXIS=value, got '" + item + "'");
-    const std::string value = item.substr(eq + 1);
-    if (time) {
-      const bool ms = value.size() > 2 && value.compare(value.size() - 2, 2, "ms") == 0;
-      const bool s = !ms && value.size() > 1 && value.back() == 's';
-      if (!ms && !s) throw InputError(InputLocation{"", 0, what}, "expected a time in s or ms, got '" + value + "'");
-      try {
-        out[static_cast<size_t>(j)] = std::stod(value.substr(0, value.size() - (ms ? 2 : 1))) * (ms ? 1e-3 : 1.0);
-      } catch (const std::logic_error&) {
-        throw InputError(InputLocation{"", 0, what}, "not a number: '" + value + "'");
-      }
-    } else {
-      const bool rotary = m.axes[static_cast<size_t>(j)].isRotary();
-      out[static_cast<size_t>(j)] = parseQuantityArg(value, rotary ? Dimension::Angle : Dimension::Length, what);
-    }
+SimulationOptions simulationOptions(const SimulateCliOptions& o, const Machine& m, bool folder) {
+  SimulationOptions s;
+  s.noise = parseQuantityAs(o.noise, Dimension::Length, "--noise");
+  s.seed = o.seed;
+  for (const auto& a : parseAssignments(o.setupErrors, "--setup")) {
+    const auto p = parseSetupParameter(a.name);
+    if (!p) throw InputError(InputLocation{"", 0, "--setup"}, "expected NAME=value with NAME one of xT yT zT xW yW zW aN bN cN dL, got '" + a.name + "'");
+    s.setupErrors[static_cast<size_t>(*p)] = parseQuantityAs(a.value, setupParameterDimension(*p), "--setup " + a.name);
   }
-  return out;
+  s.disturbance.lag = parseAxisTimes(m, o.lag, "--lag");
+  s.disturbance.backlash = parseAxisQuantities(m, o.backlash, "--backlash");
+  s.disturbance.spikeHeight = parseAxisQuantities(m, o.spike, "--spike");
+  s.disturbance.spikeTime = o.spikeTime;
+  s.output = o.output;
+  s.outputIsFolder = folder;
+  return s;
 }
 
-void applySetupErrors(MeasurementRun& run, const std::string& text) {
-  if (text.empty()) return;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    const auto eq = item.find('=');
-    const auto p = eq == std::string::npos ? std::nullopt : parseSetupParameter(item.substr(0, eq));
-    if (!p) throw InputError(InputLocation{"", 0, "--setup"}, "expected NAME=value with NAME one of xT yT zT xW yW zW aN bN cN dL, got '" + item + "'");
-    if (appliesTo(*p, run.instrument))
-      run.setup.errors[static_cast<size_t>(*p)] = parseQuantityArg(item.substr(eq + 1), setupParameterDimension(*p), "--setup");
+void report(const SimulateCliOptions& o, const SimulationResult& r) {
+  if (o.json) {
+    std::cout << toJson(r).dump(2) << "\n";
+    return;
   }
+  for (size_t i = 0; i < r.runs.size(); ++i)
+    std::cout << fmt::format("{:<24} {:<12} {:>6} poses  -> {}\n", r.runs[i].name, instrumentName(r.runs[i].instrument),
+                             r.runs[i].poses(), r.files[i]);
 }
 
-void writeRuns(const SimulateOptions& o, const Loaded& loaded, std::vector<MeasurementRun> runs, const Disturbance& d,
-               bool directory) {
-  const Machine& m = *loaded.machine;
-  const auto nominal = compileNominal(loaded.machine);
-  const auto model = compile(loaded.machine, loaded.errors);
-  const double noise = parseQuantityArg(o.noise, Dimension::Length, "--noise");
-  if (noise < 0) throw InputError(InputLocation{"", 0, "--noise"}, "must not be negative");
-  std::mt19937_64 rng(o.seed);
-  nlohmann::json j;
-  j["machine"] = m.name;
-  j["noise_um"] = noise * 1e3;
-  std::vector<std::pair<std::string, std::string>> files;
-  std::string human;
-  for (auto& run : runs) {
-    applySetupErrors(run, o.setupErrors);
-    simulateRun(model, nominal, run, d, noise, &rng);
-    const std::string path = directory ? (std::filesystem::path(o.output) / (run.name + ".csv")).string() : o.output;
-    files.emplace_back(path, measurementCsv(m, run));
-    human += fmt::format("{:<24} {:<12} {:>6} poses  -> {}\n", run.name, instrumentName(run.instrument), run.poses(), path);
-    j["runs"].push_back({{"name", run.name}, {"instrument", instrumentName(run.instrument)}, {"poses", run.poses()}, {"file", path}});
-  }
-  // Everything is computed before anything is written.
-  if (directory) std::filesystem::create_directories(o.output);
-  for (const auto& [path, text] : files) writeFileAtomically(path, text);
-  if (o.json) std::cout << j.dump(2) << "\n";
-  else std::cout << human;
-}
-
-void addCommon(CLI::App* cmd, SimulateOptions& o) {
-  cmd->add_option("machine", o.machine, "Machine file or bundled name")->required();
-  cmd->add_option("--errors", o.errorsFile, "Error description (YAML); default: the machine file's errors");
+void addCommon(CLI::App* cmd, SimulateCliOptions& o) {
+  cmd->add_option("machine", o.source.machine, "Machine file or bundled name")->required();
+  cmd->add_option("--errors", o.source.errorsFile, "Error description (YAML); default: the machine file's errors");
   cmd->add_flag("--json", o.json, "Summary as JSON on stdout");
   cmd->add_option("--noise", o.noise, "Standard deviation of Gaussian reading noise, e.g. 0.5um")->capture_default_str();
   cmd->add_option("--seed", o.seed, "Random seed of the noise")->capture_default_str();
@@ -124,7 +74,7 @@ void addCommon(CLI::App* cmd, SimulateOptions& o) {
 void addSimulateCommand(CLI::App& app) {
   auto* sim = app.add_subcommand("simulate", "Simulated measurement data (ballbar, R-test, a whole test plan)");
   sim->require_subcommand(1);
-  auto o = std::make_shared<SimulateOptions>();
+  auto o = std::make_shared<SimulateCliOptions>();
 
   auto* ballbar = sim->add_subcommand("ballbar", "ISO 230-4 ballbar circle, both directions, with optional servo, "
                                                  "backlash and reversal-spike disturbances");
@@ -142,31 +92,17 @@ void addSimulateCommand(CLI::App& app) {
   ballbar->add_option("--spike-time", o->spikeTime, "Decay time of the reversal spikes, s")->capture_default_str();
   ballbar->add_option("-o,--output", o->output, "CSV file to write")->required();
   ballbar->callback([o] {
-    const auto loaded = load(*o);
-    const auto nominal = compileNominal(loaded.machine);
+    const auto setup = loadMachineSetup(o->source);
     BallbarCircleSpec spec;
     spec.plane = o->plane;
     spec.centre = parseVector(o->centre, "--centre");
-    spec.radius = parseQuantityArg(o->radius, Dimension::Length, "--radius");
-    if (!(spec.radius > 0)) throw InputError(InputLocation{"", 0, "--radius"}, "must be positive");
+    spec.radius = parseQuantityAs(o->radius, Dimension::Length, "--radius");
     spec.points = o->points;
     spec.feed = o->feed;
-    if (!(spec.feed > 0)) throw InputError(InputLocation{"", 0, "--feed"}, "must be positive");
     spec.bothDirections = !o->oneDirection;
     spec.toolBall = parseVector(o->toolBall, "--tool-ball");
-    if (!o->pose.empty()) spec.pose = parsePose(*loaded.machine, o->pose, true);
-    Disturbance d;
-    d.lag = perAxis(*loaded.machine, o->lag, "--lag", true);
-    d.backlash = perAxis(*loaded.machine, o->backlash, "--backlash", false);
-    d.spikeHeight = perAxis(*loaded.machine, o->spike, "--spike", false);
-    d.spikeTime = o->spikeTime;
-    MeasurementRun run;
-    try {
-      run = ballbarCircle(nominal, spec);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(InputLocation{"", 0, "ballbar"}, e.what());
-    }
-    writeRuns(*o, loaded, {run}, d, false);
+    if (!o->pose.empty()) spec.pose = parsePose(*setup.machine, o->pose, "--pose", true);
+    report(*o, simulateBallbarCircle(setup, spec, simulationOptions(*o, *setup.machine, false)));
   });
 
   auto* rtest = sim->add_subcommand("rtest", "R-test (or touch probe) on a sphere while one rotary axis steps");
@@ -180,26 +116,17 @@ void addSimulateCommand(CLI::App& app) {
   rtest->add_flag("--probe", o->probe, "Touch-probe readings instead of the R-test's");
   rtest->add_option("-o,--output", o->output, "CSV file to write")->required();
   rtest->callback([o] {
-    const auto loaded = load(*o);
-    const auto nominal = compileNominal(loaded.machine);
+    const auto setup = loadMachineSetup(o->source);
     SphereTestSpec spec;
     spec.instrument = o->probe ? Instrument::TouchProbe : Instrument::RTest;
     spec.axis = o->axis;
-    const double from = parseQuantityArg(o->from, Dimension::Angle, "--from");
-    const double to = parseQuantityArg(o->to, Dimension::Angle, "--to");
-    const int n = o->angles;
-    if (n < 1) throw InputError(InputLocation{"", 0, "--points"}, "must be at least 1");
-    for (int i = 0; i < n; ++i) spec.angles.push_back(n == 1 ? from : from + (to - from) * i / (n - 1));
+    if (o->angles < 1 || o->angles > 100000) throw InputError(InputLocation{"", 0, "--points"}, "must be between 1 and 100000");
+    spec.angles = evenAngles(parseQuantityAs(o->from, Dimension::Angle, "--from"), parseQuantityAs(o->to, Dimension::Angle, "--to"),
+                             o->angles);
     spec.spheres = {parseVector(o->sphere, "--sphere")};
     spec.toolBall = parseVector(o->toolBall, "--tool-ball");
-    if (!o->pose.empty()) spec.pose = parsePose(*loaded.machine, o->pose, true);
-    std::vector<MeasurementRun> runs;
-    try {
-      runs = sphereTest(nominal, spec);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(InputLocation{"", 0, "rtest"}, e.what());
-    }
-    writeRuns(*o, loaded, runs, {}, false);
+    if (!o->pose.empty()) spec.pose = parsePose(*setup.machine, o->pose, "--pose", true);
+    report(*o, simulateSphereTest(setup, spec, simulationOptions(*o, *setup.machine, false)));
   });
 
   auto* plan = sim->add_subcommand("plan", "Every run of a test plan, one CSV per run in a directory");
@@ -207,9 +134,8 @@ void addSimulateCommand(CLI::App& app) {
   plan->add_option("--plan", o->plan, "Test plan (YAML) or bundled plan name")->required();
   plan->add_option("-o,--output", o->output, "Directory to write the CSV files into")->required();
   plan->callback([o] {
-    const auto loaded = load(*o);
-    const auto nominal = compileNominal(loaded.machine);
-    writeRuns(*o, loaded, loadTestPlan(nominal, o->plan).runs, {}, true);
+    const auto setup = loadMachineSetup(o->source);
+    report(*o, simulatePlan(setup, o->plan, simulationOptions(*o, *setup.machine, true)));
   });
 }
 

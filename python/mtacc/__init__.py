@@ -6,19 +6,32 @@
     pos, tool = m.fk([[10, 20, 30, -15, 45]])     # axis positions in mm and degrees
     err = m.tcp_errors(q)                         # (n, 6): dx dy dz [um], ea eb ec [urad]
     q = m.ik_path(tcps, tools, branch="negative") # (n, axes) in mm and degrees
-    budget = m.budget()                           # the error budget, as the CLI's --json
+    budget = m.budget()                           # the error budget: the same dict as `mtacc budget --json`
 
-Units are those of the command line: mm and degrees for axis positions, mm for the TCP,
-um and urad for errors. Error parameters read back in mm or rad (see Errors.unit).
+Every result that the command line prints with --json comes back here as the same dict (the
+library serialises it once); batch kinematics come back as numpy arrays. Units are those of the
+command line: mm and degrees for axis positions, mm for the TCP, um and urad for errors. Error
+parameters read back in mm or rad (see Errors.unit). One call per pose costs the Python call
+overhead: pass all poses of a batch at once.
 """
+import os
 from collections.abc import MutableMapping
 
 import numpy as np
 
-from ._mtacc import InputError, Structure, UnreachablePose
-from ._mtacc import Machine as _CoreMachine
+_DATA = os.path.join(os.path.dirname(__file__), "data")
+if os.path.isdir(_DATA):  # the installed package carries its own copy of the bundled data
+    os.environ.setdefault("MTACC_DATA_DIR", _DATA)
 
-__all__ = ["Machine", "Errors", "InputError", "UnreachablePose"]
+from ._mtacc import InputError, UnreachablePose  # noqa: E402
+from ._mtacc import Machine as _CoreMachine  # noqa: E402
+from ._mtacc import Structure as _CoreStructure  # noqa: E402
+
+__all__ = ["Machine", "Errors", "Structure", "InputError", "UnreachablePose"]
+
+
+def _text(value):
+    return "" if value is None else str(value)
 
 
 class Errors(MutableMapping):
@@ -53,89 +66,64 @@ class Errors(MutableMapping):
 
     def names(self):
         """Every parameter of the machine: location errors, then component-error coefficients."""
-        return self._core.parameter_names()
+        return self._core.check()["parameters"]
 
 
 class Machine:
     """A machine description with its errors (from the machine file, or `errors=FILE`)."""
 
-    def __init__(self, machine, errors=None):
-        self._core = _CoreMachine(str(machine), "" if errors is None else str(errors))
+    def __init__(self, machine, errors=None, alignment=None):
+        self._core = _CoreMachine(str(machine), _text(errors), _text(alignment))
+        self._description = self._core.check()
         self.errors = Errors(self._core)
 
-    name = property(lambda self: self._core.name)
-    file = property(lambda self: self._core.file)
-    structure = property(lambda self: self._core.structure)
-    structure_tool_first = property(lambda self: self._core.structure_tool_first)
-    axis_names = property(lambda self: self._core.axis_names)
-    axes = property(lambda self: self._core.axes)
-    tool_chain = property(lambda self: self._core.tool_chain)
-    workpiece_chain = property(lambda self: self._core.workpiece_chain)
-    tool_direction = property(lambda self: np.array(self._core.tool_direction))
+    def check(self):
+        """The machine summary, as `mtacc check --json` (with the current errors)."""
+        return self._core.check()
 
-    def _q(self, q):
+    name = property(lambda self: self._description["name"])
+    file = property(lambda self: self._description["file"])
+    structure = property(lambda self: self._description["structure"])
+    structure_tool_first = property(lambda self: self._description["structure_tool_first"])
+    axis_names = property(lambda self: self._description["axis_names"])
+    axes = property(lambda self: self._description["axes"])
+    tool_chain = property(lambda self: self._description["tool_chain"])
+    workpiece_chain = property(lambda self: self._description["workpiece_chain"])
+    tool_direction = property(lambda self: np.array(self._description["tool"]["direction"]))
+
+    @staticmethod
+    def _q(q):
         q = np.asarray(q, dtype=float)
         return q.reshape(1, -1) if q.ndim == 1 else q
 
     def fk(self, q, directions=None, nominal=False):
         """TCP positions (n, 3) [mm] and tool directions (n, 3) in the workpiece frame."""
-        return self._core.fk(self._q(q), directions, nominal)
+        tcp, tool, _, _ = self._core.fk(self._q(q), directions, nominal)
+        return tcp, tool
 
     def tcp_errors(self, q, directions=None):
         """(n, 6): position error dx dy dz [um] and orientation error [urad], actual minus nominal."""
-        return self._core.tcp_errors(self._q(q), directions)
+        _, _, position, orientation = self._core.fk(self._q(q), directions, False)
+        return np.hstack([position, orientation])
 
     def ik(self, tcp, tool=(0, 0, 1), branch="auto", all=False):
-        """Solutions for one TCP [mm] and tool direction: a list of dicts (pose in mm/deg)."""
-        return self._core.ik(list(map(float, tcp)), list(map(float, tool)), branch, all)
+        """Solutions for one TCP [mm] and tool direction, as `mtacc ik --json` lists them."""
+        result, _ = self._core.ik([list(map(float, tcp))], [list(map(float, tool))], branch, all)
+        return result["solutions"]
 
     def ik_path(self, tcps, tools, branch="auto"):
         """Axis positions (n, axes) [mm, deg] along a continuous path."""
-        return self._core.ik_path(np.asarray(tcps, float), np.asarray(tools, float), branch)
+        _, q = self._core.ik(np.asarray(tcps, float).tolist(), np.asarray(tools, float).tolist(), branch, False)
+        return q
 
     def jacobian(self, q, params=None):
         """(names, J): J is 6 x n, d(dx, dy, dz [mm], rotation [rad]) / d(parameter [mm or rad])."""
-        return self._core.jacobian(np.asarray(q, float).ravel(), params)
+        return self._core.jacobian(self._q(q)[:1], list(params or []))
 
     def sensitivity_coefficient(self, q, parameter, epsilon, direction):
         """Seed 001 eq. 15: k = E / epsilon with the exact model; epsilon in mm/rad or with a unit
         ("10 um"); E is the TCP deviation along `direction` (outward normal) in mm."""
-        return self._core.sensitivity_coefficient(np.asarray(q, float).ravel(), parameter, epsilon, list(map(float, direction)))
-
-    def cone(self, alpha=45.0, beta=30.0, radius=40.0, centre=(-65.0, 0.0, 150.0), gamma=0.0, face_milling=False,
-             points=720, branch="negative", feed=500.0, single_errors=False, monte_carlo=0, limits=None, seed=1):
-        """The cone-frustum test piece of seed 000 on this machine (as `mtacc cone`): path (phi in deg,
-        points, tools, normals), axis positions q (mm, deg) and their statistics, warnings; with
-        errors the equivalent cone form error and its deviation (um); optionally each error alone
-        and a Monte Carlo over limits (default: seed 000 Table 3.9)."""
-        return self._core.cone(alpha, beta, radius, list(map(float, centre)), gamma, face_milling, points, branch, feed,
-                               single_errors, monte_carlo, "" if limits is None else str(limits), seed)
-
-    def simulate(self, plan, noise_um=0.0, seed=1, output_dir=None):
-        """Every run of a test plan (YAML path or bundled name, e.g. "tilting-table-rtest") simulated
-        on this machine with its errors: list of dicts (poses in mm/deg, readings in um, ballbar
-        angle_deg and sense). With output_dir, also written as measurement CSV files."""
-        return self._core.simulate(str(plan), noise_um, seed, "" if output_dir is None else str(output_dir))
-
-    def read_measurement(self, path):
-        """A measurement CSV file (docs/file-formats.md) as the dict `simulate` returns."""
-        return self._core.read_measurement(str(path))
-
-    def evaluate_ballbar(self, path):
-        """ISO 230-4 circular deviation, radial deviation, hysteresis, eccentricity and the
-        ballbar diagnostics of a ballbar CSV file (um, urad, ms)."""
-        return self._core.evaluate_ballbar(str(path))
-
-    def observability(self, plan, parameters=None):
-        """Rank, condition number, singular values and the findings (parameters without effect,
-        groups the plan cannot separate) of a test plan for the given parameters (default:
-        the plan's own list)."""
-        return self._core.observability(str(plan), list(parameters or []))
-
-    def identify(self, files, parameters, robust=False):
-        """Least-squares estimates (um, urad) with standard uncertainties of `parameters` from
-        measurement CSV files; refuses (InputError) a set the data cannot determine."""
-        return self._core.identify([str(f) for f in files], list(parameters), robust)
+        return self._core.sensitivity_coefficient(self._q(q)[:1], parameter, epsilon, list(map(float, direction)))
 
     def working_volume_grid(self, samples=5):
         """Grid of `samples` positions per axis across its travel (mm, deg), as the budget uses."""
@@ -144,3 +132,89 @@ class Machine:
     def budget(self, samples=5, length=None, angle=None):
         """Each error alone: largest TCP deviation over a grid of `samples` positions per axis."""
         return self._core.budget(samples, length, angle)
+
+    def cone(self, preset=None, alpha=45.0, beta=30.0, radius=40.0, centre=(-65.0, 0.0, 150.0), gamma=0.0,
+             face_milling=False, points=720, branch="negative", feed=500.0, single_errors=False, monte_carlo=0,
+             limits=None, seed=1):
+        """The cone-frustum test piece of seed 000 (as `mtacc cone --json`): path, axis positions and their
+        statistics, the form error of the machine's errors, each error alone, a Monte Carlo over limits.
+        preset: "tilting-table", "swivel-head", "double-pivot", "nas979" or "family" (this machine's)."""
+        if preset == "family":
+            preset = self._core.cone_preset_name()
+            if preset is None:
+                raise InputError("preset: the machine does not have two rotary axes")
+        return self._core.cone(_text(preset), alpha, beta, radius, list(map(float, centre)), gamma, face_milling, points,
+                               branch, feed, single_errors, monte_carlo, _text(limits), seed)
+
+    def cone_preset_name(self):
+        """The seed 000 §3.6 preset of this machine's family, or None."""
+        return self._core.cone_preset_name()
+
+    def simulate(self, plan, noise="0 um", seed=1, output_dir=None):
+        """Every run of a test plan (YAML path or bundled name) simulated on this machine with its errors,
+        as `mtacc simulate plan --json`; with output_dir, also written as measurement CSV files."""
+        return self._core.simulate(str(plan), noise, seed, _text(output_dir))
+
+    def read_measurement(self, path):
+        """A measurement CSV file (docs/file-formats.md) as one run of `simulate`'s result."""
+        return self._core.read_measurement(str(path))
+
+    def evaluate_ballbar(self, path):
+        """ISO 230-4 evaluation, eccentricity and diagnostics of a ballbar CSV file (as `mtacc evaluate`)."""
+        return self._core.evaluate_ballbar(str(path))
+
+    def observability(self, plan, parameters=None):
+        """Rank, singular values and findings of a test plan (as `mtacc observability --json`)."""
+        return self._core.observability(str(plan), list(parameters or []))
+
+    def identify(self, files, parameters=None, plan=None, robust=False):
+        """Least-squares estimates with standard uncertainties (as `mtacc identify --json`); the
+        parameters default to the plan's list; refuses (InputError) a set the data cannot determine."""
+        return self._core.identify([str(f) for f in files], list(parameters or []), _text(plan), robust)
+
+    def xy_circle(self):
+        """The report's X-Y circle: radial TCP deviation around mid-travel, or None."""
+        return self._core.xy_circle()
+
+    def tilted_circle(self):
+        """The report's 5-axis circle (tool tilted 30 deg towards the centre), or None."""
+        return self._core.tilted_circle()
+
+
+def _at(at):
+    return ",".join(f"{k}={v!r}" for k, v in (at or {}).items())
+
+
+class Structure:
+    """A rigid-body structure model (seed 000 part II); axis positions `at` as {axis: mm}."""
+
+    def __init__(self, model):
+        self._core = _CoreStructure(str(model))
+        self._description = self._core.describe()
+
+    name = property(lambda self: self._description["name"])
+    axes = property(lambda self: self._description["axes"])
+    bodies = property(lambda self: self._description["bodies"])
+
+    def modes(self, at=None, count=1000):
+        """As `mtacc dynamics modes --json`: frequencies, damping, dominant body, mass-normalised shapes."""
+        return self._core.modes(_at(at), count)
+
+    def frf(self, frequencies, at=None, method="modal"):
+        """3x3 FRF of the TCP relative to the workpiece (um/N, complex), one per frequency (Hz)."""
+        rows = self._core.frf(list(map(float, frequencies)), _at(at), method)["frf"]
+        h = np.empty((len(rows), 3, 3), complex)
+        for s, row in enumerate(rows):
+            for i, a in enumerate("xyz"):
+                for k, b in enumerate("xyz"):
+                    magnitude, phase = row[f"H{a}{b}"]
+                    h[s, i, k] = magnitude * np.exp(1j * np.radians(phase))
+        return h
+
+    def acceleration_response(self, at=None):
+        """As `mtacc dynamics accel --json`: {"Hx": {axis: um/g_n}, ...} (seed 000 Table 7.1 form)."""
+        return self._core.acceleration_response(_at(at))["response_um_per_g"]
+
+    def map(self, quantity="Hx/X", axes=("Y", "Z"), grid=(20, 20), at=None):
+        """As `mtacc dynamics map --json`: a quantity over a grid of two axes, with its statistics."""
+        return self._core.map(quantity, axes[0], axes[1], int(grid[0]), int(grid[1]), _at(at))

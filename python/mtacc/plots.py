@@ -253,7 +253,11 @@ def ballbar_polar(result, title=None):
 def identified_values(result, truth=None):
     """Identified machine parameters with their 95 % intervals (1.96 u), lengths and angles on
     separate axes; `truth` (name -> value in the same unit) adds the simulated values."""
-    names, values, u, units = result["names"], np.array(result["values"]), np.array(result["uncertainty"]), result["units"]
+    estimates = result["estimates"]
+    names = [e["parameter"] for e in estimates]
+    values = np.array([e["value"] for e in estimates])
+    u = np.array([e["standard_uncertainty"] for e in estimates])
+    units = [e["unit"] for e in estimates]
     keep = [k for k, n in enumerate(names) if "." not in n]  # machine parameters, not set-up errors
     groups = [(unit, [k for k in keep if units[k] == unit]) for unit in ("um", "urad")]
     groups = [(unit, ks) for unit, ks in groups if ks]
@@ -321,7 +325,7 @@ def mode_shape_view(structure, modes, index, at=None):
     displaced by mode `index` (coloured by the axis that moves them, seed 000 Fig. 6.2),
     scaled to a visible deflection."""
     at = at or {}
-    shape = np.asarray(modes["shapes"])[:, index]
+    shape = np.asarray(modes["modes"][index]["shape"])
     bodies = structure.bodies
     travel_shift = {a["name"]: at.get(a["name"], 0.0) for a in structure.axes}
     direction = {"X": np.array([1.0, 0, 0]), "Y": np.array([0, 1.0, 0]), "Z": np.array([0, 0, 1.0])}
@@ -349,7 +353,7 @@ def mode_shape_view(structure, modes, index, at=None):
         ax.set_title(label, fontsize=9)
         ax.set_xlabel("XYZ"[u] + " [mm]")
         ax.set_ylabel("XYZ"[v] + " [mm]")
-    fig.suptitle(f"mode {index + 1}: {modes['frequencies_hz'][index]:.1f} Hz (deflection magnified)", fontsize=10)
+    fig.suptitle(f"mode {index + 1}: {modes['modes'][index]['frequency_hz']:.1f} Hz (deflection magnified)", fontsize=10)
     fig.tight_layout()
     return fig
 

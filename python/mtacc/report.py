@@ -74,123 +74,80 @@ def fmt_pose(pose):
     return ", ".join(f"{k}={v:.4g}" for k, v in pose.items())
 
 
-def circle_test(machine, progress):
-    """A circle in the X-Y plane of the workpiece with the rotary axes at zero, as an ISO 230-4
-    circular test sees it: the radial component of the TCP error around the circle."""
-    axes = {a["name"]: a for a in machine.axes}
-    if not all(n in axes for n in ("X", "Y", "Z")):
+def circle_test(machine):
+    """The X-Y circle the library computes (the radial component of the TCP error, as an ISO 230-4
+    circular test sees the geometric errors)."""
+    c = machine.xy_circle()
+    if c is None:
         return ""
-    mid = {n: 0.5 * sum(axes[n]["travel"]) for n in ("X", "Y", "Z")}
-    radius = 0.25 * min(axes["X"]["travel"][1] - axes["X"]["travel"][0], axes["Y"]["travel"][1] - axes["Y"]["travel"][0])
-    phi = np.linspace(0.0, 360.0, 361)
-    names = machine.axis_names
-    q = np.zeros((phi.size, len(names)))
-    for k, n in enumerate(names):
-        q[:, k] = mid.get(n, 0.0)
-    for k, n in enumerate(names):
-        if axes[n]["type"] == "rotary" and axes[n]["travel"] is not None and not (axes[n]["travel"][0] <= 0 <= axes[n]["travel"][1]):
-            q[:, k] = axes[n]["travel"][0]
-    nominal, _ = machine.fk(q, nominal=True)
-    centre, _ = machine.fk(q[:1], nominal=True)
-    # Commanded circle: X, Y around their mid-travel; the TCP follows it in the workpiece frame.
-    q[:, names.index("X")] += radius * np.cos(np.radians(phi))
-    q[:, names.index("Y")] += radius * np.sin(np.radians(phi))
-    nominal, _ = machine.fk(q, nominal=True)
-    err = machine.tcp_errors(q)
-    radial_dir = nominal - centre
-    radial_dir /= np.linalg.norm(radial_dir, axis=1, keepdims=True)
-    radial = np.sum(err[:, :3] * radial_dir, axis=1)
-    progress("circular test")
-    fig = plots.polar_deviation(phi, radial, title=f"Circle R {radius:g} mm in X-Y, radial TCP deviation")
+    fig = plots.polar_deviation(c["phi_deg"], c["radial_deviation_um"],
+                                title=f"Circle R {c['radius_mm']:g} mm in X-Y, radial TCP deviation")
     return ("<h2>Circular test (X-Y)</h2><p>A circle of radius "
-            f"{radius:g} mm around mid-travel with the rotary axes at zero; the radial component of the TCP "
+            f"{c['radius_mm']:g} mm around mid-travel with the rotary axes at zero; the radial component of the TCP "
             "error is what a ballbar would record from the geometric errors alone (no servo effects).</p>"
             + figure(fig, "Radial TCP deviation around the circle (reference circle grey, deviation red)"))
 
 
-def five_axis_circle(machine, top_parameter, progress):
-    """A TCP circle with the tool tilted 30 degrees towards its centre (a cone-frustum-like
-    5-axis path): axis positions, radial deviation and the sensitivity to the largest error."""
-    rotary = [a for a in machine.axes if a["type"] == "rotary"]
-    if len(rotary) != 2:
-        return ""
-    radius, tilt, centre = 40.0, np.radians(30.0), np.array([-60.0, 0.0, 50.0])
-    phi = np.linspace(0.0, 360.0, 181)
-    t = np.radians(phi)
-    tcps = centre + np.stack([radius * np.cos(t), radius * np.sin(t), np.zeros_like(t)], axis=1)
-    tools = np.stack([-np.sin(tilt) * np.cos(t), -np.sin(tilt) * np.sin(t), np.full_like(t, np.cos(tilt))], axis=1)
+def five_axis_circle(machine, top_parameter):
+    """The library's 5-axis circle: axis positions, radial deviation and the sensitivity to the
+    largest error."""
     try:
-        q = machine.ik_path(tcps, tools)
+        c = machine.tilted_circle()
     except (UnreachablePose, InputError) as e:
         return f"<h2>5-axis circle</h2><p>Not reachable on this machine: {html.escape(str(e))}</p>"
-    progress("5-axis circle")
-    err = machine.tcp_errors(q)
-    radial_dir = (tcps - centre) * [1, 1, 0]
-    radial_dir /= np.linalg.norm(radial_dir, axis=1, keepdims=True)
-    radial = np.sum(err[:, :3] * radial_dir, axis=1)
-    out = ("<h2>5-axis circle</h2><p>TCP circle of radius 40 mm around (-60, 0, 50) mm in the workpiece frame, "
-           "tool tilted 30° towards the circle's centre (a cone-frustum-like path), solved through the generic "
+    if c is None:
+        return ""
+    q, phi = np.asarray(c["q"]), np.asarray(c["phi_deg"])
+    centre = ", ".join(f"{v:g}" for v in c["centre_mm"])
+    out = (f"<h2>5-axis circle</h2><p>TCP circle of radius {c['radius_mm']:g} mm around ({centre}) mm in the workpiece "
+           "frame, tool tilted 30° towards the circle's centre (a cone-frustum-like path), solved through the generic "
            "inverse kinematics as one continuous path.</p>")
     out += figure(plots.axis_positions_along_path(machine, q, phi, "φ [deg]"), "Axis positions along the path")
-    out += figure(plots.polar_deviation(phi, radial, title="5-axis circle, radial TCP deviation"),
+    out += figure(plots.polar_deviation(phi, c["radial_deviation_um"], title="5-axis circle, radial TCP deviation"),
                   "Radial TCP deviation along the 5-axis circle")
     if top_parameter:
-        out += figure(plots.sensitivity_along_path(machine, q, top_parameter, direction=radial_dir, s=phi),
+        out += figure(plots.sensitivity_along_path(machine, q, top_parameter, direction=np.asarray(c["radial_direction"]), s=phi),
                       f"Sensitivity of the TCP to {top_parameter} along the path (dashed: radial, the sensitivity coefficient k)")
     return out
 
 
-def cone_family(machine):
-    """The seed 000 preset for the machine's family: both rotary axes on the workpiece side
-    (tilting table), both on the tool side (double pivot head), or one on each."""
-    sides = [a["side"] for a in machine.axes if a["type"] == "rotary"]
-    if len(sides) != 2:
-        return None
-    if sides.count("workpiece") == 2:
-        return "tilting table", dict(alpha=45.0, beta=30.0, radius=40.0, centre=(-65.0, 0.0, 150.0), gamma=0.0)
-    if sides.count("tool") == 2:
-        return "double pivot head", dict(alpha=-45.0, beta=30.0, radius=40.0, centre=(0.0, 0.0, 0.0), gamma=45.0)
-    return "swivel head and rotary table", dict(alpha=45.0, beta=30.0, radius=40.0,
-                                                 centre=(100.0 - 40.0 * np.cos(np.radians(30.0)), 0.0, 0.0), gamma=0.0)
-
-
-def cone_section(machine, progress, monte_carlo=200):
+def cone_section(machine, monte_carlo=200):
     """The cone-frustum test piece of seed 000 with the recommended set-up of §3.6."""
-    family = cone_family(machine)
+    family = machine.cone_preset_name()
     if family is None:
         return ""
-    name, spec = family
     try:
-        cone = machine.cone(**spec, points=720, single_errors=True)
+        cone = machine.cone(preset=family, points=720, single_errors=True)
     except (UnreachablePose, InputError) as e:
         return f"<h2>Cone-frustum test piece</h2><p>The recommended set-up is not reachable: {html.escape(str(e))}</p>"
     try:  # the bundled limits (seed 000 Table 3.9) name the axes of a B-C tilting table
-        cone["monte_carlo"] = machine.cone(**spec, points=720, monte_carlo=monte_carlo)["monte_carlo"]
+        cone["monte_carlo"] = machine.cone(preset=family, points=720, monte_carlo=monte_carlo)["monte_carlo"]
     except InputError as e:
         cone["monte_carlo_skipped"] = str(e)
-    progress("cone frustum")
-    out = (f"<h2>Cone-frustum test piece (seed 000)</h2><p>Recommended set-up for a {name} (§3.6): α {spec['alpha']:g}°, "
-           f"β {spec['beta']:g}°, r {spec['radius']:g} mm, centre ({', '.join(f'{c:g}' for c in spec['centre'])}) mm, "
-           f"γ {spec['gamma']:g}°; 720 points, feed 500 mm/min.</p>")
+    spec, path = cone["cone"], cone["path"]
+    phi, q = np.asarray(path["phi_deg"]), np.asarray(path["q"])
+    out = (f"<h2>Cone-frustum test piece (seed 000)</h2><p>Recommended set-up '{family}' (§3.6): α {spec['alpha_deg']:g}°, "
+           f"β {spec['beta_deg']:g}°, r {spec['radius_mm']:g} mm, centre ({', '.join(f'{c:g}' for c in spec['centre_mm'])}) mm, "
+           f"γ {spec['gamma_deg']:g}°; {spec['points']} points, feed {spec['feed_mm_per_min']:g} mm/min.</p>")
     for w in cone["warnings"]:
         out += f"<p><b>Warning:</b> {html.escape(w)}</p>"
     out += table(["axis", "min", "max", "range", "reversals", "max speed [/s]", "max accel. [/s²]"],
                   [[a["axis"], f'{a["min"]:.3f}', f'{a["max"]:.3f}', f'{a["range"]:.3f}', len(a["reversals_phi_deg"]),
                     f'{a["max_speed_per_s"]:.3f}', f'{a["max_acceleration_per_s2"]:.3f}'] for a in cone["axes"]])
-    out += figure(plots.axis_positions_along_path(machine, cone["q"], cone["phi"], "φ [deg]"), "Axis positions over φ")
-    out += figure(plots.polar_axis_positions(machine, cone["phi"], cone["q"]), "Radial representation of the axis positions")
-    out += figure(plots.normal_components(cone["phi"], cone["normals_machine"]),
+    out += figure(plots.axis_positions_along_path(machine, q, phi, "φ [deg]"), "Axis positions over φ")
+    out += figure(plots.polar_axis_positions(machine, phi, q), "Radial representation of the axis positions")
+    out += figure(plots.normal_components(phi, np.asarray(path["normals_machine"])),
                   "Surface normal in the machine frame: the direction in which errors show on the cone")
     if "form_error_um" in cone:
         out += (f"<p class='key'>Equivalent cone form error of this machine's errors: "
                 f"<b>{cone['form_error_um']:.2f} µm</b> (exact procedure, §3.9).</p>")
-        out += figure(plots.polar_deviation(cone["phi"], cone["deviation_um"], title="All errors: normal deviation after the circle fit",
+        out += figure(plots.polar_deviation(phi, cone["deviation_um"], title="All errors: normal deviation after the circle fit",
                                             remove_mean=False), "Cone form deviation of all errors together")
         singles = sorted(cone["single_errors"], key=lambda e: -e["form_error_um"])
         out += table(["error", "form error [µm]", "type (§3.10.4)"],
                      [[e["error"], f'{e["form_error_um"]:.3f}', e["type"]] for e in singles[:12]])
         for e in singles[:3]:
-            out += figure(plots.polar_deviation(cone["phi"], e["deviation_um"], title=f'{e["error"]} alone', remove_mean=False),
+            out += figure(plots.polar_deviation(phi, e["deviation_um"], title=f'{e["error"]} alone', remove_mean=False),
                           f'Cone form deviation caused by {e["error"]} alone')
     if "monte_carlo" in cone:
         mc = cone["monte_carlo"]
@@ -210,8 +167,8 @@ def identification_section(machine, plan):
     out = f"<h2>Measurement and identification: {html.escape(plan)}</h2>"
     obs = machine.observability(plan)
     with tempfile.TemporaryDirectory() as tmp:
-        runs = machine.simulate(plan, noise_um=0.5, seed=1, output_dir=tmp)
-        files = [os.path.join(tmp, r["name"] + ".csv") for r in runs]
+        runs = machine.simulate(plan, noise="0.5 um", seed=1, output_dir=tmp)["runs"]
+        files = [r["file"] for r in runs]
         out += (f"<p>{len(runs)} runs simulated on this machine with its errors and 0.5 µm reading noise, written "
                 "as measurement files and read back as measured data would be.</p>")
         rows = []
@@ -233,11 +190,11 @@ def identification_section(machine, plan):
         out += f"<ul>{findings}</ul>"
         if not obs["identifiable"]:
             return out + "<p>Identification skipped: the plan cannot determine its parameter set.</p>"
-        result = machine.identify(files, obs["names"][:len([n for n in obs["names"] if "." not in n])])
+        result = machine.identify(files, plan=plan)
     truth = {}
-    for name in result["names"]:
-        if "." not in name:
-            truth[name] = machine.errors[name] * (1e3 if machine.errors.unit(name) == "mm" else 1e6)
+    for e in result["estimates"]:
+        if "." not in e["parameter"]:
+            truth[e["parameter"]] = machine.errors[e["parameter"]] * (1e3 if e["unit"] == "um" else 1e6)
     out += figure(plots.identified_values(result, truth), "Identified parameters (95 % intervals) and the simulated values")
     out += (f"<p>Residual standard deviation {result['sigma_um']:.3f} µm (RMS {result['residual_rms_um']:.3f} µm, "
             f"largest {result['residual_max_um']:.3f} µm) after {result['iterations']} iterations. A residual well above "
@@ -255,10 +212,9 @@ def dynamics_section(structure_name, compare=None):
     out = f"<h2>Structural dynamics: {html.escape(s.name)}</h2>"
     out += ("<p>Rigid-body model (seed 000 part II): " + f"{len(s.bodies)} bodies, {6 * len(s.bodies)} DOF, evaluated at "
             + ", ".join(f"{k} = {v:g} mm" for k, v in at.items()) + " (position 1: Y and Z extended, X centred).</p>")
-    modes = s.modes(at=at)
-    rows = [[k + 1, f"{f:.1f}", f"{fd:.1f}", f"{100 * z:.2f}"]
-            for k, (f, fd, z) in enumerate(zip(modes["frequencies_hz"][:8], modes["damped_frequencies_hz"][:8],
-                                               modes["damping_ratios"][:8]))]
+    modes = s.modes(at=at, count=8)
+    rows = [[k + 1, f"{m['frequency_hz']:.1f}", f"{m['damped_frequency_hz']:.1f}", f"{100 * m['damping_ratio']:.2f}"]
+            for k, m in enumerate(modes["modes"])]
     out += table(["mode", "f [Hz]", "damped f [Hz]", "ζ [%]"], rows, left=0)
     out += figure(plots.mode_shape_view(s, modes, 0, at), "First mode shape")
     f = np.arange(1.0, 201.0)
@@ -267,7 +223,7 @@ def dynamics_section(structure_name, compare=None):
     names = [a["name"] for a in s.axes]
     out += "<p>Quasi-static TCP displacement per axis acceleration [µm/g<sub>n</sub>] (the form of seed 000 Table 7.1):</p>"
     out += table(["response"] + [f"{n}''" for n in names],
-                 [[f"H{c}"] + [f"{r[i, k]:.1f}" for k in range(len(names))] for i, c in enumerate("xyz")])
+                 [[f"H{c}"] + [f"{r[f'H{c}'][n]:.1f}" for n in names] for c in "xyz"])
     maps = [s.map("Hx/X")]
     out += figure(plots.dynamics_map(maps[0], f"|Hx/X''| over Y-Z: {s.name}"), "Inertial compliance over the Y-Z section")
     if compare:
@@ -355,13 +311,13 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
                        f'TCP position error over the X-Y plane with {tilt["name"]} = {angle:g}°')
     step("volumetric error maps")
     parts.append("<h2>Volumetric error maps</h2>" + maps)
-    parts.append(circle_test(machine, lambda s: None))
+    parts.append(circle_test(machine))
     step("circular test")
     parameters = set(machine.errors.names())
     top = next((e["error"] for e in budget["entries"] if e["error"] in parameters), None)
-    parts.append(five_axis_circle(machine, top, lambda s: None))
+    parts.append(five_axis_circle(machine, top))
     step("5-axis circle")
-    parts.append(cone_section(machine, lambda s: None))
+    parts.append(cone_section(machine))
     step("cone frustum")
     if plan:
         parts.append(identification_section(machine, plan))

@@ -5,6 +5,8 @@
 #include <charconv>
 #include <string>
 
+#include "mtacc/core/input_error.hpp"
+
 namespace mtacc {
 namespace {
 
@@ -57,5 +59,16 @@ std::optional<Quantity> parseQuantity(std::string_view text, std::string* reason
   }
   return fail("unknown unit '" + std::string(unit) + "' (length: nm um mm cm m in; angle: rad mrad urad um/m mm/m deg arcmin arcsec)");
 }
+
+double parseQuantityAs(const std::string& text, Dimension expected, const std::string& key) {
+  std::string reason;
+  const auto q = parseQuantity(text, &reason);
+  if (!q) throw InputError(InputLocation{"", 0, key}, reason);
+  if (q->dimension != expected) throw InputError(InputLocation{"", 0, key}, std::string("expected ") + withArticle(expected));
+  return q->value;
+}
+
+double toDisplay(double value, Dimension d) { return d == Dimension::Length ? value * 1e3 : value * 1e6; }
+const char* displayUnit(Dimension d) { return d == Dimension::Length ? "um" : "urad"; }
 
 }  // namespace mtacc

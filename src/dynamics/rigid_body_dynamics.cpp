@@ -11,7 +11,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
-#include "mtacc/kinematics/forward.hpp"
+#include "mtacc/core/parallel.hpp"
 
 namespace mtacc {
 namespace {

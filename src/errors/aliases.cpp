@@ -68,4 +68,9 @@ std::optional<Alias> findAlias(const std::string& name) {
   return std::nullopt;
 }
 
+double isoSign(const std::string& name) {
+  const auto alias = findAlias(name);
+  return alias && !alias->composite() ? alias->terms[0].sign : 1.0;
+}
+
 }  // namespace mtacc

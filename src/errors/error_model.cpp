@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/errors/aliases.hpp"
 
 namespace mtacc {
@@ -94,21 +95,25 @@ Parameter findParameter(const Machine& machine, const ErrorModel& errors, const 
   std::string iso = name;
   if (const auto alias = findAlias(name)) {
     if (alias->composite())
-      throw std::invalid_argument("'" + name + "' (" + alias->source + ") acts as " + alias->isoExpression() +
-                                  " in the ISO model; name those parameters");
+      throw InputError(InputLocation{"", 0, name}, "'" + name + "' (" + alias->source + ") acts as " +
+                                                       alias->isoExpression() + " in the ISO model; name those parameters");
     iso = alias->terms[0].isoName;
   }
   const auto all = parameterCatalogue(machine, errors);
   for (const auto& p : all)
     if (p.name == iso) return p;
   std::string known;
-  for (const auto& p : all) {
-    if (p.kind != ParameterKind::Location) continue;
-    known += (known.empty() ? "" : " ") + p.name;
-  }
-  throw std::invalid_argument("unknown error parameter '" + name + "'" +
-                              (iso != name ? " (alias of " + iso + ")" : "") +
-                              " for this machine; location errors are: " + known);
+  for (const auto& p : all) known += (known.empty() ? "" : " ") + p.name;
+  throw InputError(InputLocation{"", 0, name}, "unknown error parameter '" + name + "'" +
+                                                   (iso != name ? " (alias of " + iso + ")" : "") +
+                                                   " for this machine; its parameters are: " + known);
+}
+
+ErrorModel singleError(const Machine& machine, const ErrorModel& shape, const Parameter& p, double value) {
+  ErrorModel e = shape;
+  for (const auto& q : parameterCatalogue(machine, e)) setParameterValue(e, q, 0.0);
+  setParameterValue(e, p, value);
+  return e;
 }
 
 }  // namespace mtacc

@@ -109,7 +109,7 @@ PoseTable posesFromCsv(const Machine& m, const CsvTable& t, const std::vector<st
         dirCols[a] = static_cast<int>(c);
         anyDir = true;
       }
-  if (anyDir) p.direction = Eigen::MatrixXi::Zero(n, static_cast<long>(names.size()));
+  if (anyDir) p.direction = DirectionMatrix::Zero(n, static_cast<long>(names.size()));
   for (long r = 0; r < n; ++r) {
     for (size_t a = 0; a < names.size(); ++a) {
       const double v = t.rows[static_cast<size_t>(r)][static_cast<size_t>(cols[a])];

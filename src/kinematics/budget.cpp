@@ -5,21 +5,10 @@
 #include <stdexcept>
 
 namespace mtacc {
-namespace {
-
-ErrorModel withOnly(const Machine& machine, const ErrorModel& shape, const Parameter& p, double value) {
-  ErrorModel e = shape;
-  for (const auto& q : parameterCatalogue(machine, e)) setParameterValue(e, q, 0.0);
-  setParameterValue(e, p, value);
-  return e;
-}
-
-}  // namespace
-
 double sensitivityCoefficient(std::shared_ptr<const Machine> machine, const ErrorModel& shape, const Parameter& p,
                               double epsilon, const double* q, const Vec3& direction) {
   const auto nominal = compileNominal(machine);
-  const auto actual = compile(machine, withOnly(*machine, shape, p, epsilon));
+  const auto actual = compile(machine, singleError(*machine, shape, p, epsilon));
   const Vec3 e = toolPoint(actual, q).position - toolPoint(nominal, q).position;
   return direction.normalized().dot(e) / epsilon;
 }
@@ -29,7 +18,7 @@ std::vector<BudgetItem> budgetItemsAtMagnitude(const Machine& machine, double le
   const ErrorModel zero = ErrorModel::zero(machine);
   for (const auto& p : parameterCatalogue(machine, zero)) {
     const double m = p.dimension == Dimension::Length ? length : angle;
-    items.push_back({p.name, p.dimension, m, withOnly(machine, zero, p, m)});
+    items.push_back({p.name, p.dimension, m, singleError(machine, zero, p, m)});
   }
   for (int a = 0; a < static_cast<int>(machine.axes.size()); ++a) {
     for (int c = 0; c < 6; ++c) {
@@ -46,7 +35,7 @@ std::vector<BudgetItem> budgetItemsOfModel(const Machine& machine, const ErrorMo
   std::vector<BudgetItem> items;
   for (const auto& p : nonZeroParameters(machine, errors)) {
     const double v = parameterValue(errors, p);
-    items.push_back({p.name, p.dimension, v, withOnly(machine, errors, p, v)});
+    items.push_back({p.name, p.dimension, v, singleError(machine, errors, p, v)});
   }
   return items;
 }

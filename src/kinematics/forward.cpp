@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
-#include <thread>
 #include <vector>
 
 namespace mtacc {
@@ -216,59 +214,28 @@ Vec6 poseError(const Pose& actual, const Pose& nominal) {
   return e;
 }
 
-void parallelFor(long n, int threads, const std::function<void(long, long)>& body) {
-  int t = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  t = static_cast<int>(std::min<long>(t, std::max(1L, n / 256)));
-  if (t <= 1) {
-    body(0, n);
-    return;
-  }
-  std::vector<std::thread> pool;
-  const long chunk = (n + t - 1) / t;
-  for (int i = 1; i < t; ++i) {
-    const long begin = i * chunk;
-    const long end = std::min(n, begin + chunk);
-    if (begin < end) pool.emplace_back(body, begin, end);
-  }
-  // The calling thread takes the first chunk.
-  std::exception_ptr failure;
-  try {
-    body(0, std::min(n, chunk));
-  } catch (...) {
-    failure = std::current_exception();
-  }
-  for (auto& th : pool) th.join();
-  if (failure) std::rethrow_exception(failure);
-}
-
-void toolPoints(const KinematicModel& m, const JointMatrix& q, const Eigen::MatrixXi& dir, PointMatrix& positions,
+void toolPoints(const KinematicModel& m, const JointMatrix& q, const DirectionMatrix& dir, PointMatrix& positions,
                 PointMatrix& directions, int threads) {
   const long n = q.rows();
   positions.resize(n, 3);
   directions.resize(n, 3);
   const bool hasDir = dir.size() > 0;
   parallelFor(n, threads, [&](long begin, long end) {
-    Eigen::VectorXi d(q.cols());
     for (long i = begin; i < end; ++i) {
-      if (hasDir) d = dir.row(i).transpose();
-      const ToolPoint tp = toolPoint(m, q.row(i).data(), hasDir ? d.data() : nullptr);
+      const ToolPoint tp = toolPoint(m, q.row(i).data(), hasDir ? dir.row(i).data() : nullptr);
       positions.row(i) = tp.position.transpose();
       directions.row(i) = tp.direction.transpose();
     }
   });
 }
 
-Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor> toolErrors(const KinematicModel& actual,
-                                                                      const KinematicModel& nominal,
-                                                                      const JointMatrix& q,
-                                                                      const Eigen::MatrixXi& dir, int threads) {
-  Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor> out(q.rows(), 6);
+PoseErrorMatrix toolErrors(const KinematicModel& actual, const KinematicModel& nominal, const JointMatrix& q,
+                           const DirectionMatrix& dir, int threads) {
+  PoseErrorMatrix out(q.rows(), 6);
   const bool hasDir = dir.size() > 0;
   parallelFor(q.rows(), threads, [&](long begin, long end) {
-    Eigen::VectorXi d(q.cols());
     for (long i = begin; i < end; ++i) {
-      if (hasDir) d = dir.row(i).transpose();
-      out.row(i) = poseError(toolInWorkpiece(actual, q.row(i).data(), hasDir ? d.data() : nullptr),
+      out.row(i) = poseError(toolInWorkpiece(actual, q.row(i).data(), hasDir ? dir.row(i).data() : nullptr),
                              toolInWorkpiece(nominal, q.row(i).data()))
                        .transpose();
     }

@@ -9,7 +9,6 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
-#include <thread>
 
 #include <Eigen/Dense>
 
@@ -297,10 +296,6 @@ void checkReadings(const IdentificationProblem& p, Eigen::Index columns) {
   if (total <= columns)
     throw std::invalid_argument("too few readings: " + std::to_string(total) + " for " + std::to_string(columns) +
                                 " unknowns");
-}
-
-int threadCount(int requested) {
-  return requested > 0 ? requested : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 // Plain least squares with Ceres' TinySolver, its dense Levenberg-Marquardt for few unknowns,

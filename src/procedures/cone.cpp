@@ -39,6 +39,14 @@ std::optional<ConeSpec> conePreset(const std::string& name) {
   return s;
 }
 
+std::optional<std::string> conePresetName(const Machine& machine) {
+  int tool = 0, workpiece = 0;
+  for (const auto& a : machine.axes)
+    if (a.type == AxisType::Rotary) ++(a.side == Side::Tool ? tool : workpiece);
+  if (tool + workpiece != 2) return std::nullopt;
+  return workpiece == 2 ? "tilting-table" : tool == 2 ? "double-pivot" : "swivel-head";
+}
+
 ConePath conePath(const ConeSpec& s, int n) {
   ConePath p;
   const Mat3 r = coneRotation(s);
@@ -104,17 +112,19 @@ ConeMotion coneMotion(const KinematicModel& nominal, const ConeSpec& spec, const
   const auto sol = solveIkPath(nominal, points, tools, o);
   const size_t n = path.points.size();
   const int axes = nominal.jointCount;
-  for (size_t i = 0; i < n; ++i) out.q.push_back(sol[i].q);
+  out.q.resize(static_cast<Eigen::Index>(n), axes);
+  for (size_t i = 0; i < n; ++i)
+    for (int k = 0; k < axes; ++k) out.q(static_cast<Eigen::Index>(i), k) = sol[i].q[static_cast<size_t>(k)];
   std::vector<double> shift(static_cast<size_t>(axes));
   for (int k = 0; k < axes; ++k) shift[static_cast<size_t>(k)] = sol[n].q[static_cast<size_t>(k)] - sol[0].q[static_cast<size_t>(k)];
   auto at = [&](long i, int k) {  // periodic access, with the closing shift of each axis
     const long w = ((i % static_cast<long>(n)) + static_cast<long>(n)) % static_cast<long>(n);
     const double turns = std::floor(static_cast<double>(i) / static_cast<double>(n));
-    return out.q[static_cast<size_t>(w)][static_cast<size_t>(k)] + turns * shift[static_cast<size_t>(k)];
+    return out.q(w, k) + turns * shift[static_cast<size_t>(k)];
   };
   const double dphi = 2.0 * kPi / static_cast<double>(n);
   const double phiDot = feed / std::abs(spec.radius);  // rad/min
-  out.direction.assign(n, std::vector<int>(static_cast<size_t>(axes), 0));
+  out.direction = DirectionMatrix::Zero(static_cast<Eigen::Index>(n), axes);
   for (int k = 0; k < axes; ++k) {
     AxisMotion a;
     a.axis = m.axes[static_cast<size_t>(k)].name;
@@ -141,7 +151,7 @@ ConeMotion coneMotion(const KinematicModel& nominal, const ConeSpec& spec, const
     for (size_t i = n; i-- > 0 && previous == 0;) previous = sign(i);
     for (size_t i = 0; i < n; ++i) {
       const int s = sign(i);
-      out.direction[i][static_cast<size_t>(k)] = s;
+      out.direction(static_cast<Eigen::Index>(i), k) = s;
       if (s != 0 && previous != 0 && s != previous) a.reversalsPhi.push_back(path.phi[i]);
       if (s != 0) previous = s;
     }
@@ -189,8 +199,9 @@ ConeFormResult finish(const ConePath& path, std::vector<double> e) {
 
 std::vector<Vec3> actualPoints(const KinematicModel& actual, const ConeMotion& motion) {
   std::vector<Vec3> pts;
-  pts.reserve(motion.q.size());
-  for (size_t i = 0; i < motion.q.size(); ++i) pts.push_back(toolPoint(actual, motion.q[i].data(), motion.direction[i].data()).position);
+  pts.reserve(static_cast<size_t>(motion.q.rows()));
+  for (Eigen::Index i = 0; i < motion.q.rows(); ++i)
+    pts.push_back(toolPoint(actual, motion.q.row(i).data(), motion.direction.row(i).data()).position);
   return pts;
 }
 
@@ -245,7 +256,7 @@ ConeFormResult coneFormErrorFirstOrder(const KinematicModel& actual, const Kinem
   const auto pts = actualPoints(actual, motion);
   std::vector<double> e(pts.size());
   for (size_t i = 0; i < pts.size(); ++i)
-    e[i] = path.normals[i].dot(pts[i] - toolPoint(nominal, motion.q[i].data()).position);
+    e[i] = path.normals[i].dot(pts[i] - toolPoint(nominal, motion.q.row(static_cast<Eigen::Index>(i)).data()).position);
   return finish(path, std::move(e));
 }
 

@@ -5,7 +5,8 @@ import sys
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "python"))
+if not os.environ.get("PYTHONPATH"):  # run outside ctest: the build tree's package
+    sys.path.insert(0, str(ROOT / "build" / "python"))
 
 
 @pytest.fixture(scope="session")

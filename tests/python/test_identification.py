@@ -12,24 +12,25 @@ CLI = os.environ.get("MTACC_CLI", "mtacc")
 
 def test_api_and_cli_identify_alike(tmp_path):
     m = mtacc.Machine("tilting-table")
-    runs = m.simulate("tilting-table-rtest", noise_um=0.5, seed=3, output_dir=tmp_path)
-    files = [str(tmp_path / (r["name"] + ".csv")) for r in runs]
+    runs = m.simulate("tilting-table-rtest", noise="0.5 um", seed=3, output_dir=tmp_path)["runs"]
+    files = [r["file"] for r in runs]
+    assert files == [str(tmp_path / (r["name"] + ".csv")) for r in runs]
     params = ["X0B", "Z0B", "A0B", "C0B", "X0C", "Y0C", "A0C", "B0C", "C0Y", "A0Z", "B0Z"]
     api = m.identify(files, params)
-    cli = json.loads(subprocess.run([CLI, "identify", "tilting-table", "--json", "--params", ",".join(params),
-                                     *sum((["--data", f] for f in files), [])],
-                                    capture_output=True, text=True, check=True).stdout)
-    for name, value, u in zip(api["names"], api["values"], api["uncertainty"]):
-        row = next(e for e in cli["estimates"] if e["parameter"] == name)
-        assert row["value"] == pytest.approx(value, abs=1e-9)
-        assert row["standard_uncertainty"] == pytest.approx(u, abs=1e-9)
+    # One --data with several files, and --data repeated: both forms of the README.
+    one = subprocess.run([CLI, "identify", "tilting-table", "--json", "--params", ",".join(params), "--data", *files],
+                         capture_output=True, text=True, check=True).stdout
+    repeated = subprocess.run([CLI, "identify", "tilting-table", "--json", "--params", ",".join(params),
+                               *sum((["--data", f] for f in files), [])], capture_output=True, text=True, check=True).stdout
+    assert one == repeated
+    assert json.loads(one) == api  # the same workflow, serialised once
     assert api["observability"]["identifiable"]
+    assert [e["parameter"] for e in api["estimates"]][:len(params)] == params
 
 
 def test_unidentifiable_set_is_refused(tmp_path):
     m = mtacc.Machine("tilting-table")
-    runs = m.simulate("tilting-table-rtest", output_dir=tmp_path)
-    files = [str(tmp_path / (r["name"] + ".csv")) for r in runs]
+    files = [r["file"] for r in m.simulate("tilting-table-rtest", output_dir=tmp_path)["runs"]]
     with pytest.raises(mtacc.InputError, match="B0B and B0C act alike"):
         m.identify(files, ["B0B", "B0C"])
 
@@ -41,3 +42,6 @@ def test_ballbar_evaluation(tmp_path):
     ev = mtacc.Machine("three-axis-vertical").evaluate_ballbar(out)
     assert ev["diagnostics"]["servo_mismatch_ms"] == pytest.approx(1.0, rel=0.02)
     assert len(ev["directions"]) == 2
+    cli = json.loads(subprocess.run([CLI, "evaluate", "three-axis-vertical", str(out), "--json"], capture_output=True, text=True,
+                                    check=True).stdout)
+    assert cli == ev

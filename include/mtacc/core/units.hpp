@@ -20,6 +20,12 @@ struct Quantity {
 // Parses "<number> <unit>". Returns nullopt with a reason when the text is not a quantity
 // (no number, no unit, unknown unit, not finite).
 std::optional<Quantity> parseQuantity(std::string_view text, std::string* reason = nullptr);
+// The same for a value of a known dimension; throws InputError naming `key` otherwise.
+double parseQuantityAs(const std::string& text, Dimension expected, const std::string& key);
+
+// Errors are shown in um and urad at every interface: the value in that unit, and its name.
+double toDisplay(double value, Dimension d);  // mm -> um, rad -> urad
+const char* displayUnit(Dimension d);         // "um" or "urad"
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "mtacc/core/parallel.hpp"
 #include "mtacc/core/statistics.hpp"
 #include "mtacc/dynamics/structure.hpp"
 
@@ -49,9 +50,9 @@ Frf frfDirect(const StructureMatrices& m, const std::vector<double>& frequencies
 Frf frfModal(const StructureMatrices& m, const Modes& modes, const std::vector<double>& frequencies);
 Eigen::Matrix3d staticCompliance(const StructureMatrices& m);
 // At each set of axis positions: the largest |H_ij| over the frequencies (modal
-// superposition, all modes), m/N, threads = 0 for every core.
+// superposition, all modes), m/N; threads as in core/parallel.hpp.
 std::vector<Eigen::Matrix3d> frfPeaks(const StructureModel& model, const std::vector<std::vector<double>>& positions,
-                                      const std::vector<double>& frequencies, int threads = 0);
+                                      const std::vector<double>& frequencies, int threads = kAllCores);
 // Quasi-static relative displacement per acceleration of each axis: 3 x axes, m per (m/s^2);
 // multiply by kStandardGravity * 1e6 for um/g_n (the form of seed 000 Table 7.1).
 Eigen::Matrix<double, 3, Eigen::Dynamic> accelerationResponse(const StructureMatrices& m);
@@ -75,6 +76,6 @@ struct DynamicsMap {
 };
 DynamicsMap dynamicsMap(const StructureModel& model, const std::vector<double>& fixed, const std::string& axisA,
                         const std::string& axisB, int countA, int countB, const DynamicsQuantity& quantity,
-                        int threads = 0);
+                        int threads = kAllCores);
 
 }  // namespace mtacc

@@ -88,9 +88,19 @@ struct StructureModel {
   int bodyIndex(const std::string& name) const;  // kGround for "ground"; -2 if unknown
 };
 
-// By path, or by the name of a bundled model (data/structures/). Throws InputError naming file,
-// line and key: unknown body, element joining a body to itself, body without mass, ...
-StructureModel loadStructure(const std::string& pathOrName);
-StructureModel parseStructure(const std::string& yamlText, const std::string& sourceName);
+// A flexible beam as written in a structure file (SI units).
+struct BeamSpec {
+  std::string name;
+  Vec3 from = Vec3::Zero(), to = Vec3::Zero();  // m
+  std::array<double, 2> section{};               // width, height of the cross-section, m
+  double massPerLength = 0;                      // kg/m
+  double youngsModulus = 0, shearModulus = 0;    // E, G, N/m^2
+  double area = 0, torsionConstant = 0;          // A m^2, It m^4
+  std::array<double, 2> areaMoments{};           // I about the section's two axes, m^4
+  double stiffnessDamping = 0;                   // beta: damping = beta * stiffness
+  Vec3 up = Vec3::UnitZ();
+};
+// Adds the beam as five rigid segments and the four connections that join them.
+void addBeam(StructureModel& model, const BeamSpec& beam, int line);
 
 }  // namespace mtacc

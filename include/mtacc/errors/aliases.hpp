@@ -26,5 +26,7 @@ struct Alias {
 const std::vector<Alias>& aliasTable();
 // Accepts the Greek forms too (δxBY, αBY, ...).
 std::optional<Alias> findAlias(const std::string& name);
+// iso value = sign * value given under `name`: the alias's sign, 1 for an ISO name.
+double isoSign(const std::string& name);
 
 }  // namespace mtacc

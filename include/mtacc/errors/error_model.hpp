@@ -52,9 +52,11 @@ std::vector<Parameter> parameterCatalogue(const Machine& machine, const ErrorMod
 std::vector<Parameter> nonZeroParameters(const Machine& machine, const ErrorModel& errors);
 
 double parameterValue(const ErrorModel& errors, const Parameter& p);
+// `shape` with every parameter zero except p, which is set to value (one error alone).
+ErrorModel singleError(const Machine& machine, const ErrorModel& shape, const Parameter& p, double value);
 void setParameterValue(ErrorModel& errors, const Parameter& p, double value);
-// Looks a parameter up by ISO name or alias (see aliases.hpp); throws std::invalid_argument
-// with a reason naming the valid choices.
+// Looks a parameter up by ISO name or alias (see aliases.hpp); throws InputError (key: the
+// name) listing the machine's parameters.
 Parameter findParameter(const Machine& machine, const ErrorModel& errors, const std::string& name);
 
 }  // namespace mtacc

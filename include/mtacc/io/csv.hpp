@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "mtacc/kinematics/forward.hpp"
+#include "mtacc/core/joint_matrix.hpp"
 #include "mtacc/machine/machine.hpp"
 
 namespace mtacc {
@@ -26,7 +26,7 @@ CsvTable parseCsv(const std::string& text, const std::string& sourceName);
 // optional "<axis>_dir" columns (+1, -1, 0) for the direction of motion.
 struct PoseTable {
   JointMatrix q;            // mm, rad
-  Eigen::MatrixXi direction;  // empty when no direction column was given
+  DirectionMatrix direction;  // empty when no direction column was given
 };
 // Any other column is an error unless named in `otherColumns`.
 PoseTable posesFromCsv(const Machine& machine, const CsvTable& table, const std::vector<std::string>& otherColumns = {});

@@ -45,7 +45,7 @@ JointMatrix workingVolumeGrid(const Machine& machine, int samplesPerAxis);
 
 // Sorted by maxPositionError, largest first. progress(done, total) is called per item.
 std::vector<BudgetEntry> errorBudget(std::shared_ptr<const Machine> machine, const std::vector<BudgetItem>& items,
-                                     const JointMatrix& poses, int threads = 0,
+                                     const JointMatrix& poses, int threads = kAllCores,
                                      const std::function<void(size_t, size_t)>& progress = {});
 
 }  // namespace mtacc

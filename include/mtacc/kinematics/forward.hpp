@@ -3,16 +3,11 @@
 // nominal or with all errors, for one pose or a batch. Joint vectors hold the commanded
 // axes in Machine::axes order, linear in mm, rotary in rad. `dir` (may be null) gives the
 // direction of motion of each axis (+1, -1, 0) for reversal errors.
-#include <Eigen/Core>
-
-#include <functional>
-
+#include "mtacc/core/joint_matrix.hpp"
+#include "mtacc/core/parallel.hpp"
 #include "mtacc/kinematics/kinematic_model.hpp"
 
 namespace mtacc {
-
-using JointMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-using PointMatrix = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 // Bed -> tool frame (TCP) and bed -> workpiece frame.
 Pose toolChainPose(const KinematicModel& model, const double* q, const int* dir);
@@ -42,16 +37,10 @@ ToolPoint toolPoint(const KinematicModel& model, const double* q, const int* dir
 Vec6 poseError(const Pose& actual, const Pose& nominal);
 
 // Batch evaluation over the rows of q (one pose per row). dir may be empty or the size of q.
-// threads = 0 uses every core.
-void toolPoints(const KinematicModel& model, const JointMatrix& q, const Eigen::MatrixXi& dir,
-                PointMatrix& positions, PointMatrix& directions, int threads = 1);
+void toolPoints(const KinematicModel& model, const JointMatrix& q, const DirectionMatrix& dir,
+                PointMatrix& positions, PointMatrix& directions, int threads = kAllCores);
 // TCP position and orientation errors (n x 6) of `actual` against `nominal`.
-Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor> toolErrors(const KinematicModel& actual,
-                                                                      const KinematicModel& nominal,
-                                                                      const JointMatrix& q,
-                                                                      const Eigen::MatrixXi& dir, int threads = 1);
-
-// Runs body(begin, end) over [0, n) split across threads (0 = hardware concurrency).
-void parallelFor(long n, int threads, const std::function<void(long, long)>& body);
+PoseErrorMatrix toolErrors(const KinematicModel& actual, const KinematicModel& nominal, const JointMatrix& q,
+                           const DirectionMatrix& dir, int threads = kAllCores);
 
 }  // namespace mtacc

@@ -30,17 +30,17 @@ struct ProblemColumns {
 ProblemColumns problemColumns(const IdentificationProblem& problem);
 
 // Readings x columns at the problem's current state (start errors, run set-up errors).
-Eigen::MatrixXd stackedJacobian(const IdentificationProblem& problem, int threads = 1);
+Eigen::MatrixXd stackedJacobian(const IdentificationProblem& problem, int threads = kAllCores);
 // What the plan determines to first order: the Jacobian about the nominal machine (every
 // error and set-up error at zero), so that the answer does not hinge on second-order
 // effects of the errors (the sense of the sensitivities of seeds 001 and 002).
-ObservabilityReport planObservability(const IdentificationProblem& problem, int threads = 1);
+ObservabilityReport planObservability(const IdentificationProblem& problem, int threads = kAllCores);
 
 struct IdentificationOptions {
   bool robust = false;          // Huber loss
   double robustScale = 2e-3;    // mm: residuals beyond count linearly
   int maxIterations = 50;
-  int threads = 1;
+  int threads = kAllCores;
 };
 
 struct IdentificationResult {

@@ -61,7 +61,7 @@ struct MeasurementRun {
   Instrument instrument = Instrument::Ballbar;
   Setup setup;
   JointMatrix q;
-  Eigen::MatrixXi direction;  // empty or like q
+  DirectionMatrix direction;  // empty or like q
   Eigen::MatrixXd readings;   // poses x readingSize, mm; empty until simulated or read
   std::vector<double> angle;
   std::vector<int> sense;     // +1 counter-clockwise, -1 clockwise in the plot plane (ballbar)
@@ -103,7 +103,7 @@ Reading predictReading(const KinematicModel& model, const KinematicModel& nomina
 Reading predictReading(const KinematicModel& model, const RunGeometry& geometry, const NominalFrame& nominal,
                        const MeasurementRun& run, Eigen::Index i);
 Eigen::MatrixXd predictReadings(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
-                                int threads = 1);
+                                int threads = kAllCores);
 
 // Reading and its derivative with respect to machine parameters and set-up parameters
 // (row-major: each reading's derivatives side by side, as stacked systems store them).

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "mtacc/core/joint_matrix.hpp"
 #include "mtacc/kinematics/inverse.hpp"
 #include "mtacc/kinematics/kinematic_model.hpp"
 
@@ -23,6 +24,10 @@ struct ConeSpec {
 // Recommended set-ups of seed 000 §3.6 and the NAS 979 cone frustum (§2.1, Table 2.1).
 // Names: "tilting-table", "swivel-head", "double-pivot", "nas979". nullopt if unknown.
 std::optional<ConeSpec> conePreset(const std::string& name);
+// The §3.6 preset for a machine's family: both rotary axes on the workpiece side
+// ("tilting-table"), both on the tool side ("double-pivot"), or one on each ("swivel-head");
+// nullopt unless the machine has exactly two rotary axes.
+std::optional<std::string> conePresetName(const Machine& machine);
 
 // TCP points, tool directions and outward surface normals around the path (workpiece frame).
 struct ConePath {
@@ -52,8 +57,8 @@ struct AxisMotion {
 };
 
 struct ConeMotion {
-  std::vector<std::vector<double>> q;   // per point, commanded axes (mm, rad)
-  std::vector<std::vector<int>> direction;  // per point, sign of the motion of each axis
+  JointMatrix q;              // per point, commanded axes (mm, rad)
+  DirectionMatrix direction;  // per point, sign of the motion of each axis
   std::vector<AxisMotion> axes;
   std::vector<std::string> warnings;    // singular or near-singular set-up
 };

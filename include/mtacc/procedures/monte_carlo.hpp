@@ -30,9 +30,6 @@ struct ErrorLimits {
   std::vector<ErrorLimit> limits;
 };
 
-// Reads a limits file (format in data/limits/seed000-table3.9.yaml). Throws InputError.
-ErrorLimits loadErrorLimits(const Machine& machine, const std::string& path);
-
 // Where linear and harmonic errors run: per commanded axis, the minimum and range of its
 // motion (on a test path, or the travel).
 struct AxisSpan {

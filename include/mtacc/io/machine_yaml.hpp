@@ -11,8 +11,4 @@ namespace mtacc {
 Machine loadMachine(const std::string& pathOrName);
 Machine parseMachine(const std::string& yamlText, const std::string& sourceName);
 
-// The path a name resolves to (the argument itself when it is an existing file).
-std::string resolveMachinePath(const std::string& pathOrName);
-std::string bundledDataDir();
-
 }  // namespace mtacc

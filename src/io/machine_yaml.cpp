@@ -1,4 +1,4 @@
-#include "mtacc/machine/machine_yaml.hpp"
+#include "mtacc/io/machine_yaml.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -6,7 +6,8 @@
 #include <set>
 #include <stdexcept>
 
-#include "../io/yaml_input.hpp"
+#include "mtacc/io/bundled_data.hpp"
+#include "yaml_input.hpp"
 
 namespace mtacc {
 namespace {
@@ -64,21 +65,8 @@ Axis readAxis(const yamlin::Context& ctx, const std::string& name, Side side, co
 
 }  // namespace
 
-std::string bundledDataDir() {
-  if (const char* env = std::getenv("MTACC_DATA_DIR")) return env;
-  return MTACC_DATA_DIR;
-}
-
-std::string resolveMachinePath(const std::string& pathOrName) {
-  namespace fs = std::filesystem;
-  if (fs::exists(pathOrName)) return pathOrName;
-  const auto bundled = fs::path(bundledDataDir()) / "machines" / (pathOrName + ".yaml");
-  if (pathOrName.find('/') == std::string::npos && fs::exists(bundled)) return bundled.string();
-  return pathOrName;
-}
-
 Machine loadMachine(const std::string& pathOrName) {
-  const auto path = resolveMachinePath(pathOrName);
+  const auto path = resolveBundled("machines", pathOrName);
   return parseMachine(yamlin::readText(path), path);
 }
 

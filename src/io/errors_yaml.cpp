@@ -1,11 +1,11 @@
-#include "mtacc/errors/error_yaml.hpp"
+#include "mtacc/io/errors_yaml.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
 #include <stdexcept>
 
-#include "../io/yaml_input.hpp"
+#include "yaml_input.hpp"
 #include "mtacc/errors/aliases.hpp"
 
 namespace mtacc {

@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "mtacc/measurement/measurement.hpp"
-#include "mtacc/procedures/cone.hpp"
 
 namespace mtacc {
 
@@ -58,10 +57,6 @@ struct BallbarRotarySpec {
 };
 MeasurementRun ballbarRotaryTest(const KinematicModel& nominal, const BallbarRotarySpec& spec);
 
-// Seed 000 ch. 4: the ballbar square to the cone surface. The tool ball follows the cone
-// path (TCP); the work ball sits where the surface normals along the path meet.
-MeasurementRun ballbarCone(const KinematicModel& nominal, const ConeSpec& spec, int points, TiltBranch branch, double feed);
-
 // R-test (or touch probe): one rotary axis steps through `angles` while the linear axes keep
 // the nominal ball at the sphere; one run per sphere position (workpiece frame).
 struct SphereTestSpec {
@@ -73,6 +68,8 @@ struct SphereTestSpec {
   std::vector<double> pose;  // the other axes; empty = all zero
 };
 std::vector<MeasurementRun> sphereTest(const KinematicModel& nominal, const SphereTestSpec& spec);
+// n angles from `from` to `to`, both included (n = 1: `from` alone).
+std::vector<double> evenAngles(double from, double to, int n);
 
 // Seed 001 §2 (Tables 1-2, Fig. 2): a cube of `size` whose top face lies at `height`; the
 // nine zones' centres, tool vectors tilted by 30 deg towards the centre, a ball-end mill of

@@ -1,4 +1,4 @@
-#include "mtacc/measurement/circular_test.hpp"
+#include "mtacc/measurement/circular_evaluation.hpp"
 
 #include <algorithm>
 #include <cmath>

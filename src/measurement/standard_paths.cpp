@@ -1,4 +1,4 @@
-#include "mtacc/measurement/test_paths.hpp"
+#include "mtacc/measurement/standard_paths.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -7,6 +7,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/kinematics/inverse.hpp"
 #include "mtacc/kinematics/jacobian.hpp"
 
 namespace mtacc {
@@ -32,8 +33,8 @@ Vec3 toolPointInWorkpiece(const KinematicModel& nominal, const std::vector<doubl
 
 // Sign of each axis's motion towards the next pose; where the axis does not move (and at
 // the last pose) it keeps the previous direction, as a drive does until it reverses.
-Eigen::MatrixXi motionDirections(const JointMatrix& q) {
-  Eigen::MatrixXi d = Eigen::MatrixXi::Zero(q.rows(), q.cols());
+DirectionMatrix motionDirections(const JointMatrix& q) {
+  DirectionMatrix d = DirectionMatrix::Zero(q.rows(), q.cols());
   for (Eigen::Index i = 0; i < q.rows(); ++i)
     for (Eigen::Index j = 0; j < q.cols(); ++j) {
       const double dq = i + 1 < q.rows() ? q(i + 1, j) - q(i, j) : 0.0;
@@ -220,34 +221,6 @@ MeasurementRun ballbarRotaryTest(const KinematicModel& nominal, const BallbarRot
   return run;
 }
 
-MeasurementRun ballbarCone(const KinematicModel& nominal, const ConeSpec& spec, int points, TiltBranch branch, double feed) {
-  const auto path = conePath(spec, points);
-  const auto motion = coneMotion(nominal, spec, path, branch, feed);
-  // The point nearest to all normal lines (they meet on the cone axis).
-  Mat3 a = Mat3::Zero();
-  Vec3 b = Vec3::Zero();
-  for (size_t i = 0; i < path.points.size(); ++i) {
-    const Mat3 p = Mat3::Identity() - path.normals[i] * path.normals[i].transpose();
-    a += p;
-    b += p * path.points[i];
-  }
-  const Vec3 w = a.ldlt().solve(b);
-  MeasurementRun run;
-  run.name = "cone";
-  run.instrument = Instrument::Ballbar;
-  run.setup.target = w;
-  run.setup.length = (path.points[0] - w).norm();
-  run.feed = feed;
-  run.q = toMatrix(motion.q);
-  run.direction.resize(run.q.rows(), run.q.cols());
-  for (size_t i = 0; i < motion.direction.size(); ++i)
-    for (size_t j = 0; j < motion.direction[i].size(); ++j)
-      run.direction(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = motion.direction[i][j];
-  run.angle = path.phi;
-  run.sense.assign(path.phi.size(), 1);
-  return run;
-}
-
 std::vector<MeasurementRun> sphereTest(const KinematicModel& nominal, const SphereTestSpec& spec) {
   const Machine& m = *nominal.machine;
   const int axis = commandedAxis(m, spec.axis);
@@ -297,6 +270,12 @@ MeasurementRun cubicMachiningZones(const KinematicModel& nominal, double size, d
   }
   run.q = toMatrix(rows);
   return run;
+}
+
+std::vector<double> evenAngles(double from, double to, int n) {
+  std::vector<double> out;
+  for (int i = 0; i < n; ++i) out.push_back(n == 1 ? from : from + (to - from) * i / (n - 1));
+  return out;
 }
 
 }  // namespace mtacc

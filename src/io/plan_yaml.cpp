@@ -1,10 +1,10 @@
-#include "mtacc/measurement/test_plan.hpp"
+#include "mtacc/io/plan_yaml.hpp"
 
-#include <filesystem>
 
-#include "../io/yaml_input.hpp"
-#include "mtacc/machine/machine_yaml.hpp"
-#include "mtacc/measurement/test_paths.hpp"
+#include "yaml_input.hpp"
+#include "mtacc/io/bundled_data.hpp"
+#include "mtacc/measurement/standard_paths.hpp"
+#include "mtacc/procedures/cone_ballbar.hpp"
 
 namespace mtacc {
 namespace {
@@ -173,10 +173,7 @@ TestPlan parseTestPlan(const KinematicModel& nominal, const std::string& text, c
 }
 
 TestPlan loadTestPlan(const KinematicModel& nominal, const std::string& pathOrName) {
-  namespace fs = std::filesystem;
-  std::string path = pathOrName;
-  const auto bundled = fs::path(bundledDataDir()) / "plans" / (pathOrName + ".yaml");
-  if (!fs::exists(path) && pathOrName.find('/') == std::string::npos && fs::exists(bundled)) path = bundled.string();
+  const std::string path = resolveBundled("plans", pathOrName);
   return parseTestPlan(nominal, yamlin::readText(path), path);
 }
 

@@ -1,4 +1,4 @@
-#include "mtacc/measurement/measurement_csv.hpp"
+#include "mtacc/io/measurement_csv.hpp"
 
 #include <fmt/format.h>
 
@@ -11,7 +11,7 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/csv.hpp"
-#include "mtacc/measurement/test_paths.hpp"
+#include "mtacc/measurement/standard_paths.hpp"
 
 namespace mtacc {
 namespace {

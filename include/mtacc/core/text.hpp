@@ -1,0 +1,30 @@
+#pragma once
+// The small text forms of command-line options and Python arguments: comma lists,
+// NAME=value assignments, plain numbers and x,y,z vectors. Every failure is an InputError
+// naming `key` (the option or argument).
+#include <string>
+#include <vector>
+
+#include "mtacc/core/transform.hpp"
+
+namespace mtacc {
+
+// "a,b,,c" -> {"a", "b", "c"} (empty items dropped).
+std::vector<std::string> splitList(const std::string& text, char separator = ',');
+
+struct Assignment {
+  std::string name;
+  std::string value;
+};
+// "X=10,B=-15 deg" -> {{"X", "10"}, {"B", "-15 deg"}}; an item without '=' or without a name is
+// an error.
+std::vector<Assignment> parseAssignments(const std::string& text, const std::string& key);
+
+// The whole text is one finite number.
+double parseNumber(const std::string& text, const std::string& key);
+// A whole number within [min, max].
+int parseCount(const std::string& text, const std::string& key, int min, int max);
+// "x,y,z": exactly three finite numbers.
+Vec3 parseVector(const std::string& text, const std::string& key);
+
+}  // namespace mtacc

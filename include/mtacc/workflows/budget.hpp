@@ -1,0 +1,65 @@
+#pragma once
+// Workflows `budget` and `sensitivity`: how much each error moves the TCP, over the working
+// volume and at one pose.
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "mtacc/kinematics/budget.hpp"
+#include "mtacc/workflows/machine_setup.hpp"
+
+namespace mtacc {
+
+struct BudgetOptions {
+  int samplesPerAxis = 5;  // 2 .. 50 positions per axis across its travel
+  // Every error at these magnitudes (mm, rad); when both are empty and the machine has
+  // errors, each of its non-zero errors alone at its own value.
+  std::optional<double> length, angle;
+  int threads = kAllCores;
+  std::function<void(size_t, size_t)> progress;
+};
+
+struct BudgetResult {
+  std::shared_ptr<const Machine> machine;
+  bool atMagnitude = false;
+  double length = 0, angle = 0;  // the magnitudes, when atMagnitude
+  int samplesPerAxis = 0;
+  JointMatrix grid;
+  std::vector<BudgetEntry> entries;  // largest first
+  double combinedMaxPositionError = 0;  // all errors of the description together, mm
+};
+
+BudgetResult errorBudget(const MachineSetup& setup, const BudgetOptions& options = {});
+nlohmann::json toJson(const BudgetResult& result);
+std::string basisText(const BudgetResult& result);
+
+struct SensitivityRequest {
+  std::vector<double> q;               // mm, rad
+  std::optional<Vec3> direction;       // of E; default: the tool direction
+  std::vector<std::string> parameters; // default: every parameter
+  double epsilonLength = 0.01;         // mm, for k = E / epsilon
+  double epsilonAngle = 30e-6;         // rad
+};
+
+struct SensitivityRow {
+  Parameter parameter;
+  Vec3 position;        // um per unit of the parameter (um or urad)
+  Vec3 orientation;     // urad per unit
+  double kFirstOrder;   // um per unit, along the direction
+  double kExact;
+};
+
+struct SensitivityResult {
+  std::shared_ptr<const Machine> machine;
+  std::vector<double> q;
+  Vec3 direction;  // unit
+  std::vector<SensitivityRow> rows;
+};
+
+SensitivityResult sensitivities(const MachineSetup& setup, const SensitivityRequest& request);
+nlohmann::json toJson(const SensitivityResult& result);
+
+}  // namespace mtacc

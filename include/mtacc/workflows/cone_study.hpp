@@ -1,0 +1,54 @@
+#pragma once
+// Workflow `cone`: the 5-axis cone-frustum test piece of seed 000 on a machine — tool path,
+// axis motions, the closed-form ranges of Table 3.1, the form error of the machine's errors,
+// each error alone, and a Monte Carlo over tolerance limits.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "mtacc/procedures/monte_carlo.hpp"
+#include "mtacc/workflows/machine_setup.hpp"
+
+namespace mtacc {
+
+struct ConeStudyOptions {
+  ConeSpec spec;                 // conePreset(...) or as given
+  int points = 720;              // 8 .. 1,000,000
+  double chordTolerance = 0;     // mm; > 0: choose the points for this chord error instead
+  TiltBranch branch = TiltBranch::Negative;
+  double feed = 500;             // mm/min, for the axis speeds
+  bool singleErrors = false;     // form error of each non-zero error alone
+  int monteCarlo = 0;            // samples; 0: none
+  std::string limitsFile;        // empty: seed 000 Table 3.9 (bundled)
+  std::uint64_t seed = 1;
+  std::function<void(int, int)> progress;  // Monte Carlo samples done, total
+};
+
+struct ConeSingleError {
+  std::string name;
+  ConeFormResult form;
+  FormErrorType type;
+};
+
+struct ConeStudy {
+  std::shared_ptr<const Machine> machine;
+  ConeStudyOptions options;  // with the number of points used
+  ConePath path;
+  ConeMotion motion;
+  RotaryRanges closedForm;
+  PointMatrix machineNormals;  // the surface normal in the bed frame at each point
+  std::optional<ConeFormResult> form;  // of the machine's errors (when it has any)
+  double firstOrderFormError = 0;      // mm
+  std::vector<ConeSingleError> singleErrors;  // largest first
+  std::optional<ConeMonteCarlo> monteCarlo;
+  std::string limitsFile;
+};
+
+ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyOptions& options);
+nlohmann::json toJson(const ConeStudy& study);
+
+}  // namespace mtacc

@@ -1,0 +1,53 @@
+#pragma once
+// Workflows `fk`, `errors` and `ik`: the tool relative to the workpiece at many poses (with
+// the TCP error there), and the axis positions for given TCP positions and tool directions.
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "mtacc/core/joint_matrix.hpp"
+#include "mtacc/core/parallel.hpp"
+#include "mtacc/kinematics/inverse.hpp"
+#include "mtacc/workflows/machine_setup.hpp"
+
+namespace mtacc {
+
+struct ForwardOptions {
+  bool nominal = false;  // the tool points of the nominal machine (errors are still reported)
+  int threads = kAllCores;
+};
+
+struct ForwardResult {
+  std::shared_ptr<const Machine> machine;
+  bool nominal = false;
+  JointMatrix q;             // mm, rad
+  PointMatrix tcp;           // mm, workpiece frame
+  PointMatrix toolDirection;
+  PoseErrorMatrix error;     // actual minus nominal: mm, then the rotation vector in rad
+  double maxPositionError = 0;  // mm
+};
+
+// Every pose must be within travel (InputError naming the row's file line when `lines` is
+// given, else the row).
+ForwardResult forwardKinematics(const MachineSetup& setup, const JointMatrix& q, const DirectionMatrix& direction,
+                                const ForwardOptions& options = {}, const std::vector<int>& lines = {},
+                                const std::string& file = "");
+nlohmann::json toJson(const ForwardResult& result);
+
+struct InverseRequest {
+  std::vector<Vec3> positions;   // TCP, mm, workpiece frame
+  std::vector<Vec3> directions;  // tool direction (TCP towards spindle)
+  IkOptions options;
+  bool all = false;              // every solution of a single target, those beyond travel included
+};
+
+struct InverseResult {
+  std::shared_ptr<const Machine> machine;
+  std::vector<IkSolution> solutions;
+};
+
+// A single target: its preferred solution (or all); several: one continuous path.
+InverseResult inverseKinematics(const MachineSetup& setup, const InverseRequest& request);
+nlohmann::json toJson(const InverseResult& result);
+
+}  // namespace mtacc

@@ -1,0 +1,41 @@
+#pragma once
+// What every machine workflow starts from: a machine description and its errors, loaded from
+// the machine file (a path or a bundled name), an optional errors file and an optional
+// workpiece alignment. The JSON helpers write poses and vectors the same way in every result.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "mtacc/errors/error_model.hpp"
+#include "mtacc/kinematics/kinematic_model.hpp"
+#include "mtacc/machine/machine.hpp"
+
+namespace mtacc {
+
+struct MachineSource {
+  std::string machine;     // file, or the name of a bundled machine
+  std::string errorsFile;  // empty: the machine file's own `errors:`
+  std::string alignment;   // "table", "machine", or empty for the machine file's choice
+};
+
+struct MachineSetup {
+  std::shared_ptr<const Machine> machine;
+  ErrorModel errors;
+
+  KinematicModel nominal() const { return compileNominal(machine); }
+  KinematicModel actual() const { return compile(machine, errors); }
+};
+
+// Throws InputError naming file, line and key.
+MachineSetup loadMachineSetup(const MachineSource& source);
+
+// Looks each name up (ISO name or alias); throws InputError listing the machine's parameters.
+std::vector<Parameter> findParameters(const MachineSetup& setup, const std::vector<std::string>& names);
+
+// {"X": 10.0, "B": -15.0}: mm for linear and deg for rotary axes.
+nlohmann::json poseJson(const Machine& machine, const double* q);
+nlohmann::json vectorJson(const Vec3& v);
+
+}  // namespace mtacc

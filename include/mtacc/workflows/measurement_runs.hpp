@@ -1,0 +1,61 @@
+#pragma once
+// Workflows `simulate` and `evaluate`: measurement runs (a ballbar circle, an R-test, or every
+// run of a test plan) simulated on a machine with its errors and written in the measured-data
+// format; and the ISO 230-4 evaluation of a ballbar file.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "mtacc/measurement/circular_evaluation.hpp"
+#include "mtacc/measurement/simulation.hpp"
+#include "mtacc/measurement/standard_paths.hpp"
+#include "mtacc/workflows/machine_setup.hpp"
+
+namespace mtacc {
+
+struct SimulationOptions {
+  double noise = 0;  // standard deviation of the reading noise, mm
+  std::uint64_t seed = 1;
+  std::array<std::optional<double>, kSetupParameterCount> setupErrors{};  // applied where the instrument has them
+  Disturbance disturbance;
+  // Where to write: a file for one run, a folder (one <run>.csv each) for several; empty: nothing.
+  std::string output;
+  bool outputIsFolder = false;
+};
+
+struct SimulationResult {
+  std::shared_ptr<const Machine> machine;
+  double noise = 0;
+  std::vector<MeasurementRun> runs;  // with readings
+  std::vector<std::string> files;    // written, one per run (empty when nothing was written)
+};
+
+// Every file is computed before the first is written; each is written atomically.
+SimulationResult simulateRuns(const MachineSetup& setup, std::vector<MeasurementRun> runs, const SimulationOptions& options);
+nlohmann::json toJson(const SimulationResult& result);
+
+// The runs of the standard paths, simulated (see standard_paths.hpp); std::invalid_argument of
+// a path becomes an InputError.
+SimulationResult simulateBallbarCircle(const MachineSetup& setup, const BallbarCircleSpec& spec, const SimulationOptions& options);
+SimulationResult simulateSphereTest(const MachineSetup& setup, const SphereTestSpec& spec, const SimulationOptions& options);
+// Every run of a test plan (path or bundled name).
+SimulationResult simulatePlan(const MachineSetup& setup, const std::string& plan, const SimulationOptions& options);
+
+// Poses (mm, deg), readings (um), plot angles (deg) and sense of one run.
+nlohmann::json runJson(const Machine& machine, const MeasurementRun& run);
+
+struct CircularEvaluation {
+  std::shared_ptr<const Machine> machine;
+  std::string file;
+  MeasurementRun run;
+  CircularTestResult result;
+};
+
+// Reads a ballbar measurement file and evaluates it; throws InputError naming the file.
+CircularEvaluation evaluateBallbarFile(const MachineSetup& setup, const std::string& file);
+nlohmann::json toJson(const CircularEvaluation& evaluation);
+
+}  // namespace mtacc

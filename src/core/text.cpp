@@ -1,0 +1,59 @@
+#include "mtacc/core/text.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "mtacc/core/input_error.hpp"
+
+namespace mtacc {
+
+std::vector<std::string> splitList(const std::string& text, char separator) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, separator))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+std::vector<Assignment> parseAssignments(const std::string& text, const std::string& key) {
+  std::vector<Assignment> out;
+  for (const auto& item : splitList(text)) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0) throw InputError(InputLocation{"", 0, key}, "expected NAME=VALUE, got '" + item + "'");
+    out.push_back({item.substr(0, eq), item.substr(eq + 1)});
+  }
+  return out;
+}
+
+double parseNumber(const std::string& text, const std::string& key) {
+  double v = 0;
+  size_t used = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::logic_error&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v))
+    throw InputError(InputLocation{"", 0, key}, "not a finite number: '" + text + "'");
+  return v;
+}
+
+int parseCount(const std::string& text, const std::string& key, int min, int max) {
+  const double v = parseNumber(text, key);
+  if (v != std::floor(v) || v < min || v > max)
+    throw InputError(InputLocation{"", 0, key}, "expected a whole number from " + std::to_string(min) + " to " + std::to_string(max) +
+                                                    ", got '" + text + "'");
+  return static_cast<int>(v);
+}
+
+Vec3 parseVector(const std::string& text, const std::string& key) {
+  std::vector<std::string> items;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) items.push_back(item);
+  if (items.size() != 3) throw InputError(InputLocation{"", 0, key}, "expected three numbers x,y,z");
+  return {parseNumber(items[0], key), parseNumber(items[1], key), parseNumber(items[2], key)};
+}
+
+}  // namespace mtacc

@@ -1,0 +1,100 @@
+#include "mtacc/workflows/budget.hpp"
+
+#include <fmt/format.h>
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/core/units.hpp"
+#include "mtacc/kinematics/jacobian.hpp"
+
+namespace mtacc {
+
+BudgetResult errorBudget(const MachineSetup& setup, const BudgetOptions& o) {
+  const Machine& m = *setup.machine;
+  if (o.samplesPerAxis < 2 || o.samplesPerAxis > 50) throw InputError(InputLocation{"", 0, "samples"}, "must be between 2 and 50");
+  BudgetResult r;
+  r.machine = setup.machine;
+  r.samplesPerAxis = o.samplesPerAxis;
+  r.atMagnitude = o.length || o.angle || nonZeroParameters(m, setup.errors).empty();
+  std::vector<BudgetItem> items;
+  if (r.atMagnitude) {
+    r.length = o.length.value_or(0.01);
+    r.angle = o.angle.value_or(30e-6);
+    items = budgetItemsAtMagnitude(m, r.length, r.angle);
+  } else {
+    items = budgetItemsOfModel(m, setup.errors);
+  }
+  r.grid = workingVolumeGrid(m, o.samplesPerAxis);
+  r.entries = errorBudget(setup.machine, items, r.grid, o.threads, o.progress);
+  const auto combined = toolErrors(setup.actual(), setup.nominal(), r.grid, {}, o.threads);
+  for (Eigen::Index i = 0; i < combined.rows(); ++i)
+    r.combinedMaxPositionError = std::max(r.combinedMaxPositionError, combined.row(i).head<3>().norm());
+  return r;
+}
+
+std::string basisText(const BudgetResult& r) {
+  if (!r.atMagnitude) return "each non-zero error of the machine's error description, alone, at its value";
+  return fmt::format("every location error and every component error as a constant, at {:g} um / {:g} urad", r.length * 1e3,
+                     r.angle * 1e6);
+}
+
+nlohmann::json toJson(const BudgetResult& r) {
+  nlohmann::json j;
+  j["machine"] = r.machine->name;
+  j["basis"] = r.atMagnitude ? "magnitude" : "model";
+  j["basis_text"] = basisText(r);
+  j["poses"] = r.grid.rows();
+  j["samples_per_axis"] = r.samplesPerAxis;
+  j["combined_max_position_error_um"] = r.combinedMaxPositionError * 1e3;
+  j["entries"] = nlohmann::json::array();
+  for (const auto& e : r.entries)
+    j["entries"].push_back({{"error", e.name},
+                            {"magnitude", toDisplay(e.magnitude, e.dimension)},
+                            {"unit", displayUnit(e.dimension)},
+                            {"max_position_error_um", e.maxPositionError * 1e3},
+                            {"max_orientation_error_urad", e.maxOrientationError * 1e6},
+                            {"worst_pose", poseJson(*r.machine, e.worstPose.data())}});
+  return j;
+}
+
+SensitivityResult sensitivities(const MachineSetup& setup, const SensitivityRequest& request) {
+  const Machine& m = *setup.machine;
+  if (request.q.size() != static_cast<size_t>(m.commandedCount()))
+    throw InputError(InputLocation{"", 0, "pose"}, "expected " + std::to_string(m.commandedCount()) + " axis positions");
+  const auto tp = toolPoint(setup.nominal(), request.q.data());
+  const Vec3 direction = request.direction.value_or(tp.direction);
+  if (direction.norm() < 1e-12) throw InputError(InputLocation{"", 0, "direction"}, "direction has zero length");
+  const auto params = request.parameters.empty() ? parameterCatalogue(m, setup.errors) : findParameters(setup, request.parameters);
+  const auto jac = parameterJacobian(setup.actual(), params, request.q.data());
+  SensitivityResult r{setup.machine, request.q, direction.normalized(), {}};
+  for (size_t k = 0; k < params.size(); ++k) {
+    const auto& p = params[k];
+    const bool length = p.dimension == Dimension::Length;
+    // Per unit of the parameter in its display unit: um/um or um/urad.
+    const double perUnit = length ? 1.0 : 1e-3;
+    const Vec6 col = jac.col(static_cast<Eigen::Index>(k));
+    const double eps = length ? request.epsilonLength : request.epsilonAngle;
+    r.rows.push_back({p, col.head<3>() * perUnit, col.tail<3>() * (length ? 1e3 : 1.0), r.direction.dot(col.head<3>()) * perUnit,
+                      sensitivityCoefficient(setup.machine, setup.errors, p, eps, request.q.data(), r.direction) * perUnit});
+  }
+  return r;
+}
+
+nlohmann::json toJson(const SensitivityResult& r) {
+  nlohmann::json j;
+  j["machine"] = r.machine->name;
+  j["pose"] = poseJson(*r.machine, r.q.data());
+  j["direction"] = vectorJson(r.direction);
+  j["units"] = "position rows in um per parameter unit (um or urad), orientation rows in urad per unit; "
+               "k = E/epsilon along the direction";
+  j["parameters"] = nlohmann::json::array();
+  for (const auto& row : r.rows)
+    j["parameters"].push_back({{"name", row.parameter.name},
+                               {"unit", std::string("um/") + displayUnit(row.parameter.dimension)},
+                               {"position", vectorJson(row.position)},
+                               {"orientation", vectorJson(row.orientation)},
+                               {"k_first_order", row.kFirstOrder},
+                               {"k_exact", row.kExact}});
+  return j;
+}
+
+}  // namespace mtacc

@@ -1,0 +1,125 @@
+#include "mtacc/workflows/cone_study.hpp"
+
+#include <algorithm>
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/core/units.hpp"
+#include "mtacc/io/bundled_data.hpp"
+#include "mtacc/io/limits_yaml.hpp"
+#include "mtacc/kinematics/forward.hpp"
+
+namespace mtacc {
+namespace {
+
+nlohmann::json umArray(const std::vector<double>& mm) {
+  nlohmann::json j = nlohmann::json::array();
+  for (double v : mm) j.push_back(v * 1e3);
+  return j;
+}
+
+nlohmann::json pointsJson(const std::vector<Vec3>& points) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& p : points) j.push_back(vectorJson(p));
+  return j;
+}
+
+}  // namespace
+
+ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyOptions& options) {
+  const Machine& m = *setup.machine;
+  ConeStudy s;
+  s.machine = setup.machine;
+  s.options = options;
+  const ConeSpec& spec = options.spec;
+  if (!(spec.radius > 0)) throw InputError(InputLocation{"", 0, "radius"}, "must be positive");
+  if (!(options.feed > 0)) throw InputError(InputLocation{"", 0, "feed"}, "must be positive");
+  if (options.monteCarlo < 0) throw InputError(InputLocation{"", 0, "monte_carlo"}, "must not be negative");
+  s.options.points = options.chordTolerance > 0 ? pointsForChordTolerance(spec, options.chordTolerance) : options.points;
+  if (s.options.points < 8 || s.options.points > 1000000)
+    throw InputError(InputLocation{"", 0, "points"}, "must be between 8 and 1000000");
+  const auto nominal = setup.nominal();
+  s.path = conePath(spec, s.options.points);
+  s.motion = coneMotion(nominal, spec, s.path, options.branch, options.feed);
+  s.closedForm = rotaryRangesClosedForm(spec.alpha, spec.beta);
+  s.machineNormals.resize(static_cast<Eigen::Index>(s.path.normals.size()), 3);
+  for (Eigen::Index i = 0; i < s.machineNormals.rows(); ++i)
+    s.machineNormals.row(i) = (workpiecePose(nominal, s.motion.q.row(i).data(), nullptr).linear() *
+                               s.path.normals[static_cast<size_t>(i)]).transpose();
+  const auto nonZero = nonZeroParameters(m, setup.errors);
+  if (!nonZero.empty()) {
+    const auto actual = setup.actual();
+    s.form = coneFormErrorExact(actual, spec, s.path, s.motion);
+    s.firstOrderFormError = coneFormErrorFirstOrder(actual, nominal, s.path, s.motion).formError;
+  }
+  if (options.singleErrors) {
+    for (const auto& p : nonZero) {
+      auto r = coneFormErrorExact(compile(setup.machine, singleError(m, setup.errors, p, parameterValue(setup.errors, p))), spec,
+                                  s.path, s.motion);
+      const auto type = formErrorType(r.deviation);
+      s.singleErrors.push_back({p.name, std::move(r), type});
+    }
+    std::stable_sort(s.singleErrors.begin(), s.singleErrors.end(),
+                     [](const auto& a, const auto& b) { return a.form.formError > b.form.formError; });
+  }
+  if (options.monteCarlo > 0) {
+    s.limitsFile = options.limitsFile.empty() ? bundledDataDir() + "/limits/seed000-table3.9.yaml" : options.limitsFile;
+    const auto limits = loadErrorLimits(m, s.limitsFile);
+    s.monteCarlo = coneMonteCarlo(setup.machine, limits, spec, s.path, s.motion, options.monteCarlo, options.seed, options.progress);
+  }
+  return s;
+}
+
+nlohmann::json toJson(const ConeStudy& s) {
+  const Machine& m = *s.machine;
+  const ConeSpec& spec = s.options.spec;
+  nlohmann::json j;
+  j["machine"] = m.name;
+  j["cone"] = {{"alpha_deg", spec.alpha / kDeg}, {"beta_deg", spec.beta / kDeg}, {"radius_mm", spec.radius},
+               {"gamma_deg", spec.gamma / kDeg}, {"centre_mm", vectorJson(spec.centre)}, {"points", s.options.points},
+               {"milling", spec.faceMilling ? "face" : "end"}, {"feed_mm_per_min", s.options.feed}};
+  j["warnings"] = s.motion.warnings;
+  for (size_t k = 0; k < s.motion.axes.size(); ++k) {
+    const auto& a = s.motion.axes[k];
+    const bool rotary = m.axes[k].isRotary();
+    const double f = rotary ? 1.0 / kDeg : 1.0;
+    std::vector<double> reversals;
+    for (double p : a.reversalsPhi) reversals.push_back(p / kDeg);
+    j["axes"].push_back({{"axis", a.axis}, {"unit", rotary ? "deg" : "mm"}, {"min", a.min * f}, {"max", a.max * f},
+                         {"range", a.range * f}, {"reversals_phi_deg", reversals}, {"max_speed_per_s", a.maxSpeed * f / 60},
+                         {"max_acceleration_per_s2", a.maxAcceleration * f / 3600}});
+  }
+  const auto& c = s.closedForm;
+  j["closed_form"] = {{"case", c.caseName}, {"tilt_min_deg", c.tiltMin / kDeg}, {"tilt_max_deg", c.tiltMax / kDeg},
+                      {"tilt_range_deg", c.tiltRange / kDeg}, {"rotary_range_deg", c.rotaryRange / kDeg}};
+  nlohmann::json phi = nlohmann::json::array(), q = nlohmann::json::array(), normals = nlohmann::json::array();
+  for (size_t i = 0; i < s.path.phi.size(); ++i) {
+    phi.push_back(s.path.phi[i] / kDeg);
+    nlohmann::json row = nlohmann::json::array();
+    for (int k = 0; k < m.commandedCount(); ++k)
+      row.push_back(m.axes[static_cast<size_t>(k)].isRotary() ? s.motion.q(static_cast<Eigen::Index>(i), k) / kDeg
+                                                              : s.motion.q(static_cast<Eigen::Index>(i), k));
+    q.push_back(row);
+    normals.push_back(vectorJson(s.machineNormals.row(static_cast<Eigen::Index>(i)).transpose()));
+  }
+  j["path"] = {{"phi_deg", phi}, {"points_mm", pointsJson(s.path.points)}, {"tools", pointsJson(s.path.tools)},
+               {"normals", pointsJson(s.path.normals)}, {"normals_machine", normals}, {"q", q}};
+  if (s.form) {
+    j["form_error_um"] = s.form->formError * 1e3;
+    j["form_error_first_order_um"] = s.firstOrderFormError * 1e3;
+    j["deviation_um"] = umArray(s.form->deviation);
+    j["raw_deviation_um"] = umArray(s.form->rawDeviation);
+  }
+  for (const auto& e : s.singleErrors)
+    j["single_errors"].push_back({{"error", e.name}, {"form_error_um", e.form.formError * 1e3}, {"type", toString(e.type)},
+                                  {"deviation_um", umArray(e.form.deviation)}, {"raw_deviation_um", umArray(e.form.rawDeviation)}});
+  if (s.monteCarlo) {
+    const auto& st = s.monteCarlo->statistics;
+    j["monte_carlo"] = {{"samples", s.options.monteCarlo}, {"limits", s.limitsFile}, {"seed", s.options.seed},
+                        {"min_um", st.min * 1e3}, {"lower_quartile_um", st.lowerQuartile * 1e3}, {"median_um", st.median * 1e3},
+                        {"upper_quartile_um", st.upperQuartile * 1e3}, {"max_um", st.max * 1e3},
+                        {"form_errors_um", umArray(s.monteCarlo->formErrors)}};
+  }
+  return j;
+}
+
+}  // namespace mtacc

@@ -1,0 +1,77 @@
+#include "mtacc/workflows/kinematics_batch.hpp"
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/kinematics/forward.hpp"
+
+namespace mtacc {
+
+ForwardResult forwardKinematics(const MachineSetup& setup, const JointMatrix& q, const DirectionMatrix& direction,
+                                const ForwardOptions& options, const std::vector<int>& lines, const std::string& file) {
+  const Machine& m = *setup.machine;
+  for (Eigen::Index r = 0; r < q.rows(); ++r) {
+    const std::vector<double> row(q.row(r).data(), q.row(r).data() + q.cols());
+    const auto violation = m.travelViolation(row);
+    if (violation.empty()) continue;
+    if (static_cast<size_t>(r) < lines.size()) throw InputError(InputLocation{file, lines[static_cast<size_t>(r)], ""}, "pose " + violation);
+    throw InputError(InputLocation{file, 0, q.rows() == 1 ? "pose" : "row " + std::to_string(r)}, "pose " + violation);
+  }
+  ForwardResult out;
+  out.machine = setup.machine;
+  out.nominal = options.nominal;
+  out.q = q;
+  const auto nominal = setup.nominal();
+  const auto actual = options.nominal ? nominal : setup.actual();
+  toolPoints(actual, q, direction, out.tcp, out.toolDirection, options.threads);
+  out.error = toolErrors(actual, nominal, q, direction, options.threads);
+  for (Eigen::Index r = 0; r < out.error.rows(); ++r)
+    out.maxPositionError = std::max(out.maxPositionError, out.error.row(r).head<3>().norm());
+  return out;
+}
+
+nlohmann::json toJson(const ForwardResult& r) {
+  const Machine& m = *r.machine;
+  nlohmann::json j;
+  j["machine"] = m.name;
+  j["nominal"] = r.nominal;
+  j["units"] = {{"axes", "mm, deg"}, {"tcp", "mm"}, {"position_error", "um"}, {"orientation_error", "urad"}};
+  j["poses"] = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < r.q.rows(); ++i) {
+    const Vec3 e = r.error.row(i).head<3>().transpose() * 1e3;
+    const Vec3 a = r.error.row(i).tail<3>().transpose() * 1e6;
+    j["poses"].push_back({{"pose", poseJson(m, r.q.row(i).data())},
+                          {"tcp", vectorJson(r.tcp.row(i).transpose())},
+                          {"tool_direction", vectorJson(r.toolDirection.row(i).transpose())},
+                          {"position_error", vectorJson(e)},
+                          {"orientation_error", vectorJson(a)}});
+  }
+  j["max_position_error_um"] = r.maxPositionError * 1e3;
+  return j;
+}
+
+InverseResult inverseKinematics(const MachineSetup& setup, const InverseRequest& request) {
+  if (request.positions.empty() || request.positions.size() != request.directions.size())
+    throw InputError(InputLocation{"", 0, "targets"}, "expected as many tool directions as TCP positions, at least one");
+  const auto nominal = setup.nominal();
+  InverseResult out{setup.machine, {}};
+  if (request.all && request.positions.size() == 1)
+    out.solutions = inverseKinematics(nominal, request.positions[0], request.directions[0], request.options).solutions;
+  else
+    out.solutions = solveIkPath(nominal, request.positions, request.directions, request.options);
+  return out;
+}
+
+nlohmann::json toJson(const InverseResult& r) {
+  nlohmann::json j;
+  j["machine"] = r.machine->name;
+  j["units"] = {{"linear", "mm"}, {"rotary", "deg"}};
+  j["solutions"] = nlohmann::json::array();
+  for (const auto& s : r.solutions)
+    j["solutions"].push_back({{"pose", poseJson(*r.machine, s.q.data())},
+                              {"singular", s.singular},
+                              {"free_axis", s.singularAxis},
+                              {"within_travel", s.withinTravel},
+                              {"travel_violation", s.travelViolation}});
+  return j;
+}
+
+}  // namespace mtacc

@@ -1,0 +1,37 @@
+#include "mtacc/workflows/machine_setup.hpp"
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/core/units.hpp"
+#include "mtacc/io/errors_yaml.hpp"
+#include "mtacc/io/machine_yaml.hpp"
+
+namespace mtacc {
+
+MachineSetup loadMachineSetup(const MachineSource& source) {
+  Machine loaded = loadMachine(source.machine);
+  if (source.alignment == "table") loaded.alignment = WorkpieceAlignment::Table;
+  else if (source.alignment == "machine") loaded.alignment = WorkpieceAlignment::Machine;
+  else if (!source.alignment.empty()) throw InputError(InputLocation{"", 0, "alignment"}, "expected 'table' or 'machine'");
+  auto machine = std::make_shared<const Machine>(std::move(loaded));
+  ErrorModel errors = source.errorsFile.empty() ? loadMachineErrors(*machine) : loadErrors(*machine, source.errorsFile);
+  return {machine, std::move(errors)};
+}
+
+std::vector<Parameter> findParameters(const MachineSetup& setup, const std::vector<std::string>& names) {
+  std::vector<Parameter> out;
+  for (const auto& n : names) out.push_back(findParameter(*setup.machine, setup.errors, n));
+  return out;
+}
+
+nlohmann::json poseJson(const Machine& m, const double* q) {
+  nlohmann::json j = nlohmann::json::object();
+  for (int i = 0; i < m.commandedCount(); ++i) {
+    const Axis& a = m.axes[static_cast<size_t>(i)];
+    j[a.name] = a.isRotary() ? q[i] / kDeg : q[i];
+  }
+  return j;
+}
+
+nlohmann::json vectorJson(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace mtacc

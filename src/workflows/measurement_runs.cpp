@@ -1,0 +1,130 @@
+#include "mtacc/workflows/measurement_runs.hpp"
+
+#include <filesystem>
+#include <random>
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/core/units.hpp"
+#include "mtacc/io/atomic_file.hpp"
+#include "mtacc/io/measurement_csv.hpp"
+#include "mtacc/io/plan_yaml.hpp"
+
+namespace mtacc {
+
+SimulationResult simulateRuns(const MachineSetup& setup, std::vector<MeasurementRun> runs, const SimulationOptions& o) {
+  if (!(o.noise >= 0)) throw InputError(InputLocation{"", 0, "noise"}, "must not be negative");
+  const auto nominal = setup.nominal();
+  const auto model = setup.actual();
+  std::mt19937_64 rng(o.seed);
+  SimulationResult r{setup.machine, o.noise, {}, {}};
+  std::vector<std::string> texts;
+  for (auto& run : runs) {
+    for (int k = 0; k < kSetupParameterCount; ++k)
+      if (o.setupErrors[static_cast<size_t>(k)] && appliesTo(static_cast<SetupParameter>(k), run.instrument))
+        run.setup.errors[static_cast<size_t>(k)] = *o.setupErrors[static_cast<size_t>(k)];
+    simulateRun(model, nominal, run, o.disturbance, o.noise, &rng);
+    if (!o.output.empty()) {
+      r.files.push_back(o.outputIsFolder ? (std::filesystem::path(o.output) / (run.name + ".csv")).string() : o.output);
+      texts.push_back(measurementCsv(*setup.machine, run));
+    }
+  }
+  if (!o.output.empty() && !o.outputIsFolder && runs.size() != 1)
+    throw InputError(InputLocation{"", 0, "output"}, "several runs need an output folder");
+  if (o.outputIsFolder && !o.output.empty()) std::filesystem::create_directories(o.output);
+  for (size_t i = 0; i < r.files.size(); ++i) writeFileAtomically(r.files[i], texts[i]);
+  r.runs = std::move(runs);
+  return r;
+}
+
+SimulationResult simulateBallbarCircle(const MachineSetup& setup, const BallbarCircleSpec& spec, const SimulationOptions& options) {
+  if (!(spec.radius > 0)) throw InputError(InputLocation{"", 0, "radius"}, "must be positive");
+  if (!(spec.feed > 0)) throw InputError(InputLocation{"", 0, "feed"}, "must be positive");
+  try {
+    return simulateRuns(setup, {ballbarCircle(setup.nominal(), spec)}, options);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(InputLocation{"", 0, "ballbar"}, e.what());
+  }
+}
+
+SimulationResult simulateSphereTest(const MachineSetup& setup, const SphereTestSpec& spec, const SimulationOptions& options) {
+  if (spec.angles.empty()) throw InputError(InputLocation{"", 0, "points"}, "must be at least 1");
+  try {
+    return simulateRuns(setup, sphereTest(setup.nominal(), spec), options);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(InputLocation{"", 0, "rtest"}, e.what());
+  }
+}
+
+SimulationResult simulatePlan(const MachineSetup& setup, const std::string& plan, const SimulationOptions& options) {
+  return simulateRuns(setup, loadTestPlan(setup.nominal(), plan).runs, options);
+}
+
+nlohmann::json runJson(const Machine& m, const MeasurementRun& run) {
+  nlohmann::json poses = nlohmann::json::array(), readings = nlohmann::json::array(), angle = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < run.poses(); ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (int k = 0; k < m.commandedCount(); ++k)
+      row.push_back(m.axes[static_cast<size_t>(k)].isRotary() ? run.q(i, k) / kDeg : run.q(i, k));
+    poses.push_back(row);
+  }
+  for (Eigen::Index i = 0; i < run.readings.rows(); ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (Eigen::Index k = 0; k < run.readings.cols(); ++k) row.push_back(run.readings(i, k) * 1e3);
+    readings.push_back(row);
+  }
+  for (double a : run.angle) angle.push_back(a / kDeg);
+  return {{"name", run.name}, {"instrument", instrumentName(run.instrument)}, {"poses", poses.size()},
+          {"q", poses}, {"readings_um", readings}, {"angle_deg", angle}, {"sense", run.sense},
+          {"length_mm", run.setup.length}};
+}
+
+nlohmann::json toJson(const SimulationResult& r) {
+  nlohmann::json j;
+  j["machine"] = r.machine->name;
+  j["noise_um"] = r.noise * 1e3;
+  j["runs"] = nlohmann::json::array();
+  for (size_t i = 0; i < r.runs.size(); ++i) {
+    auto run = runJson(*r.machine, r.runs[i]);
+    run["file"] = i < r.files.size() ? nlohmann::json(r.files[i]) : nlohmann::json(nullptr);
+    j["runs"].push_back(run);
+  }
+  return j;
+}
+
+CircularEvaluation evaluateBallbarFile(const MachineSetup& setup, const std::string& file) {
+  CircularEvaluation e{setup.machine, file, readMeasurementCsv(setup.nominal(), file), {}};
+  try {
+    e.result = evaluateCircularTest(e.run);
+  } catch (const std::invalid_argument& reason) {
+    throw InputError(InputLocation{file, 0, ""}, reason.what());
+  }
+  return e;
+}
+
+nlohmann::json toJson(const CircularEvaluation& e) {
+  const auto& r = e.result;
+  const auto& g = r.diagnostics;
+  nlohmann::json j = runJson(*e.machine, e.run);
+  j["file"] = e.file;
+  j["eccentricity_um"] = vectorJson(r.eccentricity.eccentricity * 1e3);
+  j["eccentricity_plot_um"] = {r.eccentricity.e1 * 1e3, r.eccentricity.e2 * 1e3};
+  j["offset_um"] = r.eccentricity.offset * 1e3;
+  j["directions"] = nlohmann::json::array();
+  for (const auto& d : r.directions)
+    j["directions"].push_back({{"sense", d.sense > 0 ? "ccw" : "cw"},
+                               {"circular_deviation_um", d.circularDeviation * 1e3},
+                               {"radial_deviation_min_um", d.radialMin * 1e3},
+                               {"radial_deviation_max_um", d.radialMax * 1e3}});
+  j["hysteresis_um"] = r.bothDirections ? nlohmann::json(r.hysteresis * 1e3) : nlohmann::json(nullptr);
+  j["diagnostics"] = {{"squareness_urad", g.squareness * 1e6},
+                      {"scale_mismatch_um_per_m", g.scaleMismatch * 1e6},
+                      {"servo_mismatch_ms", r.bothDirections ? nlohmann::json(g.servoMismatch * 1e3) : nlohmann::json(nullptr)},
+                      {"backlash_a_um", g.backlashA * 1e3},
+                      {"backlash_b_um", g.backlashB * 1e3},
+                      {"reversal_spike_a_um", g.reversalSpikeA * 1e3},
+                      {"reversal_spike_b_um", g.reversalSpikeB * 1e3},
+                      {"residual_rms_um", g.residualRms * 1e3}};
+  return j;
+}
+
+}  // namespace mtacc
