@@ -8,6 +8,7 @@
 #include "mtacc/io/measurement_csv.hpp"
 #include "mtacc/measurement/simulation.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
+#include "mtacc/procedures/cone.hpp"
 #include "mtacc/io/plan_yaml.hpp"
 #include "test_helpers.hpp"
 

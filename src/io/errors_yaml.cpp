@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "mtacc/core/input_error.hpp"
 #include "yaml_input.hpp"
 #include "mtacc/errors/aliases.hpp"
 
@@ -146,8 +147,8 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
       Parameter p;
       try {
         p = findParameter(machine, model, term.isoName);
-      } catch (const std::invalid_argument& e) {
-        ctx.fail(kv.first, key, e.what());
+      } catch (const InputError& e) {
+        ctx.fail(kv.first, key, e.reason());
       }
       // Location errors add up: a composite alias and an ISO name may share a term.
       model.axes[static_cast<size_t>(p.axis)].location[p.component] +=

@@ -3,6 +3,7 @@
 #include <regex>
 
 #include "mtacc/core/units.hpp"
+#include "mtacc/core/input_error.hpp"
 #include "yaml_input.hpp"
 
 namespace mtacc {
@@ -40,8 +41,8 @@ ErrorLimits loadErrorLimits(const Machine& machine, const std::string& path) {
     } else {
       try {
         l.location = findParameter(machine, zero, name);
-      } catch (const std::invalid_argument& e) {
-        ctx.fail(kv.first, key, e.what());
+      } catch (const InputError& e) {
+        ctx.fail(kv.first, key, e.reason());
       }
       if (l.location.kind != ParameterKind::Location) ctx.fail(kv.first, key, "expected a location error or NAME.lin/.hyst/.cyclic/.<k>harm");
       l.axis = l.location.axis;

@@ -32,7 +32,7 @@ def test_near_singular_setup_warns(cli):
 def test_bad_input_and_gcode(cli, tmp_path):
     gcode = tmp_path / "cone.nc"
     out = subprocess.run([cli, "cone", "tilting-table", "--points", "3", "--gcode", str(gcode)], capture_output=True, text=True)
-    assert out.returncode != 0 and "--points" in out.stderr and not gcode.exists()
+    assert out.returncode != 0 and "points: must be between 8 and 1000000" in out.stderr and not gcode.exists()
     out = subprocess.run([cli, "cone", "three-axis-vertical", "--gcode", str(gcode)], capture_output=True, text=True)
     assert out.returncode != 0 and "cannot be reached" in out.stderr and not gcode.exists()
     cl = tmp_path / "cone.csv"
