@@ -82,6 +82,28 @@ TEST(BallbarDiagnostics, BacklashAndReversalSpike) {
   EXPECT_LT(s.diagnostics.reversalSpikeA, 0.5 * s.diagnostics.reversalSpikeB);
 }
 
+// Regression: the readings once took each pose's directions of motion from the wrong
+// entries of the run's direction matrix. Every simulated reading must be the bar length
+// at that pose with exactly that pose's directions.
+TEST(BallbarDiagnostics, EachReadingUsesItsOwnPosesDirections) {
+  const Bench b;
+  auto run = b.circle();
+  const auto model = compile(b.machine, parseErrors(*b.machine, "errors:\n  EXX: {reversal: 4 um}\n  EYY: {reversal: 3 um}\n", "test"));
+  simulateRun(model, b.nominal, run);
+  ASSERT_EQ(run.direction.rows(), run.poses());
+  const Vec3 workBall = run.setup.target;
+  int reversedX = 0;
+  for (Eigen::Index i = 0; i < run.poses(); ++i) {
+    std::vector<int> dir(static_cast<size_t>(run.direction.cols()));
+    for (Eigen::Index k = 0; k < run.direction.cols(); ++k) dir[static_cast<size_t>(k)] = run.direction(i, k);
+    reversedX += dir[0] < 0;
+    const Vec3 tool = toolInWorkpiece(model, run.q.row(i).data(), dir.data()) * run.setup.toolBall;
+    EXPECT_NEAR(run.readings(i, 0), (tool - workBall).norm() - run.setup.length, 1e-12) << "pose " << i;
+  }
+  EXPECT_GT(reversedX, 0);
+  EXPECT_LT(reversedX, run.poses());
+}
+
 TEST(BallbarDiagnostics, CentreOffsetIsTheEccentricity) {
   const Bench b;
   auto run = b.circle();

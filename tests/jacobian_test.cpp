@@ -18,8 +18,8 @@ namespace {
 
 void checkJacobian(std::shared_ptr<const Machine> machine, ErrorModel errors, int poses) {
   const auto nominal = compileNominal(machine);
-  const auto model = compile(machine, errors);
   const auto params = parameterCatalogue(*machine, errors);
+  const auto model = compile(machine, errors, params);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int trial = 0; trial < poses; ++trial) {
@@ -27,7 +27,7 @@ void checkJacobian(std::shared_ptr<const Machine> machine, ErrorModel errors, in
     std::vector<int> dir(q.size());
     for (auto& d : dir) d = u(rng) < 0.5 ? -1 : 1;
     const Pose nominalPose = toolInWorkpiece(nominal, q.data());
-    const auto jac = parameterJacobian(model, params, q.data(), dir.data());
+    const auto jac = parameterJacobian(model, nominal, q.data(), dir.data());
     for (size_t k = 0; k < params.size(); ++k) {
       const double h = params[k].dimension == Dimension::Length ? 1e-3 : 1e-5;
       const double v = parameterValue(errors, params[k]);

@@ -17,7 +17,8 @@ TEST(ReadingJacobian, AllInstrumentsAgainstCentralDifferences) {
   // Location errors and component-error coefficients (a polynomial and a harmonic of B).
   std::vector<Parameter> params;
   for (const char* n : {"X0B", "A0C", "C0Y", "EXX.c1", "EBB.h1"}) params.push_back(findParameter(*machine, errors, n));
-  const auto model = compile(machine, errors);
+  const auto model = compile(machine, errors, params);
+  KinematicData data;
 
   BallbarRotarySpec b;
   b.axis = "C";
@@ -43,10 +44,13 @@ TEST(ReadingJacobian, AllInstrumentsAgainstCentralDifferences) {
       if (appliesTo(p, run.instrument)) setup.push_back(p);
     for (auto p : setup) run.setup.errors[static_cast<size_t>(p)] = setupParameterDimension(p) == Dimension::Length ? 7e-3 : 30e-6;
     const std::optional<PointJacobian> setAt =
-        run.setup.setAt ? std::optional(pointJacobian(model, params, run.setup.setAt->data(), nullptr, toolBallWithSetupError(run)))
+        run.setup.setAt ? std::optional(pointJacobian(model, run.setup.setAt->data(), nullptr, toolBallWithSetupError(run), data))
                         : std::nullopt;
     for (Eigen::Index i = 0; i < run.poses(); i += 3) {
-      const auto j = readingJacobian(model, nominal, run, i, params, setup, setAt ? &*setAt : nullptr);
+      const RunGeometry geometry = runGeometry(model, run);
+      const NominalFrame frame = nominalFrame(nominal, run, i);
+      ReadingJacobian j;
+      readingJacobian(model, {run, i, geometry, frame, setup, setAt ? &*setAt : nullptr}, data, j);
       EXPECT_LT((j.reading - predictReading(model, nominal, run, i)).cwiseAbs().maxCoeff(), 1e-12);
       for (size_t k = 0; k < params.size(); ++k) {
         const double h = params[k].dimension == Dimension::Length ? 1e-4 : 1e-6;

@@ -22,7 +22,7 @@ TEST(SensitivityBudget, ExactCoefficientTendsToTheJacobianProjection) {
   // errors (same shapes of the component-error functions).
   ErrorModel shape = errors;
   for (const auto& p : params) setParameterValue(shape, p, 0.0);
-  const auto jac = parameterJacobian(compile(machine, shape), params, q.data());
+  const auto jac = parameterJacobian(compile(machine, shape, params), zero, q.data());
   // E/eps is a one-sided difference: it differs from the derivative by the curvature term
   // (at most eps * |TCP| for a rotation) plus rounding (a few ulps of |TCP| divided by eps).
   const double arm = toolPoint(zero, q.data()).position.norm() + 1.0;

@@ -139,7 +139,7 @@ PYBIND11_MODULE(_mtacc, mod) {
         const auto params = names.empty() ? parameterCatalogue(*s.machine, s.errors) : findParameters(s, names);
         std::vector<std::string> used;
         for (const auto& p : params) used.push_back(p.name);
-        return py::make_tuple(used, toArray(parameterJacobian(s.actual(), params, joints_.row(0).data())));
+        return py::make_tuple(used, toArray(parameterJacobian(compile(s.machine, s.errors, params), s.nominal(), joints_.row(0).data())));
       })
       .def("sensitivity_coefficient", [](const MachineSetup& s, const Array& q, const std::string& name, const py::object& epsilon,
                                          const std::vector<double>& direction) {
@@ -216,22 +216,14 @@ PYBIND11_MODULE(_mtacc, mod) {
       })
       .def("evaluate_ballbar", [](const MachineSetup& s, const std::string& path) { return toPython(toJson(evaluateBallbarFile(s, path))); })
       .def("observability", [](const MachineSetup& s, const std::string& plan, const std::vector<std::string>& parameters) {
-        IdentificationRequest r;
-        r.plan = plan;
-        r.parameters = parameters;
-        return toPython(toJson(planObservability(s, r)));
+        return toPython(toJson(planObservability(s, {.plan = plan, .parameters = parameters})));
       })
       .def("identify", [](const MachineSetup& s, const std::vector<std::string>& files, const std::vector<std::string>& parameters,
                           const std::string& plan, bool robust) {
-        IdentificationRequest r;
-        r.plan = plan;
-        r.data = files;
-        r.parameters = parameters;
-        r.robust = robust;
         IdentificationOutcome out;
         {
           py::gil_scoped_release release;
-          out = identifyParameters(s, r);
+          out = identifyParameters(s, {.plan = plan, .data = files, .parameters = parameters, .robust = robust});
         }
         return toPython(toJson(out));
       })

@@ -9,6 +9,8 @@
 #include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/forward.hpp"
 
+#include "chain_program.hpp"
+
 namespace mtacc {
 namespace {
 
@@ -22,9 +24,9 @@ struct RotaryJointRef {
 // inverted.
 std::vector<RotaryJointRef> rotaryOrder(const KinematicModel& m) {
   std::vector<RotaryJointRef> order;
-  for (auto it = m.workpieceChain.rbegin(); it != m.workpieceChain.rend(); ++it)
+  for (auto it = m.chains->workpieceChain.rbegin(); it != m.chains->workpieceChain.rend(); ++it)
     if (it->type == AxisType::Rotary) order.push_back({it->joint, it->direction});
-  for (const auto& e : m.toolChain)
+  for (const auto& e : m.chains->toolChain)
     if (e.type == AxisType::Rotary) order.push_back({e.joint, e.direction});
   return order;
 }
@@ -162,7 +164,7 @@ IkResult inverseKinematics(const KinematicModel& m, const Vec3& position, const 
   const Vec3 v = m.alignment.linear().transpose() * toolDirection.normalized();
   const Vec3 target = position;
   const auto rot = rotaryOrder(m);
-  const auto angleSets = orientationSolutions(rot, m.toolDirection, v, o);
+  const auto angleSets = orientationSolutions(rot, m.machine->toolDirection, v, o);
 
   IkResult result;
   for (const auto& set : angleSets) {

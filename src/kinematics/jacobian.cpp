@@ -1,287 +1,177 @@
 #include "mtacc/kinematics/jacobian.hpp"
 
-#include <algorithm>
-#include <array>
 #include <stdexcept>
-#include <string>
 
-#include "mtacc/kinematics/forward.hpp"
+#include "chain_program.hpp"
 
 namespace mtacc {
 namespace {
 
-struct ChainFactors {
-  std::vector<Factor> factors;
-  // Per machine axis: its chain element (or null) and the range of its factors.
-  std::vector<const ChainElement*> element;
-  std::vector<std::pair<size_t, size_t>> range;
-  std::vector<Pose> prefix;  // prefix[i] = F_0 ... F_{i-1}; prefix[n] = total
-  std::vector<Pose> suffix;  // suffix[i] = F_{i+1} ... F_n (tail frame included)
-  Pose total;
-};
+Vec3 vee(const Mat3& skewSymmetric) { return {skewSymmetric(2, 1), skewSymmetric(0, 2), skewSymmetric(1, 0)}; }
 
-// The chain's factors with their prefix and suffix products.
-ChainFactors expand(const KinematicModel& m, const std::vector<ChainElement>& chain, const Pose& tail, const double* q,
-                    const int* dir) {
-  ChainFactors c;
-  c.element.assign(m.machine->axes.size(), nullptr);
-  c.range.assign(m.machine->axes.size(), {0, 0});
-  for (const auto& e : chain) {
-    const double qe = e.joint >= 0 ? q[e.joint] : 0.0;
-    const int d = (dir && e.joint >= 0) ? dir[e.joint] : 0;
-    const size_t begin = c.factors.size();
-    elementFactors(m, e, qe, d, c.factors);
-    c.element[static_cast<size_t>(e.axis)] = &e;
-    c.range[static_cast<size_t>(e.axis)] = {begin, c.factors.size()};
-  }
-  c.factors.push_back({tail, Hook::None, -1});  // the tool or workpiece frame
-  const size_t n = c.factors.size();
-  c.prefix.resize(n + 1);
-  c.prefix[0] = Pose::Identity();
-  for (size_t i = 0; i < n; ++i) c.prefix[i + 1] = c.prefix[i] * c.factors[i].pose;
-  c.total = c.prefix[n];
-  c.suffix.resize(n);
-  Pose acc = Pose::Identity();
-  for (size_t i = n; i-- > 0;) {
-    c.suffix[i] = acc;
-    acc = c.factors[i].pose * acc;
-  }
-  return c;
-}
+// The point Jacobian into data.point, and with withRotation the tool frame's rate of turn
+// into data.rotation. d(W^-1 T x) = W^-1 (dT x - dW (W^-1 T x)): both chains see the same bed
+// point. A hooked factor F between the frames B (before) and A (after) adds B dF A^-1 x to the
+// point and B.rot vee(dF_rot F_rot^T) to the rate of turn.
+void evaluateJacobian(const KinematicModel& m, const double* q, const int* dir, const Vec3& toolPoint,
+                      bool withRotation, KinematicData& data) {
+  if (!m.withErrors) throw std::logic_error("Jacobians need a model compiled with errors");
+  const ChainPrograms& c = *m.chains;
+  data.toolFrames.resize(c.toolHookProgram.size());
+  data.workpieceFrames.resize(c.workpieceHookProgram.size());
+  const auto factors = static_cast<size_t>(c.factorStart[3]);
+  data.maps.resize(factors);
+  data.local.resize(factors);
+  data.motion.resize(factors);
+  data.ready.assign(factors, 0);
 
-// dF of a hooked factor of element e with respect to p (the model's own matrix for location
-// errors, else computed into `scratch`); null when the factor does not depend on p.
-const Mat4* factorDerivative(const KinematicModel& m, const ChainElement& e, Hook hook, const Parameter& p, const double* q,
-                             const int* dir, Mat4& scratch) {
-  if (e.axis != p.axis) return nullptr;
-  const auto axis = static_cast<size_t>(p.axis);
-  const double qa = e.joint >= 0 ? q[e.joint] : 0.0;
-  const int d = (dir && e.joint >= 0) ? dir[e.joint] : 0;
-  const auto& errs = m.errors.axes[axis];
-  if (p.kind == ParameterKind::Location && hook == Hook::Location) return &m.locationDerivatives[axis][static_cast<size_t>(p.component)];
-  if (p.kind == ParameterKind::Location && hook == Hook::LinearJoint) {
-    const int own = m.machine->axes[axis].ownComponent();
-    Vec3 dt;
-    if (p.component == own)
-      dt = e.sign * m.tiltedDirections[axis];
-    else if (p.component >= 3)
-      dt = e.sign * (qa + errs.location[own]) * m.tiltedDirectionDerivatives[axis][static_cast<size_t>(p.component - 3)];
-    else
-      return nullptr;
-    scratch.setZero();
-    scratch.block<3, 1>(0, 3) = dt;
-    return &scratch;
-  }
-  if (p.kind == ParameterKind::Motion && hook == Hook::Motion) {
-    Vec6 comps;
-    for (int k = 0; k < 6; ++k) comps[k] = errs.motion[static_cast<size_t>(k)].value(qa, d);
-    scratch = errorTransformDerivative(comps, p.component) * errs.motion[static_cast<size_t>(p.component)].basis(p.index, qa, d);
-    return &scratch;
-  }
-  return nullptr;
-}
-
-// Calls add(i, dF_i) for every factor i of the chain whose matrix depends on the parameter:
-// d(chain total)/dp = sum prefix[i] * dF_i * suffix[i].
-template <class Add>
-void forEachFactorDerivative(const KinematicModel& m, const ChainFactors& c, const Parameter& p, const double* q,
-                             const int* dir, Add&& add) {
-  const ChainElement* element = c.element[static_cast<size_t>(p.axis)];
-  if (!element) return;
-  Mat4 scratch;
-  for (size_t i = c.range[static_cast<size_t>(p.axis)].first; i < c.range[static_cast<size_t>(p.axis)].second; ++i) {
-    if (c.factors[i].hook == Hook::None) continue;
-    if (const Mat4* df = factorDerivative(m, *element, c.factors[i].hook, p, q, dir, scratch)) add(i, *df);
-  }
-}
-
-Mat4 chainDerivative(const KinematicModel& m, const ChainFactors& c, const Parameter& p, const double* q,
-                     const int* dir) {
-  Mat4 sum = Mat4::Zero();
-  forEachFactorDerivative(m, c, p, q, dir,
-                          [&](size_t i, const Mat4& df) { sum += c.prefix[i].matrix() * df * c.suffix[i].matrix(); });
-  return sum;
-}
-
-}  // namespace
-
-ParameterJacobian parameterJacobian(const KinematicModel& m, const std::vector<Parameter>& parameters, const double* q,
-                                    const int* dir) {
-  if (!m.withErrors) throw std::logic_error("parameterJacobian needs a model compiled with errors");
-  const auto tool = expand(m, m.toolChain, m.toolFrame, q, dir);
-  const auto wp = expand(m, m.workpieceChain, m.workpieceFrame, q, dir);
-  const Mat4 wInv = wp.total.inverse().matrix();
-  const Mat4 toolTotal = tool.total.matrix();
-  const Mat4 pose = m.alignment.matrix() * wInv * toolTotal;
-  const Mat3 r = pose.topLeftCorner<3, 3>();
-
-  const bool aligned = m.machine->alignment == WorkpieceAlignment::Machine;
-  ChainFactors ref;
-  Mat4 nominalRefInv = Mat4::Identity();
-  if (aligned) {
-    const auto& qr = m.machine->referencePose;
-    ref = expand(m, m.workpieceChain, m.workpieceFrame, qr.data(), nullptr);
-    // M_WC = N^-1 * W_act(q_ref)  =>  N^-1 = M_WC * W_act(q_ref)^-1
-    nominalRefInv = m.alignment.matrix() * ref.total.inverse().matrix();
-  }
-
-  Pose nominalPose = Pose::Identity();
-  {
-    const KinematicModel nominal = compile(m.machine, m.errors, false);
-    nominalPose = toolInWorkpiece(nominal, q);
-  }
-  const Vec3 rotErr = rotationVector(r * nominalPose.linear().transpose());
-  const Mat3 jInv = leftJacobianInverse(rotErr);
-
-  ParameterJacobian jac(6, static_cast<Eigen::Index>(parameters.size()));
-  for (size_t k = 0; k < parameters.size(); ++k) {
-    const Parameter& p = parameters[k];
-    Mat4 d = m.alignment.matrix() * wInv * chainDerivative(m, tool, p, q, dir);
-    d -= m.alignment.matrix() * wInv * chainDerivative(m, wp, p, q, dir) * wInv * toolTotal;
-    if (aligned) d += nominalRefInv * chainDerivative(m, ref, p, m.machine->referencePose.data(), nullptr) * wInv * toolTotal;
-    const Mat3 omegaHat = d.topLeftCorner<3, 3>() * r.transpose();
-    const Vec3 omega(omegaHat(2, 1), omegaHat(0, 2), omegaHat(1, 0));
-    jac.block<3, 1>(0, static_cast<Eigen::Index>(k)) = d.block<3, 1>(0, 3);
-    jac.block<3, 1>(3, static_cast<Eigen::Index>(k)) = jInv * omega;
-  }
-  return jac;
-}
-
-PointJacobianPlan planPointJacobian(const KinematicModel& m, const std::vector<Parameter>& parameters) {
-  if (!m.withErrors) throw std::logic_error("pointJacobian needs a model compiled with errors");
-  using Term = PointJacobianPlan::Term;
-  PointJacobianPlan plan;
-  plan.model = &m;
-  plan.parameters = parameters;
-  const std::vector<double> zero(static_cast<size_t>(m.jointCount), 0.0);
-  Mat4 scratch;
-  auto addChain = [&](int chain, const std::vector<ChainOp>& program, const std::vector<ChainElement>& elements) {
-    int factor = 0;
-    for (size_t i = 0; i < program.size(); ++i) {
-      const ChainOp& op = program[i];
-      if (op.kind != ChainOp::HookMarker) continue;
-      ++i;  // markers come in pairs around their factor
-      while (program[i].kind != ChainOp::HookMarker) ++i;
-      if (factor == PointJacobianPlan::kMaxFactors)
-        throw std::invalid_argument("pointJacobian: a chain has more than " +
-                                    std::to_string(PointJacobianPlan::kMaxFactors) + " factors with error parameters");
-      const auto element = std::find_if(elements.begin(), elements.end(), [&](const ChainElement& e) { return e.axis == op.axis; });
-      for (size_t k = 0; k < parameters.size(); ++k) {
-        const Parameter& p = parameters[k];
-        const Mat4* df = factorDerivative(m, *element, op.hook, p, zero.data(), nullptr, scratch);
-        if (!df) continue;
-        Term t{static_cast<int>(k), chain, factor, &*element, op.hook, Term::PerPose};
-        if (op.hook == Hook::Location) {
-          t.kind = Term::Constant;
-          t.rotation = df->topLeftCorner<3, 3>();
-          t.translation = df->block<3, 1>(0, 3);
-          t.rotates = !t.rotation.isZero(0.0);
-        } else if (op.hook == Hook::LinearJoint) {
-          // factorDerivative is affine in the joint value: sample it at 0 and 1.
-          t.kind = Term::JointTranslation;
-          t.translation = df->block<3, 1>(0, 3);
-          std::vector<double> one = zero;
-          one[static_cast<size_t>(element->joint)] = 1.0;
-          t.translationPerUnit = factorDerivative(m, *element, op.hook, p, one.data(), nullptr, scratch)->block<3, 1>(0, 3) -
-                                 t.translation;
-        }
-        plan.terms.push_back(t);
-      }
-      ++factor;
-    }
-  };
-  addChain(0, m.toolHookProgram, m.toolChain);
-  addChain(1, m.workpieceHookProgram, m.workpieceChain);
-  if (m.machine->alignment == WorkpieceAlignment::Machine) {
-    addChain(2, m.workpieceHookProgram, m.workpieceChain);
-    plan.referenceFrames.resize(2 * PointJacobianPlan::kMaxFactors);
-    plan.reference = runHookProgram(m, m.workpieceHookProgram, m.machine->referencePose.data(), nullptr,
-                                    plan.referenceFrames.data());
-    plan.referenceToWorkpiece = m.alignment.linear() * plan.reference.linear().transpose();
-  }
-  return plan;
-}
-
-void pointJacobian(const PointJacobianPlan& plan, const double* q, const int* dir, const Vec3& toolPoint, PointJacobian& out) {
-  constexpr int kMax = PointJacobianPlan::kMaxFactors;
-  const KinematicModel& m = *plan.model;
-  std::array<ChainFrame, 2 * kMax> toolFrames, workpieceFrames;
-  const Pose tool = runHookProgram(m, m.toolHookProgram, q, dir, toolFrames.data());
-  const Pose wpInv = runHookProgram(m, m.workpieceHookProgram, q, dir, workpieceFrames.data()).inverse(Eigen::Isometry);
+  const Pose tool = runProgram(m.errors, c.toolHookProgram, q, dir, data.toolFrames.data());
+  const Pose wpInv =
+      runProgram(m.errors, c.workpieceHookProgram, q, dir, data.workpieceFrames.data()).inverse(Eigen::Isometry);
   const Vec3 inBed = tool * toolPoint;
   const Vec3 beforeAlignment = wpInv * inBed;
   // The map of a direction in the bed frame to the workpiece frame.
   const Mat3 bedToWorkpiece = m.aligned ? Mat3(m.alignment.linear() * wpInv.linear()) : wpInv.linear();
+  PointJacobian& out = data.point;
   out.point = m.aligned ? Vec3(m.alignment * beforeAlignment) : beforeAlignment;
   out.toolRotation = bedToWorkpiece * tool.linear();
 
-  // d(W^-1 T x) = W^-1 (dT x - dW (W^-1 T x)): both chains see the same bed point. A hooked
-  // factor F between the frames B (before) and A (after) adds B dF A^-1 x.
-  const bool aligned = m.machine->alignment == WorkpieceAlignment::Machine;
-  const ChainFrame* frames[3] = {toolFrames.data(), workpieceFrames.data(), plan.referenceFrames.data()};
-  const Vec3 points[3] = {inBed, inBed, aligned ? Vec3(plan.reference * beforeAlignment) : Vec3::Zero()};
-  const Mat3 toWorkpiece[3] = {bedToWorkpiece, -bedToWorkpiece, plan.referenceToWorkpiece};
-  // Per hooked factor: the map of a direction before it to the workpiece frame, and the point
-  // in the frame after it (computed when a term first asks for them).
-  std::array<Mat3, kMax> maps[3];
-  std::array<Vec3, kMax> local[3];
-  std::array<bool, kMax> ready[3] = {};
+  const bool reference = !c.referenceFrames.empty();
+  const ChainFrame* frames[3] = {data.toolFrames.data(), data.workpieceFrames.data(), c.referenceFrames.data()};
+  const ChainProgram* programs[3] = {&c.toolHookProgram, &c.workpieceHookProgram, &c.workpieceHookProgram};
+  const Vec3 points[3] = {inBed, inBed, reference ? Vec3(c.reference * beforeAlignment) : Vec3::Zero()};
+  const Mat3 toWorkpiece[3] = {bedToWorkpiece, -bedToWorkpiece, c.referenceToWorkpiece};
   const double* qOf[3] = {q, q, m.machine->referencePose.data()};
   const int* dirOf[3] = {dir, dir, nullptr};
-  out.jacobian.setZero(3, static_cast<Eigen::Index>(plan.parameters.size()));
-  Mat4 scratch;
-  for (const auto& t : plan.terms) {
-    const auto c = static_cast<size_t>(t.chain), h = static_cast<size_t>(t.factor);
-    if (!ready[c][h]) {
-      const ChainFrame& before = frames[c][2 * h];
-      const ChainFrame& after = frames[c][2 * h + 1];
-      maps[c][h].noalias() = toWorkpiece[c] * before.rotation;
-      local[c][h].noalias() = after.rotation.transpose() * (points[c] - after.origin);
-      ready[c][h] = true;
+  const auto columns = static_cast<Eigen::Index>(m.parameters.size());
+  out.jacobian.setZero(3, columns);
+  if (withRotation) data.rotation.setZero(3, columns);
+  for (const auto& t : c.terms) {
+    const auto chain = static_cast<size_t>(t.chain);
+    const auto f = static_cast<size_t>(c.factorStart[chain] + t.factor);
+    if (!data.ready[f]) {
+      const ChainFrame& before = frames[chain][2 * t.factor];
+      const ChainFrame& after = frames[chain][2 * t.factor + 1];
+      data.maps[f].noalias() = toWorkpiece[chain] * before.rotation;
+      data.local[f].noalias() = after.rotation.transpose() * (points[chain] - after.origin);
+      if (t.kind == JacobianTerm::Motion)
+        data.motion[f] = motionComponents(m.errors, (*programs[chain])[static_cast<size_t>(t.op)], qOf[chain], dirOf[chain]);
+      data.ready[f] = 1;
     }
-    Vec3 d;
-    if (t.kind == PointJacobianPlan::Term::Constant) {
-      d = t.rotates ? Vec3(t.rotation * local[c][h] + t.translation) : t.translation;
-    } else if (t.kind == PointJacobianPlan::Term::JointTranslation) {
-      d = t.translation + qOf[c][t.element->joint] * t.translationPerUnit;
-    } else {
-      const Mat4& df = *factorDerivative(m, *t.element, t.hook, plan.parameters[static_cast<size_t>(t.parameter)], qOf[c],
-                                         dirOf[c], scratch);
-      d = df.topLeftCorner<3, 3>() * local[c][h] + df.block<3, 1>(0, 3);
+    Vec3 d = Vec3::Zero(), turn = Vec3::Zero();
+    switch (t.kind) {
+      case JacobianTerm::Constant:
+        d = t.rotates ? Vec3(t.rotation * data.local[f] + t.translation) : t.translation;
+        turn = t.angular;
+        break;
+      case JacobianTerm::JointTranslation:
+        d = t.translation + qOf[chain][t.joint] * t.translationPerUnit;
+        break;
+      case JacobianTerm::Motion: {
+        const Parameter& p = m.parameters[static_cast<size_t>(t.parameter)];
+        const ChainOp& op = (*programs[chain])[static_cast<size_t>(t.op)];
+        const double qa = op.joint >= 0 ? qOf[chain][op.joint] : 0.0;
+        const int sense = (dirOf[chain] && op.joint >= 0) ? dirOf[chain][op.joint] : 0;
+        const Vec6& e = data.motion[f];
+        const double basis =
+            m.errors.axes[static_cast<size_t>(p.axis)].motion[static_cast<size_t>(p.component)].basis(p.index, qa, sense);
+        const Mat4 df = errorTransformDerivative(e, p.component) * basis;
+        d = df.topLeftCorner<3, 3>() * data.local[f] + df.block<3, 1>(0, 3);
+        if (withRotation && p.component >= 3)
+          turn = vee(df.topLeftCorner<3, 3>() * rotationXYZ(e[kA], e[kB], e[kC]).transpose());
+        break;
+      }
     }
-    out.jacobian.col(t.parameter).noalias() += maps[c][h] * d;
+    out.jacobian.col(t.parameter).noalias() += data.maps[f] * d;
+    if (withRotation) data.rotation.col(t.parameter).noalias() += data.maps[f] * turn;
   }
 }
 
-PointJacobian pointJacobian(const KinematicModel& m, const std::vector<Parameter>& parameters, const double* q,
-                            const int* dir, const Vec3& toolPoint) {
-  PointJacobian out;
-  pointJacobian(planPointJacobian(m, parameters), q, dir, toolPoint, out);
-  return out;
+}  // namespace
+
+void planJacobian(const KinematicModel& m, ChainPrograms& c) {
+  c.terms.clear();
+  int start = 0;
+  auto addChain = [&](JacobianTerm::Chain chain, const ChainProgram& program) {
+    c.factorStart[chain] = start;
+    int factor = 0;
+    // Markers come in pairs around their factor, one operation.
+    for (size_t i = 0; i < program.size(); ++i) {
+      const ChainOp& marker = program[i];
+      if (marker.kind != ChainOp::Marker) continue;
+      const size_t opIndex = i + 1;
+      i += 2;
+      for (size_t k = 0; k < m.parameters.size(); ++k) {
+        const Parameter& p = m.parameters[k];
+        if (p.axis != marker.axis) continue;
+        const auto axis = static_cast<size_t>(p.axis);
+        JacobianTerm t;
+        t.parameter = static_cast<int>(k);
+        t.chain = chain;
+        t.factor = factor;
+        if (marker.hook == Hook::Location && p.kind == ParameterKind::Location) {
+          const Mat4& d = c.locationDerivatives[axis][static_cast<size_t>(p.component)];
+          t.kind = JacobianTerm::Constant;
+          t.rotation = d.topLeftCorner<3, 3>();
+          t.translation = d.block<3, 1>(0, 3);
+          t.rotates = !t.rotation.isZero(0.0);
+          t.angular = vee(t.rotation * c.locationTransforms[axis].linear().transpose());
+        } else if (marker.hook == Hook::LinearJoint && p.kind == ParameterKind::Location) {
+          // The joint's translation sign (q + own error) tilted direction is affine in q.
+          const int own = m.machine->axes[axis].ownComponent();
+          const double sign = chain == JacobianTerm::Tool ? 1.0 : -1.0;
+          t.kind = JacobianTerm::JointTranslation;
+          t.joint = program[opIndex].joint;
+          if (p.component == own) {
+            t.translation = sign * c.tiltedDirections[axis];
+          } else if (p.component >= 3) {
+            const Vec3& tilt = c.tiltedDirectionDerivatives[axis][static_cast<size_t>(p.component - 3)];
+            t.translation = sign * m.errors.axes[axis].location[own] * tilt;
+            t.translationPerUnit = sign * tilt;
+          } else {
+            continue;
+          }
+        } else if (marker.hook == Hook::Motion && p.kind == ParameterKind::Motion) {
+          t.kind = JacobianTerm::Motion;
+          t.op = static_cast<int>(opIndex);
+        } else {
+          continue;
+        }
+        c.terms.push_back(t);
+      }
+      ++factor;
+    }
+    start += factor;
+  };
+  addChain(JacobianTerm::Tool, c.toolHookProgram);
+  addChain(JacobianTerm::Workpiece, c.workpieceHookProgram);
+  c.factorStart[JacobianTerm::Reference] = start;
+  if (!m.parameters.empty() && m.machine->alignment == WorkpieceAlignment::Machine) {
+    addChain(JacobianTerm::Reference, c.workpieceHookProgram);
+    c.referenceFrames.resize(c.workpieceHookProgram.size());
+    c.reference = runProgram(m.errors, c.workpieceHookProgram, m.machine->referencePose.data(), nullptr,
+                             c.referenceFrames.data());
+    c.referenceToWorkpiece = m.alignment.linear() * c.reference.linear().transpose();
+  }
+  c.factorStart[3] = start;
 }
 
-std::vector<Pose> errorFrames(const KinematicModel& m, const double* q) {
-  std::vector<Pose> frames(m.machine->axes.size(), Pose::Identity());
-  auto walk = [&](const std::vector<ChainElement>& chain) {
-    Pose t = Pose::Identity();
-    for (const auto& e : chain) {
-      const double qe = e.joint >= 0 ? q[e.joint] : 0.0;
-      Pose point = Pose::Identity();
-      point.translation() = e.location;
-      Pose before = Pose::Identity();
-      before.translation() = e.offset;
-      if (m.withErrors && e.type != AxisType::Linear)
-        before = before * point * errorTransform(m.errors.axes[static_cast<size_t>(e.axis)].location) * point.inverse();
-      const Pose frame = e.frame == ErrorFrame::Fixed ? before : before * jointPose(m, e, qe);
-      frames[static_cast<size_t>(e.axis)] = t * frame * point;
-      std::vector<Factor> factors;
-      elementFactors(m, e, qe, 0, factors);
-      for (const auto& f : factors) t = t * f.pose;
-    }
-  };
-  walk(m.toolChain);
-  walk(m.workpieceChain);
-  return frames;
+const PointJacobian& pointJacobian(const KinematicModel& model, const double* q, const int* dir, const Vec3& toolPoint,
+                                   KinematicData& data) {
+  evaluateJacobian(model, q, dir, toolPoint, false, data);
+  return data.point;
+}
+
+ParameterJacobian parameterJacobian(const KinematicModel& model, const KinematicModel& nominal, const double* q,
+                                    const int* dir) {
+  KinematicData data;
+  evaluateJacobian(model, q, dir, Vec3::Zero(), true, data);
+  const Mat3 nominalRotation = toolInWorkpiece(nominal, q).linear();
+  const Mat3 jInv = leftJacobianInverse(rotationVector(data.point.toolRotation * nominalRotation.transpose()));
+  ParameterJacobian jac(6, data.point.jacobian.cols());
+  jac.topRows<3>() = data.point.jacobian;
+  jac.bottomRows<3>().noalias() = jInv * data.rotation;
+  return jac;
 }
 
 }  // namespace mtacc

@@ -1,8 +1,8 @@
 #include "mtacc/kinematics/kinematic_model.hpp"
 
-#include "mtacc/kinematics/forward.hpp"
-
 #include <algorithm>
+
+#include "chain_program.hpp"
 
 namespace mtacc {
 namespace {
@@ -18,13 +18,6 @@ bool hasMotionErrors(const KinematicModel& m, int axis) {
   for (const auto& f : m.errors.axes[static_cast<size_t>(axis)].motion)
     if (!f.empty()) return true;
   return false;
-}
-
-Vec6 motionComponents(const KinematicModel& m, int axis, double q, int dir) {
-  Vec6 c;
-  const auto& motion = m.errors.axes[static_cast<size_t>(axis)].motion;
-  for (int k = 0; k < 6; ++k) c[k] = motion[static_cast<size_t>(k)].value(q, dir);
-  return c;
 }
 
 std::vector<ChainElement> buildChain(const Machine& machine, const std::vector<int>& indices, double sign) {
@@ -45,11 +38,61 @@ std::vector<ChainElement> buildChain(const Machine& machine, const std::vector<i
   return chain;
 }
 
-// Merges runs of constant factors; joint and motion-error factors become operations. With
-// markHooks, every factor carrying error parameters stands alone between two hook markers.
-std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<ChainElement>& chain, const Pose& tail,
-                                  bool markHooks) {
-  std::vector<ChainOp> ops;
+// Translation of a linear joint with its location errors (tilt of the direction, zero offset).
+Vec3 linearJointTranslation(const KinematicModel& m, const ChainPrograms& c, const ChainElement& e, double q) {
+  if (!m.withErrors) return e.sign * q * e.direction;
+  const Vec6& loc = m.errors.axes[static_cast<size_t>(e.axis)].location;
+  const double zero = loc[m.machine->axes[static_cast<size_t>(e.axis)].ownComponent()];
+  return e.sign * (q + zero) * c.tiltedDirections[static_cast<size_t>(e.axis)];
+}
+
+ChainOp motionErrorOp(const ErrorModel& errors, const ChainElement& e) {
+  ChainOp op;
+  op.kind = ChainOp::MotionError;
+  op.joint = e.joint;
+  op.axis = e.axis;
+  const auto& motion = errors.axes[static_cast<size_t>(e.axis)].motion;
+  std::vector<std::vector<const TableTerm*>> tables;
+  for (int k = 0; k < 6; ++k) {
+    for (const auto& term : motion[static_cast<size_t>(k)].terms()) {
+      const auto* table = std::get_if<TableTerm>(&term);
+      if (!table) {
+        op.residualMask |= 1u << k;
+        continue;
+      }
+      auto same = std::find_if(op.tableGroups.begin(), op.tableGroups.end(),
+                               [&](const auto& g) { return g.positions == table->positions; });
+      if (same == op.tableGroups.end()) {
+        same = op.tableGroups.emplace(op.tableGroups.end());
+        same->positions = table->positions;
+        same->uniform = table->uniform;
+        same->inverseStep = table->inverseStep;
+        tables.emplace_back();
+      }
+      same->components.push_back(k);
+      tables[static_cast<size_t>(same - op.tableGroups.begin())].push_back(table);
+    }
+  }
+  for (size_t g = 0; g < op.tableGroups.size(); ++g) {
+    auto& group = op.tableGroups[g];
+    for (size_t i = 0; i + 1 < group.positions.size(); ++i)
+      for (int power = 0; power < 4; ++power)
+        for (const TableTerm* t : tables[g]) group.coefficients.push_back(t->cubic[i][static_cast<size_t>(power)]);
+  }
+  op.sixTablesOnOneGrid = op.residualMask == 0 && op.tableGroups.size() == 1 &&
+                          op.tableGroups[0].components == std::vector<int>{0, 1, 2, 3, 4, 5};
+  return op;
+}
+
+enum class Markers { None, Hooks, ErrorFrames };
+
+// The one place that writes the factor order of a chain (see ChainElement). Runs of constant
+// factors are merged; joint and motion-error factors become operations. With Hooks, every
+// factor carrying error parameters stands alone between two markers; with ErrorFrames, a
+// marker records where each axis's component errors act.
+ChainProgram buildProgram(const KinematicModel& m, const ChainPrograms& c, const std::vector<ChainElement>& chain,
+                          const Pose& tail, Markers markers) {
+  ChainProgram ops;
   auto pushConstant = [&](const Pose& p) {
     if (p.isApprox(Pose::Identity(), 0.0)) return;
     if (!ops.empty() && ops.back().kind == ChainOp::Constant) {
@@ -60,85 +103,57 @@ std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<Cha
     op.constant = p;
     ops.push_back(op);
   };
+  auto pushMarker = [&](Markers when, Hook hook, int axis) {
+    if (markers != when) return;
+    ChainOp op;
+    op.kind = ChainOp::Marker;
+    op.axis = axis;
+    op.hook = hook;
+    ops.push_back(op);
+  };
   for (const auto& e : chain) {
     const bool motion = hasMotionErrors(m, e.axis);
-    auto pushMarker = [&](Hook hook) {
-      if (!markHooks) return;
-      ChainOp op;
-      op.kind = ChainOp::HookMarker;
-      op.axis = e.axis;
-      op.hook = hook;
-      ops.push_back(op);
-    };
-    auto pushMotion = [&]() {
+    auto pushErrorFrame = [&]() {  // with the motion errors when the axis has them
+      if (!motion && markers != Markers::ErrorFrames) return;
       pushConstant(translation(e.location));
-      pushMarker(Hook::Motion);
-      ChainOp op;
-      op.kind = ChainOp::MotionError;
-      op.joint = e.joint;
-      op.axis = e.axis;
-      const auto& motion = m.errors.axes[static_cast<size_t>(e.axis)].motion;
-      std::vector<std::vector<const TableTerm*>> tables;
-      for (int k = 0; k < 6; ++k) {
-        for (const auto& term : motion[static_cast<size_t>(k)].terms()) {
-          const auto* table = std::get_if<TableTerm>(&term);
-          if (!table) {
-            op.residualMask |= 1u << k;
-            continue;
-          }
-          auto same = std::find_if(op.tableGroups.begin(), op.tableGroups.end(),
-                                   [&](const auto& g) { return g.positions == table->positions; });
-          if (same == op.tableGroups.end()) {
-            same = op.tableGroups.emplace(op.tableGroups.end());
-            same->positions = table->positions;
-            same->uniform = table->uniform;
-            same->inverseStep = table->inverseStep;
-            tables.emplace_back();
-          }
-          same->components.push_back(k);
-          tables[static_cast<size_t>(same - op.tableGroups.begin())].push_back(table);
-        }
+      pushMarker(Markers::ErrorFrames, Hook::ErrorFrame, e.axis);
+      if (motion) {
+        pushMarker(Markers::Hooks, Hook::Motion, e.axis);
+        ops.push_back(motionErrorOp(m.errors, e));
+        pushMarker(Markers::Hooks, Hook::Motion, e.axis);
       }
-      for (size_t g = 0; g < op.tableGroups.size(); ++g) {
-        auto& group = op.tableGroups[g];
-        for (size_t i = 0; i + 1 < group.positions.size(); ++i)
-          for (int power = 0; power < 4; ++power)
-            for (const TableTerm* t : tables[g]) group.coefficients.push_back(t->cubic[i][static_cast<size_t>(power)]);
-      }
-      op.sixTablesOnOneGrid = op.residualMask == 0 && op.tableGroups.size() == 1 &&
-                              op.tableGroups[0].components == std::vector<int>{0, 1, 2, 3, 4, 5};
-      ops.push_back(op);
-      pushMarker(Hook::Motion);
       pushConstant(translation(-e.location));
     };
     pushConstant(translation(e.offset));
     if (m.withErrors && e.type != AxisType::Linear) {
-      const Pose& error = m.locationTransforms[static_cast<size_t>(e.axis)];
-      if (markHooks) {
+      const Pose& error = c.locationTransforms[static_cast<size_t>(e.axis)];
+      if (markers == Markers::Hooks) {
         pushConstant(translation(e.location));
-        pushMarker(Hook::Location);
+        pushMarker(Markers::Hooks, Hook::Location, e.axis);
         ops.push_back(ChainOp{});  // the error factor alone, even when it is the identity
         ops.back().constant = error;
-        pushMarker(Hook::Location);
+        pushMarker(Markers::Hooks, Hook::Location, e.axis);
         pushConstant(translation(-e.location));
       } else {
         pushConstant(translation(e.location) * error * translation(-e.location));
       }
     }
-    if (motion && e.frame == ErrorFrame::Fixed) pushMotion();
+    if (e.frame == ErrorFrame::Fixed) pushErrorFrame();
     if (e.type == AxisType::Linear) {
       ChainOp op;
       op.kind = ChainOp::LinearJoint;
       op.joint = e.joint;
-      op.base = linearJointTranslation(m, e, 0.0);
-      op.vector = linearJointTranslation(m, e, 1.0) - op.base;
-      pushMarker(Hook::LinearJoint);
+      op.axis = e.axis;
+      op.base = linearJointTranslation(m, c, e, 0.0);
+      op.vector = linearJointTranslation(m, c, e, 1.0) - op.base;
+      pushMarker(Markers::Hooks, Hook::LinearJoint, e.axis);
       ops.push_back(op);
-      pushMarker(Hook::LinearJoint);
+      pushMarker(Markers::Hooks, Hook::LinearJoint, e.axis);
     } else if (e.type == AxisType::Rotary) {
       ChainOp op;
       op.kind = ChainOp::RotaryJoint;
       op.joint = e.joint;
+      op.axis = e.axis;
       op.vector = e.direction;
       op.base = e.location;
       op.sign = e.sign;
@@ -147,7 +162,7 @@ std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<Cha
         if (e.direction[k] == 1.0) op.principal = k;
       ops.push_back(op);
     }
-    if (motion && e.frame == ErrorFrame::Moving) pushMotion();
+    if (e.frame == ErrorFrame::Moving) pushErrorFrame();
   }
   pushConstant(tail);
   for (auto& op : ops)
@@ -155,101 +170,73 @@ std::vector<ChainOp> buildProgram(const KinematicModel& m, const std::vector<Cha
   return ops;
 }
 
-}  // namespace
-
-Vec3 linearJointTranslation(const KinematicModel& m, const ChainElement& e, double q) {
-  if (!m.withErrors) return e.sign * q * e.direction;
-  const Vec6& loc = m.errors.axes[static_cast<size_t>(e.axis)].location;
-  const double zero = loc[m.machine->axes[static_cast<size_t>(e.axis)].ownComponent()];
-  return e.sign * (q + zero) * m.tiltedDirections[static_cast<size_t>(e.axis)];
-}
-
-Pose jointPose(const KinematicModel& m, const ChainElement& e, double q) {
-  Pose j = Pose::Identity();
-  if (e.type == AxisType::Linear) {
-    j.translation() = linearJointTranslation(m, e, q);
-  } else if (e.type == AxisType::Rotary) {
-    j.linear() = rotationAbout(e.direction, e.sign * q);
-    j.translation() = e.location - j.linear() * e.location;
-  }
-  return j;
-}
-
-void elementFactors(const KinematicModel& m, const ChainElement& e, double q, int dir, std::vector<Factor>& out) {
-  const bool motion = hasMotionErrors(m, e.axis);
-  // Constant translations by zero are left out.
-  auto pushTranslation = [&](const Vec3& t) {
-    if (!t.isZero(0.0)) out.push_back({translation(t), Hook::None, e.axis});
-  };
-  auto pushMotion = [&]() {
-    pushTranslation(e.location);
-    out.push_back({errorTransform(motionComponents(m, e.axis, q, dir)), Hook::Motion, e.axis});
-    pushTranslation(-e.location);
-  };
-  pushTranslation(e.offset);
-  if (m.withErrors && e.type != AxisType::Linear) {
-    pushTranslation(e.location);
-    out.push_back({m.locationTransforms[static_cast<size_t>(e.axis)], Hook::Location, e.axis});
-    pushTranslation(-e.location);
-  }
-  if (motion && e.frame == ErrorFrame::Fixed) pushMotion();
-  if (e.type != AxisType::Spindle)
-    out.push_back({jointPose(m, e, q), e.type == AxisType::Linear ? Hook::LinearJoint : Hook::None, e.axis});
-  if (motion && e.frame == ErrorFrame::Moving) pushMotion();
-}
-
-KinematicModel compile(std::shared_ptr<const Machine> machine, const ErrorModel& errors, bool withErrors) {
+KinematicModel compileModel(std::shared_ptr<const Machine> machine, const ErrorModel& errors, bool withErrors,
+                            const std::vector<Parameter>& jacobianParameters) {
   KinematicModel m;
   m.machine = machine;
   m.errors = errors;
   m.withErrors = withErrors;
   m.jointCount = machine->commandedCount();
+  auto c = std::make_shared<ChainPrograms>();
   if (withErrors)
     for (size_t a = 0; a < errors.axes.size(); ++a) {
       const Vec6& loc = errors.axes[a].location;
-      m.locationTransforms.push_back(errorTransform(loc));
+      c->locationTransforms.push_back(errorTransform(loc));
       std::array<Mat4, 6> d;
       for (int k = 0; k < 6; ++k) d[static_cast<size_t>(k)] = errorTransformDerivative(loc, k);
-      m.locationDerivatives.push_back(d);
+      c->locationDerivatives.push_back(d);
       const Vec3& dir = machine->axes[a].direction;
-      m.tiltedDirections.push_back(rotationXYZ(loc[kA], loc[kB], loc[kC]) * dir);
+      c->tiltedDirections.push_back(rotationXYZ(loc[kA], loc[kB], loc[kC]) * dir);
       std::array<Vec3, 3> t;
       for (int k = 0; k < 3; ++k) t[static_cast<size_t>(k)] = rotationXYZDerivative(loc[kA], loc[kB], loc[kC], k) * dir;
-      m.tiltedDirectionDerivatives.push_back(t);
+      c->tiltedDirectionDerivatives.push_back(t);
     }
-  m.toolChain = buildChain(*machine, machine->toolChain, +1.0);
-  m.workpieceChain = buildChain(*machine, machine->workpieceChain, -1.0);
-  m.toolFrame = translation(machine->toolOffset);
-  m.workpieceFrame = translation(machine->workpieceOffset);
-  m.toolProgram = buildProgram(m, m.toolChain, m.toolFrame, false);
-  m.workpieceProgram = buildProgram(m, m.workpieceChain, m.workpieceFrame, false);
+  c->toolChain = buildChain(*machine, machine->toolChain, +1.0);
+  c->workpieceChain = buildChain(*machine, machine->workpieceChain, -1.0);
+  const Pose toolFrame = translation(machine->toolOffset);
+  const Pose workpieceFrame = translation(machine->workpieceOffset);
+  c->toolProgram = buildProgram(m, *c, c->toolChain, toolFrame, Markers::None);
+  c->workpieceProgram = buildProgram(m, *c, c->workpieceChain, workpieceFrame, Markers::None);
   if (withErrors) {
-    m.toolHookProgram = buildProgram(m, m.toolChain, m.toolFrame, true);
-    m.workpieceHookProgram = buildProgram(m, m.workpieceChain, m.workpieceFrame, true);
+    c->toolHookProgram = buildProgram(m, *c, c->toolChain, toolFrame, Markers::Hooks);
+    c->workpieceHookProgram = buildProgram(m, *c, c->workpieceChain, workpieceFrame, Markers::Hooks);
   }
-  m.toolDirection = machine->toolDirection;
-  m.tcpStart = Vec3::Zero();
-  m.toolDirectionStart = m.toolDirection;
-  m.toolOpsPerPose = m.toolProgram.size();
-  if (!m.toolProgram.empty() && m.toolProgram.back().kind == ChainOp::Constant) {
-    const Pose& c = m.toolProgram.back().constant;
-    m.tcpStart = c.translation();
-    m.toolDirectionStart = c.linear() * m.toolDirection;
-    --m.toolOpsPerPose;
+  c->toolFrameProgram = buildProgram(m, *c, c->toolChain, toolFrame, Markers::ErrorFrames);
+  c->workpieceFrameProgram = buildProgram(m, *c, c->workpieceChain, workpieceFrame, Markers::ErrorFrames);
+  c->tcpStart = Vec3::Zero();
+  c->toolDirectionStart = machine->toolDirection;
+  c->toolOpsPerPose = c->toolProgram.size();
+  if (!c->toolProgram.empty() && c->toolProgram.back().kind == ChainOp::Constant) {
+    const Pose& last = c->toolProgram.back().constant;
+    c->tcpStart = last.translation();
+    c->toolDirectionStart = last.linear() * machine->toolDirection;
+    --c->toolOpsPerPose;
   }
   if (withErrors && machine->alignment == WorkpieceAlignment::Machine) {
     // Seed 001 eqs. 10-12: the workpiece is set up aligned with the machine at the reference
     // pose, so M_WC = W_nominal(q_ref)^-1 * W_actual(q_ref).
-    const KinematicModel nominal = compile(machine, errors, false);
-    const auto& q = machine->referencePose;
-    m.alignment = workpiecePose(nominal, q.data(), nullptr).inverse() * workpiecePose(m, q.data(), nullptr);
+    const KinematicModel nominal = compileModel(machine, errors, false, {});
+    const double* q = machine->referencePose.data();
+    m.alignment = runProgram(errors, nominal.chains->workpieceProgram, q, nullptr).inverse() *
+                  runProgram(errors, c->workpieceProgram, q, nullptr);
     m.aligned = true;
   }
+  m.parameters = jacobianParameters;
+  if (withErrors) planJacobian(m, *c);
+  m.chains = std::move(c);
   return m;
 }
 
+}  // namespace
+
+KinematicModel compile(std::shared_ptr<const Machine> machine, const ErrorModel& errors,
+                       const std::vector<Parameter>& jacobianParameters) {
+  return compileModel(std::move(machine), errors, true, jacobianParameters);
+}
+
 KinematicModel compileNominal(std::shared_ptr<const Machine> machine) {
-  return compile(machine, ErrorModel::zero(*machine), false);
+  const ErrorModel zero = ErrorModel::zero(*machine);
+  return compileModel(std::move(machine), zero, false, {});
 }
 
 }  // namespace mtacc

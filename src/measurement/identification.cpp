@@ -63,7 +63,6 @@ struct State {
   const IdentificationProblem* problem;
   ErrorModel errors;
   KinematicModel model, nominal;
-  PointJacobianPlan plan;  // for `model` when it was compiled with derivatives
   std::vector<MeasurementRun> runs;
   std::vector<std::vector<SetupParameter>> setup;   // per run
   std::vector<std::optional<PointJacobian>> setAt;  // per run, ballbar set at the tool ball
@@ -85,8 +84,6 @@ struct State {
   int threads = 1;
 
   // aboutNominal: every error parameter and set-up error at zero, the functions kept.
-  State(const State&) = delete;  // `plan` points into `model`
-  State& operator=(const State&) = delete;
   State(const IdentificationProblem& p, bool aboutNominal, int threadsToUse)
       : problem(&p), errors(p.start), runs(p.runs), threads(threadsToUse) {
     if (aboutNominal) {
@@ -125,31 +122,30 @@ struct State {
       for (auto s : setup[r]) runs[r].setup.errors[static_cast<size_t>(s)] = v[k++];
   }
   void recompile(bool jacobians) {
-    model = compile(problem->machine, errors, true);
+    model = compile(problem->machine, errors, jacobians ? problem->parameters : std::vector<Parameter>{});
     setAtReady = jacobians;
-    if (jacobians) plan = planPointJacobian(model, problem->parameters);
+    KinematicData data;
     geometry.clear();
     for (size_t r = 0; r < runs.size(); ++r) {
       geometry.push_back(runGeometry(model, runs[r]));
       setAt[r].reset();
       if (jacobians && runs[r].setup.setAt)
-        pointJacobian(plan, runs[r].setup.setAt->data(), nullptr, toolBallWithSetupError(runs[r]), setAt[r].emplace());
+        setAt[r] = pointJacobian(model, runs[r].setup.setAt->data(), nullptr, toolBallWithSetupError(runs[r]), data);
     }
   }
   // The rows of poses [begin, end) (counted over all runs) into `block` (their Jacobian) and
   // the residual.
-  void evaluate(long begin, long end, RowMajorMatrix& block) {
+  void evaluate(long begin, long end, RowMajorMatrix& block, KinematicData& data, ReadingJacobian& rj) {
     const auto machineCols = static_cast<Eigen::Index>(problem->parameters.size());
     const Eigen::Index row0 = rowOf(begin);
     block.rightCols(cols - machineCols).setZero();
-    thread_local ReadingJacobian rj;
     size_t run = runOf(begin);
     for (long p = begin; p < end; ++p) {
       while (p >= poseStart[run + 1]) ++run;
       const auto& r = runs[run];
       const Eigen::Index i = p - poseStart[run], m = readingSize(r.instrument), row = rowStart[run] + i * m;
-      readingJacobian(plan, geometry[run], frames[run][static_cast<size_t>(i)], r, i, setup[run],
-                      setAt[run] ? &*setAt[run] : nullptr, rj);
+      readingJacobian(model, {r, i, geometry[run], frames[run][static_cast<size_t>(i)], setup[run], setAt[run] ? &*setAt[run] : nullptr},
+                      data, rj);
       for (Eigen::Index k = 0; k < m; ++k) {
         double* out = block.row(row - row0 + k).data();
         std::copy_n(rj.machine.row(k).data(), machineCols, out);
@@ -189,9 +185,11 @@ struct State {
     parallelFor(poseStart.back(), threads, [&](long begin, long end) {
       NormalEquations part(cols);
       RowMajorMatrix block(3 * kBlockPoses, cols);
+      KinematicData data;
+      ReadingJacobian rj;
       for (long b = begin; b < end; b += kBlockPoses) {
         const long e = std::min(end, b + kBlockPoses);
-        evaluate(b, e, block);
+        evaluate(b, e, block, data, rj);
         const Eigen::Index row0 = rowOf(b), n = rowOf(e) - row0;
         part.add(block.topRows(n), residual.segment(row0, n));
         if (storeJacobian) jacobian.middleRows(row0, n) = block.topRows(n);

@@ -129,26 +129,18 @@ Eigen::MatrixXd predictReadings(const KinematicModel& model, const KinematicMode
   return out;
 }
 
-ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
-                                Eigen::Index i, const std::vector<Parameter>& machineParameters,
-                                const std::vector<SetupParameter>& setupParameters,
-                                const PointJacobian* setAtJacobian) {
-  ReadingJacobian out;
-  readingJacobian(planPointJacobian(model, machineParameters), runGeometry(model, run), nominalFrame(nominal, run, i), run,
-                  i, setupParameters, setAtJacobian, out);
-  return out;
-}
-
-void readingJacobian(const PointJacobianPlan& plan, const RunGeometry& geometry, const NominalFrame& nominal,
-                     const MeasurementRun& run, Eigen::Index i, const std::vector<SetupParameter>& setupParameters,
-                     const PointJacobian* setAtJacobian, ReadingJacobian& out) {
-  thread_local PointJacobian pj;
-  pointJacobian(plan, run.q.row(i).data(), dirRow(run, i), geometry.toolBall, pj);
+void readingJacobian(const KinematicModel& model, const ReadingContext& reading, KinematicData& data, ReadingJacobian& out) {
+  const MeasurementRun& run = reading.run;
+  const RunGeometry& geometry = reading.geometry;
+  const NominalFrame& nominal = reading.nominal;
+  const std::vector<SetupParameter>& setupParameters = reading.setupParameters;
+  const PointJacobian* setAtJacobian = reading.setAt;
+  const PointJacobian& pj = pointJacobian(model, run.q.row(reading.pose).data(), dirRow(run, reading.pose), geometry.toolBall, data);
   const Vec3& t = pj.point;
   // d(tool ball)/d(xT yT zT): the tool frame's rotation in the workpiece frame.
   const Mat3& toolRotation = pj.toolRotation;
   const int m = readingSize(run.instrument);
-  out.machine.resize(m, static_cast<Eigen::Index>(plan.parameters.size()));
+  out.machine.resize(m, static_cast<Eigen::Index>(model.parameters.size()));
   out.setup.setZero(m, static_cast<Eigen::Index>(setupParameters.size()));
   out.reading.resize(m);
 

@@ -64,7 +64,7 @@ SensitivityResult sensitivities(const MachineSetup& setup, const SensitivityRequ
   const Vec3 direction = request.direction.value_or(tp.direction);
   if (direction.norm() < 1e-12) throw InputError(InputLocation{"", 0, "direction"}, "direction has zero length");
   const auto params = request.parameters.empty() ? parameterCatalogue(m, setup.errors) : findParameters(setup, request.parameters);
-  const auto jac = parameterJacobian(setup.actual(), params, request.q.data());
+  const auto jac = parameterJacobian(compile(setup.machine, setup.errors, params), setup.nominal(), request.q.data());
   SensitivityResult r{setup.machine, request.q, direction.normalized(), {}};
   for (size_t k = 0; k < params.size(); ++k) {
     const auto& p = params[k];

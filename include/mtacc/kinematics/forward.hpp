@@ -12,17 +12,6 @@ namespace mtacc {
 // Bed -> tool frame (TCP) and bed -> workpiece frame.
 Pose toolChainPose(const KinematicModel& model, const double* q, const int* dir);
 Pose workpiecePose(const KinematicModel& model, const double* q, const int* dir);
-// A frame along a chain: x_bed = rotation * x + origin.
-struct ChainFrame {
-  Mat3 rotation;
-  Vec3 origin;
-};
-// Runs a program with hook markers (KinematicModel::toolHookProgram, workpieceHookProgram):
-// the chain's pose, and in `hooks` (room for one per marker) the frame at each marker, in
-// program order.
-Pose runHookProgram(const KinematicModel& model, const std::vector<ChainOp>& program, const double* q, const int* dir,
-                    ChainFrame* hooks);
-
 // Tool frame in the workpiece frame (includes M_WC when the workpiece is aligned).
 Pose toolInWorkpiece(const KinematicModel& model, const double* q, const int* dir = nullptr);
 
@@ -42,5 +31,10 @@ void toolPoints(const KinematicModel& model, const JointMatrix& q, const Directi
 // TCP position and orientation errors (n x 6) of `actual` against `nominal`.
 PoseErrorMatrix toolErrors(const KinematicModel& actual, const KinematicModel& nominal, const JointMatrix& q,
                            const DirectionMatrix& dir, int threads = kAllCores);
+
+// The frame in which each axis's component errors act (after offset and location error,
+// before the joint for fixed frames and after it for moving frames, at the axis location
+// point), in the bed frame. Indexed like Machine::axes.
+std::vector<Pose> errorFrames(const KinematicModel& model, const double* q);
 
 }  // namespace mtacc

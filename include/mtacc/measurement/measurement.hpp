@@ -113,18 +113,21 @@ struct ReadingJacobian {
   ReadingRows machine;  // readingSize x machine parameters
   ReadingRows setup;    // readingSize x setup parameters
 };
-// `model` must be compiled with errors. setAtJacobian: pointJacobian of
-// toolBallWithSetupError(run) at run.setup.setAt, computed once per run by the caller;
-// required for a ballbar with setAt (std::invalid_argument otherwise), ignored else.
-ReadingJacobian readingJacobian(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
-                                Eigen::Index i, const std::vector<Parameter>& machineParameters,
-                                const std::vector<SetupParameter>& setupParameters,
-                                const PointJacobian* setAtJacobian);
-// The same into `out`, reusing its storage (identifications call this once per reading);
-// the machine parameters are the plan's, `geometry` is runGeometry(*plan.model, run).
-void readingJacobian(const PointJacobianPlan& plan, const RunGeometry& geometry, const NominalFrame& nominal,
-                     const MeasurementRun& run, Eigen::Index i, const std::vector<SetupParameter>& setupParameters,
-                     const PointJacobian* setAtJacobian, ReadingJacobian& out);
+// One reading to differentiate: pose `pose` of `run`, with what is fixed per run and per pose.
+struct ReadingContext {
+  const MeasurementRun& run;
+  Eigen::Index pose;
+  const RunGeometry& geometry;  // runGeometry(model, run)
+  const NominalFrame& nominal;  // nominalFrame(nominal model, run, pose)
+  const std::vector<SetupParameter>& setupParameters;
+  // pointJacobian of toolBallWithSetupError(run) at run.setup.setAt, computed once per run
+  // by the caller: required for a ballbar set at the tool ball (std::invalid_argument
+  // otherwise), ignored else.
+  const PointJacobian* setAt = nullptr;
+};
+// The reading and its derivatives into `out`, reusing its storage (identifications call this
+// once per reading). The machine parameters are the model's (compile's jacobianParameters).
+void readingJacobian(const KinematicModel& model, const ReadingContext& reading, KinematicData& data, ReadingJacobian& out);
 
 // The work ball of a ballbar run in the workpiece frame (set-up error included).
 Vec3 workBall(const KinematicModel& model, const MeasurementRun& run);
