@@ -97,10 +97,10 @@ void KdlNominal(benchmark::State& state) {
 
 void Mtacc(benchmark::State& state, const KinematicModel& model, int threads) {
   auto& f = fixture();
-  PointMatrix pos, dir;
+  ToolPointBatch out;
   for (auto _ : state) {
-    toolPoints(model, f.q, {}, pos, dir, threads);
-    benchmark::DoNotOptimize(pos.data());
+    toolPoints(model, {f.q, {}}, out, threads);
+    benchmark::DoNotOptimize(out.positions.data());
   }
   state.SetItemsProcessed(state.iterations() * kPoses);
 }

@@ -189,6 +189,43 @@ TEST_F(CliBadInput, SimulatedBallbarEvaluates) {
   EXPECT_NE(slurp(output()).find("squareness"), std::string::npos);
 }
 
+std::string bundledStructure(const std::string& name) {
+  std::ifstream in(std::string(MTACC_TEST_DATA) + "/../../data/structures/" + name + ".yaml");
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Found by the bad-input corpus of issue 13: each used to write past a vector.
+TEST_F(CliBadInput, SpindleNamedInAPoseIsRefused) {
+  // three-axis-vertical's spindle is C: not an entry of a pose.
+  const auto f = write("setat.csv", "# instrument: ballbar\n# length: 100 mm\n# set_at: X=0 mm, Y=0 mm, Z=0 mm, C=0 deg\n"
+                                    "# plane: XY\nangle_deg,dL_um\n0,0\n90,0\n180,0\n270,0\n");
+  expectCleanFailure(run("evaluate three-axis-vertical " + f + " -o " + output()), {f + ":3: set_at", "'C=0 deg'"});
+}
+
+TEST_F(CliBadInput, SpindleNameTakenByAnAxis) {
+  const auto f = write("m.yaml", "name: x\nstructure: t-(C)-C1-Z-b-X-C-w\naxes:\n"
+                                 "  X: {direction: [1, 0, 0], travel: [-400 mm, 400 mm]}\n"
+                                 "  Z: {direction: [0, 0, 1], travel: [-300 mm, 300 mm]}\n"
+                                 "  C: {direction: [0, 0, 1], travel: continuous}\n"
+                                 "  C1: {direction: [0, 0, 1], travel: continuous}\n");
+  expectCleanFailure(run("check " + f + " -o " + output()), {f + ":2: structure", "spindle's name 'C1'"});
+}
+
+TEST_F(CliBadInput, StructurePointOffItsBeam) {
+  std::string text = bundledStructure("tzyx-arm-x");
+  const std::string tcp = "tcp: {body: ram, point: [0 mm, 1100 mm, -100 mm]}";
+  ASSERT_NE(text.find(tcp), std::string::npos);
+  for (const std::string z : {"-1e300 mm", "-100000 mm", "1300 mm"}) {
+    SCOPED_TRACE(z);
+    std::string bad = text;
+    bad.replace(bad.find(tcp), tcp.size(), "tcp: {body: ram, point: [0 mm, 1100 mm, " + z + "]}");
+    const auto f = write("s.yaml", bad);
+    expectCleanFailure(run("dynamics modes " + f + " -o " + output()), {f + ":51: tcp.point", "not along beam 'ram'"});
+  }
+}
+
 TEST_F(CliBadInput, MalformedStructureModels) {
   const std::string body = "bodies:\n  - {name: b, mass: 10, inertia: [1, 1, 1, 0, 0, 0]}\n";
   const auto self = write("self.yaml", body + "elements:\n  - {type: spring, bodies: [b, b], point: [0 mm, 0 mm, 0 mm], "

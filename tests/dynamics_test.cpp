@@ -232,9 +232,9 @@ TEST(Dynamics, PrimitivesCombineByTheParallelAxisTheorem) {
                                        cuboidPart(Vec3(0.1, 0.1, 0.1), 1, Vec3(0.1, 0, 0))});
   EXPECT_NEAR(b.inertia(1, 1), 2 * (0.01 / 6 + 0.01), 1e-15);
   EXPECT_NEAR(b.inertia(0, 0), 2 * 0.01 / 6, 1e-15);
-  const auto p = prismPart(0.3, 0.6, 1.0, 9.0, Vec3::Zero());  // right triangle legs 0.3, 0.6
+  const auto p = prismPart(Vec3(0.3, 0.6, 1.0), 9.0, Vec3::Zero());  // right triangle legs 0.3, 0.6
   EXPECT_NEAR(p.inertia(2, 2), 9.0 * (0.09 + 0.36) / 18, 1e-15);
-  const auto c = cylinderPart(0.1, 0.0, 0.5, 2, 4.0, Vec3::Zero());
+  const auto c = cylinderPart({0.1, 0.0, 0.5, 2}, 4.0, Vec3::Zero());
   EXPECT_NEAR(c.inertia(2, 2), 4.0 * 0.01 / 2, 1e-15);
 }
 

@@ -66,11 +66,11 @@ TEST(ForwardConsistency, BatchOnTwoThreadsEqualsOneThread) {
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (long i = 0; i < q.rows(); ++i) q.row(i) << 300 * u(rng), 200 * u(rng), 200 * u(rng), 1.5 * u(rng), 3 * u(rng);
-  PointMatrix p1, d1, p2, d2;
-  toolPoints(model, q, {}, p1, d1, 1);
-  toolPoints(model, q, {}, p2, d2, 2);
-  EXPECT_EQ(p1, p2);
-  EXPECT_EQ(d1, d2);
+  ToolPointBatch one, two;
+  toolPoints(model, {q, {}}, one, 1);
+  toolPoints(model, {q, {}}, two, 2);
+  EXPECT_EQ(one.positions, two.positions);
+  EXPECT_EQ(one.directions, two.directions);
 }
 
 }  // namespace

@@ -53,8 +53,8 @@ TEST(Seed000Dynamics, Table7_1QualitativeRelations) {
 
 TEST(Seed000Dynamics, Figure7_7OriginalBetterAtMostPositions) {
   const auto orig = loadStructure("tzyx-arm-x"), alt = loadStructure("tzyx-arm-y");
-  const auto mo = dynamicsMap(orig, {}, "Y", "Z", 20, 20, dynamicsQuantity(orig, "Hx/X"));
-  const auto ma = dynamicsMap(alt, {}, "Y", "Z", 20, 20, dynamicsQuantity(alt, "Hx/X"));
+  const auto mo = dynamicsMap(orig, {"Y", "Z", 20, 20, {}}, dynamicsQuantity(orig, "Hx/X"));
+  const auto ma = dynamicsMap(alt, {"Y", "Z", 20, 20, {}}, dynamicsQuantity(alt, "Hx/X"));
   // Position 1 is the worst case of the original; the original's upper quartile lies below
   // the alternative's lower quartile; the alternative spreads more; its best value beats the
   // original's median (L6252-6286).

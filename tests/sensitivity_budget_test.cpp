@@ -28,7 +28,7 @@ TEST(SensitivityBudget, ExactCoefficientTendsToTheJacobianProjection) {
   const double arm = toolPoint(zero, q.data()).position.norm() + 1.0;
   for (size_t k = 0; k < params.size(); ++k) {
     const double eps = params[k].dimension == Dimension::Length ? 1e-5 : 1e-7;
-    const double exact = sensitivityCoefficient(machine, errors, params[k], eps, q.data(), n);
+    const double exact = sensitivityCoefficient(machine, errors, {params[k], eps}, {q.data(), n});
     const double first = n.dot(jac.col(static_cast<Eigen::Index>(k)).head<3>());
     const double bound = eps * arm + 8 * std::numeric_limits<double>::epsilon() * arm / eps;
     EXPECT_NEAR(exact, first, bound) << params[k].name;
@@ -51,7 +51,7 @@ TEST(SensitivityBudget, ZoneIUnaffectedByRotaryAxisErrorsWithMwc) {
         for (const char* name : names) {
           const auto p = findParameter(*machine, zero, name);
           const double eps = p.dimension == Dimension::Length ? 0.5 : 0.5 * kDeg;  // seed 001 §5.3: 0.5 mm, 0.5 deg
-          largest = std::max(largest, std::abs(sensitivityCoefficient(machine, zero, p, eps, q.data(), Vec3::UnitZ())));
+          largest = std::max(largest, std::abs(sensitivityCoefficient(machine, zero, {p, eps}, {q.data(), Vec3::UnitZ()})));
         }
       }
     if (alignment == WorkpieceAlignment::Machine)

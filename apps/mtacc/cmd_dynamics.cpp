@@ -90,13 +90,13 @@ void map(const DynamicsCliOptions& o) {
   nlohmann::json j;
   std::string human, csv = "model," + axes[0] + "_mm," + axes[1] + "_mm,value\n";
   for (const auto& m : models) {
-    MapRequest request{o.quantity, axes[0], axes[1], parseCount(grid[0], "--grid", 2, 1000), parseCount(grid[1], "--grid", 2, 1000),
-                       structurePositions(m, o.at)};
+    const MapRequest request{o.quantity, {axes[0], axes[1], parseCount(grid[0], "--grid", 2, 1000),
+                                          parseCount(grid[1], "--grid", 2, 1000), structurePositions(m, o.at)}};
     const auto r = structureMap(m, request);
     const auto& s = r.map.statistics;
     human += fmt::format("{}: {} over {} x {} positions in {}-{} [{}]\n  min {:.3f}  lower quartile {:.3f}  median {:.3f}  "
                          "upper quartile {:.3f}  max {:.3f}\n",
-                         m.name, r.quantity.name, request.countA, request.countB, r.map.axisA, r.map.axisB, r.quantity.unit, s.min,
+                         m.name, r.quantity.name, request.grid.countA, request.grid.countB, r.map.axisA, r.map.axisB, r.quantity.unit, s.min,
                          s.lowerQuartile, s.median, s.upperQuartile, s.max);
     for (size_t a = 0; a < r.map.a.size(); ++a)
       for (size_t b = 0; b < r.map.b.size(); ++b)

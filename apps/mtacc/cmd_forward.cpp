@@ -40,7 +40,7 @@ void runForward(const ForwardCliOptions& o, bool errorsOnly) {
   for (Eigen::Index i = 0; i < r.q.rows(); ++i) {
     const double* q = r.q.row(i).data();
     const Vec3 e = r.error.row(i).head<3>().transpose() * 1e3, a = r.error.row(i).tail<3>().transpose() * 1e6;
-    const Vec3 p = r.tcp.row(i).transpose(), d = r.toolDirection.row(i).transpose();
+    const Vec3 p = r.tool.positions.row(i).transpose(), d = r.tool.directions.row(i).transpose();
     if (errorsOnly) {
       human += fmt::format("{} | {:8.3f} {:8.3f} {:8.3f} {:8.3f} | {:8.2f} {:8.2f} {:8.2f}\n", formatPose(m, q), e.x(), e.y(),
                            e.z(), e.norm(), a.x(), a.y(), a.z());

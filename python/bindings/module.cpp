@@ -116,7 +116,7 @@ PYBIND11_MODULE(_mtacc, mod) {
           py::gil_scoped_release release;
           r = forwardKinematics(s, joints_, d, {nominal});
         }
-        return py::make_tuple(toArray(r.tcp), toArray(r.toolDirection), toArray(r.error.leftCols<3>(), 1e3),
+        return py::make_tuple(toArray(r.tool.positions), toArray(r.tool.directions), toArray(r.error.leftCols<3>(), 1e3),
                               toArray(r.error.rightCols<3>(), 1e6));
       })
       .def("ik", [](const MachineSetup& s, const std::vector<std::vector<double>>& tcps, const std::vector<std::vector<double>>& tools,
@@ -147,7 +147,7 @@ PYBIND11_MODULE(_mtacc, mod) {
         const auto p = findParameter(*s.machine, s.errors, name);
         const double eps = quantity(epsilon, p.dimension, "epsilon");
         if (eps == 0.0) throw InputError(InputLocation{"", 0, "epsilon"}, "must not be zero");
-        return sensitivityCoefficient(s.machine, s.errors, p, eps, joints_.row(0).data(), vec3(direction, "direction"));
+        return sensitivityCoefficient(s.machine, s.errors, {p, eps}, {joints_.row(0).data(), vec3(direction, "direction")});
       })
       .def("working_volume_grid", [](const MachineSetup& s, int samples) {
         if (samples < 2 || samples > 50) throw InputError(InputLocation{"", 0, "samples"}, "must be between 2 and 50");
@@ -252,7 +252,7 @@ PYBIND11_MODULE(_mtacc, mod) {
       .def("map", [](const StructureModel& m, const std::string& quantity, const std::string& axisA, const std::string& axisB,
                      int countA, int countB, const std::string& at) {
         MapResult r;
-        const MapRequest request{quantity, axisA, axisB, countA, countB, structurePositions(m, at)};
+        const MapRequest request{quantity, {axisA, axisB, countA, countB, structurePositions(m, at)}};
         {
           py::gil_scoped_release release;
           r = structureMap(m, request);

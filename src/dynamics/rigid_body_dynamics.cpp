@@ -37,11 +37,7 @@ Vec3 shift(const StructureModel& model, int body, const std::vector<double>& pos
 // The segment of a beam under point p (a beam moved as a whole keeps its shape).
 int segmentAt(const StructureModel& model, int beam, const Vec3& p, const std::vector<double>& positions) {
   const auto& b = model.beams[static_cast<size_t>(beam)];
-  const double s = (p - b.from - shift(model, b.first, positions)).dot(b.axis) / b.length;
-  const double bounds[4] = {1.0 / 8, 3.0 / 8, 5.0 / 8, 7.0 / 8};
-  int k = 0;
-  while (k < 4 && s > bounds[k]) ++k;
-  return b.first + k;
+  return b.segmentAt((p - b.from - shift(model, b.first, positions)).dot(b.axis) / b.length);
 }
 
 }  // namespace
@@ -321,8 +317,9 @@ DynamicsQuantity dynamicsQuantity(const StructureModel& model, const std::string
   return fail();
 }
 
-DynamicsMap dynamicsMap(const StructureModel& model, const std::vector<double>& fixed, const std::string& axisA,
-                        const std::string& axisB, int countA, int countB, const DynamicsQuantity& quantity, int threads) {
+DynamicsMap dynamicsMap(const StructureModel& model, const MapGrid& grid, const DynamicsQuantity& quantity, int threads) {
+  const std::string &axisA = grid.axisA, &axisB = grid.axisB;
+  const int countA = grid.countA, countB = grid.countB;
   const int ja = model.axisIndex(axisA), jb = model.axisIndex(axisB);
   if (ja < 0 || jb < 0 || ja == jb)
     throw InputError(InputLocation{model.sourceFile, 0, "axes"}, "a map needs two different axes of the model");
@@ -337,7 +334,7 @@ DynamicsMap dynamicsMap(const StructureModel& model, const std::vector<double>& 
   out.a = spread(model.axes[static_cast<size_t>(ja)], countA);
   out.b = spread(model.axes[static_cast<size_t>(jb)], countB);
   out.values.resize(countA, countB);
-  std::vector<double> base = fixed.empty() ? std::vector<double>(model.axes.size(), 0.0) : fixed;
+  std::vector<double> base = grid.fixed.empty() ? std::vector<double>(model.axes.size(), 0.0) : grid.fixed;
   parallelFor(static_cast<long>(countA) * countB, threads, [&](long begin, long end) {
     for (long k = begin; k < end; ++k) {
       auto q = base;

@@ -17,7 +17,9 @@ BodyPart cuboidPart(const Vec3& s, double mass, const Vec3& centre) {
   return p;
 }
 
-BodyPart cylinderPart(double r, double ri, double l, int axis, double mass, const Vec3& centre) {
+BodyPart cylinderPart(const CylinderShape& shape, double mass, const Vec3& centre) {
+  const double r = shape.radius, ri = shape.innerRadius, l = shape.length;
+  const int axis = shape.axis;
   BodyPart p{mass, centre, Mat3::Zero(), Vec3::Constant(r)};
   p.halfExtent[axis] = l / 2;
   const double along = mass * (r * r + ri * ri) / 2, across = mass * (3 * (r * r + ri * ri) + l * l) / 12;
@@ -26,7 +28,8 @@ BodyPart cylinderPart(double r, double ri, double l, int axis, double mass, cons
   return p;
 }
 
-BodyPart prismPart(double a, double b, double l, double mass, const Vec3& centre) {
+BodyPart prismPart(const Vec3& size, double mass, const Vec3& centre) {
+  const double a = size.x(), b = size.y(), l = size.z();
   BodyPart p{mass, centre, Mat3::Zero(), Vec3(2 * a / 3, 2 * b / 3, l / 2)};
   p.inertia(0, 0) = mass * (b * b / 18 + l * l / 12);
   p.inertia(1, 1) = mass * (a * a / 18 + l * l / 12);
@@ -65,6 +68,13 @@ int StructureModel::bodyIndex(const std::string& n) const {
   for (size_t i = 0; i < bodies.size(); ++i)
     if (bodies[i].name == n) return static_cast<int>(i);
   return -2;
+}
+
+int BeamSegments::segmentAt(double s) const {
+  constexpr double bounds[4] = {1.0 / 8, 3.0 / 8, 5.0 / 8, 7.0 / 8};
+  int k = 0;
+  while (k < 4 && s > bounds[k]) ++k;
+  return first + k;
 }
 
 // seed 000 §5.x: a flexible beam as five rigid segments, lengths 1:2:2:2:1, joined at four

@@ -117,6 +117,8 @@ Machine parseMachine(const std::string& yamlText, const std::string& sourceName)
     Axis spindle;
     spindle.name = *m.structure.spindle;
     if (inCode.count(spindle.name)) spindle.name += "1";  // t-(C)-...-C-w: the spindle becomes C1
+    if (inCode.count(spindle.name))
+      ctx.fail(structureNode, "structure", "the spindle's name '" + spindle.name + "' is already the name of an axis");
     spindle.type = AxisType::Spindle;
     spindle.side = Side::Tool;
     spindle.direction = m.toolDirection;
@@ -152,8 +154,8 @@ Machine parseMachine(const std::string& yamlText, const std::string& sourceName)
       if (!ref.IsMap()) ctx.fail(ref, "workpiece.reference_pose", "expected a mapping axis: position");
       for (const auto& kv : ref) {
         const auto name = kv.first.as<std::string>();
-        const int i = m.axisIndex(name);
-        if (i < 0 || !m.axes[i].commanded()) ctx.fail(kv.first, "workpiece.reference_pose." + name, "unknown axis '" + name + "'");
+        const int i = m.commandedAxisIndex(name);
+        if (i < 0) ctx.fail(kv.first, "workpiece.reference_pose." + name, "unknown axis '" + name + "'");
         m.referencePose[i] = yamlin::quantity(ctx, kv.second, "workpiece.reference_pose." + name,
                                               m.axes[i].isRotary() ? Dimension::Angle : Dimension::Length);
       }

@@ -113,7 +113,7 @@ class MetaReader {
     std::vector<bool> seen(q.size(), false);
     for (const auto& part : splitOn(text(key), ',')) {
       const auto eq = part.find('=');
-      const int j = eq == std::string::npos ? -1 : m.axisIndex(trim(part.substr(0, eq)));
+      const int j = eq == std::string::npos ? -1 : m.commandedAxisIndex(trim(part.substr(0, eq)));
       if (j < 0) fail(key, "expected 'AXIS=value unit' for each axis, found '" + part + "'");
       const bool rotary = m.axes[static_cast<size_t>(j)].isRotary();
       q[static_cast<size_t>(j)] = parse(key, part.substr(eq + 1), rotary ? Dimension::Angle : Dimension::Length);

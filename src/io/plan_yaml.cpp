@@ -17,7 +17,7 @@ std::vector<double> poseOf(const Context& ctx, const Machine& m, const YAML::Nod
   if (!node.IsMap()) ctx.fail(node, key, "expected a mapping of axis names to positions, e.g. {B: -30 deg}");
   for (const auto& kv : node) {
     const auto axis = kv.first.as<std::string>();
-    const int j = m.axisIndex(axis);
+    const int j = m.commandedAxisIndex(axis);
     if (j < 0) ctx.fail(kv.first, key + "." + axis, "no commanded axis '" + axis + "' on " + m.name);
     q[static_cast<size_t>(j)] = yamlin::quantity(ctx, kv.second, key + "." + axis,
                                                  m.axes[static_cast<size_t>(j)].isRotary() ? Dimension::Angle : Dimension::Length);
@@ -117,7 +117,7 @@ std::vector<MeasurementRun> generate(const Context& ctx, const KinematicModel& n
     const double feed = feedOf(ctx, c["feed"], k + ".feed");
     return wrap([&] {
       const auto branch = parseTiltBranch(c["branch"] ? yamlin::scalar(ctx, c["branch"], k + ".branch") : "negative");
-      return std::vector{ballbarCone(nominal, *preset, n, branch, feed)};
+      return std::vector{ballbarCone(nominal, *preset, n, {branch, feed})};
     });
   }
   if (const auto z = entry["cubic_zones"]) {

@@ -9,8 +9,8 @@ namespace {
 
 // Index of a commanded axis named in an assignment; InputError otherwise.
 size_t commandedAxis(const Machine& m, const std::string& name, const std::string& key) {
-  const int i = m.axisIndex(name);
-  if (i < 0 || !m.axes[static_cast<size_t>(i)].commanded()) {
+  const int i = m.commandedAxisIndex(name);
+  if (i < 0) {
     std::string known;
     for (const auto& a : m.axes)
       if (a.commanded()) known += (known.empty() ? "" : " ") + a.name;

@@ -3,6 +3,7 @@
 #include <functional>
 
 #include <Eigen/Eigenvalues>
+#include <fmt/format.h>
 
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/bundled_data.hpp"
@@ -76,12 +77,12 @@ BodyPart readPart(const Context& ctx, const YAML::Node& p, const std::string& ke
     if (!(r > ri && ri >= 0 && l > 0)) ctx.fail(c, key + ".cylinder", "needs radius > inner_radius >= 0 and length > 0");
     volume = kPi * (r * r - ri * ri) * l;
     const int a = axis[0] - 'x';
-    make = [r, ri, l, a, centre](double m) { return cylinderPart(r, ri, l, a, m, centre); };
+    make = [shape = CylinderShape{r, ri, l, a}, centre](double m) { return cylinderPart(shape, m, centre); };
   } else if (p["prism"]) {
     const Vec3 s = yamlin::lengthVector(ctx, p["prism"], key + ".prism") * 1e-3;
     if ((s.array() <= 0).any()) ctx.fail(p["prism"], key + ".prism", "dimensions must be positive");
     volume = 0.5 * s.prod();
-    make = [s, centre](double m) { return prismPart(s.x(), s.y(), s.z(), m, centre); };
+    make = [s, centre](double m) { return prismPart(s, m, centre); };
   } else {
     ctx.fail(p, key, "expected cuboid, cylinder or prism");
   }
@@ -265,7 +266,11 @@ StructureModel parseStructure(const std::string& text, const std::string& source
     if (beam < 0) return bodyRef(ctx, m, node["body"], key + ".body");
     const auto& b = m.beams[static_cast<size_t>(beam)];
     const double s = (point - b.from).dot(b.axis) / b.length;
-    return b.first + std::min(4, static_cast<int>(std::floor((s * 8 + 1) / 2)));
+    if (!(s >= -1e-9 && s <= 1 + 1e-9))
+      ctx.fail(node["point"], key + ".point",
+               fmt::format("the point is not along beam '{}': it lies {:.4g} mm from its start, the beam is {:.4g} mm long",
+                           b.name, s * b.length * 1e3, b.length * 1e3));
+    return b.segmentAt(s);
   };
   if (!root["tcp"]) ctx.fail(root, "tcp", "missing tcp: {body, point}");
   m.tcpBody = pointBody(root["tcp"], "tcp", m.tcpPoint);

@@ -5,12 +5,12 @@
 #include <stdexcept>
 
 namespace mtacc {
-double sensitivityCoefficient(std::shared_ptr<const Machine> machine, const ErrorModel& shape, const Parameter& p,
-                              double epsilon, const double* q, const Vec3& direction) {
+double sensitivityCoefficient(std::shared_ptr<const Machine> machine, const ErrorModel& shape, const ErrorStep& step,
+                              const SurfacePoint& at) {
   const auto nominal = compileNominal(machine);
-  const auto actual = compile(machine, singleError(*machine, shape, p, epsilon));
-  const Vec3 e = toolPoint(actual, q).position - toolPoint(nominal, q).position;
-  return direction.normalized().dot(e) / epsilon;
+  const auto actual = compile(machine, singleError(*machine, shape, step.parameter, step.epsilon));
+  const Vec3 e = toolPoint(actual, at.q).position - toolPoint(nominal, at.q).position;
+  return at.normal.normalized().dot(e) / step.epsilon;
 }
 
 std::vector<BudgetItem> budgetItemsAtMagnitude(const Machine& machine, double length, double angle) {

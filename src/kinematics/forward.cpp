@@ -176,29 +176,29 @@ Vec6 poseError(const Pose& actual, const Pose& nominal) {
   return e;
 }
 
-void toolPoints(const KinematicModel& m, const JointMatrix& q, const DirectionMatrix& dir, PointMatrix& positions,
-                PointMatrix& directions, int threads) {
-  const long n = q.rows();
-  positions.resize(n, 3);
-  directions.resize(n, 3);
-  const bool hasDir = dir.size() > 0;
+void toolPoints(const KinematicModel& m, const PoseBatch& poses, ToolPointBatch& out, int threads) {
+  const long n = poses.q.rows();
+  out.positions.resize(n, 3);
+  out.directions.resize(n, 3);
+  const bool hasDir = poses.direction.size() > 0;
   parallelFor(n, threads, [&](long begin, long end) {
     for (long i = begin; i < end; ++i) {
-      const ToolPoint tp = toolPoint(m, q.row(i).data(), hasDir ? dir.row(i).data() : nullptr);
-      positions.row(i) = tp.position.transpose();
-      directions.row(i) = tp.direction.transpose();
+      const ToolPoint tp = toolPoint(m, poses.q.row(i).data(), hasDir ? poses.direction.row(i).data() : nullptr);
+      out.positions.row(i) = tp.position.transpose();
+      out.directions.row(i) = tp.direction.transpose();
     }
   });
 }
 
-PoseErrorMatrix toolErrors(const KinematicModel& actual, const KinematicModel& nominal, const JointMatrix& q,
-                           const DirectionMatrix& dir, int threads) {
-  PoseErrorMatrix out(q.rows(), 6);
-  const bool hasDir = dir.size() > 0;
-  parallelFor(q.rows(), threads, [&](long begin, long end) {
+PoseErrorMatrix toolErrors(const KinematicModel& actual, const KinematicModel& nominal, const PoseBatch& poses,
+                           int threads) {
+  PoseErrorMatrix out(poses.q.rows(), 6);
+  const bool hasDir = poses.direction.size() > 0;
+  parallelFor(poses.q.rows(), threads, [&](long begin, long end) {
     for (long i = begin; i < end; ++i) {
-      out.row(i) = poseError(toolInWorkpiece(actual, q.row(i).data(), hasDir ? dir.row(i).data() : nullptr),
-                             toolInWorkpiece(nominal, q.row(i).data()))
+      const double* q = poses.q.row(i).data();
+      out.row(i) = poseError(toolInWorkpiece(actual, q, hasDir ? poses.direction.row(i).data() : nullptr),
+                             toolInWorkpiece(nominal, q))
                        .transpose();
     }
   });

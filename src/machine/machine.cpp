@@ -32,6 +32,11 @@ int Machine::axisIndex(const std::string& axisName) const {
   return -1;
 }
 
+int Machine::commandedAxisIndex(const std::string& axisName) const {
+  const int i = axisIndex(axisName);
+  return i >= 0 && axes[static_cast<size_t>(i)].commanded() ? i : -1;
+}
+
 std::string Machine::travelViolation(const std::vector<double>& q) const {
   for (size_t i = 0; i < q.size() && i < axes.size(); ++i) {
     const Axis& a = axes[i];

@@ -210,7 +210,7 @@ struct State {
       const auto& run = runs[r];
       const Eigen::Index m = readingSize(run.instrument);
       residualOnly.segment(rowStart[r] + i * m, m) =
-          predictReading(model, geometry[r], frames[r][static_cast<size_t>(i)], run, i) - run.readings.row(i).transpose();
+          predictReading(model, {run, i, geometry[r], frames[r][static_cast<size_t>(i)]}) - run.readings.row(i).transpose();
     });
     residualPoint = current;
   }

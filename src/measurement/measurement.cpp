@@ -103,11 +103,14 @@ NominalFrame nominalFrame(const KinematicModel& nominal, const MeasurementRun& r
 }
 
 Reading predictReading(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run, Eigen::Index i) {
-  return predictReading(model, runGeometry(model, run), nominalFrame(nominal, run, i), run, i);
+  return predictReading(model, {run, i, runGeometry(model, run), nominalFrame(nominal, run, i)});
 }
 
-Reading predictReading(const KinematicModel& model, const RunGeometry& geometry, const NominalFrame& nominal,
-                       const MeasurementRun& run, Eigen::Index i) {
+Reading predictReading(const KinematicModel& model, const ReadingContext& reading) {
+  const MeasurementRun& run = reading.run;
+  const Eigen::Index i = reading.pose;
+  const RunGeometry& geometry = reading.geometry;
+  const NominalFrame& nominal = reading.nominal;
   const Vec3 t = toolInWorkpiece(model, run.q.row(i).data(), dirRow(run, i)) * geometry.toolBall;
   Reading r(readingSize(run.instrument));
   switch (run.instrument) {
@@ -124,18 +127,14 @@ Eigen::MatrixXd predictReadings(const KinematicModel& model, const KinematicMode
   Eigen::MatrixXd out(run.poses(), readingSize(run.instrument));
   const RunGeometry geometry = runGeometry(model, run);
   parallelFor(run.poses(), threads, [&](long b, long e) {
-    for (long i = b; i < e; ++i) out.row(i) = predictReading(model, geometry, nominalFrame(nominal, run, i), run, i).transpose();
+    for (long i = b; i < e; ++i) out.row(i) = predictReading(model, {run, i, geometry, nominalFrame(nominal, run, i)}).transpose();
   });
   return out;
 }
 
 void readingJacobian(const KinematicModel& model, const ReadingContext& reading, KinematicData& data, ReadingJacobian& out) {
-  const MeasurementRun& run = reading.run;
-  const RunGeometry& geometry = reading.geometry;
-  const NominalFrame& nominal = reading.nominal;
-  const std::vector<SetupParameter>& setupParameters = reading.setupParameters;
-  const PointJacobian* setAtJacobian = reading.setAt;
-  const PointJacobian& pj = pointJacobian(model, run.q.row(reading.pose).data(), dirRow(run, reading.pose), geometry.toolBall, data);
+  const auto& [run, i, geometry, nominal, setupParameters, setAtJacobian] = reading;
+  const PointJacobian& pj = pointJacobian(model, run.q.row(i).data(), dirRow(run, i), geometry.toolBall, data);
   const Vec3& t = pj.point;
   // d(tool ball)/d(xT yT zT): the tool frame's rotation in the workpiece frame.
   const Mat3& toolRotation = pj.toolRotation;

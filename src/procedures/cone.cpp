@@ -85,8 +85,9 @@ double rotarySpeedFactorAtStart(double alpha, double beta) {
   return d == 0.0 ? std::numeric_limits<double>::infinity() : std::sin(alpha) / d;
 }
 
-ConeMotion coneMotion(const KinematicModel& nominal, const ConeSpec& spec, const ConePath& path, TiltBranch branch,
-                      double feed) {
+ConeMotion coneMotion(const KinematicModel& nominal, const ConeSpec& spec, const ConePath& path, const ConeDrive& drive) {
+  const TiltBranch branch = drive.branch;
+  const double feed = drive.feed;
   const Machine& m = *nominal.machine;
   ConeMotion out;
   const double gap = std::abs(spec.alpha - spec.beta);

@@ -2,9 +2,9 @@
 
 namespace mtacc {
 
-MeasurementRun ballbarCone(const KinematicModel& nominal, const ConeSpec& spec, int points, TiltBranch branch, double feed) {
+MeasurementRun ballbarCone(const KinematicModel& nominal, const ConeSpec& spec, int points, const ConeDrive& drive) {
   const auto path = conePath(spec, points);
-  const auto motion = coneMotion(nominal, spec, path, branch, feed);
+  const auto motion = coneMotion(nominal, spec, path, drive);
   // The point nearest to all normal lines (they meet on the cone axis).
   Mat3 a = Mat3::Zero();
   Vec3 b = Vec3::Zero();
@@ -19,7 +19,7 @@ MeasurementRun ballbarCone(const KinematicModel& nominal, const ConeSpec& spec, 
   run.instrument = Instrument::Ballbar;
   run.setup.target = w;
   run.setup.length = (path.points[0] - w).norm();
-  run.feed = feed;
+  run.feed = drive.feed;
   run.q = motion.q;
   run.direction = motion.direction;
   run.angle = path.phi;

@@ -25,7 +25,7 @@ BudgetResult errorBudget(const MachineSetup& setup, const BudgetOptions& o) {
   }
   r.grid = workingVolumeGrid(m, o.samplesPerAxis);
   r.entries = errorBudget(setup.machine, items, r.grid, o.threads, o.progress);
-  const auto combined = toolErrors(setup.actual(), setup.nominal(), r.grid, {}, o.threads);
+  const auto combined = toolErrors(setup.actual(), setup.nominal(), {r.grid, {}}, o.threads);
   for (Eigen::Index i = 0; i < combined.rows(); ++i)
     r.combinedMaxPositionError = std::max(r.combinedMaxPositionError, combined.row(i).head<3>().norm());
   return r;
@@ -74,7 +74,7 @@ SensitivityResult sensitivities(const MachineSetup& setup, const SensitivityRequ
     const Vec6 col = jac.col(static_cast<Eigen::Index>(k));
     const double eps = length ? request.epsilonLength : request.epsilonAngle;
     r.rows.push_back({p, col.head<3>() * perUnit, col.tail<3>() * (length ? 1e3 : 1.0), r.direction.dot(col.head<3>()) * perUnit,
-                      sensitivityCoefficient(setup.machine, setup.errors, p, eps, request.q.data(), r.direction) * perUnit});
+                      sensitivityCoefficient(setup.machine, setup.errors, {p, eps}, {request.q.data(), r.direction}) * perUnit});
   }
   return r;
 }

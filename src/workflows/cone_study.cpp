@@ -39,7 +39,7 @@ ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyOptions& options) 
     throw InputError(InputLocation{"", 0, "points"}, "must be between 8 and 1000000");
   const auto nominal = setup.nominal();
   s.path = conePath(spec, s.options.points);
-  s.motion = coneMotion(nominal, spec, s.path, options.branch, options.feed);
+  s.motion = coneMotion(nominal, spec, s.path, {options.branch, options.feed});
   s.closedForm = rotaryRangesClosedForm(spec.alpha, spec.beta);
   s.machineNormals.resize(static_cast<Eigen::Index>(s.path.normals.size()), 3);
   for (Eigen::Index i = 0; i < s.machineNormals.rows(); ++i)

@@ -139,10 +139,11 @@ nlohmann::json toJson(const AccelerationResult& r) {
 }
 
 MapResult structureMap(const StructureModel& model, const MapRequest& request) {
-  if (request.countA < 2 || request.countB < 2 || request.countA > 1000 || request.countB > 1000)
+  const MapGrid& g = request.grid;
+  if (g.countA < 2 || g.countB < 2 || g.countA > 1000 || g.countB > 1000)
     throw InputError(InputLocation{"", 0, "grid"}, "expected 2 to 1000 positions per axis, e.g. 20x20");
   MapResult r{model.name, dynamicsQuantity(model, request.quantity), {}};
-  r.map = dynamicsMap(model, request.positions, request.axisA, request.axisB, request.countA, request.countB, r.quantity);
+  r.map = dynamicsMap(model, g, r.quantity);
   return r;
 }
 

@@ -21,8 +21,8 @@ ForwardResult forwardKinematics(const MachineSetup& setup, const JointMatrix& q,
   out.q = q;
   const auto nominal = setup.nominal();
   const auto actual = options.nominal ? nominal : setup.actual();
-  toolPoints(actual, q, direction, out.tcp, out.toolDirection, options.threads);
-  out.error = toolErrors(actual, nominal, q, direction, options.threads);
+  toolPoints(actual, {q, direction}, out.tool, options.threads);
+  out.error = toolErrors(actual, nominal, {q, direction}, options.threads);
   for (Eigen::Index r = 0; r < out.error.rows(); ++r)
     out.maxPositionError = std::max(out.maxPositionError, out.error.row(r).head<3>().norm());
   return out;
@@ -39,8 +39,8 @@ nlohmann::json toJson(const ForwardResult& r) {
     const Vec3 e = r.error.row(i).head<3>().transpose() * 1e3;
     const Vec3 a = r.error.row(i).tail<3>().transpose() * 1e6;
     j["poses"].push_back({{"pose", poseJson(m, r.q.row(i).data())},
-                          {"tcp", vectorJson(r.tcp.row(i).transpose())},
-                          {"tool_direction", vectorJson(r.toolDirection.row(i).transpose())},
+                          {"tcp", vectorJson(r.tool.positions.row(i).transpose())},
+                          {"tool_direction", vectorJson(r.tool.directions.row(i).transpose())},
                           {"position_error", vectorJson(e)},
                           {"orientation_error", vectorJson(a)}});
   }

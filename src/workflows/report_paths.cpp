@@ -14,7 +14,7 @@ double midTravel(const Axis& a) { return a.travel ? 0.5 * (a.travel->min + a.tra
 
 // The radial component of the TCP error (actual minus nominal) at each pose.
 void radialDeviation(const MachineSetup& setup, CirclePathResult& r) {
-  const auto errors = toolErrors(setup.actual(), setup.nominal(), r.q, {});
+  const auto errors = toolErrors(setup.actual(), setup.nominal(), {r.q, {}});
   r.radialDeviation.resize(static_cast<size_t>(r.q.rows()));
   for (Eigen::Index i = 0; i < r.q.rows(); ++i)
     r.radialDeviation[static_cast<size_t>(i)] = errors.row(i).head<3>().dot(r.radialDirection.row(i));

@@ -74,8 +74,12 @@ struct DynamicsMap {
   Eigen::MatrixXd values;     // a x b
   BoxStatistics statistics;
 };
-DynamicsMap dynamicsMap(const StructureModel& model, const std::vector<double>& fixed, const std::string& axisA,
-                        const std::string& axisB, int countA, int countB, const DynamicsQuantity& quantity,
+struct MapGrid {
+  std::string axisA = "Y", axisB = "Z";
+  int countA = 20, countB = 20;
+  std::vector<double> fixed;  // all axes, m (those of the grid are overwritten); empty: all 0
+};
+DynamicsMap dynamicsMap(const StructureModel& model, const MapGrid& grid, const DynamicsQuantity& quantity,
                         int threads = kAllCores);
 
 }  // namespace mtacc

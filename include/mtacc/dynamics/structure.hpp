@@ -31,11 +31,16 @@ struct BodyPart {
   Vec3 halfExtent = Vec3::Zero();  // of its bounding box, for drawing
 };
 BodyPart cuboidPart(const Vec3& size, double mass, const Vec3& centre);
-// axis 0, 1, 2 = x, y, z; inner radius 0 for a solid cylinder.
-BodyPart cylinderPart(double radius, double innerRadius, double length, int axis, double mass, const Vec3& centre);
-// Right triangular prism: legs a (along x) and b (along y) from the right-angle edge, extruded
-// by length along z; `centre` is its centroid.
-BodyPart prismPart(double a, double b, double length, double mass, const Vec3& centre);
+struct CylinderShape {
+  double radius = 0;       // m
+  double innerRadius = 0;  // m, 0 for a solid cylinder
+  double length = 0;       // m
+  int axis = 2;            // 0, 1, 2 = x, y, z
+};
+BodyPart cylinderPart(const CylinderShape& shape, double mass, const Vec3& centre);
+// Right triangular prism: legs size.x (along x) and size.y (along y) from the right-angle
+// edge, extruded by size.z along z; `centre` is its centroid.
+BodyPart prismPart(const Vec3& size, double mass, const Vec3& centre);
 RigidBody combineParts(const std::string& name, const std::vector<BodyPart>& parts);
 
 // A 6-DOF spring-damper between body a and body b (either may be kGround) at `point`, with
@@ -69,6 +74,9 @@ struct BeamSegments {
   int first = 0;                 // body index of segment 1; segments are first .. first + 4
   Vec3 from = Vec3::Zero(), axis = Vec3::UnitX();  // at the home position, m
   double length = 0;
+  // The segment (its body index) at the fraction s of the length from `from`: the segments
+  // are 1:2:2:2:1 of the length; points before the start or beyond the end go to the ends.
+  int segmentAt(double s) const;
 };
 
 struct StructureModel {

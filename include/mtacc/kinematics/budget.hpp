@@ -10,11 +10,20 @@
 
 namespace mtacc {
 
-// Seed 001 eq. 15: k = E / epsilon, where E is the TCP deviation along `direction` (the
-// outward surface normal: positive = material left standing) caused by the single error
-// `parameter` = epsilon, computed with the exact model. Other errors are zero.
-double sensitivityCoefficient(std::shared_ptr<const Machine> machine, const ErrorModel& shape,
-                              const Parameter& parameter, double epsilon, const double* q, const Vec3& direction);
+// One error parameter set to epsilon (mm or rad), the others zero.
+struct ErrorStep {
+  Parameter parameter;
+  double epsilon = 0.0;
+};
+// A pose q and the outward surface normal there (positive = material left standing).
+struct SurfacePoint {
+  const double* q = nullptr;
+  Vec3 normal = Vec3::UnitZ();
+};
+// Seed 001 eq. 15: k = E / epsilon, where E is the TCP deviation along the normal caused by
+// the single error, computed with the exact model (`shape` gives the error functions' shapes).
+double sensitivityCoefficient(std::shared_ptr<const Machine> machine, const ErrorModel& shape, const ErrorStep& step,
+                              const SurfacePoint& at);
 
 // One budget line: a single error at a stated magnitude.
 struct BudgetItem {

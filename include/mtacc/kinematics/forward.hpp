@@ -25,12 +25,21 @@ ToolPoint toolPoint(const KinematicModel& model, const double* q, const int* dir
 // rotation vector of R_actual * R_nominal^T in rad.
 Vec6 poseError(const Pose& actual, const Pose& nominal);
 
-// Batch evaluation over the rows of q (one pose per row). dir may be empty or the size of q.
-void toolPoints(const KinematicModel& model, const JointMatrix& q, const DirectionMatrix& dir,
-                PointMatrix& positions, PointMatrix& directions, int threads = kAllCores);
+// Poses, one per row of q, with their directions of motion (empty, or one row per pose).
+struct PoseBatch {
+  const JointMatrix& q;
+  const DirectionMatrix& direction;
+};
+// TCP positions (mm) and tool directions, one row per pose, workpiece frame.
+struct ToolPointBatch {
+  PointMatrix positions;
+  PointMatrix directions;
+};
+// Batch evaluation into `out` (its storage reused).
+void toolPoints(const KinematicModel& model, const PoseBatch& poses, ToolPointBatch& out, int threads = kAllCores);
 // TCP position and orientation errors (n x 6) of `actual` against `nominal`.
-PoseErrorMatrix toolErrors(const KinematicModel& actual, const KinematicModel& nominal, const JointMatrix& q,
-                           const DirectionMatrix& dir, int threads = kAllCores);
+PoseErrorMatrix toolErrors(const KinematicModel& actual, const KinematicModel& nominal, const PoseBatch& poses,
+                           int threads = kAllCores);
 
 // The frame in which each axis's component errors act (after offset and location error,
 // before the joint for fixed frames and after it for moving frames, at the axis location

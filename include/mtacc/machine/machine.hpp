@@ -61,8 +61,10 @@ struct Machine {
 
   int commandedCount() const;
   int rotaryCount() const;
-  // Index of a commanded axis by name, or -1.
+  // Index of an axis (the spindle included) by name, or -1.
   int axisIndex(const std::string& name) const;
+  // Index of a commanded axis (an entry of a joint vector) by name, or -1.
+  int commandedAxisIndex(const std::string& name) const;
   // Empty when every commanded axis is within its travel, else e.g.
   // "X=500 mm beyond travel [-400, 400] mm" for the first axis outside.
   std::string travelViolation(const std::vector<double>& q) const;

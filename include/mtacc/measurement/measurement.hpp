@@ -6,6 +6,7 @@
 // Lengths in mm, angles in rad; every point lives in the workpiece frame unless stated.
 #include <array>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -99,9 +100,6 @@ RunGeometry runGeometry(const KinematicModel& model, const MeasurementRun& run);
 // The readings the instrument shows at pose i of the run on `model` (exact model,
 // including the run's set-up errors).
 Reading predictReading(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run, Eigen::Index i);
-// The same from what is fixed per run and per pose (many poses).
-Reading predictReading(const KinematicModel& model, const RunGeometry& geometry, const NominalFrame& nominal,
-                       const MeasurementRun& run, Eigen::Index i);
 Eigen::MatrixXd predictReadings(const KinematicModel& model, const KinematicModel& nominal, const MeasurementRun& run,
                                 int threads = kAllCores);
 
@@ -113,18 +111,21 @@ struct ReadingJacobian {
   ReadingRows machine;  // readingSize x machine parameters
   ReadingRows setup;    // readingSize x setup parameters
 };
-// One reading to differentiate: pose `pose` of `run`, with what is fixed per run and per pose.
+// One reading: pose `pose` of `run`, with what is fixed per run and per pose, and for its
+// derivatives the set-up parameters to differentiate by.
 struct ReadingContext {
   const MeasurementRun& run;
   Eigen::Index pose;
   const RunGeometry& geometry;  // runGeometry(model, run)
   const NominalFrame& nominal;  // nominalFrame(nominal model, run, pose)
-  const std::vector<SetupParameter>& setupParameters;
+  std::span<const SetupParameter> setupParameters = {};
   // pointJacobian of toolBallWithSetupError(run) at run.setup.setAt, computed once per run
-  // by the caller: required for a ballbar set at the tool ball (std::invalid_argument
-  // otherwise), ignored else.
+  // by the caller: required for the derivatives of a ballbar set at the tool ball
+  // (std::invalid_argument otherwise), ignored else.
   const PointJacobian* setAt = nullptr;
 };
+// The same as predictReading, from what is fixed per run and per pose (many poses).
+Reading predictReading(const KinematicModel& model, const ReadingContext& reading);
 // The reading and its derivatives into `out`, reusing its storage (identifications call this
 // once per reading). The machine parameters are the model's (compile's jacobianParameters).
 void readingJacobian(const KinematicModel& model, const ReadingContext& reading, KinematicData& data, ReadingJacobian& out);

@@ -63,10 +63,15 @@ struct ConeMotion {
   std::vector<std::string> warnings;    // singular or near-singular set-up
 };
 
-// Solves the path through the generic inverse kinematics, continuous from phi = 0 with the
-// requested tilt branch, and analyses each axis at the contouring feed (mm/min).
+// How the path is driven: the tilt branch of the inverse kinematics and the contouring feed.
+struct ConeDrive {
+  TiltBranch branch = TiltBranch::Negative;
+  double feed = 500.0;  // mm/min
+};
+// Solves the path through the generic inverse kinematics, continuous from phi = 0 on the
+// drive's tilt branch, and analyses each axis at its feed.
 ConeMotion coneMotion(const KinematicModel& nominal, const ConeSpec& spec, const ConePath& path,
-                      TiltBranch branch = TiltBranch::Negative, double feed = 500.0);
+                      const ConeDrive& drive = {});
 
 // Equivalent cone form error, peak to valley (mm), of the TCP points a machine with errors
 // produces when driven along the nominal axis positions of `motion`.

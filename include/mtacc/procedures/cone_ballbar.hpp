@@ -7,6 +7,6 @@ namespace mtacc {
 
 // The tool ball follows the cone path (TCP); the work ball sits where the surface normals along
 // the path meet.
-MeasurementRun ballbarCone(const KinematicModel& nominal, const ConeSpec& spec, int points, TiltBranch branch, double feed);
+MeasurementRun ballbarCone(const KinematicModel& nominal, const ConeSpec& spec, int points, const ConeDrive& drive);
 
 }  // namespace mtacc

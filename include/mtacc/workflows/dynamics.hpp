@@ -58,9 +58,7 @@ nlohmann::json toJson(const AccelerationResult& result);
 
 struct MapRequest {
   std::string quantity = "Hx/X";
-  std::string axisA = "Y", axisB = "Z";
-  int countA = 20, countB = 20;
-  std::vector<double> positions;  // the other axes, m
+  MapGrid grid;
 };
 struct MapResult {
   std::string model;

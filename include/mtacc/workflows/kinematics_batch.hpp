@@ -7,6 +7,7 @@
 
 #include "mtacc/core/joint_matrix.hpp"
 #include "mtacc/core/parallel.hpp"
+#include "mtacc/kinematics/forward.hpp"
 #include "mtacc/kinematics/inverse.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
@@ -21,8 +22,7 @@ struct ForwardResult {
   std::shared_ptr<const Machine> machine;
   bool nominal = false;
   JointMatrix q;             // mm, rad
-  PointMatrix tcp;           // mm, workpiece frame
-  PointMatrix toolDirection;
+  ToolPointBatch tool;       // TCP (mm) and tool direction, workpiece frame
   PoseErrorMatrix error;     // actual minus nominal: mm, then the rotation vector in rad
   double maxPositionError = 0;  // mm
 };
