@@ -226,6 +226,26 @@ TEST_F(CliBadInput, StructurePointOffItsBeam) {
   }
 }
 
+// Numbers that used to overflow a conversion to int (undefined behaviour).
+TEST_F(CliBadInput, HugeCountsAreOutOfRange) {
+  const auto order = write("m.yaml", kMachine + "errors:\n  EXX:\n    harmonics: {terms: [{order: 1e10, amplitude: 1 um}]}\n");
+  expectCleanFailure(run("check " + order + " -o " + output()), {order + ":11: errors.EXX.harmonics.terms.order", "from 1 to 1000"});
+  const auto plan = write("plan.yaml", "name: p\nparameters: [C0Y]\nruns:\n  - name: c\n"
+                                       "    circle: {plane: XY, centre: [0 mm, 0 mm, 100 mm], radius: 150 mm, points: 1e10}\n");
+  expectCleanFailure(run("observability three-axis-vertical --plan " + plan + " -o " + output()),
+                     {plan + ":5: runs[0].circle.points", "from 8 to 100000"});
+}
+
+TEST_F(CliBadInput, AxisNumberBeyondInt) {
+  const auto f = write("m.yaml", "name: x\nstructure: t-(C)-Y2147483647-Z-b-X-w\naxes:\n"
+                                 "  X: {direction: [1, 0, 0], travel: [-400 mm, 400 mm]}\n"
+                                 "  Y2147483647: {direction: [0, 1, 0], travel: [-300 mm, 300 mm]}\n"
+                                 "  Z: {direction: [0, 0, 1], travel: [-300 mm, 300 mm]}\n");
+  const auto r = run("check " + f + " -o " + output());
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(slurp(output()).find("Y2147483647"), std::string::npos);
+}
+
 TEST_F(CliBadInput, MalformedStructureModels) {
   const std::string body = "bodies:\n  - {name: b, mass: 10, inertia: [1, 1, 1, 0, 0, 0]}\n";
   const auto self = write("self.yaml", body + "elements:\n  - {type: spring, bodies: [b, b], point: [0 mm, 0 mm, 0 mm], "

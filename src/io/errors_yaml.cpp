@@ -89,10 +89,9 @@ void readTerms(const Context& ctx, const Machine& m, const MotionTarget& t, cons
       if (!terms.IsSequence() || terms.size() == 0) ctx.fail(terms, k + ".terms", "expected a list of {order, amplitude, phase}");
       for (const auto& h : terms) {
         yamlin::rejectUnknownKeys(ctx, h, k + ".terms", {"order", "amplitude", "phase"});
-        const double order = yamlin::number(ctx, h["order"], k + ".terms.order");
-        if (order < 1 || order != std::floor(order)) ctx.fail(h["order"], k + ".terms.order", "order must be a whole number >= 1");
+        const int order = yamlin::wholeNumber(ctx, h["order"], k + ".terms.order", 1, 1000);
         const double phase = h["phase"] ? yamlin::quantity(ctx, h["phase"], k + ".terms.phase", Dimension::Angle) : 0.0;
-        f.add(HarmonicTerm{period, zero, static_cast<int>(order),
+        f.add(HarmonicTerm{period, zero, order,
                            yamlin::quantity(ctx, h["amplitude"], k + ".terms.amplitude", valueDim), phase});
       }
     } else if (type == "table") {

@@ -16,8 +16,11 @@ constexpr std::string_view kLetterOrder = "XYZUVWABC";
 
 bool isRotaryLetter(char c) { return c == 'A' || c == 'B' || c == 'C'; }
 
+// X, Y, Z, U, V, W, A, B, C, then by the number after the letter (X2 after X; numbers beyond 99
+// keep their given order).
 int canonicalRank(const std::string& name) {
-  return static_cast<int>(kLetterOrder.find(name[0])) * 100 + (name.size() > 1 ? std::atoi(name.c_str() + 1) : 0);
+  const long number = name.size() > 1 ? std::clamp(std::strtol(name.c_str() + 1, nullptr, 10), 0L, 99L) : 0L;
+  return static_cast<int>(kLetterOrder.find(name[0])) * 100 + static_cast<int>(number);
 }
 
 Axis readAxis(const yamlin::Context& ctx, const std::string& name, Side side, const YAML::Node& node) {

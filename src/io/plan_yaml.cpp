@@ -25,11 +25,10 @@ std::vector<double> poseOf(const Context& ctx, const Machine& m, const YAML::Nod
   return q;
 }
 
+// Points of a run: at most 100,000 (a reading every 0.0036 deg of a circle).
 int count(const Context& ctx, const YAML::Node& node, const std::string& key, int fallback, int minimum) {
-  if (!node) return fallback;
-  const double v = yamlin::number(ctx, node, key);
-  if (v != static_cast<int>(v) || v < minimum) ctx.fail(node, key, "expected a whole number of at least " + std::to_string(minimum));
-  return static_cast<int>(v);
+  constexpr int kMaxPoints = 100000;
+  return node ? yamlin::wholeNumber(ctx, node, key, minimum, kMaxPoints) : fallback;
 }
 
 double feedOf(const Context& ctx, const YAML::Node& node, const std::string& key) {

@@ -78,6 +78,13 @@ Quantity anyQuantity(const Context& ctx, const YAML::Node& node, const std::stri
   return *q;
 }
 
+int wholeNumber(const Context& ctx, const YAML::Node& node, const std::string& key, int minimum, int maximum) {
+  const double v = number(ctx, node, key);
+  if (!(v >= minimum && v <= maximum) || v != std::floor(v))
+    ctx.fail(node, key, "expected a whole number from " + std::to_string(minimum) + " to " + std::to_string(maximum));
+  return static_cast<int>(v);
+}
+
 double quantity(const Context& ctx, const YAML::Node& node, const std::string& key, Dimension expected) {
   const auto q = anyQuantity(ctx, node, key);
   if (q.dimension != expected)

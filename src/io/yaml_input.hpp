@@ -27,6 +27,8 @@ void rejectUnknownKeys(const Context& ctx, const YAML::Node& map, const std::str
                        std::initializer_list<const char*> allowed);
 std::string scalar(const Context& ctx, const YAML::Node& node, const std::string& key);
 double number(const Context& ctx, const YAML::Node& node, const std::string& key);
+// A whole number in [minimum, maximum]; the range is in the message.
+int wholeNumber(const Context& ctx, const YAML::Node& node, const std::string& key, int minimum, int maximum);
 double quantity(const Context& ctx, const YAML::Node& node, const std::string& key, Dimension expected);
 // A quantity whose dimension is one of length or angle, chosen by the caller's context.
 Quantity anyQuantity(const Context& ctx, const YAML::Node& node, const std::string& key);
