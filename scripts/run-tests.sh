@@ -1,12 +1,19 @@
 #!/usr/bin/env bash
 # Whole test suite: install what is missing, build, run every test through ctest (C++ unit and
 # reference tests, the layer check, and the Python tests including the report in headless
-# Chromium; screenshots kept in build/test-artifacts/), then the benchmarks.
+# Chromium; screenshots kept in build/test-artifacts/), the C++ tests under the sanitizers, a
+# short fuzz run of every reader, then the benchmarks.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh
 (cd build && ctest --output-on-failure -j"$(nproc)")
+echo
+echo "== The C++ tests under AddressSanitizer and UndefinedBehaviorSanitizer =="
+bash scripts/sanitize.sh
+echo
+echo "== Fuzzing: every reader's harness for 8 s =="
+bash scripts/fuzz.sh 8
 echo
 echo "== Benchmark: batch forward kinematics against orocos KDL =="
 ./build/bench/bench_fk_vs_kdl --benchmark_min_time=0.2 --benchmark_color=false

@@ -246,6 +246,25 @@ TEST_F(CliBadInput, AxisNumberBeyondInt) {
   EXPECT_NE(slurp(output()).find("Y2147483647"), std::string::npos);
 }
 
+TEST_F(CliBadInput, DirectoriesAreNotFiles) {
+  const auto folder = (dir_ / "folder").string();
+  fs::create_directories(folder);
+  // A directory as the input file used to read as an empty file.
+  expectCleanFailure(run("check " + folder + " -o " + output()), {folder + ":", "is a directory, not a file"});
+  // A directory as the output file used to say "cannot move the output file into place: Success".
+  const auto r = run("check three-axis-vertical -o " + folder);
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find(folder + ": is a directory; name an output file"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_empty(folder));
+}
+
+TEST_F(CliBadInput, DuplicateAndNonScalarYamlKeys) {
+  const auto twice = write("m.yaml", kMachine + "errors:\n  X0C: 10 um\n  X0C: 20 um\n");
+  expectCleanFailure(run("check " + twice + " -o " + output()), {twice + ":11: errors.X0C", "key given twice"});
+  const auto listKey = write("k.yaml", kMachine + "errors:\n  [X0C, Y0C]: 10 um\n");
+  expectCleanFailure(run("check " + listKey + " -o " + output()), {listKey + ":10: errors", "a key must be a plain name"});
+}
+
 TEST_F(CliBadInput, MalformedStructureModels) {
   const std::string body = "bodies:\n  - {name: b, mass: 10, inertia: [1, 1, 1, 0, 0, 0]}\n";
   const auto self = write("self.yaml", body + "elements:\n  - {type: spring, bodies: [b, b], point: [0 mm, 0 mm, 0 mm], "

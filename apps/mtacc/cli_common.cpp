@@ -5,7 +5,7 @@
 #include <iostream>
 
 #include "mtacc/core/units.hpp"
-#include "mtacc/io/atomic_file.hpp"
+#include "mtacc/io/text_file.hpp"
 
 namespace mtacc::cli {
 

@@ -1,5 +1,7 @@
 #include "mtacc/io/csv.hpp"
 
+#include "mtacc/io/text_file.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -65,11 +67,7 @@ CsvTable parseCsv(const std::string& text, const std::string& sourceName) {
 }
 
 CsvTable readCsv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(InputLocation{path, 0, ""}, "cannot open file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parseCsv(buffer.str(), path);
+  return parseCsv(readTextFile(path), path);
 }
 
 std::vector<int> requireColumns(const CsvTable& t, const std::vector<std::string>& names) {

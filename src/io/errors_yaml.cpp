@@ -1,5 +1,7 @@
 #include "mtacc/io/errors_yaml.hpp"
 
+#include "mtacc/io/text_file.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -158,7 +160,7 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
 }
 
 ErrorModel loadErrors(const Machine& machine, const std::string& path) {
-  return parseErrors(machine, yamlin::readText(path), path);
+  return parseErrors(machine, readTextFile(path), path);
 }
 
 ErrorModel loadMachineErrors(const Machine& machine) {

@@ -1,5 +1,7 @@
 #include "mtacc/io/limits_yaml.hpp"
 
+#include "mtacc/io/text_file.hpp"
+
 #include <regex>
 
 #include "mtacc/core/units.hpp"
@@ -9,8 +11,12 @@
 namespace mtacc {
 
 ErrorLimits loadErrorLimits(const Machine& machine, const std::string& path) {
+  return parseErrorLimits(machine, readTextFile(path), path);
+}
+
+ErrorLimits parseErrorLimits(const Machine& machine, const std::string& yamlText, const std::string& path) {
   const yamlin::Context ctx{path};
-  const auto root = yamlin::loadFile(path);
+  const auto root = yamlin::loadText(yamlText, path);
   if (!root.IsMap() || !root["limits"] || !root["limits"].IsMap()) ctx.fail(root, "limits", "expected a 'limits:' mapping");
   ErrorLimits out;
   out.file = path;

@@ -1,5 +1,7 @@
 #include "mtacc/io/machine_yaml.hpp"
 
+#include "mtacc/io/text_file.hpp"
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -70,7 +72,7 @@ Axis readAxis(const yamlin::Context& ctx, const std::string& name, Side side, co
 
 Machine loadMachine(const std::string& pathOrName) {
   const auto path = resolveBundled("machines", pathOrName);
-  return parseMachine(yamlin::readText(path), path);
+  return parseMachine(readTextFile(path), path);
 }
 
 Machine parseMachine(const std::string& yamlText, const std::string& sourceName) {

@@ -1,5 +1,7 @@
 #include "mtacc/io/measurement_csv.hpp"
 
+#include "mtacc/io/text_file.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -263,11 +265,7 @@ MeasurementRun parseMeasurementCsv(const KinematicModel& nominal, const std::str
 }
 
 MeasurementRun readMeasurementCsv(const KinematicModel& nominal, const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(InputLocation{path, 0, ""}, "cannot open file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parseMeasurementCsv(nominal, buffer.str(), path);
+  return parseMeasurementCsv(nominal, readTextFile(path), path);
 }
 
 std::string measurementCsv(const Machine& m, const MeasurementRun& run) {

@@ -1,5 +1,7 @@
 #include "mtacc/io/plan_yaml.hpp"
 
+#include "mtacc/io/text_file.hpp"
+
 
 #include "yaml_input.hpp"
 #include "mtacc/io/bundled_data.hpp"
@@ -173,7 +175,7 @@ TestPlan parseTestPlan(const KinematicModel& nominal, const std::string& text, c
 
 TestPlan loadTestPlan(const KinematicModel& nominal, const std::string& pathOrName) {
   const std::string path = resolveBundled("plans", pathOrName);
-  return parseTestPlan(nominal, yamlin::readText(path), path);
+  return parseTestPlan(nominal, readTextFile(path), path);
 }
 
 }  // namespace mtacc

@@ -1,5 +1,7 @@
 #include "mtacc/io/structure_yaml.hpp"
 
+#include "mtacc/io/text_file.hpp"
+
 #include <functional>
 
 #include <Eigen/Eigenvalues>
@@ -281,7 +283,7 @@ StructureModel parseStructure(const std::string& text, const std::string& source
 
 StructureModel loadStructure(const std::string& pathOrName) {
   const std::string path = resolveBundled("structures", pathOrName);
-  return parseStructure(yamlin::readText(path), path);
+  return parseStructure(readTextFile(path), path);
 }
 
 }  // namespace mtacc

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <vector>
 
 namespace mtacc::yamlin {
 
@@ -18,24 +19,49 @@ void Context::fail(const YAML::Node& node, const std::string& key, const std::st
   throw InputError(at(node, key), what);
 }
 
+namespace {
+
+// yaml-cpp keeps the first of two equal keys silently, and turns a non-scalar key into a
+// "bad conversion" later: both are refused here, at their line, for the whole document. The
+// walk keeps its own stack (no recursion on deeply nested input) and stops at a million values
+// (aliases can repeat a node exponentially often, or refer to themselves).
+void checkKeys(const Context& ctx, const YAML::Node& root) {
+  constexpr long kMaxValues = 1000000;
+  std::vector<std::pair<YAML::Node, std::string>> pending{{root, ""}};
+  long visited = 0;
+  while (!pending.empty()) {
+    if (++visited > kMaxValues) ctx.fail(root, "", "more than a million values (aliases repeating themselves?)");
+    auto [node, path] = std::move(pending.back());
+    pending.pop_back();
+    if (node.IsSequence()) {
+      for (size_t i = 0; i < node.size(); ++i) pending.emplace_back(node[i], fmt::format("{}[{}]", path, i));
+    } else if (node.IsMap()) {
+      std::set<std::string> seen;
+      for (const auto& kv : node) {
+        if (!kv.first.IsScalar()) ctx.fail(kv.first, path, "a key must be a plain name, not a list or a mapping");
+        const auto key = kv.first.Scalar();
+        const std::string keyPath = path.empty() ? key : path + "." + key;
+        if (!seen.insert(key).second) ctx.fail(kv.first, keyPath, "key given twice");
+        pending.emplace_back(kv.second, keyPath);
+      }
+    }
+  }
+}
+
+}  // namespace
+
 YAML::Node loadText(const std::string& text, const std::string& sourceName) {
+  YAML::Node root;
   try {
-    return YAML::Load(text);
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw InputError(InputLocation{sourceName, e.mark.line >= 0 ? e.mark.line + 1 : 0, ""},
                      "malformed YAML: " + e.msg);
   }
+  checkKeys(Context{sourceName}, root);
+  return root;
 }
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(InputLocation{path, 0, ""}, "cannot open file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-YAML::Node loadFile(const std::string& path) { return loadText(readText(path), path); }
 
 void rejectUnknownKeys(const Context& ctx, const YAML::Node& map, const std::string& path,
                        std::initializer_list<const char*> allowed) {

@@ -19,8 +19,6 @@ struct Context {
 };
 
 // Loads a YAML document from a file (or from text), turning parser errors into InputError.
-std::string readText(const std::string& path);
-YAML::Node loadFile(const std::string& path);
 YAML::Node loadText(const std::string& text, const std::string& sourceName);
 
 void rejectUnknownKeys(const Context& ctx, const YAML::Node& map, const std::string& path,

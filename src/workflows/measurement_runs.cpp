@@ -5,7 +5,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
-#include "mtacc/io/atomic_file.hpp"
+#include "mtacc/io/text_file.hpp"
 #include "mtacc/io/measurement_csv.hpp"
 #include "mtacc/io/plan_yaml.hpp"
 

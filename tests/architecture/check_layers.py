@@ -3,7 +3,7 @@
 
 Layers, lowest first: core; the domain folders in their own order (machine, errors, kinematics,
 measurement, procedures; dynamics needs only core); io; workflows; the front ends (apps/,
-python/bindings/). A file may include headers of its own folder and of lower layers only, so
+python/bindings/, fuzz/). A file may include headers of its own folder and of lower layers only, so
 that the layers point one way and no two folders include each other.
 """
 import pathlib
@@ -17,7 +17,7 @@ INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
 
 def folder_of(path, root):
     parts = path.relative_to(root).parts
-    if parts[0] in ("apps", "python"):
+    if parts[0] in ("apps", "python", "fuzz"):
         return "frontend"
     if parts[0] == "include":
         return parts[2]
@@ -33,7 +33,7 @@ def included_folder(name, path):
 
 
 def violations(root):
-    files = [p for d in ("include", "src", "apps", "python/bindings") for p in (root / d).rglob("*")
+    files = [p for d in ("include", "src", "apps", "python/bindings", "fuzz") for p in (root / d).rglob("*")
              if p.suffix in (".hpp", ".cpp", ".h")]
     for path in sorted(files):
         here = folder_of(path, root)

@@ -8,5 +8,6 @@ namespace mtacc {
 
 // Throws InputError naming file, line and key.
 ErrorLimits loadErrorLimits(const Machine& machine, const std::string& path);
+ErrorLimits parseErrorLimits(const Machine& machine, const std::string& yamlText, const std::string& sourceName);
 
 }  // namespace mtacc

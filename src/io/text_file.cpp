@@ -1,4 +1,4 @@
-#include "mtacc/io/atomic_file.hpp"
+#include "mtacc/io/text_file.hpp"
 
 #include <fmt/format.h>
 
@@ -7,14 +7,29 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 
+std::string readTextFile(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const auto status = fs::status(path, ec);
+  if (!fs::exists(status)) throw InputError(InputLocation{path, 0, ""}, "no such file");
+  if (fs::is_directory(status)) throw InputError(InputLocation{path, 0, ""}, "is a directory, not a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(InputLocation{path, 0, ""}, "cannot open file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
 void writeFileAtomically(const std::string& path, const std::string& content) {
   namespace fs = std::filesystem;
   const fs::path target(path);
+  if (fs::is_directory(target)) throw InputError(InputLocation{path, 0, ""}, "is a directory; name an output file");
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   const fs::path tmp = dir / fmt::format(".{}.tmp{}", target.filename().string(), ::getpid());
   {

@@ -1,0 +1,14 @@
+#pragma once
+// Files as text. Inputs are read whole (a directory or a missing file is an InputError, not an
+// empty text); outputs are written whole or not at all: to a temporary file beside the target,
+// then renamed over it.
+#include <string>
+
+namespace mtacc {
+
+// Throws InputError naming the path when it is not a readable regular file.
+std::string readTextFile(const std::string& path);
+// Throws InputError naming the path when the file cannot be written.
+void writeFileAtomically(const std::string& path, const std::string& content);
+
+}  // namespace mtacc

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Runs every libFuzzer harness of fuzz/ for SECONDS each (default 60), after replaying the
+# inputs kept in fuzz/regressions/<reader>/ (earlier findings, which must stay fixed).
+# Seeds: the bundled files of the reader's kind and fuzz/seeds/<reader>/. A new crash, leak,
+# sanitizer report or hang (10 s per input) is saved in fuzz/regressions/<reader>/ and fails
+# the run. Prints executions and coverage per harness.
+# Usage: scripts/fuzz.sh [SECONDS]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-60}
+bash scripts/build-sanitize.sh
+export ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+declare -A bundled=([machine_yaml]="data/machines tests/data" [errors_yaml]="data/machines"
+                    [plan_yaml]="data/plans" [structure_yaml]="data/structures" [limits_yaml]="data/limits")
+status=0
+for harness in build-sanitize/fuzz/*_fuzzer; do
+  reader=$(basename "$harness" _fuzzer)
+  regressions=fuzz/regressions/$reader
+  mkdir -p "$regressions"
+  if compgen -G "$regressions/*" > /dev/null; then
+    "$harness" -runs=0 "$regressions"/* 2> "build-sanitize/$reader-regressions.log" ||
+      { echo "$reader: a kept regression input fails again (build-sanitize/$reader-regressions.log)"; status=1; }
+  fi
+  corpus=build-sanitize/fuzz-corpus/$reader
+  mkdir -p "$corpus"
+  seeds=()
+  for d in ${bundled[$reader]:-} fuzz/seeds/$reader; do [ -d "$d" ] && seeds+=("$d"); done
+  log=build-sanitize/$reader-fuzz.log
+  if "$harness" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+       -artifact_prefix="$regressions/" "$corpus" "${seeds[@]}" 2> "$log"; then
+    result=ok
+  else
+    result="FAILED (see $log; the input is in $regressions/)"
+    status=1
+  fi
+  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
+  coverage=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*' || echo 0)
+  printf '%-16s %10s executions  %6s coverage points  %s\n' "$reader" "$execs" "$coverage" "$result"
+done
+exit $status
