@@ -265,6 +265,29 @@ TEST_F(CliBadInput, DuplicateAndNonScalarYamlKeys) {
   expectCleanFailure(run("check " + listKey + " -o " + output()), {listKey + ":10: errors", "a key must be a plain name"});
 }
 
+// Identification must not take garbage: a file given twice, a file from another machine, a pose
+// beyond the travel (issue 13's cases, which used to be identified with exit 0).
+TEST_F(CliBadInput, IdentificationInputsAreChecked) {
+  const auto data = (dir_ / "sim.csv").string();
+  auto r = run("simulate ballbar three-axis-vertical --centre 300,200,250 --radius 100mm -o " + data);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::string text = slurp(data);
+  ASSERT_EQ(text.find("# machine: 3-axis vertical machining centre"), text.find('\n') + 1);
+  expectCleanFailure(run("identify three-axis-vertical --data " + data + "," + data + " --params C0Y -o " + output()),
+                     {data + ": data", "the same file is given twice"});
+  const auto other = write("other.csv", text);
+  expectCleanFailure(run("identify tilting-table --data " + other + " --params C0Y -o " + output()),
+                     {other + ":2: machine", "measured on '3-axis vertical machining centre, t-(C)-Z-b-Y-X-w'"});
+  std::string far = text;
+  const auto row = far.find("\n", far.find("angle_deg")) + 1;  // the first reading row
+  far.replace(row, far.find(',', row) - row, "3100");
+  const auto beyond = write("beyond.csv", far);
+  expectCleanFailure(run("identify three-axis-vertical --data " + beyond + " --params C0Y -o " + output()),
+                     {beyond + ":", "X=3100 mm beyond travel"});
+  const auto twice = write("twice.csv", "# instrument: ballbar\n# instrument: rtest\n");
+  expectCleanFailure(run("evaluate three-axis-vertical " + twice + " -o " + output()), {twice + ":2: instrument", "given twice"});
+}
+
 TEST_F(CliBadInput, MalformedStructureModels) {
   const std::string body = "bodies:\n  - {name: b, mass: 10, inertia: [1, 1, 1, 0, 0, 0]}\n";
   const auto self = write("self.yaml", body + "elements:\n  - {type: spring, bodies: [b, b], point: [0 mm, 0 mm, 0 mm], "

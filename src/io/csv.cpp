@@ -119,6 +119,9 @@ PoseTable posesFromCsv(const Machine& m, const CsvTable& t, const std::vector<st
         p.direction(r, static_cast<long>(a)) = static_cast<int>(d);
       }
     }
+    const std::vector<double> pose(p.q.row(r).data(), p.q.row(r).data() + p.q.cols());
+    if (const auto violation = m.travelViolation(pose); !violation.empty())
+      throw InputError(InputLocation{t.file, t.lines[static_cast<size_t>(r)], ""}, "pose " + violation);
   }
   return p;
 }

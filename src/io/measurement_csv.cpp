@@ -38,7 +38,7 @@ std::vector<std::string> splitOn(const std::string& s, char c) {
 }
 
 // '# key: value' lines before the header row.
-std::map<std::string, Meta> readMeta(const std::string& text) {
+std::map<std::string, Meta> readMeta(const std::string& text, const std::string& source) {
   std::map<std::string, Meta> meta;
   std::stringstream in(text);
   std::string line;
@@ -50,7 +50,9 @@ std::map<std::string, Meta> readMeta(const std::string& text) {
     if (s[0] != '#') break;
     const auto colon = s.find(':');
     if (colon == std::string::npos) continue;
-    meta[trim(s.substr(1, colon - 1))] = {trim(s.substr(colon + 1)), n};
+    const std::string key = trim(s.substr(1, colon - 1));
+    if (!meta.emplace(key, Meta{trim(s.substr(colon + 1)), n}).second)
+      throw InputError(InputLocation{source, n, key}, "given twice (first on line " + std::to_string(meta[key].line) + ")");
   }
   return meta;
 }
@@ -172,7 +174,9 @@ std::string vectorText(const Vec3& v, const char* unit) {
 
 MeasurementRun parseMeasurementCsv(const KinematicModel& nominal, const std::string& text, const std::string& source) {
   const Machine& m = *nominal.machine;
-  const MetaReader meta(source, readMeta(text));
+  const MetaReader meta(source, readMeta(text, source));
+  if (meta.has("machine") && meta.text("machine") != m.name)
+    meta.fail("machine", "the file was measured on '" + meta.text("machine") + "', not on '" + m.name + "'");
   MeasurementRun run;
   const auto instrument = parseInstrument(meta.text("instrument"));
   if (!instrument) meta.fail("instrument", "expected ballbar, rtest, probe or directional");
@@ -254,6 +258,9 @@ MeasurementRun parseMeasurementCsv(const KinematicModel& nominal, const std::str
       placeToolPoint(nominal, q, run.setup.toolBall,
                      run.setup.target + toMachine.transpose() * (run.setup.length * (std::cos(t) * run.plotAxes[0] +
                                                                                       std::sin(t) * run.plotAxes[1])));
+      if (const auto violation = m.travelViolation(q); !violation.empty())
+        throw InputError(InputLocation{source, table.lines[static_cast<size_t>(i)], "angle_deg"},
+                         "the circle's pose " + violation);
       for (size_t j = 0; j < q.size(); ++j) run.q(i, static_cast<Eigen::Index>(j)) = q[j];
     }
   }
@@ -271,6 +278,7 @@ MeasurementRun readMeasurementCsv(const KinematicModel& nominal, const std::stri
 std::string measurementCsv(const Machine& m, const MeasurementRun& run) {
   if (run.readings.rows() != run.poses()) throw std::invalid_argument("run '" + run.name + "' has no readings");
   std::string out = "# mtacc measurement (docs/file-formats.md)\n";
+  out += "# machine: " + m.name + "\n";
   out += "# instrument: " + instrumentName(run.instrument) + "\n# name: " + run.name + "\n";
   out += "# tool_ball: " + vectorText(run.setup.toolBall, "mm") + "\n";
   out += fmt::format("# feed: {:.9g} mm/min\n", run.feed);

@@ -1,5 +1,8 @@
 #include "mtacc/workflows/identification.hpp"
 
+#include <filesystem>
+#include <map>
+
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/measurement_csv.hpp"
@@ -24,7 +27,14 @@ Problem buildProblem(const MachineSetup& setup, const IdentificationRequest& req
     if (p.given.empty()) p.given = plan.parameters;
     if (planRuns) p.problem.runs = std::move(plan.runs);
   }
-  for (const auto& file : request.data) p.problem.runs.push_back(readMeasurementCsv(nominal, file));
+  std::map<std::string, std::string> seen;  // canonical path -> as given
+  for (const auto& file : request.data) {
+    std::error_code ec;
+    const auto canonical = std::filesystem::weakly_canonical(file, ec).string();
+    if (const auto [it, added] = seen.emplace(ec ? file : canonical, file); !added)
+      throw InputError(InputLocation{file, 0, "data"}, "the same file is given twice (also as '" + it->second + "')");
+    p.problem.runs.push_back(readMeasurementCsv(nominal, file));
+  }
   if (p.problem.runs.empty()) throw InputError(InputLocation{"", 0, planRuns ? "plan" : "data"}, "no measurement run given");
   if (p.given.empty())
     throw InputError(InputLocation{"", 0, "parameters"}, "no parameter to determine (name them, or use a plan with 'parameters')");
