@@ -114,7 +114,7 @@ TEST_F(CliBadInput, ZeroDirectionVector) {
 
 TEST_F(CliBadInput, UnreachableToolDirection) {
   const auto f = write("m.yaml", kMachine);
-  expectCleanFailure(run("ik " + f + " --tcp 0,0,0 --tool 0,0,-1 -o " + output()), {"unreachable pose", "tool (0, 0, -1)", "B=180 deg beyond travel"});
+  expectCleanFailure(run("ik " + f + " --tcp 0,0,0 --tool 0,0,-1 -o " + output()), {"--tcp: unreachable", "tool (0, 0, -1)", "B=180 deg beyond travel"});
 }
 
 TEST_F(CliBadInput, TcpBeyondTravel) {
@@ -217,12 +217,13 @@ TEST_F(CliBadInput, StructurePointOffItsBeam) {
   std::string text = bundledStructure("tzyx-arm-x");
   const std::string tcp = "tcp: {body: ram, point: [0 mm, 1100 mm, -100 mm]}";
   ASSERT_NE(text.find(tcp), std::string::npos);
-  for (const std::string z : {"-1e300 mm", "-100000 mm", "1300 mm"}) {
+  for (const auto& [z, reason] : {std::pair{"-1e300 mm", "out of range"}, {"-100000 mm", "not along beam 'ram'"},
+                                   {"1300 mm", "not along beam 'ram'"}}) {
     SCOPED_TRACE(z);
     std::string bad = text;
-    bad.replace(bad.find(tcp), tcp.size(), "tcp: {body: ram, point: [0 mm, 1100 mm, " + z + "]}");
+    bad.replace(bad.find(tcp), tcp.size(), std::string("tcp: {body: ram, point: [0 mm, 1100 mm, ") + z + "]}");
     const auto f = write("s.yaml", bad);
-    expectCleanFailure(run("dynamics modes " + f + " -o " + output()), {f + ":51: tcp.point", "not along beam 'ram'"});
+    expectCleanFailure(run("dynamics modes " + f + " -o " + output()), {f + ":51: tcp.point", reason});
   }
 }
 
@@ -254,7 +255,7 @@ TEST_F(CliBadInput, DirectoriesAreNotFiles) {
   // A directory as the output file used to say "cannot move the output file into place: Success".
   const auto r = run("check three-axis-vertical -o " + folder);
   EXPECT_NE(r.exitCode, 0);
-  EXPECT_NE(r.err.find(folder + ": is a directory; name an output file"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--output: '" + folder + "' is a folder; name an output file"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::is_empty(folder));
 }
 
@@ -274,7 +275,7 @@ TEST_F(CliBadInput, IdentificationInputsAreChecked) {
   const std::string text = slurp(data);
   ASSERT_EQ(text.find("# machine: 3-axis vertical machining centre"), text.find('\n') + 1);
   expectCleanFailure(run("identify three-axis-vertical --data " + data + "," + data + " --params C0Y -o " + output()),
-                     {data + ": data", "the same file is given twice"});
+                     {"--data: '" + data + "' is given twice"});
   const auto other = write("other.csv", text);
   expectCleanFailure(run("identify tilting-table --data " + other + " --params C0Y -o " + output()),
                      {other + ":2: machine", "measured on '3-axis vertical machining centre, t-(C)-Z-b-Y-X-w'"});
@@ -299,6 +300,22 @@ TEST_F(CliBadInput, MalformedStructureModels) {
   const auto massless = write("massless.yaml", "bodies:\n  - {name: b, inertia: [1, 1, 1, 0, 0, 0]}\nelements: []\n"
                                                "tcp: {body: b, point: [0 mm, 0 mm, 0 mm]}\n");
   expectCleanFailure(run("dynamics accel " + massless + " -o " + output()), {massless + ":2", "has no mass"});
+}
+
+// Not bad input but a doubtful result: --strict turns the warnings into exit status 4, after
+// the whole result (the CSV with its correlation columns) is written.
+TEST_F(CliBadInput, StrictIdentificationExitsFourOnWarnings) {
+  const auto zero = write("zero.yaml", "errors: {}\n");
+  ASSERT_EQ(run("simulate plan tilting-table --plan tilting-table-rtest --noise 0.5um -o " + (dir_ / "runs").string()).exitCode, 0);
+  std::string data;
+  for (const auto& e : fs::directory_iterator(dir_ / "runs")) data += " " + e.path().string();
+  const auto r = run("identify tilting-table --errors " + zero + " --plan tilting-table-rtest --strict -o " + output() +
+                     " --data" + data);
+  EXPECT_EQ(r.exitCode, 4) << r.err;
+  EXPECT_NE(r.err.find("mtacc: warning: the residuals are larger than the stated noise explains"), std::string::npos) << r.err;
+  const auto csv = slurp(output());
+  EXPECT_EQ(csv.rfind("parameter,value,standard_uncertainty,unit,r_X0B,r_Z0B,", 0), 0u) << csv.substr(0, 200);
+  EXPECT_EQ(run("identify tilting-table --errors " + zero + " --plan tilting-table-rtest -o " + output() + " --data" + data).exitCode, 0);
 }
 
 }  // namespace

@@ -30,8 +30,8 @@ void emit(const MachineOptions& o, const nlohmann::json& json, const std::string
     else writeFileAtomically(o.output, text);
     return;
   }
+  if (!o.output.empty()) writeFileAtomically(o.output, csv);  // first: a failed write prints nothing
   std::cout << human;
-  if (!o.output.empty()) writeFileAtomically(o.output, csv);
 }
 
 namespace {

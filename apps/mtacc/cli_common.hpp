@@ -11,6 +11,12 @@
 
 namespace mtacc::cli {
 
+// Thrown after a complete result when --strict asks for a failing exit status on warnings
+// (already printed): mtacc exits with status 4.
+struct StrictFailure {
+  size_t warnings;
+};
+
 struct MachineOptions {
   MachineSource source;
   bool json = false;

@@ -82,11 +82,11 @@ void run(ConeCliOptions& o) {
                          st.upperQuartile * 1e3, st.max * 1e3);
   }
   if (!o.clData.empty()) {
-    writeFileAtomically(o.clData, coneClData(s.path));
+    writeFileAtomically(o.clData, coneClData(s.path), "cl");
     human += "\nCL data written: " + o.clData + "\n";
   }
   if (!o.gcode.empty()) {
-    writeFileAtomically(o.gcode, coneNcProgram(m, spec, s.motion.q, s.options.feed));
+    writeFileAtomically(o.gcode, coneNcProgram(m, spec, s.motion.q, s.options.feed), "gcode");
     human += "\nNC program written: " + o.gcode + "\n";
   }
   emit(o, toJson(s), human, csv);

@@ -120,7 +120,7 @@ void addDynamicsCommand(CLI::App& app) {
   };
   auto* m = dyn->add_subcommand("modes", "Undamped and damped modes");
   common(m);
-  m->add_option("--count", o->count, "Modes to list")->capture_default_str();
+  m->add_option("--count", o->count, "Modes to list")->capture_default_str()->check(CLI::Range(1, 100000));
   m->callback([o] { modes(*o); });
   auto* f = dyn->add_subcommand("frf", "3x3 FRF of the TCP relative to the workpiece and the static compliance");
   common(f);

@@ -2,6 +2,8 @@
 // files) determines, and their least-squares estimates with standard uncertainties.
 #include <fmt/format.h>
 
+#include <iostream>
+
 #include "cli_common.hpp"
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
@@ -13,8 +15,9 @@ namespace {
 
 struct IdentifyCliOptions : MachineOptions {
   std::vector<std::string> data;
-  std::string plan, params, setup, robustScale = "2 um";
-  bool robust = false;
+  std::string plan, params, setup, robustScale = "2 um", noise;
+  double uncertaintyFraction = 0.1;
+  bool robust = false, strict = false;
   int threads = kAllCores;
 };
 
@@ -27,6 +30,8 @@ IdentificationRequest request(const IdentifyCliOptions& o) {
   if (!o.setup.empty()) r.setup = splitList(o.setup);
   r.robust = o.robust;
   r.robustScale = parseQuantityAs(o.robustScale, Dimension::Length, "--robust-scale");
+  if (!o.noise.empty()) r.noise = parseQuantityAs(o.noise, Dimension::Length, "--noise");
+  r.uncertaintyFraction = o.uncertaintyFraction;
   if (o.threads < 0) throw InputError(InputLocation{"", 0, "--threads"}, "must not be negative (0: every core)");
   r.threads = o.threads;
   return r;
@@ -56,20 +61,32 @@ void identify(const IdentifyCliOptions& o) {
   std::string human = fmt::format("Identification on {} from {} runs ({} readings, {} unknowns)\n", out.machine->name, out.runs,
                                   r.readings, r.values.size());
   human += fmt::format("{:<22} {:>14} {:>14}  unit\n", "parameter", "value", "std. uncert.");
-  std::string csv = "parameter,value,standard_uncertainty,unit\n";
+  std::string csv = "parameter,value,standard_uncertainty,unit";
+  for (const auto& name : r.columns.names) csv += ",r_" + name;  // the correlation matrix, one row per unknown
+  csv += "\n";
   for (Eigen::Index k = 0; k < r.values.size(); ++k) {
     const auto d = r.columns.dimensions[static_cast<size_t>(k)];
     const auto& name = r.columns.names[static_cast<size_t>(k)];
     const bool aliased = static_cast<size_t>(k) < out.given.size() && out.given[static_cast<size_t>(k)] != name;
     human += fmt::format("{:<22} {:>14.4f} {:>14.4f}  {}\n", aliased ? name + " (" + out.given[static_cast<size_t>(k)] + ")" : name,
                          toDisplay(r.values[k], d), toDisplay(r.uncertainty[k], d), displayUnit(d));
-    csv += fmt::format("{},{},{},{}\n", name, toDisplay(r.values[k], d), toDisplay(r.uncertainty[k], d), displayUnit(d));
+    csv += fmt::format("{},{},{},{}", name, toDisplay(r.values[k], d), toDisplay(r.uncertainty[k], d), displayUnit(d));
+    for (Eigen::Index b = 0; b < r.values.size(); ++b) csv += fmt::format(",{:.6f}", correlationOf(r, k, b));
+    csv += "\n";
   }
   human += fmt::format("\nresiduals: sigma {:.3f} um ({} degrees of freedom), RMS {:.3f} um, max {:.3f} um\n", r.sigma * 1e3,
                        r.degreesOfFreedom, r.residualRms * 1e3, r.residualMax * 1e3);
   human += fmt::format("solver: {} after {} iterations{}\n", r.converged ? "converged" : "NOT converged", r.iterations,
                        out.robust ? " (Huber loss)" : "");
+  const auto& q = out.quality;
+  if (q.pValue)
+    human += fmt::format("goodness of fit against the noise of {}: chi-square {:.4g}, {} degrees of freedom, p = {:.3g}\n",
+                         q.noiseSource, *q.chiSquare, r.degreesOfFreedom, *q.pValue);
+  else
+    human += "goodness of fit: not tested (state the reading noise with --noise or '# noise:' in the files)\n";
   emit(o, toJson(out), human, csv);
+  for (const auto& w : q.warnings) std::cerr << "mtacc: warning: " << w << "\n";
+  if (o.strict && !q.warnings.empty()) throw StrictFailure(q.warnings.size());
 }
 
 void addOptions(CLI::App* cmd, IdentifyCliOptions& o) {
@@ -89,6 +106,12 @@ void addIdentifyCommands(CLI::App& app) {
   addOptions(id, *o);
   id->add_flag("--robust", o->robust, "Huber loss instead of plain least squares");
   id->add_option("--robust-scale", o->robustScale, "Residual beyond which the Huber loss is linear")->capture_default_str();
+  id->add_option("--noise", o->noise, "Reading noise (standard deviation) for the goodness-of-fit test, e.g. 0.5um; "
+                                      "default: the files' '# noise:' lines");
+  id->add_option("--uncertainty-fraction", o->uncertaintyFraction,
+                 "Warn when a standard uncertainty exceeds this fraction of the plausible magnitude (50 um, 200 urad)")
+      ->capture_default_str();
+  id->add_flag("--strict", o->strict, "Exit with status 4 when the fit or the conditioning draws a warning");
   id->callback([o] { identify(*o); });
 
   auto* obs = app.add_subcommand("observability", "Which parameters a test plan can determine (SVD of its Jacobian)");

@@ -29,6 +29,8 @@ void run(const InverseCliOptions& o) {
   } else {
     const auto table = readCsv(o.targetsFile);
     const auto c = requireColumns(table, {"x", "y", "z", "i", "j", "k"});
+    request.file = o.targetsFile;
+    request.lines = table.lines;
     for (const auto& row : table.rows) {
       auto at = [&](int k) { return row[static_cast<size_t>(c[static_cast<size_t>(k)])]; };
       request.positions.emplace_back(at(0), at(1), at(2));

@@ -120,7 +120,8 @@ void addSimulateCommand(CLI::App& app) {
     SphereTestSpec spec;
     spec.instrument = o->probe ? Instrument::TouchProbe : Instrument::RTest;
     spec.axis = o->axis;
-    if (o->angles < 1 || o->angles > 100000) throw InputError(InputLocation{"", 0, "--points"}, "must be between 1 and 100000");
+    if (o->angles < 1 || o->angles > kMaxPointsPerRun)
+      throw InputError(InputLocation{"", 0, "--points"}, fmt::format("must be from 1 to {}", kMaxPointsPerRun));
     spec.angles = evenAngles(parseQuantityAs(o->from, Dimension::Angle, "--from"), parseQuantityAs(o->to, Dimension::Angle, "--to"),
                              o->angles);
     spec.spheres = {parseVector(o->sphere, "--sphere")};

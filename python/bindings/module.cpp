@@ -219,11 +219,14 @@ PYBIND11_MODULE(_mtacc, mod) {
         return toPython(toJson(planObservability(s, {.plan = plan, .parameters = parameters})));
       })
       .def("identify", [](const MachineSetup& s, const std::vector<std::string>& files, const std::vector<std::string>& parameters,
-                          const std::string& plan, bool robust) {
+                          const std::string& plan, bool robust, const std::string& noise, double uncertaintyFraction) {
+        IdentificationRequest request{.plan = plan, .data = files, .parameters = parameters, .robust = robust};
+        if (!noise.empty()) request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
+        request.uncertaintyFraction = uncertaintyFraction;
         IdentificationOutcome out;
         {
           py::gil_scoped_release release;
-          out = identifyParameters(s, {.plan = plan, .data = files, .parameters = parameters, .robust = robust});
+          out = identifyParameters(s, request);
         }
         return toPython(toJson(out));
       })

@@ -167,10 +167,13 @@ class Machine:
         """Rank, singular values and findings of a test plan (as `mtacc observability --json`)."""
         return self._core.observability(str(plan), list(parameters or []))
 
-    def identify(self, files, parameters=None, plan=None, robust=False):
-        """Least-squares estimates with standard uncertainties (as `mtacc identify --json`); the
-        parameters default to the plan's list; refuses (InputError) a set the data cannot determine."""
-        return self._core.identify([str(f) for f in files], list(parameters or []), _text(plan), robust)
+    def identify(self, files, parameters=None, plan=None, robust=False, noise=None, uncertainty_fraction=0.1):
+        """Least-squares estimates with standard uncertainties, covariance and correlation (as
+        `mtacc identify --json`); the parameters default to the plan's list; refuses (InputError) a
+        set the data cannot determine. `noise` (e.g. "0.5 um", default: the files' '# noise:'
+        lines) feeds the goodness-of-fit test; result["quality"]["warnings"] lists what is doubtful."""
+        return self._core.identify([str(f) for f in files], list(parameters or []), _text(plan), robust, _text(noise),
+                                   uncertainty_fraction)
 
     def xy_circle(self):
         """The report's X-Y circle: radial TCP deviation around mid-travel, or None."""

@@ -252,13 +252,23 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
         if progress:
             progress(f"report: [{len(done)}/{len(steps)}] {name}")
 
+    # Every input is read before the first progress line, so that bad input ends in one line.
+    if os.path.exists(output_dir) and not os.path.isdir(output_dir):
+        raise InputError(f"output: '{output_dir}' is a file; name a folder for the report")
     machine = Machine(machine_path, errors)
+    budget = machine.budget(samples=samples)
+    if plan:
+        machine.observability(plan)
+    if structure:
+        from . import Structure
+        Structure(structure)
+        if compare:
+            Structure(compare)
     step("machine")
     parts = [f"<h1>Accuracy report: {html.escape(machine.name)}</h1>",
              f'<p class="meta">{html.escape(machine.file)} · structure {html.escape(machine.structure)} · '
              f'generated {datetime.datetime.now().strftime("%Y-%m-%d %H:%M")} by mtacc</p>']
 
-    budget = machine.budget(samples=samples)
     grid = machine.working_volume_grid(samples)
     combined = np.linalg.norm(machine.tcp_errors(grid)[:, :3], axis=1)
     step("error budget")
@@ -363,7 +373,16 @@ def main(argv=None):
                             progress=lambda s: print(s, file=sys.stderr, flush=True), plan=args.plan,
                             structure=args.structure, compare=args.compare)
     except (InputError, UnreachablePose) as e:
-        print(f"mtacc: error: {e}", file=sys.stderr)
+        message = str(e)
+        first = message.split(":", 1)[0]
+        if f"--{first}" in parser._option_string_actions:  # a workflow key: named as the option
+            message = "--" + message
+        else:  # a file or name as a whole: named by the option that gave it
+            given = {value: name for name, value in vars(args).items() if isinstance(value, str)}
+            if first in given:
+                name = given[first]
+                message = (name if name == "machine" else "--" + name) + ": " + message
+        print(f"mtacc: error: {message}", file=sys.stderr)
         return 2
     print(path)
     return 0

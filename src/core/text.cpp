@@ -16,6 +16,23 @@ std::vector<std::string> splitList(const std::string& text, char separator) {
   return out;
 }
 
+std::string trim(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return "";
+  return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+}
+
+std::vector<std::string> splitFields(const std::string& text, char separator) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  for (;;) {
+    const auto end = text.find(separator, start);
+    out.push_back(trim(text.substr(start, end == std::string::npos ? std::string::npos : end - start)));
+    if (end == std::string::npos) return out;
+    start = end + 1;
+  }
+}
+
 std::vector<Assignment> parseAssignments(const std::string& text, const std::string& key) {
   std::vector<Assignment> out;
   for (const auto& item : splitList(text)) {

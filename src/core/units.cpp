@@ -36,6 +36,8 @@ std::string_view trim(std::string_view s) {
 
 }  // namespace
 
+double largestMagnitude(Dimension d) { return d == Dimension::Length ? kLargestLength : kLargestAngle; }
+
 const char* toString(Dimension d) { return d == Dimension::Length ? "length" : "angle"; }
 const char* withArticle(Dimension d) { return d == Dimension::Length ? "a length" : "an angle"; }
 
@@ -55,7 +57,12 @@ std::optional<Quantity> parseQuantity(std::string_view text, std::string* reason
   std::string_view unit = trim(std::string_view(ptr, static_cast<size_t>(end - ptr)));
   if (unit.empty()) return fail("missing unit in '" + std::string(text) + "' (e.g. '10 um', '30 urad', '0.01 deg')");
   for (const auto& u : kUnits) {
-    if (u.name == unit) return Quantity{number * u.factor, u.dimension};
+    if (u.name != unit) continue;
+    const Quantity q{number * u.factor, u.dimension};
+    if (!(std::abs(q.value) <= largestMagnitude(q.dimension)))
+      return fail("'" + std::string(text) + "' is out of range: " + withArticle(q.dimension) + " lies within " +
+                  (q.dimension == Dimension::Length ? "±1 km" : "±100 turns (±36000 deg)"));
+    return q;
   }
   return fail("unknown unit '" + std::string(unit) + "' (length: nm um mm cm m in; angle: rad mrad urad um/m mm/m deg arcmin arcsec)");
 }

@@ -42,17 +42,22 @@ int segmentAt(const StructureModel& model, int beam, const Vec3& p, const std::v
 
 }  // namespace
 
+std::string travelViolation(const StructureModel& model, const std::vector<double>& positions) {
+  for (size_t j = 0; j < positions.size() && j < model.axes.size(); ++j) {
+    const auto& a = model.axes[j];
+    if (!std::isfinite(positions[j]) || (a.max > a.min && (positions[j] < a.min - 1e-12 || positions[j] > a.max + 1e-12)))
+      return fmt::format("{} = {:g} mm beyond travel [{:g}, {:g}] mm", a.name, positions[j] * 1e3, a.min * 1e3, a.max * 1e3);
+  }
+  return {};
+}
+
 StructureMatrices assembleStructure(const StructureModel& model, const std::vector<double>& given) {
   std::vector<double> positions = given.empty() ? std::vector<double>(model.axes.size(), 0.0) : given;
   if (positions.size() != model.axes.size())
-    throw InputError(InputLocation{model.sourceFile, 0, "positions"},
+    throw InputError(InputLocation{"", 0, "positions"},
                      fmt::format("expected {} axis positions, got {}", model.axes.size(), positions.size()));
-  for (size_t j = 0; j < positions.size(); ++j) {
-    const auto& a = model.axes[j];
-    if (a.max > a.min && (positions[j] < a.min - 1e-12 || positions[j] > a.max + 1e-12))
-      throw InputError(InputLocation{model.sourceFile, 0, a.name},
-                       fmt::format("{} = {:g} mm beyond travel [{:g}, {:g}] mm", a.name, positions[j] * 1e3, a.min * 1e3, a.max * 1e3));
-  }
+  if (const auto violation = travelViolation(model, positions); !violation.empty())
+    throw InputError(InputLocation{"", 0, "positions"}, violation);
   const int n = model.dofs();
   StructureMatrices m;
   m.mass = Eigen::MatrixXd::Zero(n, n);
@@ -322,7 +327,7 @@ DynamicsMap dynamicsMap(const StructureModel& model, const MapGrid& grid, const 
   const int countA = grid.countA, countB = grid.countB;
   const int ja = model.axisIndex(axisA), jb = model.axisIndex(axisB);
   if (ja < 0 || jb < 0 || ja == jb)
-    throw InputError(InputLocation{model.sourceFile, 0, "axes"}, "a map needs two different axes of the model");
+    throw InputError(InputLocation{"", 0, "axes"}, "a map needs two different axes of the model");
   if (countA < 2 || countB < 2) throw InputError(InputLocation{"", 0, "grid"}, "a map needs at least 2 x 2 positions");
   DynamicsMap out;
   out.axisA = axisA, out.axisB = axisB;

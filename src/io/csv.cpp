@@ -9,27 +9,10 @@
 #include <sstream>
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
 
 namespace mtacc {
-namespace {
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
-}
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream ss(line);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) cells.push_back(trim(cell));
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
-
-}  // namespace
 
 CsvTable parseCsv(const std::string& text, const std::string& sourceName) {
   CsvTable t;
@@ -41,8 +24,11 @@ CsvTable parseCsv(const std::string& text, const std::string& sourceName) {
     ++lineNo;
     const std::string s = trim(line);
     if (s.empty() || s[0] == '#') continue;
-    auto cells = split(s);
+    auto cells = splitFields(s);
     if (t.header.empty()) {
+      for (size_t c = 0; c < cells.size(); ++c)
+        if (std::find(cells.begin(), cells.begin() + static_cast<std::ptrdiff_t>(c), cells[c]) != cells.begin() + static_cast<std::ptrdiff_t>(c))
+          throw InputError(InputLocation{sourceName, lineNo, cells[c]}, "column given twice");
       t.header = cells;
       t.headerLine = lineNo;
       continue;

@@ -1,5 +1,7 @@
 #include "mtacc/io/errors_yaml.hpp"
 
+#include <map>
+
 #include "mtacc/io/text_file.hpp"
 
 #include <fmt/format.h>
@@ -58,18 +60,16 @@ void readTerms(const Context& ctx, const Machine& m, const MotionTarget& t, cons
       f.add(PolynomialTerm{0.0, 1.0, {yamlin::quantity(ctx, v, k, valueDim)}});
     } else if (type == "linear") {
       yamlin::rejectUnknownKeys(ctx, v, k, {"value", "over", "zero"});
-      const double over = yamlin::quantity(ctx, v["over"], k + ".over", posDim);
-      if (over == 0.0) ctx.fail(v["over"], k + ".over", "must not be zero");
+      const double over = yamlin::size(ctx, v["over"], k + ".over", posDim);
       const double zero = v["zero"] ? yamlin::quantity(ctx, v["zero"], k + ".zero", posDim) : 0.0;
       f.add(PolynomialTerm{zero, over, {0.0, yamlin::quantity(ctx, v["value"], k + ".value", valueDim)}});
     } else if (type == "polynomial") {
       yamlin::rejectUnknownKeys(ctx, v, k, {"coefficients", "scale", "zero"});
       PolynomialTerm p;
-      p.scale = yamlin::quantity(ctx, v["scale"], k + ".scale", posDim);
-      if (p.scale == 0.0) ctx.fail(v["scale"], k + ".scale", "must not be zero");
+      p.scale = yamlin::size(ctx, v["scale"], k + ".scale", posDim);
       p.zero = v["zero"] ? yamlin::quantity(ctx, v["zero"], k + ".zero", posDim) : 0.0;
       const auto coeffs = v["coefficients"];
-      if (!coeffs.IsSequence() || coeffs.size() == 0) ctx.fail(coeffs, k + ".coefficients", "expected a list of values");
+      if (!yamlin::isSequence(coeffs) || coeffs.size() == 0) ctx.fail(coeffs, k + ".coefficients", "expected a list of values");
       for (const auto& c : coeffs) p.coefficients.push_back(yamlin::quantity(ctx, c, k + ".coefficients", valueDim));
       f.add(std::move(p));
     } else if (type == "harmonics" || type == "cyclic") {
@@ -79,16 +79,15 @@ void readTerms(const Context& ctx, const Machine& m, const MotionTarget& t, cons
       auto [zero, period] = defaultSpan(axis);
       if (v["zero"]) zero = yamlin::quantity(ctx, v["zero"], k + ".zero", posDim);
       const char* periodKey = cyclic ? "pitch" : "period";
-      if (v[periodKey]) period = yamlin::quantity(ctx, v[periodKey], k + "." + periodKey, posDim);
+      if (v[periodKey]) period = yamlin::size(ctx, v[periodKey], k + "." + periodKey, posDim);
       else if (cyclic) ctx.fail(v, k + ".pitch", "missing pitch");
-      if (!(period > 0.0)) ctx.fail(v[periodKey], k + "." + periodKey, "must be positive");
       if (cyclic) {
         const double phase = v["phase"] ? yamlin::quantity(ctx, v["phase"], k + ".phase", Dimension::Angle) : 0.0;
         f.add(HarmonicTerm{period, zero, 1, yamlin::quantity(ctx, v["amplitude"], k + ".amplitude", valueDim), phase, true});
         continue;
       }
       const auto terms = v["terms"];
-      if (!terms.IsSequence() || terms.size() == 0) ctx.fail(terms, k + ".terms", "expected a list of {order, amplitude, phase}");
+      if (!yamlin::isSequence(terms) || terms.size() == 0) ctx.fail(terms, k + ".terms", "expected a list of {order, amplitude, phase}");
       for (const auto& h : terms) {
         yamlin::rejectUnknownKeys(ctx, h, k + ".terms", {"order", "amplitude", "phase"});
         const int order = yamlin::wholeNumber(ctx, h["order"], k + ".terms.order", 1, 1000);
@@ -123,14 +122,17 @@ void readTerms(const Context& ctx, const Machine& m, const MotionTarget& t, cons
 
 }  // namespace
 
-ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, const std::string& sourceName) {
+ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, const std::string& sourceName,
+                       ErrorsKey errorsKey) {
   const Context ctx{sourceName};
   const auto root = yamlin::loadText(yamlText, sourceName);
   ErrorModel model = ErrorModel::zero(machine);
   if (!root.IsMap()) ctx.fail(root, "", "expected a YAML mapping with an 'errors' key");
   const auto errors = root["errors"];
+  if (!errors && errorsKey == ErrorsKey::Required) ctx.fail(root, "errors", "an errors file needs an 'errors:' mapping");
   if (!errors) return model;
   if (!errors.IsMap()) ctx.fail(errors, "errors", "expected a mapping of error names to values");
+  std::map<std::string, std::string> namedBy;  // parameter -> the key that gave it alone
   for (const auto& kv : errors) {
     const auto name = kv.first.as<std::string>();
     const std::string key = "errors." + name;
@@ -151,6 +153,10 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
       } catch (const InputError& e) {
         ctx.fail(kv.first, key, e.reason());
       }
+      if (terms.size() == 1) {
+        const auto [it, added] = namedBy.emplace(p.name, name);
+        if (!added) ctx.fail(kv.first, key, "the same parameter " + p.name + " as '" + it->second + "'");
+      }
       // Location errors add up: a composite alias and an ISO name may share a term.
       model.axes[static_cast<size_t>(p.axis)].location[p.component] +=
           term.sign * yamlin::quantity(ctx, kv.second, key, p.dimension);
@@ -160,12 +166,12 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
 }
 
 ErrorModel loadErrors(const Machine& machine, const std::string& path) {
-  return parseErrors(machine, readTextFile(path), path);
+  return parseErrors(machine, readTextFile(path), path, ErrorsKey::Required);
 }
 
 ErrorModel loadMachineErrors(const Machine& machine) {
   if (machine.sourceFile.empty()) return ErrorModel::zero(machine);
-  return loadErrors(machine, machine.sourceFile);
+  return parseErrors(machine, readTextFile(machine.sourceFile), machine.sourceFile);
 }
 
 }  // namespace mtacc

@@ -20,7 +20,7 @@ ErrorLimits parseErrorLimits(const Machine& machine, const std::string& yamlText
   if (!root.IsMap() || !root["limits"] || !root["limits"].IsMap()) ctx.fail(root, "limits", "expected a 'limits:' mapping");
   ErrorLimits out;
   out.file = path;
-  static const std::regex pattern(R"(^(E([XYZABC])([A-Z]\d*))\.(lin|hyst|cyclic|(\d)harm)$)");
+  static const std::regex pattern(R"(^(E([XYZABC])([A-Z]\d*))\.(lin|hyst|cyclic|([1-9])harm)$)");
   const ErrorModel zero = ErrorModel::zero(machine);
   for (const auto& kv : root["limits"]) {
     const auto name = kv.first.as<std::string>();
@@ -40,8 +40,7 @@ ErrorLimits parseErrorLimits(const Machine& machine, const std::string& yamlText
       if (l.kind == ErrorLimit::Cyclic) {
         yamlin::rejectUnknownKeys(ctx, kv.second, key, {"range", "pitch"});
         const Dimension posDim = machine.axes[static_cast<size_t>(l.axis)].isRotary() ? Dimension::Angle : Dimension::Length;
-        l.pitch = yamlin::quantity(ctx, kv.second["pitch"], key + ".pitch", posDim);
-        if (!(l.pitch > 0)) ctx.fail(kv.second["pitch"], key + ".pitch", "must be positive");
+        l.pitch = yamlin::size(ctx, kv.second["pitch"], key + ".pitch", posDim);
         range = kv.second["range"];
       }
     } else {
@@ -50,12 +49,12 @@ ErrorLimits parseErrorLimits(const Machine& machine, const std::string& yamlText
       } catch (const InputError& e) {
         ctx.fail(kv.first, key, e.reason());
       }
-      if (l.location.kind != ParameterKind::Location) ctx.fail(kv.first, key, "expected a location error or NAME.lin/.hyst/.cyclic/.<k>harm");
+      if (l.location.kind != ParameterKind::Location) ctx.fail(kv.first, key, "expected a location error or NAME.lin/.hyst/.cyclic/.<k>harm (k from 1 to 9)");
       l.axis = l.location.axis;
       l.component = l.location.component;
     }
     const Dimension dim = l.component < 3 ? Dimension::Length : Dimension::Angle;
-    if (!range.IsSequence() || range.size() != 2) ctx.fail(range, key, "expected [lower, upper] with units");
+    if (!yamlin::isSequence(range) || range.size() != 2) ctx.fail(range, key, "expected [lower, upper] with units");
     l.lower = yamlin::quantity(ctx, range[0], key, dim);
     l.upper = yamlin::quantity(ctx, range[1], key, dim);
     if (l.lower > l.upper) ctx.fail(range, key, "lower limit above upper limit");

@@ -121,6 +121,9 @@ Machine parseMachine(const std::string& yamlText, const std::string& sourceName)
   if (m.structure.spindle) {
     Axis spindle;
     spindle.name = *m.structure.spindle;
+    if (spindle.name.find_first_of("ABC") != 0)
+      ctx.fail(structureNode, "structure", "the spindle turns: name it after the axis it turns about (A, B or C), not '" +
+                                               spindle.name + "'");
     if (inCode.count(spindle.name)) spindle.name += "1";  // t-(C)-...-C-w: the spindle becomes C1
     if (inCode.count(spindle.name))
       ctx.fail(structureNode, "structure", "the spindle's name '" + spindle.name + "' is already the name of an axis");
@@ -164,6 +167,8 @@ Machine parseMachine(const std::string& yamlText, const std::string& sourceName)
         m.referencePose[i] = yamlin::quantity(ctx, kv.second, "workpiece.reference_pose." + name,
                                               m.axes[i].isRotary() ? Dimension::Angle : Dimension::Length);
       }
+      if (const auto violation = m.travelViolation(m.referencePose); !violation.empty())
+        ctx.fail(ref, "workpiece.reference_pose", "the pose " + violation);
     }
   }
   return m;

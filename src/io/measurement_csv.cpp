@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -11,6 +13,7 @@
 #include <stdexcept>
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/csv.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
@@ -23,21 +26,16 @@ struct Meta {
   int line = 0;
 };
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+// The '# key: value' lines a measurement file may have; `note` is free text.
+constexpr std::array<const char*, 14> kMetaKeys{"machine", "instrument", "name",      "length", "target",
+                                                "set_at",  "plane",      "pose",      "tool_ball", "direction",
+                                                "feed",    "noise",      "estimate",  "note"};
+
+bool isMetaKey(const std::string& key) {
+  return std::find(kMetaKeys.begin(), kMetaKeys.end(), key) != kMetaKeys.end();
 }
 
-std::vector<std::string> splitOn(const std::string& s, char c) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string part;
-  while (std::getline(ss, part, c)) out.push_back(trim(part));
-  return out;
-}
-
-// '# key: value' lines before the header row.
+// '# key: value' lines before the header row; other comment lines have no colon.
 std::map<std::string, Meta> readMeta(const std::string& text, const std::string& source) {
   std::map<std::string, Meta> meta;
   std::stringstream in(text);
@@ -49,8 +47,17 @@ std::map<std::string, Meta> readMeta(const std::string& text, const std::string&
     if (s.empty()) continue;
     if (s[0] != '#') break;
     const auto colon = s.find(':');
-    if (colon == std::string::npos) continue;
+    if (colon == std::string::npos) {
+      const std::string firstWord = trim(s.substr(1)).substr(0, trim(s.substr(1)).find(' '));
+      if (isMetaKey(firstWord))
+        throw InputError(InputLocation{source, n, firstWord}, "write '# " + firstWord + ": value' (the colon is missing)");
+      continue;
+    }
     const std::string key = trim(s.substr(1, colon - 1));
+    if (!isMetaKey(key))
+      throw InputError(InputLocation{source, n, key},
+                       "unknown key (expected one of: machine, instrument, name, length, target, set_at, plane, pose, "
+                       "tool_ball, direction, feed, noise, estimate, note)");
     if (!meta.emplace(key, Meta{trim(s.substr(colon + 1)), n}).second)
       throw InputError(InputLocation{source, n, key}, "given twice (first on line " + std::to_string(meta[key].line) + ")");
   }
@@ -71,9 +78,11 @@ class MetaReader {
   double quantity(const std::string& key, Dimension d) const { return parse(key, text(key), d); }
   // "x, y, z mm"
   Vec3 lengths(const std::string& key) const {
-    auto parts = splitOn(text(key), ',');
+    auto parts = splitFields(text(key));
     if (parts.size() != 3) fail(key, "expected three values 'x, y, z mm'");
-    const std::string unit = parts[2].substr(parts[2].find_first_not_of("+-.0123456789eE"));
+    const auto unitStart = parts[2].find_first_not_of("+-.0123456789eE");
+    if (unitStart == std::string::npos) fail(key, "missing unit in '" + text(key) + "' (e.g. '0, 0, 50 mm')");
+    const std::string unit = parts[2].substr(unitStart);
     Vec3 v;
     for (int k = 0; k < 3; ++k) {
       std::string p = parts[static_cast<size_t>(k)];
@@ -92,7 +101,7 @@ class MetaReader {
     return f;
   }
   Vec3 numbers(const std::string& value, const std::string& key) const {
-    auto parts = splitOn(value, ',');
+    auto parts = splitFields(value);
     if (parts.size() != 3) fail(key, "expected three numbers 'x, y, z'");
     Vec3 v;
     for (int k = 0; k < 3; ++k) {
@@ -115,7 +124,7 @@ class MetaReader {
   std::vector<double> pose(const Machine& m, const std::string& key) const {
     std::vector<double> q(static_cast<size_t>(m.commandedCount()), 0.0);
     std::vector<bool> seen(q.size(), false);
-    for (const auto& part : splitOn(text(key), ',')) {
+    for (const auto& part : splitFields(text(key))) {
       const auto eq = part.find('=');
       const int j = eq == std::string::npos ? -1 : m.commandedAxisIndex(trim(part.substr(0, eq)));
       if (j < 0) fail(key, "expected 'AXIS=value unit' for each axis, found '" + part + "'");
@@ -184,8 +193,12 @@ MeasurementRun parseMeasurementCsv(const KinematicModel& nominal, const std::str
   run.name = meta.has("name") ? meta.text("name") : source.substr(source.find_last_of('/') + 1);
   if (meta.has("tool_ball")) run.setup.toolBall = meta.lengths("tool_ball");
   if (meta.has("feed")) run.feed = meta.feed("feed");
+  if (meta.has("noise")) {
+    run.noise = meta.quantity("noise", Dimension::Length);
+    if (!(*run.noise >= 1e-6 && *run.noise <= 1.0)) meta.fail("noise", "the reading noise must be from 1 nm to 1 mm");
+  }
   if (meta.has("estimate"))
-    for (const auto& name : splitOn(meta.text("estimate"), ',')) {
+    for (const auto& name : splitFields(meta.text("estimate"))) {
       const auto p = parseSetupParameter(name);
       if (!p || !appliesTo(*p, run.instrument))
         meta.fail("estimate", "'" + name + "' is not a set-up parameter of a " + instrumentName(run.instrument) +
@@ -232,7 +245,12 @@ MeasurementRun parseMeasurementCsv(const KinematicModel& nominal, const std::str
   const bool axisColumns = column(table, m.axes[0].name) >= 0;
   if (run.instrument == Instrument::Ballbar) {
     if (angleCol >= 0)
-      for (const auto& row : table.rows) run.angle.push_back(row[static_cast<size_t>(angleCol)] * kDeg);
+      for (size_t i = 0; i < table.rows.size(); ++i) {
+        const double deg = table.rows[i][static_cast<size_t>(angleCol)];
+        if (!(std::abs(deg * kDeg) <= kLargestAngle))
+          throw InputError(InputLocation{source, table.lines[i], "angle_deg"}, "out of range: an angle lies within ±36000 deg");
+        run.angle.push_back(deg * kDeg);
+      }
     for (Eigen::Index i = 0; i < n; ++i) {
       const double s = senseCol >= 0 ? table.rows[static_cast<size_t>(i)][static_cast<size_t>(senseCol)] : 1.0;
       if (s != 1.0 && s != -1.0)
@@ -266,8 +284,16 @@ MeasurementRun parseMeasurementCsv(const KinematicModel& nominal, const std::str
   }
   const int k = readingSize(run.instrument);
   run.readings.resize(n, k);
+  constexpr double kLargestReading = 1e6;  // um: a deviation of 1 m is no reading
   for (Eigen::Index i = 0; i < n; ++i)
-    for (int c = 0; c < k; ++c) run.readings(i, c) = table.rows[static_cast<size_t>(i)][static_cast<size_t>(readingCols[static_cast<size_t>(c)])] * 1e-3;
+    for (int c = 0; c < k; ++c) {
+      const auto col = static_cast<size_t>(readingCols[static_cast<size_t>(c)]);
+      const double um = table.rows[static_cast<size_t>(i)][col];
+      if (!(std::abs(um) <= kLargestReading))
+        throw InputError(InputLocation{source, table.lines[static_cast<size_t>(i)], table.header[col]},
+                         fmt::format("{:g} um is out of range: a reading lies within ±1e6 um", um));
+      run.readings(i, c) = um * 1e-3;
+    }
   return run;
 }
 
@@ -282,6 +308,7 @@ std::string measurementCsv(const Machine& m, const MeasurementRun& run) {
   out += "# instrument: " + instrumentName(run.instrument) + "\n# name: " + run.name + "\n";
   out += "# tool_ball: " + vectorText(run.setup.toolBall, "mm") + "\n";
   out += fmt::format("# feed: {:.9g} mm/min\n", run.feed);
+  if (run.noise) out += fmt::format("# noise: {:.9g} um\n", *run.noise * 1e3);
   if (!run.estimate.empty()) {
     out += "# estimate: ";
     for (size_t i = 0; i < run.estimate.size(); ++i) out += (i ? ", " : "") + setupParameterName(run.estimate[i]);

@@ -1,12 +1,12 @@
 #include "mtacc/io/plan_yaml.hpp"
 
-#include "mtacc/io/text_file.hpp"
+#include <map>
 
-
-#include "yaml_input.hpp"
 #include "mtacc/io/bundled_data.hpp"
+#include "mtacc/io/text_file.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
 #include "mtacc/procedures/cone_ballbar.hpp"
+#include "yaml_input.hpp"
 
 namespace mtacc {
 namespace {
@@ -27,10 +27,8 @@ std::vector<double> poseOf(const Context& ctx, const Machine& m, const YAML::Nod
   return q;
 }
 
-// Points of a run: at most 100,000 (a reading every 0.0036 deg of a circle).
 int count(const Context& ctx, const YAML::Node& node, const std::string& key, int fallback, int minimum) {
-  constexpr int kMaxPoints = 100000;
-  return node ? yamlin::wholeNumber(ctx, node, key, minimum, kMaxPoints) : fallback;
+  return node ? yamlin::wholeNumber(ctx, node, key, minimum, kMaxPointsPerRun) : fallback;
 }
 
 double feedOf(const Context& ctx, const YAML::Node& node, const std::string& key) {
@@ -50,7 +48,11 @@ std::vector<MeasurementRun> generate(const Context& ctx, const KinematicModel& n
   const Vec3 toolBall = entry["tool_ball"] ? yamlin::lengthVector(ctx, entry["tool_ball"], key + ".tool_ball") : Vec3::Zero();
   auto wrap = [&](auto&& make) -> std::vector<MeasurementRun> {
     try {
-      return make();
+      auto runs = make();
+      for (const auto& run : runs)
+        if (const auto violation = travelViolation(m, run); !violation.empty())
+          ctx.fail(entry, key, "the run leaves the machine's travel at " + violation);
+      return runs;
     } catch (const std::invalid_argument& e) {
       ctx.fail(entry, key, e.what());
     } catch (const UnreachablePose& e) {
@@ -63,10 +65,10 @@ std::vector<MeasurementRun> generate(const Context& ctx, const KinematicModel& n
     BallbarCircleSpec s;
     s.plane = c["plane"] ? yamlin::scalar(ctx, c["plane"], k + ".plane") : "XY";
     if (c["centre"]) s.centre = yamlin::lengthVector(ctx, c["centre"], k + ".centre");
-    if (c["radius"]) s.radius = yamlin::quantity(ctx, c["radius"], k + ".radius", Dimension::Length);
+    if (c["radius"]) s.radius = yamlin::size(ctx, c["radius"], k + ".radius", Dimension::Length);
     s.points = count(ctx, c["points"], k + ".points", 360, 8);
     s.feed = feedOf(ctx, c["feed"], k + ".feed");
-    if (c["both_directions"]) s.bothDirections = c["both_directions"].as<bool>();
+    if (c["both_directions"]) s.bothDirections = yamlin::boolean(ctx, c["both_directions"], k + ".both_directions");
     s.pose = poseOf(ctx, m, c["pose"], k + ".pose");
     s.toolBall = toolBall;
     return wrap([&] { return std::vector{ballbarCircle(nominal, s)}; });
@@ -76,7 +78,7 @@ std::vector<MeasurementRun> generate(const Context& ctx, const KinematicModel& n
     yamlin::rejectUnknownKeys(ctx, r, k, {"axis", "mode", "length", "work_ball", "from", "to", "points", "feed", "pose"});
     BallbarRotarySpec s;
     s.axis = yamlin::scalar(ctx, r["axis"], k + ".axis");
-    s.length = yamlin::quantity(ctx, r["length"], k + ".length", Dimension::Length);
+    s.length = yamlin::size(ctx, r["length"], k + ".length", Dimension::Length);
     s.workBall = yamlin::lengthVector(ctx, r["work_ball"], k + ".work_ball");
     if (r["from"]) s.from = yamlin::quantity(ctx, r["from"], k + ".from", Dimension::Angle);
     if (r["to"]) s.to = yamlin::quantity(ctx, r["to"], k + ".to", Dimension::Angle);
@@ -124,9 +126,9 @@ std::vector<MeasurementRun> generate(const Context& ctx, const KinematicModel& n
   if (const auto z = entry["cubic_zones"]) {
     const std::string k = key + ".cubic_zones";
     yamlin::rejectUnknownKeys(ctx, z, k, {"size", "height", "tool_radius"});
-    const double size = yamlin::quantity(ctx, z["size"], k + ".size", Dimension::Length);
-    const double height = yamlin::quantity(ctx, z["height"], k + ".height", Dimension::Length);
-    const double radius = yamlin::quantity(ctx, z["tool_radius"], k + ".tool_radius", Dimension::Length);
+    const double size = yamlin::size(ctx, z["size"], k + ".size", Dimension::Length);
+    const double height = yamlin::size(ctx, z["height"], k + ".height", Dimension::Length);
+    const double radius = yamlin::size(ctx, z["tool_radius"], k + ".tool_radius", Dimension::Length);
     return wrap([&] { return std::vector{cubicMachiningZones(nominal, size, height, radius)}; });
   }
   ctx.fail(entry, key, "expected one of circle, rotary, sphere, cone, cubic_zones");
@@ -143,6 +145,7 @@ TestPlan parseTestPlan(const KinematicModel& nominal, const std::string& text, c
   plan.name = root["name"] ? yamlin::scalar(ctx, root["name"], "name") : source;
   const auto runs = root["runs"];
   if (!runs || !runs.IsSequence() || runs.size() == 0) ctx.fail(runs ? runs : root, "runs", "expected a list of runs");
+  std::map<std::string, int> runLines;  // name -> line of its entry
   for (size_t i = 0; i < runs.size(); ++i) {
     const std::string key = "runs[" + std::to_string(i) + "]";
     const auto entry = runs[i];
@@ -154,21 +157,25 @@ TestPlan parseTestPlan(const KinematicModel& nominal, const std::string& text, c
       if (entry["name"])
         run.name = yamlin::scalar(ctx, entry["name"], key + ".name") + (generated.size() > 1 ? "-" + std::to_string(g + 1) : "");
       if (const auto e = entry["estimate"]) {
-        if (!e.IsSequence()) ctx.fail(e, key + ".estimate", "expected a list such as [xW, yW, zW]");
+        if (!yamlin::isSequence(e)) ctx.fail(e, key + ".estimate", "expected a list such as [xW, yW, zW]");
         for (const auto& item : e) {
-          const auto name = item.as<std::string>();
+          const auto name = yamlin::scalar(ctx, item, key + ".estimate");
           const auto p = parseSetupParameter(name);
           if (!p || !appliesTo(*p, run.instrument))
             ctx.fail(item, key + ".estimate", "'" + name + "' is not a set-up parameter of a " + instrumentName(run.instrument));
           run.estimate.push_back(*p);
         }
       }
+      if (const auto [it, added] = runLines.emplace(run.name, entry.Mark().line + 1); !added)
+        ctx.fail(entry["name"] ? entry["name"] : entry, key + ".name",
+                 "a run named '" + run.name + "' is already on line " + std::to_string(it->second) + " (each run writes its own file)");
       plan.runs.push_back(std::move(run));
     }
   }
   if (const auto p = root["parameters"]) {
-    if (!p.IsSequence()) ctx.fail(p, "parameters", "expected a list of error names");
-    for (const auto& item : p) plan.parameters.push_back(item.as<std::string>());
+    if (!yamlin::isSequence(p)) ctx.fail(p, "parameters", "expected a list of error names");
+    for (const auto& item : p) plan.parameters.push_back(yamlin::scalar(ctx, item, "parameters"));
+    plan.parametersAt = ctx.at(p, "parameters");
   }
   return plan;
 }

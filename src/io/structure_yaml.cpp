@@ -16,10 +16,18 @@ namespace {
 
 using yamlin::Context;
 constexpr double kMicrometre = 1e-6;  // m
-
+// The SI numbers of a structure (masses, moduli, section constants, stiffness, damping) lie
+// far below this; a larger one is a unit mistake and would overflow the assembled matrices.
+constexpr double kLargestSiNumber = 1e15;
 
 double positive(const Context& ctx, const YAML::Node& node, const std::string& key) {
   const double v = yamlin::number(ctx, node, key);
+  if (!(v > 0 && v <= kLargestSiNumber)) ctx.fail(node, key, "must be positive and at most 1e15 (SI units)");
+  return v;
+}
+
+double positiveLength(const Context& ctx, const YAML::Node& node, const std::string& key) {
+  const double v = yamlin::quantity(ctx, node, key, Dimension::Length);
   if (!(v > 0)) ctx.fail(node, key, "must be positive");
   return v;
 }
@@ -35,7 +43,7 @@ std::vector<double> numbers(const Context& ctx, const YAML::Node& node, const st
     for (size_t i = 0; i < n; ++i) out.push_back(yamlin::number(ctx, node[i], key));
   }
   for (double v : out)
-    if (v < 0) ctx.fail(node, key, "must not be negative");
+    if (!(v >= 0 && v <= kLargestSiNumber)) ctx.fail(node, key, "must be from 0 to 1e15 (SI units)");
   return out;
 }
 
@@ -133,8 +141,8 @@ void readBeam(const Context& ctx, const YAML::Node& b, const std::string& key, S
   if ((beam.to - beam.from).norm() <= 0) ctx.fail(b["to"], key + ".to", "the beam has no length");
   if (!b["section"] || !b["section"].IsSequence() || b["section"].size() != 2)
     ctx.fail(b, key + ".section", "expected [width, height] of the cross-section, e.g. [400 mm, 400 mm]");
-  beam.section = {yamlin::quantity(ctx, b["section"][0], key + ".section", Dimension::Length) * 1e-3,
-                  yamlin::quantity(ctx, b["section"][1], key + ".section", Dimension::Length) * 1e-3};
+  beam.section = {positiveLength(ctx, b["section"][0], key + ".section") * 1e-3,
+                  positiveLength(ctx, b["section"][1], key + ".section") * 1e-3};
   beam.massPerLength = positive(ctx, b["mass_per_length"], key + ".mass_per_length");
   beam.youngsModulus = positive(ctx, b["E"], key + ".E");
   beam.shearModulus = positive(ctx, b["G"], key + ".G");
@@ -142,7 +150,11 @@ void readBeam(const Context& ctx, const YAML::Node& b, const std::string& key, S
   beam.torsionConstant = positive(ctx, b["It"], key + ".It");
   const auto inertia = numbers(ctx, b["I"], key + ".I", 2);
   beam.areaMoments = {inertia[0], inertia[1]};
-  beam.stiffnessDamping = b["stiffness_damping"] ? yamlin::number(ctx, b["stiffness_damping"], key + ".stiffness_damping") : 0.0;
+  if (b["stiffness_damping"]) {
+    beam.stiffnessDamping = yamlin::number(ctx, b["stiffness_damping"], key + ".stiffness_damping");
+    if (!(beam.stiffnessDamping >= 0 && beam.stiffnessDamping <= 1))
+      ctx.fail(b["stiffness_damping"], key + ".stiffness_damping", "must be from 0 to 1 s");
+  }
   if (b["up"]) beam.up = yamlin::unitVector(ctx, b["up"], key + ".up");
   addBeam(m, beam, b.Mark().line + 1);
 }
@@ -244,7 +256,7 @@ StructureModel parseStructure(const std::string& text, const std::string& source
       axis.direction = yamlin::unitVector(ctx, a["direction"], key + ".direction");
       if (!a["moves"] || !a["moves"].IsSequence()) ctx.fail(a, key + ".moves", "expected the list of bodies the axis carries");
       for (const auto& n : a["moves"]) {
-        const std::string name = n.as<std::string>();
+        const std::string name = yamlin::scalar(ctx, n, key + ".moves");
         bool found = false;
         for (size_t k = 0; k < m.bodies.size(); ++k)
           if (m.bodies[k].name == name || m.bodies[k].name.rfind(name + ".", 0) == 0) {  // a beam: all its segments
@@ -257,6 +269,7 @@ StructureModel parseStructure(const std::string& text, const std::string& source
         if (!a["travel"].IsSequence() || a["travel"].size() != 2) ctx.fail(a["travel"], key + ".travel", "expected [min, max]");
         axis.min = yamlin::quantity(ctx, a["travel"][0], key + ".travel", Dimension::Length) * 1e-3;
         axis.max = yamlin::quantity(ctx, a["travel"][1], key + ".travel", Dimension::Length) * 1e-3;
+        if (!(axis.min < axis.max)) ctx.fail(a["travel"], key + ".travel", "min must be smaller than max");
       }
       m.axes.push_back(axis);
     }

@@ -26,28 +26,28 @@ std::string readTextFile(const std::string& path) {
   return buffer.str();
 }
 
-void writeFileAtomically(const std::string& path, const std::string& content) {
+void writeFileAtomically(const std::string& path, const std::string& content, const std::string& key) {
   namespace fs = std::filesystem;
   const fs::path target(path);
-  if (fs::is_directory(target)) throw InputError(InputLocation{path, 0, ""}, "is a directory; name an output file");
+  if (fs::is_directory(target)) throw InputError(InputLocation{"", 0, key}, "'" + path + "' is a folder; name an output file");
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   const fs::path tmp = dir / fmt::format(".{}.tmp{}", target.filename().string(), ::getpid());
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(InputLocation{path, 0, ""}, "cannot write output file");
+    if (!out) throw InputError(InputLocation{"", 0, key}, "cannot write '" + path + "' (does its folder exist?)");
     out << content;
     out.flush();
     if (!out) {
       std::error_code ec;
       fs::remove(tmp, ec);
-      throw InputError(InputLocation{path, 0, ""}, "writing the output file failed");
+      throw InputError(InputLocation{"", 0, key}, "writing '" + path + "' failed (is the disk full?)");
     }
   }
   std::error_code ec;
   fs::rename(tmp, target, ec);
   if (ec) {
     fs::remove(tmp, ec);
-    throw InputError(InputLocation{path, 0, ""}, "cannot move the output file into place: " + ec.message());
+    throw InputError(InputLocation{"", 0, key}, "cannot move '" + path + "' into place: " + ec.message());
   }
 }
 

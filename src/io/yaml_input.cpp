@@ -65,7 +65,7 @@ YAML::Node loadText(const std::string& text, const std::string& sourceName) {
 
 void rejectUnknownKeys(const Context& ctx, const YAML::Node& map, const std::string& path,
                        std::initializer_list<const char*> allowed) {
-  if (!map.IsMap()) ctx.fail(map, path, "expected a mapping");
+  if (!isMap(map)) ctx.fail(map, path, "expected a mapping");
   std::set<std::string> ok(allowed.begin(), allowed.end());
   for (const auto& kv : map) {
     const auto key = kv.first.as<std::string>();
@@ -81,6 +81,13 @@ std::string scalar(const Context& ctx, const YAML::Node& node, const std::string
   if (!node.IsDefined() || node.IsNull()) ctx.fail(node, key, "missing value");
   if (!node.IsScalar()) ctx.fail(node, key, "expected a single value");
   return node.Scalar();
+}
+
+bool boolean(const Context& ctx, const YAML::Node& node, const std::string& key) {
+  const auto text = scalar(ctx, node, key);
+  bool value = false;
+  if (!YAML::convert<bool>::decode(node, value)) ctx.fail(node, key, "expected true or false, got '" + text + "'");
+  return value;
 }
 
 double number(const Context& ctx, const YAML::Node& node, const std::string& key) {
@@ -118,17 +125,24 @@ double quantity(const Context& ctx, const YAML::Node& node, const std::string& k
   return q.value;
 }
 
+double size(const Context& ctx, const YAML::Node& node, const std::string& key, Dimension expected) {
+  const double v = quantity(ctx, node, key, expected);
+  constexpr double kSmallest = 1e-6;  // 1 nm in mm, 1 urad in rad
+  if (!(v >= kSmallest)) ctx.fail(node, key, fmt::format("must be positive (at least 1 {})", expected == Dimension::Length ? "nm" : "urad"));
+  return v;
+}
+
 Vec3 unitVector(const Context& ctx, const YAML::Node& node, const std::string& key) {
-  if (!node.IsSequence() || node.size() != 3) ctx.fail(node, key, "expected a vector [x, y, z]");
+  if (!isSequence(node) || node.size() != 3) ctx.fail(node, key, "expected a vector [x, y, z]");
   Vec3 v;
   for (int i = 0; i < 3; ++i) v[i] = number(ctx, node[i], key);
-  const double n = v.norm();
-  if (!(n > 1e-12)) ctx.fail(node, key, "direction vector has zero length");
-  return v / n;
+  const double largest = v.cwiseAbs().maxCoeff();
+  if (!(largest > 0)) ctx.fail(node, key, "direction vector has zero length");
+  return (v / largest).normalized();
 }
 
 Vec3 lengthVector(const Context& ctx, const YAML::Node& node, const std::string& key) {
-  if (!node.IsSequence() || node.size() != 3) ctx.fail(node, key, "expected a vector [x mm, y mm, z mm]");
+  if (!isSequence(node) || node.size() != 3) ctx.fail(node, key, "expected a vector [x mm, y mm, z mm]");
   Vec3 v;
   for (int i = 0; i < 3; ++i) v[i] = quantity(ctx, node[i], key, Dimension::Length);
   return v;

@@ -227,7 +227,11 @@ std::vector<IkSolution> solveIkPath(const KinematicModel& m, const std::vector<V
   std::vector<IkSolution> out;
   IkOptions o = options;
   for (size_t i = 0; i < positions.size(); ++i) {
-    out.push_back(solveIk(m, positions[i], directions[i], o));
+    try {
+      out.push_back(solveIk(m, positions[i], directions[i], o));
+    } catch (const UnreachablePose& e) {
+      throw UnreachableTarget(i, e.what());
+    }
     o.hint = out.back().q;
     o.branch = TiltBranch::Auto;
   }

@@ -37,6 +37,15 @@ std::optional<Instrument> parseInstrument(const std::string& name) {
   return std::nullopt;
 }
 
+std::string travelViolation(const Machine& m, const MeasurementRun& run) {
+  for (Eigen::Index i = 0; i < run.poses(); ++i) {
+    const std::vector<double> pose(run.q.row(i).data(), run.q.row(i).data() + run.q.cols());
+    if (auto violation = m.travelViolation(pose); !violation.empty())
+      return "pose " + std::to_string(i + 1) + " of " + std::to_string(run.poses()) + ": " + violation;
+  }
+  return {};
+}
+
 int readingSize(Instrument instrument) {
   return instrument == Instrument::RTest || instrument == Instrument::TouchProbe ? 3 : 1;
 }

@@ -64,7 +64,7 @@ ConePath conePath(const ConeSpec& s, int n) {
 
 int pointsForChordTolerance(const ConeSpec& s, double tolerance) {
   const double half = std::acos(std::clamp(1.0 - tolerance / std::abs(s.radius), -1.0, 1.0));
-  return std::max(8, static_cast<int>(std::ceil(kPi / std::max(half, 1e-9))));
+  return static_cast<int>(std::clamp(std::ceil(kPi / std::max(half, 1e-9)), 8.0, 1e9));
 }
 
 RotaryRanges rotaryRangesClosedForm(double alphaSigned, double betaSigned, bool startAtPole) {

@@ -60,6 +60,12 @@ SensitivityResult sensitivities(const MachineSetup& setup, const SensitivityRequ
   const Machine& m = *setup.machine;
   if (request.q.size() != static_cast<size_t>(m.commandedCount()))
     throw InputError(InputLocation{"", 0, "pose"}, "expected " + std::to_string(m.commandedCount()) + " axis positions");
+  if (const auto violation = m.travelViolation(request.q); !violation.empty())
+    throw InputError(InputLocation{"", 0, "pose"}, "pose " + violation);
+  if (!(request.epsilonLength >= 1e-6 && request.epsilonLength <= 1.0))
+    throw InputError(InputLocation{"", 0, "epsilon_length"}, "must be from 1 nm to 1 mm");
+  if (!(request.epsilonAngle >= 1e-9 && request.epsilonAngle <= 1e-3))
+    throw InputError(InputLocation{"", 0, "epsilon_angle"}, "must be from 0.001 urad to 1 mrad");
   const auto tp = toolPoint(setup.nominal(), request.q.data());
   const Vec3 direction = request.direction.value_or(tp.direction);
   if (direction.norm() < 1e-12) throw InputError(InputLocation{"", 0, "direction"}, "direction has zero length");

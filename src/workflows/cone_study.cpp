@@ -1,5 +1,7 @@
 #include "mtacc/workflows/cone_study.hpp"
 
+#include <cmath>
+
 #include <algorithm>
 
 #include "mtacc/core/input_error.hpp"
@@ -31,15 +33,27 @@ ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyOptions& options) 
   s.machine = setup.machine;
   s.options = options;
   const ConeSpec& spec = options.spec;
-  if (!(spec.radius > 0)) throw InputError(InputLocation{"", 0, "radius"}, "must be positive");
-  if (!(options.feed > 0)) throw InputError(InputLocation{"", 0, "feed"}, "must be positive");
-  if (options.monteCarlo < 0) throw InputError(InputLocation{"", 0, "monte_carlo"}, "must not be negative");
+  auto require = [](bool ok, const char* key, const char* range) {
+    if (!ok) throw InputError(InputLocation{"", 0, key}, range);
+  };
+  require(std::abs(spec.alpha) > 0 && std::abs(spec.alpha) < kPi / 2, "alpha", "must lie between -90 and 90 deg, not 0");
+  require(std::abs(spec.beta) <= kPi / 2, "beta", "must lie within ±90 deg");
+  require(std::abs(spec.gamma) <= 2 * kPi, "gamma", "must lie within ±360 deg");
+  require(spec.radius > 0 && spec.radius <= kLargestLength, "radius", "must be positive (at most 1 km)");
+  require(spec.centre.cwiseAbs().maxCoeff() <= kLargestLength, "centre", "must lie within ±1 km");
+  require(options.feed > 0 && options.feed <= 1e6, "feed", "must be positive (at most 1e6 mm/min)");
+  require(options.monteCarlo >= 0, "monte_carlo", "must not be negative");
+  require(options.chordTolerance >= 0, "chord_tolerance", "must not be negative (0: use the number of points)");
   s.options.points = options.chordTolerance > 0 ? pointsForChordTolerance(spec, options.chordTolerance) : options.points;
   if (s.options.points < 8 || s.options.points > 1000000)
     throw InputError(InputLocation{"", 0, "points"}, "must be between 8 and 1000000");
   const auto nominal = setup.nominal();
   s.path = conePath(spec, s.options.points);
-  s.motion = coneMotion(nominal, spec, s.path, {options.branch, options.feed});
+  try {
+    s.motion = coneMotion(nominal, spec, s.path, {options.branch, options.feed});
+  } catch (const UnreachablePose& e) {
+    throw InputError(InputLocation{"", 0, "centre"}, std::string("the path cannot be machined: ") + e.what());
+  }
   s.closedForm = rotaryRangesClosedForm(spec.alpha, spec.beta);
   s.machineNormals.resize(static_cast<Eigen::Index>(s.path.normals.size()), 3);
   for (Eigen::Index i = 0; i < s.machineNormals.rows(); ++i)

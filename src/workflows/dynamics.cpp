@@ -40,6 +40,7 @@ std::vector<double> structurePositions(const StructureModel& m, const std::strin
     if (j < 0) throw InputError(InputLocation{"", 0, key}, "expected AXIS=mm for the axes of " + m.name + ", got '" + a.name + "'");
     q[static_cast<size_t>(j)] = parseNumber(a.value, key + " " + a.name) * 1e-3;
   }
+  if (const auto violation = travelViolation(m, q); !violation.empty()) throw InputError(InputLocation{"", 0, key}, violation);
   return q;
 }
 
@@ -77,8 +78,9 @@ nlohmann::json toJson(const ModesResult& r, int count) {
 }
 
 std::vector<double> frequencyGrid(double from, double to, double step) {
-  if (!(step > 0) || !(to >= from) || !(from >= 0) || !std::isfinite(to))
-    throw InputError(InputLocation{"", 0, "step"}, "need 0 <= from <= to and a positive step (Hz)");
+  if (!(from >= 0 && from <= 1e9)) throw InputError(InputLocation{"", 0, "from"}, "must be from 0 to 1e9 Hz");
+  if (!(to >= from && to <= 1e9)) throw InputError(InputLocation{"", 0, "to"}, "must be from the first frequency to 1e9 Hz");
+  if (!(step > 0)) throw InputError(InputLocation{"", 0, "step"}, "must be positive (Hz)");
   const double count = std::floor((to - from) / step + 1e-9) + 1;
   if (count > 1e6) throw InputError(InputLocation{"", 0, "step"}, "more than 1,000,000 frequencies; choose a larger step");
   std::vector<double> f;

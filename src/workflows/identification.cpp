@@ -1,7 +1,11 @@
 #include "mtacc/workflows/identification.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <map>
+
+#include <boost/math/special_functions/gamma.hpp>
+#include <fmt/format.h>
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
@@ -22,9 +26,13 @@ Problem buildProblem(const MachineSetup& setup, const IdentificationRequest& req
   p.problem.machine = setup.machine;
   p.problem.start = setup.errors;
   p.given = request.parameters;
+  InputLocation namedAt{"", 0, "parameters"};
   if (!request.plan.empty()) {
     auto plan = loadTestPlan(nominal, request.plan);
-    if (p.given.empty()) p.given = plan.parameters;
+    if (p.given.empty()) {
+      p.given = plan.parameters;
+      namedAt = plan.parametersAt;
+    }
     if (planRuns) p.problem.runs = std::move(plan.runs);
   }
   std::map<std::string, std::string> seen;  // canonical path -> as given
@@ -32,13 +40,13 @@ Problem buildProblem(const MachineSetup& setup, const IdentificationRequest& req
     std::error_code ec;
     const auto canonical = std::filesystem::weakly_canonical(file, ec).string();
     if (const auto [it, added] = seen.emplace(ec ? file : canonical, file); !added)
-      throw InputError(InputLocation{file, 0, "data"}, "the same file is given twice (also as '" + it->second + "')");
+      throw InputError(InputLocation{"", 0, "data"}, "'" + file + "' is given twice (also as '" + it->second + "')");
     p.problem.runs.push_back(readMeasurementCsv(nominal, file));
   }
   if (p.problem.runs.empty()) throw InputError(InputLocation{"", 0, planRuns ? "plan" : "data"}, "no measurement run given");
   if (p.given.empty())
     throw InputError(InputLocation{"", 0, "parameters"}, "no parameter to determine (name them, or use a plan with 'parameters')");
-  p.problem.parameters = findParameters(setup, p.given);
+  p.problem.parameters = findParameters(setup, p.given, namedAt);
   if (request.setup) {
     for (auto& run : p.problem.runs) run.estimate.clear();
     for (const auto& n : *request.setup) {
@@ -49,6 +57,42 @@ Problem buildProblem(const MachineSetup& setup, const IdentificationRequest& req
     }
   }
   return p;
+}
+
+IdentificationQuality assessQuality(const IdentificationRequest& request, const IdentificationResult& r) {
+  IdentificationQuality q;
+  if (!r.converged) q.warnings.push_back("the solver did not converge; the estimates are not a least-squares solution");
+  bool stated = r.degreesOfFreedom > 0 && !r.runs.empty();
+  double chiSquare = 0;
+  for (size_t k = 0; k < r.runs.size() && stated; ++k) {
+    const auto noise = request.noise ? request.noise : r.runs[k].noise;
+    if (noise) chiSquare += r.runResidualSquares[k] / (*noise * *noise);
+    else stated = false;
+  }
+  if (stated) {
+    q.noiseSource = request.noise ? "--noise" : "the files' '# noise:' lines";
+    q.chiSquare = chiSquare;
+    q.pValue = boost::math::gamma_q(0.5 * r.degreesOfFreedom, 0.5 * chiSquare);
+    if (*q.pValue < kFitSignificance)
+      q.warnings.push_back(fmt::format(
+          "the residuals are larger than the stated noise explains: chi-square {:.4g} for {} degrees of freedom, "
+          "p = {:.2g} (below {:g}); residual sigma {:.3g} um. The data contain errors the parameter set does not "
+          "model, outliers, or the noise is understated", chiSquare, r.degreesOfFreedom, *q.pValue, kFitSignificance,
+          r.sigma * 1e3));
+  }
+  for (Eigen::Index k = 0; k < r.uncertainty.size(); ++k) {
+    const auto d = r.columns.dimensions[static_cast<size_t>(k)];
+    const double plausible = d == Dimension::Length ? kPlausibleLength : kPlausibleAngle;
+    if (!(r.uncertainty[k] <= request.uncertaintyFraction * plausible)) {
+      q.poorlyDetermined.push_back(static_cast<size_t>(k));
+      q.warnings.push_back(fmt::format(
+          "{} is hardly determined: its standard uncertainty {:.4g} {} exceeds {:g} % of its plausible magnitude "
+          "{:g} {} (a plan with more motion of the axes it depends on determines it)",
+          r.columns.names[static_cast<size_t>(k)], toDisplay(r.uncertainty[k], d), displayUnit(d),
+          100 * request.uncertaintyFraction, toDisplay(plausible, d), displayUnit(d)));
+    }
+  }
+  return q;
 }
 
 Eigen::Index countReadings(const IdentificationProblem& p) {
@@ -87,7 +131,18 @@ nlohmann::json toJson(const ObservabilityResult& r) {
   return j;
 }
 
+double correlationOf(const IdentificationResult& r, Eigen::Index a, Eigen::Index b) {
+  const double scale = std::sqrt(r.covariance(a, a) * r.covariance(b, b));
+  return scale > 0 ? r.covariance(a, b) / scale : (a == b ? 1.0 : 0.0);
+}
+
 IdentificationOutcome identifyParameters(const MachineSetup& setup, const IdentificationRequest& request) {
+  if (request.robust && !(request.robustScale >= 1e-6 && request.robustScale <= 1.0))
+    throw InputError(InputLocation{"", 0, "robust_scale"}, "must be from 1 nm to 1 mm");
+  if (request.noise && !(*request.noise >= 1e-6 && *request.noise <= 1.0))
+    throw InputError(InputLocation{"", 0, "noise"}, "must be from 1 nm to 1 mm");
+  if (!(request.uncertaintyFraction > 0 && request.uncertaintyFraction <= 1))
+    throw InputError(InputLocation{"", 0, "uncertainty_fraction"}, "must be above 0 and at most 1");
   auto p = buildProblem(setup, request, false);
   IdentificationOptions options;
   options.robust = request.robust;
@@ -101,6 +156,7 @@ IdentificationOutcome identifyParameters(const MachineSetup& setup, const Identi
   } catch (const std::invalid_argument& e) {
     throw InputError(InputLocation{"", 0, "data"}, e.what());
   }
+  out.quality = assessQuality(request, out.result);
   return out;
 }
 
@@ -118,6 +174,31 @@ nlohmann::json toJson(const IdentificationOutcome& o) {
   j["residual_max_um"] = r.residualMax * 1e3;
   j["robust"] = o.robust;
   j["observability"] = toJson(r.observability);
+  const auto& q = o.quality;
+  nlohmann::json poorly = nlohmann::json::array();
+  for (size_t k : q.poorlyDetermined) poorly.push_back(r.columns.names[k]);
+  j["quality"] = {{"noise_source", q.noiseSource.empty() ? nlohmann::json(nullptr) : nlohmann::json(q.noiseSource)},
+                  {"chi_square", q.chiSquare ? nlohmann::json(*q.chiSquare) : nlohmann::json(nullptr)},
+                  {"p_value", q.pValue ? nlohmann::json(*q.pValue) : nlohmann::json(nullptr)},
+                  {"fit_significance", kFitSignificance},
+                  {"poorly_determined", poorly},
+                  {"warnings", q.warnings}};
+  // Covariance in the display units (um, urad; products of them), and the correlation.
+  const Eigen::Index n = r.values.size();
+  nlohmann::json covariance = nlohmann::json::array(), correlation = nlohmann::json::array();
+  for (Eigen::Index a = 0; a < n; ++a) {
+    nlohmann::json covRow = nlohmann::json::array(), corRow = nlohmann::json::array();
+    const auto da = r.columns.dimensions[static_cast<size_t>(a)];
+    for (Eigen::Index b = 0; b < n; ++b) {
+      const auto db = r.columns.dimensions[static_cast<size_t>(b)];
+      covRow.push_back(toDisplay(toDisplay(r.covariance(a, b), da), db));
+      corRow.push_back(correlationOf(r, a, b));
+    }
+    covariance.push_back(covRow);
+    correlation.push_back(corRow);
+  }
+  j["covariance"] = covariance;
+  j["correlation"] = correlation;
   j["estimates"] = nlohmann::json::array();
   for (Eigen::Index k = 0; k < r.values.size(); ++k) {
     const auto d = r.columns.dimensions[static_cast<size_t>(k)];

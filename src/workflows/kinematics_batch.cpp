@@ -1,6 +1,7 @@
 #include "mtacc/workflows/kinematics_batch.hpp"
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/forward.hpp"
 
 namespace mtacc {
@@ -51,12 +52,26 @@ nlohmann::json toJson(const ForwardResult& r) {
 InverseResult inverseKinematics(const MachineSetup& setup, const InverseRequest& request) {
   if (request.positions.empty() || request.positions.size() != request.directions.size())
     throw InputError(InputLocation{"", 0, "targets"}, "expected as many tool directions as TCP positions, at least one");
+  auto where = [&](size_t i, const char* singleKey) {
+    if (i < request.lines.size()) return InputLocation{request.file, request.lines[i], ""};
+    return InputLocation{request.file, 0, request.positions.size() == 1 ? singleKey : "target " + std::to_string(i + 1)};
+  };
+  for (size_t i = 0; i < request.positions.size(); ++i) {
+    if (!(request.positions[i].cwiseAbs().maxCoeff() <= kLargestLength))
+      throw InputError(where(i, "tcp"), "the TCP lies beyond ±1 km");
+    if (!(request.directions[i].cwiseAbs().maxCoeff() > 0) || !request.directions[i].allFinite())
+      throw InputError(where(i, "tool"), "the tool direction has zero length");
+  }
   const auto nominal = setup.nominal();
   InverseResult out{setup.machine, {}};
-  if (request.all && request.positions.size() == 1)
-    out.solutions = inverseKinematics(nominal, request.positions[0], request.directions[0], request.options).solutions;
-  else
-    out.solutions = solveIkPath(nominal, request.positions, request.directions, request.options);
+  try {
+    if (request.all && request.positions.size() == 1)
+      out.solutions = inverseKinematics(nominal, request.positions[0], request.directions[0], request.options).solutions;
+    else
+      out.solutions = solveIkPath(nominal, request.positions, request.directions, request.options);
+  } catch (const UnreachableTarget& e) {
+    throw InputError(where(e.index, "tcp"), std::string("unreachable: ") + e.what());
+  }
   return out;
 }
 

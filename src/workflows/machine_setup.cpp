@@ -17,9 +17,14 @@ MachineSetup loadMachineSetup(const MachineSource& source) {
   return {machine, std::move(errors)};
 }
 
-std::vector<Parameter> findParameters(const MachineSetup& setup, const std::vector<std::string>& names) {
+std::vector<Parameter> findParameters(const MachineSetup& setup, const std::vector<std::string>& names,
+                                      const InputLocation& namedAt) {
   std::vector<Parameter> out;
-  for (const auto& n : names) out.push_back(findParameter(*setup.machine, setup.errors, n));
+  try {
+    for (const auto& n : names) out.push_back(findParameter(*setup.machine, setup.errors, n));
+  } catch (const InputError& e) {
+    throw InputError(namedAt, e.reason());
+  }
   return out;
 }
 

@@ -11,8 +11,44 @@
 
 namespace mtacc {
 
+namespace {
+
+// The runs' folder: created when missing; an existing one must not hold other CSV files,
+// which a later `identify --data FOLDER/*.csv` would take for measurements of this plan.
+void requireFolderFor(const std::string& folder, const std::vector<std::string>& files) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(folder, ec) && !fs::is_directory(folder, ec))
+    throw InputError(InputLocation{"", 0, "output"}, "'" + folder + "' is a file; name a folder for the runs");
+  if (!fs::exists(folder, ec)) {
+    fs::create_directories(folder, ec);
+    if (ec) throw InputError(InputLocation{"", 0, "output"}, "cannot create the folder '" + folder + "': " + ec.message());
+    return;
+  }
+  std::vector<std::string> stale;
+  for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    const auto path = entry.path();
+    if (path.extension() != ".csv") continue;
+    bool written = false;
+    for (const auto& f : files) written = written || fs::path(f).filename() == path.filename();
+    if (!written) stale.push_back(path.filename().string());
+  }
+  if (!stale.empty())
+    throw InputError(InputLocation{"", 0, "output"}, "'" + folder + "' already holds " + std::to_string(stale.size()) +
+                                                       " CSV file(s) this plan does not write (" + stale.front() +
+                                                       (stale.size() > 1 ? ", ..." : "") + "); name an empty or new folder");
+}
+
+}  // namespace
+
 SimulationResult simulateRuns(const MachineSetup& setup, std::vector<MeasurementRun> runs, const SimulationOptions& o) {
   if (!(o.noise >= 0)) throw InputError(InputLocation{"", 0, "noise"}, "must not be negative");
+  if (!(o.disturbance.spikeTime > 0 && o.disturbance.spikeTime <= 1e3))
+    throw InputError(InputLocation{"", 0, "spike_time"}, "must be positive and at most 1000 s");
+  for (double lag : o.disturbance.lag)
+    if (!(lag >= 0 && lag <= 1e3)) throw InputError(InputLocation{"", 0, "lag"}, "must be from 0 to 1000 s");
+  for (double lostMotion : o.disturbance.backlash)
+    if (!(lostMotion >= 0)) throw InputError(InputLocation{"", 0, "backlash"}, "must not be negative");
   const auto nominal = setup.nominal();
   const auto model = setup.actual();
   std::mt19937_64 rng(o.seed);
@@ -23,6 +59,7 @@ SimulationResult simulateRuns(const MachineSetup& setup, std::vector<Measurement
       if (o.setupErrors[static_cast<size_t>(k)] && appliesTo(static_cast<SetupParameter>(k), run.instrument))
         run.setup.errors[static_cast<size_t>(k)] = *o.setupErrors[static_cast<size_t>(k)];
     simulateRun(model, nominal, run, o.disturbance, o.noise, &rng);
+    if (o.noise > 0) run.noise = o.noise;
     if (!o.output.empty()) {
       r.files.push_back(o.outputIsFolder ? (std::filesystem::path(o.output) / (run.name + ".csv")).string() : o.output);
       texts.push_back(measurementCsv(*setup.machine, run));
@@ -30,7 +67,7 @@ SimulationResult simulateRuns(const MachineSetup& setup, std::vector<Measurement
   }
   if (!o.output.empty() && !o.outputIsFolder && runs.size() != 1)
     throw InputError(InputLocation{"", 0, "output"}, "several runs need an output folder");
-  if (o.outputIsFolder && !o.output.empty()) std::filesystem::create_directories(o.output);
+  if (o.outputIsFolder && !o.output.empty()) requireFolderFor(o.output, r.files);
   for (size_t i = 0; i < r.files.size(); ++i) writeFileAtomically(r.files[i], texts[i]);
   r.runs = std::move(runs);
   return r;
@@ -39,24 +76,38 @@ SimulationResult simulateRuns(const MachineSetup& setup, std::vector<Measurement
 SimulationResult simulateBallbarCircle(const MachineSetup& setup, const BallbarCircleSpec& spec, const SimulationOptions& options) {
   if (!(spec.radius > 0)) throw InputError(InputLocation{"", 0, "radius"}, "must be positive");
   if (!(spec.feed > 0)) throw InputError(InputLocation{"", 0, "feed"}, "must be positive");
+  if (spec.points < 8 || spec.points > kMaxPointsPerRun)
+    throw InputError(InputLocation{"", 0, "points"}, "must be from 8 to " + std::to_string(kMaxPointsPerRun));
+  std::vector<MeasurementRun> runs;
   try {
-    return simulateRuns(setup, {ballbarCircle(setup.nominal(), spec)}, options);
+    runs = {ballbarCircle(setup.nominal(), spec)};
   } catch (const std::invalid_argument& e) {
-    throw InputError(InputLocation{"", 0, "ballbar"}, e.what());
+    throw InputError(InputLocation{"", 0, "plane"}, e.what());
   }
+  if (const auto violation = travelViolation(*setup.machine, runs[0]); !violation.empty())
+    throw InputError(InputLocation{"", 0, "centre"}, "the circle leaves the machine's travel at " + violation);
+  return simulateRuns(setup, std::move(runs), options);
 }
 
 SimulationResult simulateSphereTest(const MachineSetup& setup, const SphereTestSpec& spec, const SimulationOptions& options) {
-  if (spec.angles.empty()) throw InputError(InputLocation{"", 0, "points"}, "must be at least 1");
+  if (spec.angles.empty() || spec.angles.size() > static_cast<size_t>(kMaxPointsPerRun))
+    throw InputError(InputLocation{"", 0, "points"}, "must be from 1 to " + std::to_string(kMaxPointsPerRun));
+  std::vector<MeasurementRun> runs;
   try {
-    return simulateRuns(setup, sphereTest(setup.nominal(), spec), options);
+    runs = sphereTest(setup.nominal(), spec);
   } catch (const std::invalid_argument& e) {
-    throw InputError(InputLocation{"", 0, "rtest"}, e.what());
+    throw InputError(InputLocation{"", 0, "axis"}, e.what());
   }
+  for (const auto& run : runs)
+    if (const auto violation = travelViolation(*setup.machine, run); !violation.empty())
+      throw InputError(InputLocation{"", 0, "sphere"}, "the test leaves the machine's travel at " + violation);
+  return simulateRuns(setup, std::move(runs), options);
 }
 
-SimulationResult simulatePlan(const MachineSetup& setup, const std::string& plan, const SimulationOptions& options) {
-  return simulateRuns(setup, loadTestPlan(setup.nominal(), plan).runs, options);
+SimulationResult simulatePlan(const MachineSetup& setup, const std::string& planFile, const SimulationOptions& options) {
+  auto plan = loadTestPlan(setup.nominal(), planFile);
+  findParameters(setup, plan.parameters, plan.parametersAt);
+  return simulateRuns(setup, std::move(plan.runs), options);
 }
 
 nlohmann::json runJson(const Machine& m, const MeasurementRun& run) {

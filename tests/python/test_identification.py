@@ -26,6 +26,23 @@ def test_api_and_cli_identify_alike(tmp_path):
     assert json.loads(one) == api  # the same workflow, serialised once
     assert api["observability"]["identifiable"]
     assert [e["parameter"] for e in api["estimates"]][:len(params)] == params
+    n = len(api["estimates"])
+    assert len(api["covariance"]) == n and len(api["correlation"]) == n
+    assert api["quality"]["noise_source"] == "the files' '# noise:' lines"
+    assert 0 <= api["quality"]["p_value"] <= 1
+
+
+def test_noise_argument_and_warnings(tmp_path):
+    m = mtacc.Machine("tilting-table")
+    files = [r["file"] for r in m.simulate("tilting-table-rtest", noise="0.5 um", output_dir=tmp_path)["runs"]]
+    params = ["X0B", "Z0B", "A0B", "C0B", "X0C", "Y0C", "A0C", "B0C", "C0Y", "A0Z", "B0Z"]
+    # A stated noise a tenth of the true one: the residuals cannot be explained by it.
+    doubtful = m.identify(files, params, noise="0.05 um")
+    assert doubtful["quality"]["noise_source"] == "--noise"
+    assert doubtful["quality"]["p_value"] < 0.01
+    assert any("larger than the stated noise" in w for w in doubtful["quality"]["warnings"])
+    with pytest.raises(mtacc.InputError, match="uncertainty_fraction"):
+        m.identify(files, params, uncertainty_fraction=0)
 
 
 def test_unidentifiable_set_is_refused(tmp_path):

@@ -11,6 +11,10 @@ namespace mtacc {
 
 // "a,b,,c" -> {"a", "b", "c"} (empty items dropped).
 std::vector<std::string> splitList(const std::string& text, char separator = ',');
+// Without the blanks, tabs and carriage returns at either end.
+std::string trim(const std::string& text);
+// " a, b,,c," -> {"a", "b", "", "c", ""}: every field, trimmed, empty ones kept (CSV cells).
+std::vector<std::string> splitFields(const std::string& text, char separator = ',');
 
 struct Assignment {
   std::string name;

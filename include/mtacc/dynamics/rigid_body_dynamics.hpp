@@ -25,6 +25,10 @@ struct StructureMatrices {
   Eigen::MatrixXd inertialLoads;  // 6N x axes: -M E_j, the load of a unit acceleration of axis j
 };
 
+// "Y = 500 mm beyond travel [-400, 400] mm" for the first axis position outside its travel
+// (or not finite); empty when all are within.
+std::string travelViolation(const StructureModel& model, const std::vector<double>& positions);
+
 // Axis positions in m, one per StructureModel::axes (empty = all at 0). Throws InputError for
 // a wrong count or a position beyond travel.
 StructureMatrices assembleStructure(const StructureModel& model, const std::vector<double>& positions = {});

@@ -10,8 +10,11 @@ namespace mtacc {
 
 // The errors of the machine file itself (zero when it has no `errors:` key).
 ErrorModel loadMachineErrors(const Machine& machine);
-// The `errors:` mapping of any file; throws InputError naming file, line and key.
+// The `errors:` mapping of an errors file (required there); throws InputError naming file,
+// line and key.
 ErrorModel loadErrors(const Machine& machine, const std::string& path);
-ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, const std::string& sourceName);
+enum class ErrorsKey { Optional, Required };
+ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, const std::string& sourceName,
+                       ErrorsKey errorsKey = ErrorsKey::Optional);
 
 }  // namespace mtacc

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/measurement/measurement.hpp"
 
 namespace mtacc {
@@ -13,6 +14,7 @@ struct TestPlan {
   std::string name;
   std::vector<MeasurementRun> runs;     // poses and set-up; no readings
   std::vector<std::string> parameters;  // names (ISO or alias); may be empty
+  InputLocation parametersAt;           // where the plan names them, for messages
 };
 
 // By path, or by the name of a bundled plan. Throws InputError naming file, line and key.

@@ -8,7 +8,8 @@ namespace mtacc {
 
 // Throws InputError naming the path when it is not a readable regular file.
 std::string readTextFile(const std::string& path);
-// Throws InputError naming the path when the file cannot be written.
-void writeFileAtomically(const std::string& path, const std::string& content);
+// Throws InputError naming the path when the file cannot be written, under `key` (the option
+// or argument that named the file).
+void writeFileAtomically(const std::string& path, const std::string& content, const std::string& key = "output");
 
 }  // namespace mtacc

@@ -50,8 +50,15 @@ IkResult inverseKinematics(const KinematicModel& nominal, const Vec3& position, 
 IkSolution solveIk(const KinematicModel& nominal, const Vec3& position, const Vec3& toolDirection,
                    const IkOptions& options = {});
 
+// A target of a path that cannot be reached; `index` counts from 0 along the path.
+class UnreachableTarget : public UnreachablePose {
+ public:
+  UnreachableTarget(size_t index, const std::string& what) : UnreachablePose(what), index(index) {}
+  size_t index;
+};
+
 // A path: each pose solved with the previous solution as hint (continuity, unwrapping).
-// The first pose uses options.branch.
+// The first pose uses options.branch. Throws UnreachableTarget.
 std::vector<IkSolution> solveIkPath(const KinematicModel& nominal, const std::vector<Vec3>& positions,
                                     const std::vector<Vec3>& directions, const IkOptions& options = {});
 

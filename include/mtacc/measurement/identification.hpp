@@ -52,6 +52,7 @@ struct IdentificationResult {
   std::vector<MeasurementRun> runs;        // set-up errors replaced, readings as measured
   double sigma = 0;             // residual standard deviation (mm), dof-corrected
   double residualRms = 0, residualMax = 0;
+  std::vector<double> runResidualSquares;  // sum of the squared residuals of each run, mm^2
   int readings = 0, degreesOfFreedom = 0, iterations = 0;
   bool converged = false;
   std::string solverReport;

@@ -68,11 +68,18 @@ struct MeasurementRun {
   std::vector<int> sense;     // +1 counter-clockwise, -1 clockwise in the plot plane (ballbar)
   std::array<Vec3, 2> plotAxes{Vec3::UnitX(), Vec3::UnitY()};
   double feed = 1000.0;       // mm/min along the path, for the disturbance models
+  // Standard deviation of the reading noise (mm) as the instrument's user states it, for the
+  // goodness-of-fit test of an identification; unset when not stated.
+  std::optional<double> noise;
   // Set-up errors an identification estimates for this run (the others stay as given).
   std::vector<SetupParameter> estimate;
 
   Eigen::Index poses() const { return q.rows(); }
 };
+
+// "pose 12 of 146: X=500 mm beyond travel [-400, 400] mm" for the run's first pose outside
+// the machine's travel; empty when every pose is within.
+std::string travelViolation(const Machine& m, const MeasurementRun& run);
 
 // One reading: 3 values (R-test, touch probe) or 1 (ballbar, directional probe), mm.
 using Reading = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;

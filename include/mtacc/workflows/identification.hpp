@@ -20,6 +20,28 @@ struct IdentificationRequest {
   bool robust = false;
   double robustScale = 2e-3;        // mm
   int threads = kAllCores;
+  // The reading noise (standard deviation, mm) for the goodness-of-fit test; default: each
+  // file's `# noise:` line (no test when a file has none).
+  std::optional<double> noise{};
+  // A parameter is poorly determined when its standard uncertainty exceeds this fraction of
+  // its plausible magnitude (kPlausibleLength, kPlausibleAngle).
+  double uncertaintyFraction = 0.1;
+};
+
+// The plausible magnitude of a geometric or set-up error of a machine tool: about four times
+// the largest location-error limits of seed 000 Table 3.9 (11.6 um and 50 urad,
+// data/limits/seed000-table3.9.yaml).
+constexpr double kPlausibleLength = 0.05;  // mm (50 um)
+constexpr double kPlausibleAngle = 200e-6; // rad (200 urad)
+// The goodness-of-fit test fails below this p-value.
+constexpr double kFitSignificance = 0.01;
+
+// What the identification's own numbers say about its trustworthiness.
+struct IdentificationQuality {
+  std::optional<double> chiSquare, pValue;  // against the stated noise; unset when none is stated
+  std::string noiseSource;                  // "--noise", "the files' '# noise:' lines" or empty
+  std::vector<size_t> poorlyDetermined;     // columns whose uncertainty exceeds the limit
+  std::vector<std::string> warnings;        // one sentence each; empty when nothing is wrong
 };
 
 struct ObservabilityResult {
@@ -40,10 +62,15 @@ struct IdentificationOutcome {
   std::vector<std::string> given;  // the parameter names as the request wrote them
   bool robust = false;
   IdentificationResult result;
+  IdentificationQuality quality;
 };
 
-// Identifies from the request's files; refuses (InputError) a set the data cannot determine.
+// Identifies from the request's files; refuses (InputError) a set the data cannot determine,
+// and flags (quality.warnings) residuals that the stated noise does not explain and
+// parameters the data hardly determine.
 IdentificationOutcome identifyParameters(const MachineSetup& setup, const IdentificationRequest& request);
+// The correlation of estimates a and b (1 on the diagonal).
+double correlationOf(const IdentificationResult& result, Eigen::Index a, Eigen::Index b);
 nlohmann::json toJson(const IdentificationOutcome& outcome);
 
 }  // namespace mtacc

@@ -39,6 +39,10 @@ struct InverseRequest {
   std::vector<Vec3> directions;  // tool direction (TCP towards spindle)
   IkOptions options;
   bool all = false;              // every solution of a single target, those beyond travel included
+  // Where the targets come from, for messages: a file and each target's line; otherwise a
+  // single target is named by the keys "tcp" and "tool", several by their number.
+  std::string file;
+  std::vector<int> lines;
 };
 
 struct InverseResult {

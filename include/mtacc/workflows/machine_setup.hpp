@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/errors/error_model.hpp"
 #include "mtacc/kinematics/kinematic_model.hpp"
 #include "mtacc/machine/machine.hpp"
@@ -31,8 +32,10 @@ struct MachineSetup {
 // Throws InputError naming file, line and key.
 MachineSetup loadMachineSetup(const MachineSource& source);
 
-// Looks each name up (ISO name or alias); throws InputError listing the machine's parameters.
-std::vector<Parameter> findParameters(const MachineSetup& setup, const std::vector<std::string>& names);
+// Looks each name up (ISO name or alias); throws InputError at `namedAt` (the option or the
+// file, line and key that named them) listing the machine's parameters.
+std::vector<Parameter> findParameters(const MachineSetup& setup, const std::vector<std::string>& names,
+                                      const InputLocation& namedAt = {"", 0, "parameters"});
 
 // {"X": 10.0, "B": -15.0}: mm for linear and deg for rotary axes.
 nlohmann::json poseJson(const Machine& machine, const double* q);
