@@ -32,7 +32,8 @@ IdentificationRequest request(const IdentifyCliOptions& o) {
   r.robustScale = parseQuantityAs(o.robustScale, Dimension::Length, "--robust-scale");
   if (!o.noise.empty()) r.noise = parseQuantityAs(o.noise, Dimension::Length, "--noise");
   r.uncertaintyFraction = o.uncertaintyFraction;
-  if (o.threads < 0) throw InputError(InputLocation{"", 0, "--threads"}, "must not be negative (0: every core)");
+  if (o.threads < 0 || o.threads > 1024)
+    throw InputError(InputLocation{"", 0, "--threads"}, "must be from 0 (every core) to 1024");
   r.threads = o.threads;
   return r;
 }
@@ -86,7 +87,7 @@ void identify(const IdentifyCliOptions& o) {
     human += "goodness of fit: not tested (state the reading noise with --noise or '# noise:' in the files)\n";
   emit(o, toJson(out), human, csv);
   for (const auto& w : q.warnings) std::cerr << "mtacc: warning: " << w << "\n";
-  if (o.strict && !q.warnings.empty()) throw StrictFailure(q.warnings.size());
+  if (o.strict && !q.warnings.empty()) throw StrictFailure{q.warnings.size()};
 }
 
 void addOptions(CLI::App* cmd, IdentifyCliOptions& o) {

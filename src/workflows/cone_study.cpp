@@ -42,7 +42,7 @@ ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyOptions& options) 
   require(spec.radius > 0 && spec.radius <= kLargestLength, "radius", "must be positive (at most 1 km)");
   require(spec.centre.cwiseAbs().maxCoeff() <= kLargestLength, "centre", "must lie within ±1 km");
   require(options.feed > 0 && options.feed <= 1e6, "feed", "must be positive (at most 1e6 mm/min)");
-  require(options.monteCarlo >= 0, "monte_carlo", "must not be negative");
+  require(options.monteCarlo >= 0 && options.monteCarlo <= 1000000, "monte_carlo", "must be from 0 to 1,000,000 samples");
   require(options.chordTolerance >= 0, "chord_tolerance", "must not be negative (0: use the number of points)");
   s.options.points = options.chordTolerance > 0 ? pointsForChordTolerance(spec, options.chordTolerance) : options.points;
   if (s.options.points < 8 || s.options.points > 1000000)

@@ -75,7 +75,7 @@ SimulationResult simulateRuns(const MachineSetup& setup, std::vector<Measurement
 
 SimulationResult simulateBallbarCircle(const MachineSetup& setup, const BallbarCircleSpec& spec, const SimulationOptions& options) {
   if (!(spec.radius > 0)) throw InputError(InputLocation{"", 0, "radius"}, "must be positive");
-  if (!(spec.feed > 0)) throw InputError(InputLocation{"", 0, "feed"}, "must be positive");
+  if (!(spec.feed > 0 && spec.feed <= 1e6)) throw InputError(InputLocation{"", 0, "feed"}, "must be positive (at most 1e6 mm/min)");
   if (spec.points < 8 || spec.points > kMaxPointsPerRun)
     throw InputError(InputLocation{"", 0, "points"}, "must be from 8 to " + std::to_string(kMaxPointsPerRun));
   std::vector<MeasurementRun> runs;
