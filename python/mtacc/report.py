@@ -161,11 +161,10 @@ def cone_section(machine, monte_carlo=200):
     return out
 
 
-def identification_section(machine, plan):
+def identification_section(machine, plan, obs):
     """Simulated measurements of a test plan (0.5 µm noise), the ballbar evaluations, the
     plan's observability and the identification of its parameters."""
     out = f"<h2>Measurement and identification: {html.escape(plan)}</h2>"
-    obs = machine.observability(plan)
     with tempfile.TemporaryDirectory() as tmp:
         runs = machine.simulate(plan, noise="0.5 um", seed=1, output_dir=tmp)["runs"]
         files = [r["file"] for r in runs]
@@ -257,8 +256,7 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
         raise InputError(f"output: '{output_dir}' is a file; name a folder for the report")
     machine = Machine(machine_path, errors)
     budget = machine.budget(samples=samples)
-    if plan:
-        machine.observability(plan)
+    observability = machine.observability(plan) if plan else None
     if structure:
         from . import Structure
         Structure(structure)
@@ -330,7 +328,7 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     parts.append(cone_section(machine))
     step("cone frustum")
     if plan:
-        parts.append(identification_section(machine, plan))
+        parts.append(identification_section(machine, plan, observability))
         step("identification")
     if structure:
         parts.append(dynamics_section(structure, compare))

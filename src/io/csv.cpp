@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "mtacc/core/input_error.hpp"
@@ -26,9 +27,9 @@ CsvTable parseCsv(const std::string& text, const std::string& sourceName) {
     if (s.empty() || s[0] == '#') continue;
     auto cells = splitFields(s);
     if (t.header.empty()) {
-      for (size_t c = 0; c < cells.size(); ++c)
-        if (std::find(cells.begin(), cells.begin() + static_cast<std::ptrdiff_t>(c), cells[c]) != cells.begin() + static_cast<std::ptrdiff_t>(c))
-          throw InputError(InputLocation{sourceName, lineNo, cells[c]}, "column given twice");
+      std::set<std::string> seen;
+      for (const auto& name : cells)
+        if (!seen.insert(name).second) throw InputError(InputLocation{sourceName, lineNo, name}, "column given twice");
       t.header = cells;
       t.headerLine = lineNo;
       continue;

@@ -48,7 +48,8 @@ std::map<std::string, Meta> readMeta(const std::string& text, const std::string&
     if (s[0] != '#') break;
     const auto colon = s.find(':');
     if (colon == std::string::npos) {
-      const std::string firstWord = trim(s.substr(1)).substr(0, trim(s.substr(1)).find(' '));
+      const std::string comment = trim(s.substr(1));
+      const std::string firstWord = comment.substr(0, comment.find(' '));
       if (isMetaKey(firstWord))
         throw InputError(InputLocation{source, n, firstWord}, "write '# " + firstWord + ": value' (the colon is missing)");
       continue;
