@@ -1,7 +1,10 @@
 // Monte Carlo of the cone-frustum test piece on the tilting-table example: 1000 samples of
 // the Table 3.9 limits, each evaluated with the exact procedure of seed 000 §3.9 (720 points,
-// FK with errors, LS plane and circle). Target: under 2 s on one core. Side by side in the
-// same run, the first-order shortcut (n . dP, harmonic removal) on the same samples.
+// FK with errors, LS plane and circle). Target: at least 3000 samples/s on one core. Side by
+// side in the same run, the first-order shortcut (n . dP, harmonic removal) on the same
+// samples; the two medians must agree within 1 % (the errors are small enough that first
+// order holds; seed 000 Table 3.4 entries agree to that, tests/seed000_table3_4_test.cpp).
+// There is no outside baseline: no other library computes this test piece.
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
@@ -33,9 +36,11 @@ Setup& setup() {
 
 constexpr int kSamples = 1000;
 
+double medianFormError[2] = {0, 0};  // first order, exact (mm)
+
 double run(bool exact) {
   auto& s = setup();
-  if (exact) return coneMonteCarlo(s.machine, s.limits, s.spec, s.path, s.motion, kSamples, 7).statistics.median;
+  if (exact) return medianFormError[1] = coneMonteCarlo(s.machine, s.limits, s.spec, s.path, s.motion, kSamples, 7).statistics.median;
   std::vector<AxisSpan> spans;
   for (const auto& a : s.motion.axes) spans.push_back({a.min, a.range});
   std::mt19937_64 rng(7);
@@ -43,7 +48,7 @@ double run(bool exact) {
   for (int i = 0; i < kSamples; ++i)
     v.push_back(coneFormErrorFirstOrder(compile(s.machine, sampleErrors(*s.machine, s.limits, spans, rng)), s.nominal, s.path,
                                         s.motion).formError);
-  return boxStatistics(v).median;
+  return medianFormError[0] = boxStatistics(v).median;
 }
 
 void MonteCarloExact(benchmark::State& state) {
@@ -82,9 +87,12 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks(&reporter);
   const double exact = reporter.median("MonteCarloExact"), first = reporter.median("MonteCarloFirstOrder");
   fmt::print("\ncone Monte Carlo, {} samples x 720 points, one core (medians of 3 runs):\n", kSamples);
-  fmt::print("  exact evaluation       {:.3f} s = {:.0f} samples/s (target < 2 s)\n", exact, kSamples / exact);
+  fmt::print("  exact evaluation       {:.3f} s = {:.0f} samples/s (target >= 3000 samples/s)\n", exact, kSamples / exact);
   fmt::print("  first-order shortcut   {:.3f} s = {:.0f} samples/s; exact / first-order time ratio {:.2f}\n", first,
              kSamples / first, exact / first);
+  const double difference = std::abs(medianFormError[1] - medianFormError[0]) / medianFormError[1];
+  fmt::print("  median form error: exact {:.3f} um, first order {:.3f} um (difference {:.2f} %, limit 1 %)\n",
+             medianFormError[1] * 1e3, medianFormError[0] * 1e3, difference * 100);
   benchmark::Shutdown();
-  return 0;
+  return difference <= 0.01 ? 0 : 1;
 }

@@ -1,15 +1,20 @@
 // A 10-body structure model (bench/data/ten-bodies.yaml): the 3x3 FRF of the TCP relative to
 // the workpiece at 500 frequencies (0.4-200 Hz) at 10,000 axis positions (25 x 20 x 20 over
-// X, Y, Z), reduced to the largest |H_ij| per position. Target: under 5 s on two cores. Side
-// by side in the same run, the NumPy/SciPy implementation of the same computation
-// (bench/dynamics_numpy.py) on the same model, positions and frequencies; it runs on the
-// first kBaselinePositions positions and its time is scaled to all of them (per-position work
-// is identical). Target: at least 20x faster. The machine is shared and its speed drifts, so
-// mtacc runs once before and once after the baseline and the mean of the two is compared.
+// X, Y, Z), reduced to the largest |H_ij| per position. Side by side in the same run, the
+// NumPy implementation of the same computation (bench/dynamics_numpy.py: vectorised over
+// positions, constants built once, real arithmetic) on the same model, positions and
+// frequencies; it runs on the first kBaselinePositions positions and its time is scaled to all
+// of them (per-position work is identical). The ratio is one thread against one thread
+// (OpenBLAS limited to one); the two-thread time is printed beside it. Target: at least 10x
+// faster. The machine is shared and its speed drifts, so mtacc runs once before and once after
+// the baseline at one thread and the mean of the two is compared. Exits non-zero when a peak
+// differs from NumPy's by more than kAgreement of the position's largest peak.
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <unistd.h>
+
+#include "python_baseline.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -24,6 +29,9 @@ using namespace mtacc;
 namespace {
 
 constexpr int kBaselinePositions = 1000;
+// Relative. Two eigensolvers agree on the lowest modes only to about eps |K| / lambda_min
+// (the soft set-up elements against the stiff guides), which the peaks at those modes inherit.
+constexpr double kAgreement = 1e-5;
 
 nlohmann::json exportModel(const StructureModel& m, const std::vector<std::vector<double>>& positions,
                            const std::vector<double>& frequencies) {
@@ -63,29 +71,24 @@ int main() {
     for (int j = 0; j < 20; ++j)
       for (int k = 0; k < 20; ++k) positions.push_back({-0.6 + 1.2 * i / 24, -0.4 + 0.8 * j / 19, -0.3 + 0.6 * k / 19});
 
-  auto timed = [&](std::vector<Eigen::Matrix3d>& peaks) {
+  auto timed = [&](std::vector<Eigen::Matrix3d>& peaks, int threads) {
     const auto t0 = std::chrono::steady_clock::now();
-    peaks = frfPeaks(model, positions, frequencies, 2);
+    peaks = frfPeaks(model, positions, frequencies, threads);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
   std::vector<Eigen::Matrix3d> peaks;
-  const double before = timed(peaks);
+  const double before = timed(peaks, 1);
 
   const auto dir = std::filesystem::temp_directory_path() / ("mtacc-bench-dyn-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto file = (dir / "model.json").string();
   std::ofstream(file) << exportModel(model, positions, frequencies).dump();
-  const std::string cmd = "/usr/bin/python3 " + std::string(MTACC_BENCH_DIR) + "/dynamics_numpy.py " + file + " " +
+  const std::string cmd = std::string(MTACC_BENCH_DIR) + "/dynamics_numpy.py " + file + " " +
                           std::to_string(kBaselinePositions);
-  std::string pyOut;
-  if (FILE* p = ::popen(cmd.c_str(), "r")) {
-    char buffer[65536];
-    size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, p)) > 0) pyOut.append(buffer, n);
-    if (::pclose(p) != 0) pyOut.clear();
-  }
+  const std::string pyOut = runPythonBaseline(cmd);
   std::filesystem::remove_all(dir);
-  const double after = timed(peaks), ours = (before + after) / 2;
+  const double twoThreads = timed(peaks, 2);
+  const double after = timed(peaks, 1), ours = (before + after) / 2;
   if (pyOut.empty()) {
     fmt::print(stderr, "bench_dynamics_vs_numpy: the NumPy baseline failed ({})\n", cmd);
     return 1;
@@ -105,10 +108,14 @@ int main() {
              positions.size(), model.bodies.size(), model.dofs());
   fmt::print("largest |Hxx| over all positions: {:.4f} um/N; NumPy agrees to {:.1e} (relative) on its {} positions\n",
              largest * 1e6, worst, pp.size());
-  fmt::print("mtacc (2 threads): {:.2f} s, mean of {:.2f} s before and {:.2f} s after the baseline ({} the 5 s target)\n", ours,
-             before, after, ours < 5 ? "meets" : "MISSES");
-  fmt::print("NumPy/SciPy: {:.2f} s for {} positions, {:.1f} s scaled to {}\n", py["seconds"].get<double>(), kBaselinePositions,
-             theirs, positions.size());
-  fmt::print("ratio: mtacc is {:.1f}x faster (target >= 20x)\n", theirs / ours);
+  fmt::print("mtacc, 1 thread: {:.2f} s, mean of {:.2f} s before and {:.2f} s after the baseline; 2 threads: {:.2f} s\n", ours,
+             before, after, twoThreads);
+  fmt::print("NumPy (vectorised over positions), 1 thread: {:.2f} s for {} positions, {:.1f} s scaled to {}\n",
+             py["seconds"].get<double>(), kBaselinePositions, theirs, positions.size());
+  fmt::print("ratio at 1 thread against 1: mtacc is {:.1f}x faster (target >= 10x)\n", theirs / ours);
+  if (worst > kAgreement) {
+    fmt::print(stderr, "bench_dynamics_vs_numpy: the peaks disagree by {:.2g} (relative, limit {})\n", worst, kAgreement);
+    return 1;
+  }
   return 0;
 }

@@ -15,14 +15,17 @@ echo
 echo "== Fuzzing: every reader's harness for 8 s =="
 bash scripts/fuzz.sh 8
 echo
-echo "== Benchmark: batch forward kinematics against orocos KDL =="
+echo "== Benchmark: batch forward kinematics against orocos KDL (full frames, 1 thread each) =="
 ./build/bench/bench_fk_vs_kdl --benchmark_min_time=0.2 --benchmark_color=false
 echo
 echo "== Benchmark: cone-frustum Monte Carlo, 1000 samples, exact evaluation =="
 ./build/bench/bench_cone_monte_carlo --benchmark_color=false
 echo
-echo "== Benchmark: identification of 13 parameters from 10,000 R-test points, against SciPy =="
+echo "== Benchmark: identification of 13 parameters from 10,000 R-test points, against SciPy (analytic Jacobian, LM) =="
 ./build/bench/bench_identify_vs_scipy
 echo
-echo "== Benchmark: 3x3 FRF at 500 frequencies at 10,000 positions of a 10-body model, against NumPy/SciPy =="
+echo "== Benchmark: 3x3 FRF at 500 frequencies at 10,000 positions of a 10-body model, against vectorised NumPy =="
 ./build/bench/bench_dynamics_vs_numpy
+echo
+echo "== Benchmark: the Python batch API against the C++ call it wraps =="
+./build/bench/bench_python_batch_fk

@@ -97,8 +97,11 @@ struct RoundTripCase {
 class Identification : public ::testing::TestWithParam<RoundTripCase> {};
 
 // 100 noisy trials: every estimate must lie within its reported uncertainty's reach
-// (|error| < 4.5 u, far beyond chance for 100 x 13 normal draws), and the 95 % intervals
-// (1.96 u) must cover the true value in at least 90 % of the cases.
+// (|error| < 4.5 u, far beyond chance for 100 x 11 normal draws), and the uncertainties must
+// be neither too small nor too large: the 95 % intervals (1.96 u) cover the true value in
+// 90-99 % of the cases (1100 draws, 11 per trial correlated: +-4 binomial sigma and more),
+// and the normalised errors error / u have an RMS within 1 +- 0.15 (about 6 sigma of its
+// spread for 1100 draws; an uncertainty inflated or shrunk by 20 % fails).
 TEST_P(Identification, IdentifiedWithinUncertaintyAndIntervalsCover) {
   const auto& c = GetParam();
   const auto machine = test::bundled(c.machine);
@@ -116,6 +119,7 @@ TEST_P(Identification, IdentifiedWithinUncertaintyAndIntervalsCover) {
   const auto truthRuns = problem.runs;
 
   int covered = 0, total = 0;
+  double squaredNormalised = 0;
   const int trials = 100;
   for (int trial = 0; trial < trials; ++trial) {
     problem.runs = truthRuns;
@@ -128,13 +132,18 @@ TEST_P(Identification, IdentifiedWithinUncertaintyAndIntervalsCover) {
       const double u = result.uncertainty[static_cast<Eigen::Index>(k)];
       EXPECT_LT(std::abs(error), 4.5 * u) << problem.parameters[k].name << " trial " << trial;
       covered += std::abs(error) <= 1.96 * u;
+      squaredNormalised += (error / u) * (error / u);
       ++total;
     }
     EXPECT_NEAR(result.sigma, 0.5e-3, 0.1e-3);
   }
   const double coverage = static_cast<double>(covered) / total;
+  const double rms = std::sqrt(squaredNormalised / total);
   EXPECT_GE(coverage, 0.90) << "95 % intervals covered " << coverage;
+  EXPECT_LE(coverage, 0.99) << "95 % intervals covered " << coverage << ": uncertainties too large";
+  EXPECT_NEAR(rms, 1.0, 0.15) << "RMS of error / uncertainty";
   RecordProperty("coverage", std::to_string(coverage));
+  RecordProperty("normalised_rms", std::to_string(rms));
 }
 
 INSTANTIATE_TEST_SUITE_P(

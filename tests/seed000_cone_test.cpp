@@ -48,6 +48,10 @@ TEST(Seed000Cone, Table3_6ThroughTheConeProcedure) {
 }
 
 // Table 3.1 (L2352-2363) and §3.4: closed forms against the sampled path; reference §10.2.
+// The thesis prints the formulas of Table 3.1, not these numbers: the tilt limits are
+// |alpha -+ beta|-type closed forms evaluated here, and the rotary ranges 81.49 and 109.47
+// deg are mtacc's evaluation of eq. 3.39. The only number the thesis prints is "about 110
+// deg" for alpha = 45, beta = 60 (L2999), checked separately below.
 TEST(Seed000Cone, Table3_1RotaryRanges) {
   struct Case {
     double alpha, beta, tiltMin, tiltMax, rotaryRange;
@@ -56,7 +60,7 @@ TEST(Seed000Cone, Table3_1RotaryRanges) {
     const auto closed = rotaryRangesClosedForm(c.alpha * kDeg, c.beta * kDeg);
     EXPECT_NEAR(closed.tiltMin / kDeg, c.tiltMin, 1e-9);
     EXPECT_NEAR(closed.tiltMax / kDeg, c.tiltMax, 1e-9);
-    EXPECT_NEAR(closed.rotaryRange / kDeg, c.rotaryRange, 0.005);  // printed to 0.01 deg
+    EXPECT_NEAR(closed.rotaryRange / kDeg, c.rotaryRange, 0.005);  // our evaluation, to 0.01 deg
     const auto m = motionOn(spec(c.alpha, c.beta), 7200);
     const auto& b = axis(m, "B");
     EXPECT_NEAR(std::min(std::abs(b.min), std::abs(b.max)) / kDeg, c.tiltMin, 1e-3);
@@ -70,6 +74,12 @@ TEST(Seed000Cone, Table3_1RotaryRanges) {
   // §3.4.4, Fig. 3.24: dC/dphi at phi = 0 for alpha = 45 deg.
   EXPECT_NEAR(rotarySpeedFactorAtStart(45 * kDeg, 30 * kDeg), 2.732, 5e-4);
   EXPECT_NEAR(rotarySpeedFactorAtStart(45 * kDeg, 44 * kDeg), 40.52, 5e-3);
+}
+
+// §3.6.3 (L2995-2999): with alpha = 45, beta = 60 "the range of the axis C ... is reduced to
+// about 110 deg according to equation 3.39". "About" and the round number: within 1 deg.
+TEST(Seed000Cone, Section3_6_3RotaryRangeAbout110) {
+  EXPECT_NEAR(rotaryRangesClosedForm(45 * kDeg, 60 * kDeg).rotaryRange / kDeg, 110.0, 1.0);
 }
 
 // §3.6.2 (L2871-2932) with erratum 6: double pivot head, alpha = -45, beta = 30, gamma = 45:

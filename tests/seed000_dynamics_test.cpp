@@ -1,7 +1,7 @@
 // Seed 000 ch. 7 (reference seed000_part2_rigid_body_dynamics.md §3.2): the two bundled
 // t-Z-Y-X-b-w designs. The thesis gives no parameters, so the checks are its qualitative
 // statements about Table 7.1 (L6082-6103) and the position sweep of Fig. 7.7 (L6213-6286),
-// and the frequency range of the first dominant modes it reports.
+// and a guard on the bundled models' dominant modes (not a thesis number).
 #include <gtest/gtest.h>
 
 #include "mtacc/io/structure_yaml.hpp"
@@ -18,10 +18,12 @@ Eigen::MatrixXd table71(const std::string& name) {
   return (accelerationResponse(assembleStructure(m, kPosition1)) * kStandardGravity * 1e6).cwiseAbs();
 }
 
-// "Dominant frequency = frequency of a maximum in a spectral density curve" (L5064-5084): at
-// position 1, where Table 7.1 is evaluated, the largest peak of |Hxx| over 0-200 Hz lies in
-// the 50-120 Hz the thesis reports (106 Hz for the original, 105 Hz for the alternative).
-TEST(Seed000Dynamics, Chapter7DominantFrequencies) {
+// Not a reproduction: the bundled models' parameters were chosen so that the dominant mode
+// falls in the 50-120 Hz of chapter 6's four-body model, and the 106 / 105 Hz are mtacc's own
+// outputs, so this only guards the bundled models against an accidental change. The thesis'
+// definition used: "dominant frequency = frequency of a maximum in a spectral density curve"
+// (L5064-5084), the largest peak of |Hxx| over 0-200 Hz at position 1.
+TEST(BundledArmModels, DominantModeStaysInTheChosenRange) {
   std::vector<double> f;
   for (int i = 1; i <= 200; ++i) f.push_back(i);
   for (const char* name : {"tzyx-arm-x", "tzyx-arm-y"}) {

@@ -9,7 +9,11 @@
 //    amplitude); ECC lin over dC = 360 deg;
 //  * hysteresis: reversal of full width 10 um (+-5 um); EBBhyst "50 um/m" reproduces only as
 //    +-50 urad (reference erratum 12), i.e. a reversal of width 100 urad.
-// The thesis prints one decimal; the tolerance is +-0.1 um as the reference states.
+// The thesis prints one decimal; the tolerance is +-0.1 um as the reference states, except
+// for the hysteresis entries, which depend on the sampling (below) and are held to the
+// printed digit (+-0.05 um) at 720 points.
+// All 31 entries are tested: 19 reproduced, 12 in KnownDifferences with the reason and
+// today's value pinned, so that a change in either direction is noticed.
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
@@ -68,10 +72,16 @@ TEST_F(Table3_4, LocationErrors) {
   EXPECT_NEAR(formError("Y0Y: 10 um"), 5.8, 0.1);    // L4041
 }
 
+// A reversal is a step; after the harmonic removal its peak-to-valley depends on how close
+// the samples fall to the reversal, so these entries depend on the number of points, which
+// the thesis does not state: at 3600 points EXX gives 9.98 (printed 9.9) and EYY 10.06; at
+// 720 points (what mtacc's cone Monte Carlo uses) all three print as the thesis does.
 TEST_F(Table3_4, Hysteresis) {
-  EXPECT_NEAR(formError("EXX: {reversal: 10 um}"), 9.9, 0.1);     // L4044
-  EXPECT_NEAR(formError("EYY: {reversal: 10 um}"), 10.0, 0.1);    // L4045
-  EXPECT_NEAR(formError("EBB: {reversal: 100 urad}"), 13.3, 0.1); // L4046, +-50 urad (erratum 12)
+  path = conePath(spec, 720);
+  motion = coneMotion(nominal, spec, path);
+  EXPECT_NEAR(formError("EXX: {reversal: 10 um}"), 9.9, 0.05);      // L4044 (9.909)
+  EXPECT_NEAR(formError("EYY: {reversal: 10 um}"), 10.0, 0.05);     // L4045 (10.049)
+  EXPECT_NEAR(formError("EBB: {reversal: 100 urad}"), 13.3, 0.05);  // L4046 (13.308), +-50 urad (erratum 12)
 }
 
 TEST_F(Table3_4, LinearErrors) {
@@ -87,6 +97,48 @@ TEST_F(Table3_4, HarmonicErrors) {
   EXPECT_NEAR(formError(halfWave("EXZ", "Z")), 8.1, 0.1);  // L4054
   EXPECT_NEAR(formError(halfWave("EYZ", "Z")), 3.9, 0.1);  // L4055
   EXPECT_NEAR(formError("EZC: {harmonics: {period: 360 deg, zero: 0 deg, terms: [{order: 1, amplitude: 10 um}]}}"), 1.2, 0.1);  // L4066
+}
+
+// The 12 entries mtacc does not reproduce (reference §5, which found the same values with an
+// independent first-order model). Each is pinned at today's value to +-0.005 um and must stay
+// more than the printed digit away from the thesis; one that starts to agree moves up.
+TEST_F(Table3_4, KnownDifferences) {
+  struct Entry {
+    int line;
+    std::string yaml;
+    double printed, today;
+    const char* reason;
+  };
+  const char* origin = "tilt of a linear axis: the lever arms need the origin of the machine frame, which the thesis does not give";
+  const char* rotary = "error motion of a rotary axis: the frame, phase and sign conventions are not given (reference §3, item 13)";
+  auto harmonic = [&](const char* name, double period, int order, const char* amplitude) {
+    return fmt::format("{}: {{harmonics: {{period: {} deg, zero: 0 deg, terms: [{{order: {}, amplitude: {}}}]}}}}", name, period,
+                       order, amplitude);
+  };
+  const double b = range["B"] / kDeg;
+  const std::vector<Entry> entries = {
+      {4042, "X0C: 10 um", 3.3, 2.763,
+       "a translation of the C axis carried by B; 3.3 only if X0C acted as a constant machine-X offset like X0B"},
+      {4049, fmt::format("EBB: {{linear: {{value: 50 urad, over: {} deg}}}}", b), 0.6, 2.256,
+       "no zero of the linear B error gives less than 2.2 um; the thesis' EBBlin convention is not stated"},
+      {4056, linear("EAX", "X", "30 urad"), 0.8, 1.398, origin},
+      {4057, linear("EBY", "Y", "30 urad"), 5.7, 2.042, origin},
+      {4058, linear("EBX", "X", "30 urad"), 2.8, 1.808, origin},
+      {4059, linear("ECX", "X", "30 urad"), 0.9, 1.984, origin},
+      {4060, linear("EAY", "Y", "30 urad"), 4.2, 1.240, origin},
+      {4062, harmonic("EXB", b, 2, "10 um"), 9.8, 20.514, rotary},
+      {4063, harmonic("EXC", 360, 2, "10 um"), 11.1, 16.231, rotary},
+      {4064, harmonic("EYC", 360, 2, "10 um"), 16.7, 8.712,
+       "rotary error motion convention: an axis shift R_tilt (I - R_table) t would give 16.66 (reference §5)"},
+      {4065, harmonic("EYB", b, 1, "10 um"), 8.6, 14.899, rotary},
+      {4067, harmonic("EAB", b, 1, "30 urad"), 5.7, 3.846, rotary},
+  };
+  for (const auto& e : entries) {
+    const double value = formError(e.yaml);
+    EXPECT_NEAR(value, e.today, 0.005) << "L" << e.line << " " << e.yaml << ": today's value changed";
+    EXPECT_GT(std::abs(value - e.printed), 0.05) << "L" << e.line << " now reproduces the thesis: move it to the tests above";
+    RecordProperty(fmt::format("L{}", e.line), fmt::format("printed {} um, mtacc {:.3f} um: {}", e.printed, value, e.reason));
+  }
 }
 
 // §3.10.4 (L3906-3950): typical form-error types.

@@ -1,5 +1,5 @@
 // Seed 001 (Li, Sato et al., Precision Engineering 71 (2021)): the geometric error model of a
-// tilting-rotary-table machine with the eight errors of Table 5 (seed lines 300-302), written
+// tilting-rotary-table machine with the eight errors of Table 5 (seed lines 253-256), written
 // as eq. 2 (workpiece fixed to the C table) and eqs. 10-12 (workpiece aligned with the
 // machine at B = C = 0 through M_WC). The generic model, given the same errors through the
 // seed-001 aliases, must equal the literal equations. Both are exact products of the same

@@ -68,7 +68,16 @@ Vec3 vec3(const std::vector<double>& v, const std::string& key) {
 }
 
 double quantity(const py::object& value, Dimension d, const std::string& key) {
-  return py::isinstance<py::str>(value) ? parseQuantityAs(value.cast<std::string>(), d, key) : value.cast<double>();
+  if (py::isinstance<py::str>(value)) return parseQuantityAs(value.cast<std::string>(), d, key);
+  double v = 0;
+  try {
+    v = value.cast<double>();
+  } catch (const py::cast_error&) {
+    throw InputError(InputLocation{"", 0, key}, "expected a number (mm or rad) or a string with a unit such as '10 um'");
+  }
+  if (!std::isfinite(v) || std::abs(v) > largestMagnitude(d))
+    throw InputError(InputLocation{"", 0, key}, "not a finite number within range");
+  return v;
 }
 
 }  // namespace
@@ -108,16 +117,17 @@ PYBIND11_MODULE(_mtacc, mod) {
         for (const auto& p : nonZeroParameters(*s.machine, s.errors)) d[py::str(p.name)] = parameterValue(s.errors, p);
         return d;
       })
-      .def("fk", [](const MachineSetup& s, const Array& q, const py::object& dirs, bool nominal) {
+      .def("fk", [](const MachineSetup& s, const Array& q, const py::object& dirs, bool nominal, bool errors, int threads) {
         const auto joints_ = joints(*s.machine, q);
         const auto d = directions(dirs, joints_);
+        if (threads < 0) throw InputError(InputLocation{"", 0, "threads"}, "must be 0 (all cores) or a positive count");
         ForwardResult r;
         {
           py::gil_scoped_release release;
-          r = forwardKinematics(s, joints_, d, {nominal});
+          r = forwardKinematics(s, joints_, d, {nominal, errors, threads});
         }
-        return py::make_tuple(toArray(r.tool.positions), toArray(r.tool.directions), toArray(r.error.leftCols<3>(), 1e3),
-                              toArray(r.error.rightCols<3>(), 1e6));
+        if (!errors) return py::make_tuple(toArray(r.tool.positions), toArray(r.tool.directions));
+        return py::make_tuple(toArray(r.error.leftCols<3>(), 1e3), toArray(r.error.rightCols<3>(), 1e6));
       })
       .def("ik", [](const MachineSetup& s, const std::vector<std::vector<double>>& tcps, const std::vector<std::vector<double>>& tools,
                     const std::string& branch, bool all) {

@@ -96,14 +96,14 @@ class Machine:
         q = np.asarray(q, dtype=float)
         return q.reshape(1, -1) if q.ndim == 1 else q
 
-    def fk(self, q, directions=None, nominal=False):
-        """TCP positions (n, 3) [mm] and tool directions (n, 3) in the workpiece frame."""
-        tcp, tool, _, _ = self._core.fk(self._q(q), directions, nominal)
-        return tcp, tool
+    def fk(self, q, directions=None, nominal=False, threads=0):
+        """TCP positions (n, 3) [mm] and tool directions (n, 3) in the workpiece frame.
+        threads: 0 for every core, else that many."""
+        return self._core.fk(self._q(q), directions, nominal, False, threads)
 
-    def tcp_errors(self, q, directions=None):
+    def tcp_errors(self, q, directions=None, threads=0):
         """(n, 6): position error dx dy dz [um] and orientation error [urad], actual minus nominal."""
-        _, _, position, orientation = self._core.fk(self._q(q), directions, False)
+        position, orientation = self._core.fk(self._q(q), directions, False, True, threads)
         return np.hstack([position, orientation])
 
     def ik(self, tcp, tool=(0, 0, 1), branch="auto", all=False):

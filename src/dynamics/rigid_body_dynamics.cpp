@@ -213,32 +213,35 @@ ModalSums modalSums(const StructureMatrices& m, const Modes& modes, const std::v
       if (!block.isZero(0.0)) dampedShapes.middleRows<6>(6 * i).noalias() += block * modes.shapes.middleRows<6>(6 * j);
     }
   const Eigen::VectorXd modalDamping = modes.shapes.cwiseProduct(dampedShapes).colwise().sum().transpose();
-  using Pair = Eigen::Array2d;
-  // Per mode, contiguous and already in both lanes: w_r^2, c_r and the six products of its
+  constexpr size_t kLanes = 4;
+  using Lanes = Eigen::Array<double, kLanes, 1>;
+  // Per mode, contiguous and already in every lane: w_r^2, c_r and the six products of its
   // participations.
-  std::vector<std::array<Pair, 8>> mode(static_cast<size_t>(r));
+  std::vector<std::array<Lanes, 8>> mode(static_cast<size_t>(r));
   for (Eigen::Index k = 0; k < r; ++k) {
     const Vec3 a = participation.col(k);
     const double values[8] = {std::pow(2 * kPi * modes.frequencies[k], 2), modalDamping[k], a.x() * a.x(), a.y() * a.y(),
                               a.z() * a.z(), a.x() * a.y(), a.x() * a.z(), a.y() * a.z()};
-    for (size_t v = 0; v < 8; ++v) mode[static_cast<size_t>(k)][v] = Pair::Constant(values[v]);
+    for (size_t v = 0; v < 8; ++v) mode[static_cast<size_t>(k)][v] = Lanes::Constant(values[v]);
   }
   ModalSums out;
   const size_t nf = frequencies.size();
   for (size_t e = 0; e < 6; ++e) out.re[e].resize(nf), out.im[e].resize(nf);
-  // Two frequencies at a time, the twelve sums kept in registers over all modes.
-  for (size_t i = 0; i < nf; i += 2) {
-    const Pair w = 2 * kPi * Pair(frequencies[i], frequencies[std::min(i + 1, nf - 1)]), w2 = w * w;
-    Pair re[6], im[6];
+  // kLanes frequencies at a time (the last repeated to fill the lanes), the twelve sums kept
+  // in registers over all modes.
+  for (size_t i = 0; i < nf; i += kLanes) {
+    Lanes w;
+    for (size_t l = 0; l < kLanes; ++l) w[static_cast<Eigen::Index>(l)] = 2 * kPi * frequencies[std::min(i + l, nf - 1)];
+    const Lanes w2 = w * w;
+    Lanes re[6], im[6];
     for (int e = 0; e < 6; ++e) re[e].setZero(), im[e].setZero();
     for (const auto& md : mode) {  // 1 / (a + j b) = (a - j b) / (a^2 + b^2)
-      const Pair a = md[0] - w2, b = w * md[1], d = (a * a + b * b).inverse(), dr = a * d, di = b * d;
+      const Lanes a = md[0] - w2, b = w * md[1], d = (a * a + b * b).inverse(), dr = a * d, di = b * d;
       for (int e = 0; e < 6; ++e) re[e] += md[static_cast<size_t>(2 + e)] * dr, im[e] -= md[static_cast<size_t>(2 + e)] * di;
     }
-    for (size_t e = 0; e < 6; ++e) {
-      out.re[e][i] = re[e][0], out.im[e][i] = im[e][0];
-      if (i + 1 < nf) out.re[e][i + 1] = re[e][1], out.im[e][i + 1] = im[e][1];
-    }
+    for (size_t e = 0; e < 6; ++e)
+      for (size_t l = 0; l < kLanes && i + l < nf; ++l)
+        out.re[e][i + l] = re[e][static_cast<Eigen::Index>(l)], out.im[e][i + l] = im[e][static_cast<Eigen::Index>(l)];
   }
   return out;
 }

@@ -90,9 +90,11 @@ struct ChainPrograms {
   ChainProgram toolHookProgram, workpieceHookProgram;
   // With an ErrorFrame marker where each axis's component errors act.
   ChainProgram toolFrameProgram, workpieceFrameProgram;
-  // The TCP and tool direction after the tool program's trailing constant (which does not
-  // depend on the pose), and how many tool operations remain to apply per pose.
+  // The TCP, tool frame rotation and tool direction after the tool program's trailing
+  // constant (which does not depend on the pose), and how many tool operations remain to
+  // apply per pose.
   Vec3 tcpStart = Vec3::Zero();
+  Mat3 toolRotationStart = Mat3::Identity();
   Vec3 toolDirectionStart = Vec3::UnitZ();
   size_t toolOpsPerPose = 0;
   // Per axis (with errors): the location error transform and its derivatives with respect to

@@ -3,6 +3,7 @@
 #include "chain_program.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -19,11 +20,13 @@ void rotatePrincipal(Mat3& r, int k, double angle) {
   r.col(j) = c * cj - s * ci;
 }
 
-// A point and a direction carried through the chain one factor at a time: cheaper than
-// composing frames when only the TCP and the tool direction are wanted.
-struct PointDirection {
+// A point and N directions carried through the chain one factor at a time: cheaper than
+// composing frames and inverting one. N = 1: the TCP and the tool direction; N = 3: the
+// tool frame (its origin and the columns of its rotation).
+template <int N>
+struct PointDirections {
   Vec3 p;
-  Vec3 d;
+  std::array<Vec3, N> d;
 };
 
 // 3x3 products written out: the hot loop applies a few of them per operation.
@@ -46,11 +49,11 @@ inline void rotatePlane(Vec3& v, int i, int j, double s, double c) {
 constexpr int kNext[3] = {1, 2, 0};
 constexpr int kAfterNext[3] = {2, 0, 1};
 
-// x <- F x for each factor F handed over, or x <- F^-1 x (Inverse): a point and a direction
-// carried through a chain.
-template <bool Inverse>
+// x <- F x for each factor F handed over, or x <- F^-1 x (Inverse): a point and N
+// directions carried through a chain.
+template <bool Inverse, int N>
 struct PointTransport {
-  PointDirection x;
+  PointDirections<N> x;
   void translate(const Vec3& t) {
     if constexpr (Inverse)
       x.p -= t;
@@ -60,10 +63,10 @@ struct PointTransport {
   void transform(const Mat3& r, const Vec3& t) {
     if constexpr (Inverse) {
       x.p = transposeTimes(r, x.p - t);
-      x.d = transposeTimes(r, x.d);
+      for (auto& d : x.d) d = transposeTimes(r, d);
     } else {
       x.p = times(r, x.p) + t;
-      x.d = times(r, x.d);
+      for (auto& d : x.d) d = times(r, d);
     }
   }
   void rotate(const ChainOp& op, double angle) {
@@ -74,16 +77,29 @@ struct PointTransport {
       const int i = kNext[op.principal], j = kAfterNext[op.principal];
       if (op.hasBase) x.p -= op.base;
       rotatePlane(x.p, i, j, s, c);
-      rotatePlane(x.d, i, j, s, c);
+      for (auto& d : x.d) rotatePlane(d, i, j, s, c);
       if (op.hasBase) x.p += op.base;
     } else {
       const Mat3 r = rotationAbout(op.vector, angle);
       x.p = op.base + r * (x.p - op.base);
-      x.d = r * x.d;
+      for (auto& d : x.d) d = r * d;
     }
   }
   void mark(const ChainOp&) {}
 };
+
+// W^-1 T applied to the tool chain's start (after its trailing constant), factor by factor:
+// the tool chain from its end, then the inverted workpiece chain from the bed.
+template <int N>
+PointDirections<N> transportToWorkpiece(const KinematicModel& m, const PointDirections<N>& start, const double* q,
+                                        const int* dir) {
+  const ChainPrograms& c = *m.chains;
+  PointTransport<false, N> forward{start};
+  for (size_t i = c.toolOpsPerPose; i-- > 0;) evaluateOp(m.errors, c.toolProgram[i], q, dir, forward);
+  PointTransport<true, N> inverse{forward.x};
+  for (const auto& op : c.workpieceProgram) evaluateOp(m.errors, op, q, dir, inverse);
+  return inverse.x;
+}
 
 // T <- T F for each factor F handed over: the frame product along a chain, with rotation
 // and translation kept apart so that the compiler inlines and unrolls the products; the
@@ -135,21 +151,20 @@ Pose workpiecePose(const KinematicModel& m, const double* q, const int* dir) {
 }
 
 Pose toolInWorkpiece(const KinematicModel& m, const double* q, const int* dir) {
-  const Pose p = workpiecePose(m, q, dir).inverse(Eigen::Isometry) * toolChainPose(m, q, dir);
-  return m.aligned ? m.alignment * p : p;
+  const ChainPrograms& c = *m.chains;
+  const Mat3& r = c.toolRotationStart;
+  const auto x = transportToWorkpiece<3>(m, {c.tcpStart, {Vec3(r.col(0)), Vec3(r.col(1)), Vec3(r.col(2))}}, q, dir);
+  Pose out = Pose::Identity();
+  out.linear() << x.d[0], x.d[1], x.d[2];
+  out.translation() = x.p;
+  return m.aligned ? m.alignment * out : out;
 }
 
 ToolPoint toolPoint(const KinematicModel& m, const double* q, const int* dir) {
-  // W^-1 T applied to the TCP (origin of the tool frame) and the tool direction, factor by
-  // factor: the tool chain from its end, then the inverted workpiece chain from the bed.
   const ChainPrograms& c = *m.chains;
-  PointTransport<false> forward{{c.tcpStart, c.toolDirectionStart}};
-  for (size_t i = c.toolOpsPerPose; i-- > 0;) evaluateOp(m.errors, c.toolProgram[i], q, dir, forward);
-  PointTransport<true> inverse{forward.x};
-  for (const auto& op : c.workpieceProgram) evaluateOp(m.errors, op, q, dir, inverse);
-  const PointDirection& x = inverse.x;
-  if (m.aligned) return {m.alignment * x.p, m.alignment.linear() * x.d};
-  return {x.p, x.d};
+  const auto x = transportToWorkpiece<1>(m, {c.tcpStart, {c.toolDirectionStart}}, q, dir);
+  if (m.aligned) return {m.alignment * x.p, m.alignment.linear() * x.d[0]};
+  return {x.p, x.d[0]};
 }
 
 std::vector<Pose> errorFrames(const KinematicModel& m, const double* q) {

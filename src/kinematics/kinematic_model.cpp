@@ -204,11 +204,13 @@ KinematicModel compileModel(std::shared_ptr<const Machine> machine, const ErrorM
   c->toolFrameProgram = buildProgram(m, *c, c->toolChain, toolFrame, Markers::ErrorFrames);
   c->workpieceFrameProgram = buildProgram(m, *c, c->workpieceChain, workpieceFrame, Markers::ErrorFrames);
   c->tcpStart = Vec3::Zero();
+  c->toolRotationStart = Mat3::Identity();
   c->toolDirectionStart = machine->toolDirection;
   c->toolOpsPerPose = c->toolProgram.size();
   if (!c->toolProgram.empty() && c->toolProgram.back().kind == ChainOp::Constant) {
     const Pose& last = c->toolProgram.back().constant;
     c->tcpStart = last.translation();
+    c->toolRotationStart = last.linear();
     c->toolDirectionStart = last.linear() * machine->toolDirection;
     --c->toolOpsPerPose;
   }

@@ -37,7 +37,7 @@ int Machine::commandedAxisIndex(const std::string& axisName) const {
   return i >= 0 && axes[static_cast<size_t>(i)].commanded() ? i : -1;
 }
 
-std::string Machine::travelViolation(const std::vector<double>& q) const {
+std::string Machine::travelViolation(std::span<const double> q) const {
   for (size_t i = 0; i < q.size() && i < axes.size(); ++i) {
     const Axis& a = axes[i];
     if (!a.travel) continue;

@@ -431,7 +431,7 @@ ObservabilityReport planObservability(const IdentificationProblem& problem, int 
   State state(problem, true, threadCount(threads));
   state.evaluateAll();
   const auto cols = problemColumns(problem);
-  return analyseObservability(std::move(state.jacobian), cols.names, cols.typical);
+  return analyseObservability(std::move(state.jacobian), cols.names, cols.typical, kRankTolerance, threads);
 }
 
 IdentificationResult identify(const IdentificationProblem& problem, const IdentificationOptions& options) {
@@ -451,7 +451,7 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
   // Jacobian can be factored in place; the robust solver reads its rows.
   const bool keepJacobian = options.robust;
   out.observability = analyseObservability(keepJacobian ? Eigen::MatrixXd(holder->jacobian) : std::move(holder->jacobian),
-                                           out.columns.names, out.columns.typical);
+                                           out.columns.names, out.columns.typical, kRankTolerance, threads);
   if (!out.observability.identifiable()) {
     std::string why;
     for (const auto& f : out.observability.findings()) why += (why.empty() ? "" : "; ") + f;

@@ -2,18 +2,23 @@
 
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "mtacc/core/parallel.hpp"
+
 namespace mtacc {
 namespace {
 
-// The triangular factor R of a = QR (a tall), from the factors of two halves computed side
-// by side, in place (tall-skinny QR): R of [R_top; R_bottom]. `a` is overwritten.
-Eigen::MatrixXd triangularFactor(Eigen::Ref<Eigen::MatrixXd> a) {
+// The triangular factor R of a = QR (a tall), from the factors of two halves (tall-skinny QR):
+// R of [R_top; R_bottom], the halves side by side when two threads are allowed; the same
+// split on one thread, so that the result does not depend on the thread count. `a` is
+// overwritten.
+Eigen::MatrixXd triangularFactor(Eigen::Ref<Eigen::MatrixXd> a, int threads) {
   auto factor = [](Eigen::Ref<Eigen::MatrixXd> m) -> Eigen::MatrixXd {
     const Eigen::HouseholderQR<Eigen::Ref<Eigen::MatrixXd>> qr(m);
     return qr.matrixQR().topRows(m.cols()).triangularView<Eigen::Upper>();
@@ -21,9 +26,13 @@ Eigen::MatrixXd triangularFactor(Eigen::Ref<Eigen::MatrixXd> a) {
   const Eigen::Index n = a.cols(), half = a.rows() / 2;
   if (half < 4 * n) return factor(a);
   Eigen::MatrixXd top;
-  std::thread worker([&] { top = factor(a.topRows(half)); });
+  std::optional<std::thread> worker;
+  if (threadCount(threads) > 1)
+    worker.emplace([&] { top = factor(a.topRows(half)); });
+  else
+    top = factor(a.topRows(half));
   const Eigen::MatrixXd bottom = factor(a.bottomRows(a.rows() - half));
-  worker.join();
+  if (worker) worker->join();
   Eigen::MatrixXd both(2 * n, n);
   both << top, bottom;
   return factor(both);
@@ -44,7 +53,7 @@ int findRoot(std::vector<int>& parent, int i) {
 }  // namespace
 
 ObservabilityReport analyseObservability(Eigen::MatrixXd jacobian, const std::vector<std::string>& names,
-                                         const Eigen::VectorXd& typical, double tol) {
+                                         const Eigen::VectorXd& typical, double tol, int threads) {
   const Eigen::Index n = jacobian.cols();
   if (static_cast<Eigen::Index>(names.size()) != n || typical.size() != n)
     throw std::invalid_argument("analyseObservability: one name and one typical size per column");
@@ -55,7 +64,7 @@ ObservabilityReport analyseObservability(Eigen::MatrixXd jacobian, const std::ve
   // J = QR with Q orthonormal: R has the column norms of J and, for any column scaling D and
   // column subset, the singular values and right singular vectors of J D. All below works on
   // the small R.
-  const Eigen::MatrixXd r = jacobian.rows() > n ? triangularFactor(jacobian) : jacobian;
+  const Eigen::MatrixXd r = jacobian.rows() > n ? triangularFactor(jacobian, threads) : jacobian;
   const Eigen::VectorXd norms = r.colwise().norm().transpose();
   const double largestEffect = (norms.array() * typical.array().abs()).maxCoeff();
   std::vector<Eigen::Index> active;

@@ -148,7 +148,7 @@ IdentificationOutcome identifyParameters(const MachineSetup& setup, const Identi
   options.robust = request.robust;
   options.robustScale = request.robustScale;
   options.threads = request.threads;
-  IdentificationOutcome out{setup.machine, p.problem.runs.size(), p.given, request.robust, {}};
+  IdentificationOutcome out{setup.machine, p.problem.runs.size(), p.given, request.robust, {}, {}};
   try {
     out.result = identify(p.problem, options);
   } catch (const NotIdentifiable& e) {

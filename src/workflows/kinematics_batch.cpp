@@ -10,8 +10,7 @@ ForwardResult forwardKinematics(const MachineSetup& setup, const JointMatrix& q,
                                 const ForwardOptions& options, const std::vector<int>& lines, const std::string& file) {
   const Machine& m = *setup.machine;
   for (Eigen::Index r = 0; r < q.rows(); ++r) {
-    const std::vector<double> row(q.row(r).data(), q.row(r).data() + q.cols());
-    const auto violation = m.travelViolation(row);
+    const auto violation = m.travelViolation({q.row(r).data(), static_cast<size_t>(q.cols())});
     if (violation.empty()) continue;
     if (static_cast<size_t>(r) < lines.size()) throw InputError(InputLocation{file, lines[static_cast<size_t>(r)], ""}, "pose " + violation);
     throw InputError(InputLocation{file, 0, q.rows() == 1 ? "pose" : "row " + std::to_string(r)}, "pose " + violation);
@@ -23,6 +22,7 @@ ForwardResult forwardKinematics(const MachineSetup& setup, const JointMatrix& q,
   const auto nominal = setup.nominal();
   const auto actual = options.nominal ? nominal : setup.actual();
   toolPoints(actual, {q, direction}, out.tool, options.threads);
+  if (!options.errors) return out;
   out.error = toolErrors(actual, nominal, {q, direction}, options.threads);
   for (Eigen::Index r = 0; r < out.error.rows(); ++r)
     out.maxPositionError = std::max(out.maxPositionError, out.error.row(r).head<3>().norm());

@@ -62,5 +62,10 @@ def test_bad_arrays_and_names_raise():
         m.errors["X0Q"] = 1.0
     with pytest.raises(mtacc.InputError):
         m.errors["A0B"] = "10 um"
+    for value in (None, float("nan"), 1e300, [1.0]):
+        with pytest.raises(mtacc.InputError, match="X0B"):
+            m.errors["X0B"] = value
+    with pytest.raises(mtacc.InputError, match="threads"):
+        m.fk([[0, 0, 0, 0, 0]], threads=-1)
     with pytest.raises(mtacc.InputError):
         m.ik([0, 0, 0], [0, 0, 1], branch="sideways")

@@ -2,6 +2,7 @@
 // What a machine is: its axes, the two kinematic chains (bed -> tool, bed -> workpiece),
 // the tool and the workpiece frame. Immutable once loaded; evaluation lives in kinematics/.
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -67,7 +68,7 @@ struct Machine {
   int commandedAxisIndex(const std::string& name) const;
   // Empty when every commanded axis is within its travel, else e.g.
   // "X=500 mm beyond travel [-400, 400] mm" for the first axis outside.
-  std::string travelViolation(const std::vector<double>& q) const;
+  std::string travelViolation(std::span<const double> q) const;
   // "X=10 mm, B=-15 deg" for messages.
   std::string describePose(const std::vector<double>& q) const;
 };

@@ -7,6 +7,8 @@
 
 #include <Eigen/Core>
 
+#include "mtacc/core/parallel.hpp"
+
 namespace mtacc {
 
 struct ParameterGroup {
@@ -29,12 +31,17 @@ struct ObservabilityReport {
   std::vector<std::string> findings() const;
 };
 
+// The default relative tolerance of analyseObservability.
+constexpr double kRankTolerance = 1e-8;
+
 // `jacobian`: readings x parameters (any units; columns are normalised). A singular value
 // below relativeTolerance * the largest counts as zero; a column whose norm is below
 // relativeTolerance * the largest column norm (after multiplying by `typical`, the
 // parameters' typical sizes) has no effect. Pass the Jacobian with std::move when it is no
 // longer needed: it is then factored in place instead of copied.
+
 ObservabilityReport analyseObservability(Eigen::MatrixXd jacobian, const std::vector<std::string>& names,
-                                         const Eigen::VectorXd& typical, double relativeTolerance = 1e-8);
+                                         const Eigen::VectorXd& typical, double relativeTolerance = kRankTolerance,
+                                         int threads = kAllCores);
 
 }  // namespace mtacc

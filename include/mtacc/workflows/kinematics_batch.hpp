@@ -15,6 +15,7 @@ namespace mtacc {
 
 struct ForwardOptions {
   bool nominal = false;  // the tool points of the nominal machine (errors are still reported)
+  bool errors = true;    // also the pose errors against the nominal machine
   int threads = kAllCores;
 };
 
