@@ -17,7 +17,6 @@
 #include "python_baseline.hpp"
 
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 

@@ -120,7 +120,6 @@ PYBIND11_MODULE(_mtacc, mod) {
       .def("fk", [](const MachineSetup& s, const Array& q, const py::object& dirs, bool nominal, bool errors, int threads) {
         const auto joints_ = joints(*s.machine, q);
         const auto d = directions(dirs, joints_);
-        if (threads < 0) throw InputError(InputLocation{"", 0, "threads"}, "must be 0 (all cores) or a positive count");
         ForwardResult r;
         {
           py::gil_scoped_release release;

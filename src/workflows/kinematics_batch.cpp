@@ -9,6 +9,7 @@ namespace mtacc {
 ForwardResult forwardKinematics(const MachineSetup& setup, const JointMatrix& q, const DirectionMatrix& direction,
                                 const ForwardOptions& options, const std::vector<int>& lines, const std::string& file) {
   const Machine& m = *setup.machine;
+  if (options.threads < 0) throw InputError(InputLocation{"", 0, "threads"}, "must be 0 (all cores) or a positive count");
   for (Eigen::Index r = 0; r < q.rows(); ++r) {
     const auto violation = m.travelViolation({q.row(r).data(), static_cast<size_t>(q.cols())});
     if (violation.empty()) continue;

@@ -39,7 +39,6 @@ constexpr double kRankTolerance = 1e-8;
 // relativeTolerance * the largest column norm (after multiplying by `typical`, the
 // parameters' typical sizes) has no effect. Pass the Jacobian with std::move when it is no
 // longer needed: it is then factored in place instead of copied.
-
 ObservabilityReport analyseObservability(Eigen::MatrixXd jacobian, const std::vector<std::string>& names,
                                          const Eigen::VectorXd& typical, double relativeTolerance = kRankTolerance,
                                          int threads = kAllCores);
