@@ -215,15 +215,15 @@ TEST_F(CliBadInput, SpindleNameTakenByAnAxis) {
 
 TEST_F(CliBadInput, StructurePointOffItsBeam) {
   std::string text = bundledStructure("tzyx-arm-x");
-  const std::string tcp = "tcp: {body: ram, point: [0 mm, 1100 mm, -100 mm]}";
+  const std::string tcp = "tcp: {body: ram, point: [200 mm, 1100 mm, -100 mm]}";
   ASSERT_NE(text.find(tcp), std::string::npos);
   for (const auto& [z, reason] : {std::pair{"-1e300 mm", "out of range"}, {"-100000 mm", "not along beam 'ram'"},
                                    {"1300 mm", "not along beam 'ram'"}}) {
     SCOPED_TRACE(z);
     std::string bad = text;
-    bad.replace(bad.find(tcp), tcp.size(), std::string("tcp: {body: ram, point: [0 mm, 1100 mm, ") + z + "]}");
+    bad.replace(bad.find(tcp), tcp.size(), std::string("tcp: {body: ram, point: [200 mm, 1100 mm, ") + z + "]}");
     const auto f = write("s.yaml", bad);
-    expectCleanFailure(run("dynamics modes " + f + " -o " + output()), {f + ":51: tcp.point", reason});
+    expectCleanFailure(run("dynamics modes " + f + " -o " + output()), {f + ":53: tcp.point", reason});
   }
 }
 

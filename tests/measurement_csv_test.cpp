@@ -55,19 +55,15 @@ TEST(MeasurementCsv, BallbarExportWithoutAxisColumns) {
 
 TEST(MeasurementCsv, BadPlansNameTheKey) {
   const auto nominal = compileNominal(test::bundled("tilting-table"));
-  try {
-    parseTestPlan(nominal, "runs:\n  - circle: {plane: XY, radius: 100}\n", "plan.yaml");
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.where().line, 2);
-    EXPECT_EQ(e.where().key, "runs[0].circle.radius");
-  }
-  try {
+  const auto unitless = test::thrown<InputError>([&] { parseTestPlan(nominal, "runs:\n  - circle: {plane: XY, radius: 100}\n", "plan.yaml"); });
+  ASSERT_TRUE(unitless);
+  EXPECT_EQ(unitless->where().line, 2);
+  EXPECT_EQ(unitless->where().key, "runs[0].circle.radius");
+  const auto linear = test::thrown<InputError>([&] {
     parseTestPlan(nominal, "runs:\n  - sphere: {axis: A, from: 0 deg, to: 90 deg, spheres: [[0 mm, 0 mm, 0 mm]]}\n", "plan.yaml");
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("not a rotary axis"), std::string::npos) << e.what();
-  }
+  });
+  ASSERT_TRUE(linear);
+  EXPECT_NE(std::string(linear->what()).find("not a rotary axis"), std::string::npos) << linear->what();
   EXPECT_THROW(parseTestPlan(nominal, "runs:\n  - helix: {}\n", "plan.yaml"), InputError);
 }
 

@@ -2,9 +2,12 @@
 // shared/reference/seed000_part1_cone_test_piece.md with the seed's line numbers.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <cmath>
 
 #include "mtacc/procedures/cone.hpp"
+#include "reference_values.hpp"
 #include "test_helpers.hpp"
 
 namespace mtacc {
@@ -30,21 +33,28 @@ const AxisMotion& axis(const ConeMotion& m, const std::string& name) {
   throw std::runtime_error(name);
 }
 
-// Table 3.6 (L4202-4222), alpha and beta swapped in print (erratum 9); printed to 0.1 mm.
+// Table 3.6 (L4202-4222), alpha and beta swapped in print (erratum 9); printed to 0.1 mm and 1 deg.
 TEST(Seed000Cone, Table3_6ThroughTheConeProcedure) {
+  const char* digit = "half the printed digit";
+  auto range = [&](const ConeMotion& m, const char* setup, const char* name, double printed) {
+    const bool rotary = name[0] == 'B' || name[0] == 'C';
+    const test::Printed p{"000", "Table 3.6, L4202-4222", fmt::format("{} set-up, range of {}", setup, name), printed,
+                          rotary ? 0 : 1, rotary ? "deg" : "mm"};
+    test::expectReproduced(p, axis(m, name).range / (rotary ? kDeg : 1.0), rotary ? 0.5 : 0.05, digit);
+  };
   const auto proposed = motionOn(spec(45, 30));
-  EXPECT_NEAR(axis(proposed, "X").range, 185.7, 0.05);
-  EXPECT_NEAR(axis(proposed, "Y").range, 90.0, 0.05);
-  EXPECT_NEAR(axis(proposed, "Z").range, 185.7, 0.05);
-  EXPECT_NEAR(axis(proposed, "B").range / kDeg, 60.0, 0.05);
-  EXPECT_NEAR(axis(proposed, "C").range / kDeg, 360.0, 0.2);  // sampled at 0.1 deg steps of phi
   const auto comparison = motionOn(spec(45, 30, 44.8, Vec3(48.9, 0, 66.1)));
-  EXPECT_NEAR(axis(comparison, "X").range, 36.0, 0.05);
-  EXPECT_NEAR(axis(comparison, "Y").range, 142.6, 0.05);
-  EXPECT_NEAR(axis(comparison, "Z").range, 13.2, 0.05);
+  for (const auto& [name, printed] : {std::pair{"X", 185.7}, {"Y", 90.0}, {"Z", 185.7}, {"B", 60.0}, {"C", 360.0}})
+    range(proposed, "proposed", name, printed);
+  for (const auto& [name, printed] : {std::pair{"X", 36.0}, {"Y", 142.6}, {"Z", 13.2}, {"B", 60.0}, {"C", 360.0}})
+    range(comparison, "comparison", name, printed);
   // L4224-4234: in the comparison set-up X reverses 4 times, in the proposed one twice.
-  EXPECT_EQ(axis(comparison, "X").reversalsPhi.size(), 4u);
-  EXPECT_EQ(axis(proposed, "X").reversalsPhi.size(), 2u);
+  auto reversals = [&](const ConeMotion& m, const char* setup, double printed) {
+    test::expectReproduced({"000", "Section 3.6, L4224-4234", fmt::format("{} set-up, reversals of X", setup), printed, 0, ""},
+                           static_cast<double>(axis(m, "X").reversalsPhi.size()), 0.0, "a count");
+  };
+  reversals(comparison, "comparison", 4);
+  reversals(proposed, "proposed", 2);
 }
 
 // Table 3.1 (L2352-2363) and §3.4: closed forms against the sampled path; reference §10.2.
@@ -79,7 +89,8 @@ TEST(Seed000Cone, Table3_1RotaryRanges) {
 // §3.6.3 (L2995-2999): with alpha = 45, beta = 60 "the range of the axis C ... is reduced to
 // about 110 deg according to equation 3.39". "About" and the round number: within 1 deg.
 TEST(Seed000Cone, Section3_6_3RotaryRangeAbout110) {
-  EXPECT_NEAR(rotaryRangesClosedForm(45 * kDeg, 60 * kDeg).rotaryRange / kDeg, 110.0, 1.0);
+  test::expectReproduced({"000", "Section 3.6.3, L2995-2999", "range of C for alpha 45, beta 60 deg (eq. 3.39)", 110.0, 0, "deg"},
+                         rotaryRangesClosedForm(45 * kDeg, 60 * kDeg).rotaryRange / kDeg, 1.0, "\"about 110 deg\"");
 }
 
 // §3.6.2 (L2871-2932) with erratum 6: double pivot head, alpha = -45, beta = 30, gamma = 45:

@@ -2,14 +2,21 @@
 // data/limits/seed000-table3.9.yaml.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include "mtacc/io/limits_yaml.hpp"
 #include "mtacc/io/bundled_data.hpp"
 #include "mtacc/io/machine_yaml.hpp"
 #include "mtacc/procedures/monte_carlo.hpp"
+#include "reference_values.hpp"
 #include "test_helpers.hpp"
 
 namespace mtacc {
 namespace {
+
+// Today's statistics of Table3_5MonteCarloDistribution, um.
+constexpr double kTodayMax = 21.479, kTodayUpperQuartile = 12.003, kTodayMedian = 9.868, kTodayLowerQuartile = 7.909,
+                 kTodayMin = 3.371;
 
 std::string limitsFile() { return bundledDataDir() + "/limits/seed000-table3.9.yaml"; }
 
@@ -37,26 +44,39 @@ TEST(Seed000MonteCarlo, ExactAndFirstOrderAgreeForTable3_9SizedErrors) {
   }
 }
 
-// Table 3.5 (L4133-4145) gives the distribution of the thesis' model: median 8.8 um, quartiles
-// 6.9 / 11.0 um. The reference (§6.6) notes that conventions and random phases of the thesis'
-// model are not fully given, so only the order of magnitude is comparable: the median must lie
-// within a factor of two of 8.8 um, and the quartiles must bracket it.
-TEST(Seed000MonteCarlo, Table3_5MonteCarloOrderOfMagnitude) {
+// Table 3.5 (L4133-4145): the distribution of 1000 random combinations of the thesis' model.
+// Its conventions and random phases are not fully given (reference section 6.6) and 12 of the
+// 31 single-error values of Table 3.4 differ, so no statistic is reproduced: each is pinned
+// (1000 samples, seed 11) and must keep the thesis' order of magnitude (within a factor of
+// two). The circular form of the cylinder (first column) is a test piece mtacc does not have.
+TEST(Seed000MonteCarlo, Table3_5MonteCarloDistribution) {
   const auto machine = test::bundled("tilting-table");
   const auto limits = loadErrorLimits(*machine, limitsFile());
   const ConeSpec spec;
   const auto path = conePath(spec, 720);
   const auto motion = coneMotion(compileNominal(machine), spec, path);
-  const auto mc = coneMonteCarlo(machine, limits, spec, path, motion, 200, 11);
-  const auto& st = mc.statistics;
-  EXPECT_GT(st.median * 1e3, 8.8 / 2);
-  EXPECT_LT(st.median * 1e3, 8.8 * 2);
-  EXPECT_LE(st.min, st.lowerQuartile);
-  EXPECT_LE(st.lowerQuartile, st.median);
-  EXPECT_LE(st.median, st.upperQuartile);
-  EXPECT_LE(st.upperQuartile, st.max);
-  std::printf("Monte Carlo (200 samples): min %.2f, LQ %.2f, median %.2f, UQ %.2f, max %.2f um\n", st.min * 1e3,
-              st.lowerQuartile * 1e3, st.median * 1e3, st.upperQuartile * 1e3, st.max * 1e3);
+  const auto st = coneMonteCarlo(machine, limits, spec, path, motion, 1000, 11).statistics;
+  const char* reason = "the thesis' random phases and conventions are not given, and 12 entries of Table 3.4 differ";
+  struct Row {
+    const char* name;
+    double cone, today, cylinder;
+  };
+  const Row rows[] = {{"maximum", 23.9, st.max * 1e3, 13.6},
+                      {"upper quartile", 11.0, st.upperQuartile * 1e3, 6.7},
+                      {"median", 8.8, st.median * 1e3, 5.2},
+                      {"lower quartile", 6.9, st.lowerQuartile * 1e3, 4.1},
+                      {"minimum", 2.6, st.min * 1e3, 1.3}};
+  const double pinned[] = {kTodayMax, kTodayUpperQuartile, kTodayMedian, kTodayLowerQuartile, kTodayMin};
+  for (size_t i = 0; i < 5; ++i) {
+    const auto& r = rows[i];
+    test::expectKnownDifference({"000", "Table 3.5, L4133-4145", fmt::format("cone form error, {}", r.name), r.cone, 1, "um"},
+                                r.today, pinned[i], 0.01, reason);
+    EXPECT_GT(r.today, r.cone / 2) << r.name;
+    EXPECT_LT(r.today, r.cone * 2) << r.name;
+    test::recordNotComputed({"000", "Table 3.5, L4133-4145", fmt::format("circular form of the cylinder, {}", r.name), r.cylinder,
+                             1, "um"},
+                            "the cylinder test piece is not modelled");
+  }
 }
 
 TEST(Seed000MonteCarlo, BoxStatistics) {

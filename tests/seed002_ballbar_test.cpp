@@ -7,12 +7,15 @@
 
 #include <map>
 
+#include <fmt/format.h>
+
 #include "mtacc/errors/aliases.hpp"
 #include "mtacc/measurement/circular_evaluation.hpp"
 #include "mtacc/measurement/identification.hpp"
 #include "mtacc/measurement/simulation.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
 #include "mtacc/procedures/ballbar_seed002.hpp"
+#include "reference_values.hpp"
 #include "test_helpers.hpp"
 
 namespace mtacc {
@@ -143,8 +146,9 @@ Deviations seed002FromIso(const Machine& m, const ErrorModel& e) {
 const std::vector<std::string> kIsoTwelve = {"X0C1", "Z0C1", "A0C1", "A0B", "B0B", "C0B",
                                              "A0Y",  "B0X",  "X0C",  "Y0C", "A0C", "B0C"};
 
-// Reference §12.2: the closed forms applied to an exact simulation of the initial values
-// return them within 0.052 arcsec and 0.013 um (second-order terms, e^2 / L_B).
+// Reference section 12.2: the closed forms applied to an exact simulation of the initial values
+// return them within 0.052 arcsec and 0.013 um (second-order terms, e^2 / L_B). The simulated
+// eccentricities themselves are compared with Table 6 (L1635-1748), printed to 0.01 um.
 TEST(Seed002Ballbar, Eqs17To28RecoverTable7InitialFromTheExactSimulation) {
   const auto machine = test::bundled("multitasking-b-c");
   const auto nominal = compileNominal(machine);
@@ -161,6 +165,35 @@ TEST(Seed002Ballbar, Eqs17To28RecoverTable7InitialFromTheExactSimulation) {
   for (const auto& [name, truth] : kTable7Initial) {
     const bool angle = name[0] != 'd';
     EXPECT_NEAR(got.at(name), truth, angle ? 0.06 * as : 0.015 * um) << name;
+  }
+  // Table 6 against the exact simulation of Table 7's initial values. The paper's Table 6 is
+  // not the first-order prediction of those values either: it differs from it by up to 0.37
+  // um (e_x of B X), which the paper does not explain; a T-ball offset of about (0.09, 0.19,
+  // -0.37) um reproduces 10 of the 12 (reference section 12.2). Those of C axial agree.
+  struct Entry {
+    const char* run;
+    const char* component;
+    double printed;
+    bool reproduced;
+    double today;
+  };
+  const Entry entries[] = {{"B X", "ex", 16.63, false, 17.002},         {"B X", "ez", -4.02, false, -4.118},
+                           {"B Y", "ex", -11.24, false, -11.151},       {"B Y", "ez", 10.05, false, 10.085},
+                           {"C axial", "ex", 0.29, true, 0.289},        {"C axial", "ey", 0.05, true, 0.051},
+                           {"C radial (a)", "ex", 25.73, false, 25.809}, {"C radial (a)", "ey", -19.59, false, -19.406},
+                           {"C radial (b)", "ex", 26.89, false, 26.968}, {"C radial (b)", "ey", -20.00, false, -19.806},
+                           {"C radial (c)", "ex", 28.97, false, 29.066}, {"C radial (c)", "ey", -23.26, false, -23.058}};
+  const double simulated[] = {ecc.bxEx, ecc.bxEz, ecc.byEx, ecc.byEz, ecc.caEx, ecc.caEy,
+                              ecc.crEx, ecc.crEy, ecc.cr1Ex, ecc.cr1Ey, ecc.cr2Ex, ecc.cr2Ey};
+  for (size_t i = 0; i < std::size(entries); ++i) {
+    const auto& en = entries[i];
+    const test::Printed p{"002", "Table 6, L1635-1748", fmt::format("{} {}", en.run, en.component), en.printed, 2, "um"};
+    if (en.reproduced)
+      test::expectReproduced(p, simulated[i] / um, 0.005, "half the printed digit");
+    else
+      test::expectKnownDifference(p, simulated[i] / um, en.today, 0.001,
+                                  "Table 6 differs from the first-order prediction of Table 7's initial values by up to 0.37 um, "
+                                  "unexplained in the paper (reference section 12.2)");
   }
 }
 

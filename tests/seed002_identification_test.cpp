@@ -8,6 +8,7 @@
 
 #include "mtacc/core/units.hpp"
 #include "mtacc/procedures/ballbar_seed002.hpp"
+#include "reference_values.hpp"
 
 namespace mtacc {
 namespace {
@@ -24,18 +25,22 @@ TEST(Seed002Identification, Table7FromTable6ThroughEqs17To28) {
   const Seed002Setup s{360.0, 410.0, 50.0, 300.0, 340.0};  // L570 and the footnotes of Table 6
   const auto d = identifySeed002(e, s);
   const double as = 1.0 / kArcsec;
-  EXPECT_NEAR(d.dxBT / um, 10.96, 0.005);     // L1758
-  EXPECT_NEAR(d.dzBT / um, 16.63, 0.005);     // L1765
-  EXPECT_NEAR(d.alphaBT * as, 7.69, 0.005);   // L1772
-  EXPECT_NEAR(d.alphaXB * as, 3.44, 0.005);   // L1779
-  EXPECT_NEAR(d.betaXB * as, 3.80, 0.005);    // L1786
-  EXPECT_NEAR(d.gammaXB * as, 6.44, 0.005);   // L1793
-  EXPECT_NEAR(d.alphaYZ * as, 2.32, 0.005);   // L1800
-  EXPECT_NEAR(d.betaYZ * as, 4.79, 0.005);    // L1807
-  EXPECT_NEAR(d.dxCZ / um, 13.01, 0.005);     // L1814
-  EXPECT_NEAR(d.dyCZ / um, 6.96, 0.005);      // L1821
-  EXPECT_NEAR(d.alphaCZ * as, 2.11, 0.005);   // L1828
-  EXPECT_NEAR(d.betaCZ * as, 5.98, 0.005);    // L1835
+  struct Entry {
+    int line;
+    const char* name;
+    double computed, printed;
+    const char* unit;
+  };
+  const Entry entries[] = {{1758, "dxBT", d.dxBT / um, 10.96, "um"},      {1765, "dzBT", d.dzBT / um, 16.63, "um"},
+                           {1772, "alphaBT", d.alphaBT * as, 7.69, "arcsec"}, {1779, "alphaXB", d.alphaXB * as, 3.44, "arcsec"},
+                           {1786, "betaXB", d.betaXB * as, 3.80, "arcsec"},   {1793, "gammaXB", d.gammaXB * as, 6.44, "arcsec"},
+                           {1800, "alphaYZ", d.alphaYZ * as, 2.32, "arcsec"}, {1807, "betaYZ", d.betaYZ * as, 4.79, "arcsec"},
+                           {1814, "dxCZ", d.dxCZ / um, 13.01, "um"},          {1821, "dyCZ", d.dyCZ / um, 6.96, "um"},
+                           {1828, "alphaCZ", d.alphaCZ * as, 2.11, "arcsec"}, {1835, "betaCZ", d.betaCZ * as, 5.98, "arcsec"}};
+  for (const auto& e : entries)
+    test::expectReproduced({"002", "Table 7, L" + std::to_string(e.line), std::string(e.name) + " identified from Table 6", e.printed, 2,
+                            e.unit},
+                           e.computed, 0.005, "half the printed digit");
 }
 
 TEST(Seed002Identification, UnseparableSetupIsRefused) {

@@ -1,5 +1,8 @@
 #pragma once
+#include <gtest/gtest.h>
+
 #include <memory>
+#include <optional>
 #include <random>
 #include <vector>
 #include <string>
@@ -10,6 +13,20 @@
 #include "mtacc/io/machine_yaml.hpp"
 
 namespace mtacc::test {
+
+// The exception of type E that `f` throws, for a test to inspect its message; a test failure
+// and nothing when `f` throws none. Any other exception propagates and fails the test. The one
+// catch in the tests: each EXPECT_THROW that needs the message goes through here.
+template <class E, class F>
+std::optional<E> thrown(F&& f) {
+  try {
+    f();
+  } catch (const E& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no exception thrown";
+  return std::nullopt;
+}
 
 inline std::shared_ptr<const Machine> bundled(const std::string& name) {
   return std::make_shared<const Machine>(loadMachine(name));

@@ -1,0 +1,145 @@
+#!/usr/bin/python3
+"""docs/reference-results.md from the reference tests' own output.
+
+Every number a source document prints that a Seed* test compares with mtacc is recorded by
+tests/reference_values.cpp as a test property; this script runs those tests and writes the
+table of them, so the document cannot drift from what the tests check.
+
+  reference_results.py TEST_BINARY OUTPUT           write OUTPUT
+  reference_results.py TEST_BINARY OUTPUT --check   fail when OUTPUT is not what the tests give
+"""
+import argparse
+import collections
+import difflib
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+SEEDS = {
+    "000": ("Seed 000: Bossoni, ETH thesis (cone-frustum test piece, rigid-body dynamics)",
+            "seed000_part1_cone_test_piece.md, seed000_part2_rigid_body_dynamics.md"),
+    "001": ("Seed 001: Li, Sato et al., the cubic machining test", "seed001_cubic_machining_test.md"),
+    "002": ("Seed 002: ballbar identification on a multi-tasking machine", "seed002_ballbar_multitasking.md"),
+    "003": ("Seed 003: error model, direct measurements and hole plate", "seed003_error_model_holeplate.md"),
+    "004": ("Seed 004: decomposition of measured TCP errors", "seed004_error_decomposition.md"),
+}
+# Seeds whose printed numbers need a capability that is not built yet.
+PENDING = {
+    "001": "Its printed numbers are the machined zone heights and the intentional-error cases "
+           "(Table 5, Section 5.3), which need the machined surface (issue 15). Its equations are "
+           "checked symbolically by Seed001WorkpieceFrame.*.",
+    "003": "Its printed numbers are the fitted error curves and the hole-plate results, which need "
+           "the measurement-to-model chain (issue 16). Its Appendix A transforms are checked by "
+           "Seed003AppendixA.*.",
+    "004": "Its printed numbers belong to the decomposition of measured TCP errors (issue 18).",
+}
+FIELDS = ["seed", "where", "quantity", "printed", "mtacc", "difference", "unit", "verdict"]
+
+
+def fail(message):
+    print(f"reference_results.py: {message}", file=sys.stderr)
+    sys.exit(1)
+
+
+def recorded(binary):
+    """The recorded rows, in the order the tests ran, each with its test's name."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "reference.json")
+        run = subprocess.run([binary, "--gtest_filter=Seed*", f"--gtest_output=json:{out}", "--gtest_brief=1"],
+                             capture_output=True, text=True)
+        if run.returncode != 0:
+            fail(f"the reference tests failed, so their numbers are not recorded:\n{run.stdout[-3000:]}")
+        with open(out, encoding="utf-8") as f:
+            report = json.load(f)
+    rows = []
+    for suite in report["testsuites"]:
+        for case in suite["testsuite"]:
+            for key, value in case.items():
+                if not key.startswith("reference "):
+                    continue
+                # googletest escapes each byte of a property on its own.
+                fields = value.encode("latin-1").decode("utf-8").split("\t")
+                if len(fields) != len(FIELDS):
+                    fail(f"{suite['name']}.{case['name']}: malformed record {value!r}")
+                row = dict(zip(FIELDS, fields))
+                row["test"] = f"{suite['name']}.{case['name']}"
+                rows.append(row)
+    if not rows:
+        fail("no reference numbers were recorded")
+    return rows
+
+
+def first_line(where):
+    """4202 for "L4202-4222": tables in the order of the source."""
+    digits = where.lstrip("L").split("-")[0]
+    return int(digits) if digits.isdigit() else 0
+
+
+def verdict_kind(verdict):
+    return verdict.split(":")[0].split(" within")[0]
+
+
+def document(rows):
+    by_seed = collections.defaultdict(list)
+    for row in rows:
+        by_seed[row["seed"]].append(row)
+    out = ["# Reference results", "",
+           "Every number a source document prints that mtacc computes, next to mtacc's value. "
+           "**Generated** by `scripts/reference_results.py` from the reference tests' own output "
+           "(`tests/reference_values.cpp`); the test `ReferenceResults.DocumentIsCurrent` fails when this "
+           "file is not what the tests give. Do not edit it by hand: change the tests and run",
+           "", "    /usr/bin/python3 scripts/reference_results.py build/tests/mtacc_tests docs/reference-results.md", "",
+           "Verdicts: **reproduced** within the stated tolerance; **known difference** with the reason found "
+           "(today's value is pinned by the test, so a change is noticed; one that starts to agree fails until "
+           "it is moved to reproduced); **not computed** with the reason. Difference = mtacc − printed. "
+           "The extractions in `../shared/reference/` give the derivations behind each reason.", "",
+           "| seed | reproduced | known difference | not computed |", "|---|---|---|---|"]
+    for seed in SEEDS:
+        counts = collections.Counter(verdict_kind(r["verdict"]) for r in by_seed.get(seed, []))
+        out.append(f"| {seed} | {counts['reproduced']} | {counts['known difference']} | {counts['not computed']} |")
+    for seed, (title, extraction) in SEEDS.items():
+        out += ["", f"## {title}", "", f"Extraction: `{extraction}`."]
+        if seed in PENDING:
+            out += ["", PENDING[seed]]
+        tables = collections.OrderedDict()
+        for row in by_seed.get(seed, []):
+            table, _, line = row["where"].partition(", ")
+            tables.setdefault(table, []).append((line, row))
+        for table, entries in sorted(tables.items(), key=lambda t: first_line(t[1][0][0])):
+            out += ["", f"### {table}", "", "| line | quantity | printed | mtacc | difference | unit | verdict | test |",
+                    "|---|---|---|---|---|---|---|---|"]
+            for line, r in entries:
+                cells = [line, r["quantity"], r["printed"], r["mtacc"] or "–", r["difference"] or "–", r["unit"],
+                         r["verdict"], f"`{r['test']}`"]
+                out.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
+    return "\n".join(out) + "\n"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("binary")
+    parser.add_argument("output")
+    parser.add_argument("--check", action="store_true")
+    args = parser.parse_args()
+    text = document(recorded(args.binary))
+    if args.check:
+        try:
+            with open(args.output, encoding="utf-8") as f:
+                current = f.read()
+        except OSError as e:
+            fail(f"{args.output}: {e.strerror}")
+        if current != text:
+            diff = difflib.unified_diff(current.splitlines(), text.splitlines(), args.output, "the tests' output", lineterm="")
+            print("\n".join(list(diff)[:60]))
+            fail(f"{args.output} is not what the tests give: run scripts/reference_results.py {args.binary} {args.output}")
+        return
+    folder = os.path.dirname(os.path.abspath(args.output))
+    with tempfile.NamedTemporaryFile("w", encoding="utf-8", dir=folder, delete=False) as f:
+        f.write(text)
+    os.replace(f.name, args.output)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,30 @@
+#pragma once
+// A number a source document prints, compared with mtacc's and recorded as a test property;
+// scripts/reference_results.py gathers the properties of every Seed* test into
+// docs/reference-results.md, so the document is the tests' own output and cannot drift.
+#include <string>
+
+namespace mtacc::test {
+
+struct Printed {
+  std::string seed;      // "000" ... "004"
+  std::string where;     // table or section and the seed's line, "Table 3.4, L4034"
+  std::string quantity;  // what the number is, "form error, C0Y = 30 urad"
+  double value;
+  int decimals;          // as printed
+  std::string unit;
+};
+
+// Reproduced: |mtacc - printed| <= tolerance, which `why` justifies (usually half the last
+// printed digit).
+void expectReproduced(const Printed& printed, double mtacc, double tolerance, const std::string& why);
+
+// Not reproduced, for `reason`. Today's value is pinned to +-pin so that a change is noticed,
+// and it must stay more than half the last printed digit away from the printed value: one that
+// starts to agree has to be moved to expectReproduced.
+void expectKnownDifference(const Printed& printed, double mtacc, double today, double pin, const std::string& reason);
+
+// A printed number the library does not compute yet, listed with the reason.
+void recordNotComputed(const Printed& printed, const std::string& reason);
+
+}  // namespace mtacc::test
