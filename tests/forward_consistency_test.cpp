@@ -75,3 +75,43 @@ TEST(ForwardConsistency, BatchOnTwoThreadsEqualsOneThread) {
 
 }  // namespace
 }  // namespace mtacc
+
+namespace mtacc {
+namespace {
+
+// The compiled model groups harmonic terms by frequency (integer multiples from the multiple-
+// angle product) and folds polynomial and reversal terms: on a 3-axis machine the TCP's X
+// deviation is EXX itself, which must equal ErrorFunction::value to rounding.
+TEST(ForwardConsistency, CompiledComponentErrorsEqualTheErrorFunction) {
+  const auto machine = test::bundled("three-axis-vertical");
+  const auto nominal = compileNominal(machine);
+  const int x = machine->axisIndex("X");
+  const double lo = machine->axes[static_cast<size_t>(x)].travel->min, range = machine->axes[static_cast<size_t>(x)].travel->max - lo;
+  ErrorFunction f;
+  for (const int order : {1, 2, 3, 5, 16, 17}) f.add(HarmonicTerm{2 * range, lo, order, 1e-3 / order, 0.3 * order});
+  f.add(HarmonicTerm{2 * range / 3, lo, 1, 2e-4, 1.1});    // the third harmonic again, as seed 000's limits write it
+  f.add(HarmonicTerm{range, lo + 7.0, 2, 3e-4, -0.4});     // another zero
+  f.add(HarmonicTerm{30.0, 0.0, 1, 5e-4, 2.0, true});      // a pitch error
+  f.add(PolynomialTerm{lo, range, {1e-3, -2e-3, 5e-4}});
+  f.add(ReversalTerm{4e-3});
+  f.add(ReversalTerm{-1e-3});
+  auto errors = ErrorModel::zero(*machine);
+  errors.axes[static_cast<size_t>(x)].motion[0] = f;
+  const auto model = compile(machine, errors);
+  auto unit = ErrorModel::zero(*machine);
+  unit.axes[static_cast<size_t>(x)].motion[0].add(PolynomialTerm{0.0, 1.0, {1.0}});
+  std::vector<double> q0(3, 0.0);
+  const double sign = toolPoint(compile(machine, unit), q0.data()).position.x() - toolPoint(nominal, q0.data()).position.x();
+  ASSERT_NEAR(std::abs(sign), 1.0, 1e-12);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 500; ++trial) {
+    const auto q = test::randomPose(*machine, rng);
+    const std::vector<int> dir = {static_cast<int>(3 * u(rng)) - 1, 0, 0};
+    const double deviation = toolPoint(model, q.data(), dir.data()).position.x() - toolPoint(nominal, q.data(), dir.data()).position.x();
+    EXPECT_NEAR(deviation, sign * f.value(q[static_cast<size_t>(x)], dir[0]), 1e-12) << "X = " << q[static_cast<size_t>(x)];
+  }
+}
+
+}  // namespace
+}  // namespace mtacc

@@ -105,11 +105,7 @@ GridLocation locateInGridSearch(const std::vector<double>& positions, double x) 
 
 void ErrorFunction::add(ErrorTerm term) { terms_.push_back(std::move(term)); }
 
-double ErrorFunction::value(double q, int direction) const { return sum(q, direction, false); }
-
-double ErrorFunction::valueWithoutTables(double q, int direction) const { return sum(q, direction, true); }
-
-double ErrorFunction::sum(double q, int direction, bool skipTables) const {
+double ErrorFunction::value(double q, int direction) const {
   double sum = 0.0;
   for (const auto& term : terms_) {
     sum += std::visit(
@@ -120,7 +116,7 @@ double ErrorFunction::sum(double q, int direction, bool skipTables) const {
                      return v;
                    },
                    [&](const HarmonicTerm& h) { return h.amplitude * harmonicBasis(h, q); },
-                   [&](const TableTerm& t) { return skipTables ? 0.0 : t.valueAt(t.locate(q)); },
+                   [&](const TableTerm& t) { return t.valueAt(t.locate(q)); },
                    [&](const ReversalTerm& r) { return r.width * reversalBasis(direction); }},
         term);
   }

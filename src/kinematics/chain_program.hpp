@@ -4,6 +4,7 @@
 // kinematics, point and parameter Jacobians and error frames all run these programs; they
 // differ only in how they compose the factors (a frame product, or a point carried through).
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "mtacc/kinematics/kinematic_model.hpp"
@@ -45,7 +46,11 @@ struct ChainOp {
   // MotionError: table terms grouped by their grid, so that each grid is located once per
   // pose, with their cubic coefficients copied side by side ([interval][power][table], so
   // that the tables of one interval evaluate as one vectorisable loop);
-  // residualMask has bit k set when component k has terms other than tables.
+  // harmonic terms grouped by frequency and zero: a cos(w (q - zero) + phase) = a cos(phase)
+  // cos(theta) - a sin(phase) sin(theta), with one sine and cosine per pose for a group whose
+  // frequency is not an integer multiple of the one before it at the same zero, and the
+  // multiple-angle product for one that is (the orders of a harmonic series);
+  // polynomial terms with their component; reversal terms summed per component.
   struct TableGroup {
     std::vector<double> positions;
     bool uniform = false;
@@ -53,8 +58,23 @@ struct ChainOp {
     std::vector<int> components;
     std::vector<double> coefficients;
   };
+  struct HarmonicGroup {
+    double omega = 0.0;  // rad per unit of q
+    double zero = 0.0;
+    int multiple = 1;    // > 1: omega is this multiple of the last group with multiple 1
+    std::vector<int> components;
+    std::vector<double> cosine, sine;  // per term: a cos(phase), a sin(phase)
+  };
+  struct Polynomial {
+    int component = 0;
+    double zero = 0.0, inverseScale = 1.0;
+    std::vector<double> coefficients;
+  };
   std::vector<TableGroup> tableGroups;
-  unsigned residualMask = 0;
+  std::vector<HarmonicGroup> harmonicGroups;
+  std::vector<Polynomial> polynomials;
+  Vec6 halfReversal = Vec6::Zero();  // per component: half the summed reversal widths
+  bool hasReversal = false;
   bool sixTablesOnOneGrid = false;  // exactly one group holding components 0..5 in order, nothing else
 };
 using ChainProgram = std::vector<ChainOp>;
@@ -120,7 +140,7 @@ struct ChainPrograms {
 void planJacobian(const KinematicModel& model, ChainPrograms& chains);
 
 // The six component errors of a motion-error operation at the joint values.
-inline Vec6 motionComponents(const ErrorModel& errors, const ChainOp& op, const double* q, const int* dir) {
+inline Vec6 motionComponents(const ChainOp& op, const double* q, const int* dir) {
   const double qa = op.joint >= 0 ? q[op.joint] : 0.0;
   Vec6 c;
   if (op.sixTablesOnOneGrid) {  // the common measured case: one table per component, one grid
@@ -138,12 +158,29 @@ inline Vec6 motionComponents(const ErrorModel& errors, const ChainOp& op, const 
     const double *k1 = k0 + n, *k2 = k1 + n, *k3 = k2 + n;
     for (size_t t = 0; t < n; ++t) c[group.components[t]] += k0[t] + at.s * (k1[t] + at.s * (k2[t] + at.s * k3[t]));
   }
-  if (op.residualMask) {
-    const auto& motion = errors.axes[static_cast<size_t>(op.axis)].motion;
-    const int d = (dir && op.joint >= 0) ? dir[op.joint] : 0;
-    for (int k = 0; k < 6; ++k)
-      if (op.residualMask & (1u << k)) c[k] += motion[static_cast<size_t>(k)].valueWithoutTables(qa, d);
+  double baseCosine = 1.0, baseSine = 0.0;
+  for (const auto& group : op.harmonicGroups) {
+    double cosine = baseCosine, sine = baseSine;
+    if (group.multiple == 1) {
+      const double theta = group.omega * (qa - group.zero);
+      cosine = baseCosine = std::cos(theta);
+      sine = baseSine = std::sin(theta);
+    } else {
+      for (int m = 1; m < group.multiple; ++m) {
+        const double next = cosine * baseCosine - sine * baseSine;
+        sine = sine * baseCosine + cosine * baseSine;
+        cosine = next;
+      }
+    }
+    for (size_t t = 0; t < group.components.size(); ++t) c[group.components[t]] += group.cosine[t] * cosine - group.sine[t] * sine;
   }
+  for (const auto& p : op.polynomials) {
+    const double u = (qa - p.zero) * p.inverseScale;
+    double v = 0.0;
+    for (auto it = p.coefficients.rbegin(); it != p.coefficients.rend(); ++it) v = v * u + *it;
+    c[p.component] += v;
+  }
+  if (op.hasReversal && dir && op.joint >= 0 && dir[op.joint] != 0) c += dir[op.joint] > 0 ? op.halfReversal : Vec6(-op.halfReversal);
   return c;
 }
 
@@ -154,7 +191,7 @@ inline Vec6 motionComponents(const ErrorModel& errors, const ChainOp& op, const 
 //   compose.rotate(op, angle)  a RotaryJoint: rotation by angle about op's axis line
 //   compose.mark(op)           a Marker
 template <class Compose>
-[[gnu::always_inline]] inline void evaluateOp(const ErrorModel& errors, const ChainOp& op, const double* q, const int* dir, Compose& compose) {
+[[gnu::always_inline]] inline void evaluateOp(const ChainOp& op, const double* q, const int* dir, Compose& compose) {
   switch (op.kind) {
     case ChainOp::Constant:
       if (op.translationOnly)
@@ -169,7 +206,7 @@ template <class Compose>
       compose.rotate(op, op.sign * q[op.joint]);
       break;
     case ChainOp::MotionError: {
-      const Vec6 c = motionComponents(errors, op, q, dir);
+      const Vec6 c = motionComponents(op, q, dir);
       compose.transform(rotationXYZ(c[kA], c[kB], c[kC]), c.head<3>());
       break;
     }
@@ -181,7 +218,7 @@ template <class Compose>
 
 // The product of a program's factors; with `markers` (room for one per marker), the frame at
 // each marker in program order.
-Pose runProgram(const ErrorModel& errors, const ChainProgram& program, const double* q, const int* dir,
+Pose runProgram(const ChainProgram& program, const double* q, const int* dir,
                 ChainFrame* markers = nullptr);
 
 }  // namespace mtacc

@@ -95,9 +95,9 @@ PointDirections<N> transportToWorkpiece(const KinematicModel& m, const PointDire
                                         const int* dir) {
   const ChainPrograms& c = *m.chains;
   PointTransport<false, N> forward{start};
-  for (size_t i = c.toolOpsPerPose; i-- > 0;) evaluateOp(m.errors, c.toolProgram[i], q, dir, forward);
+  for (size_t i = c.toolOpsPerPose; i-- > 0;) evaluateOp(c.toolProgram[i], q, dir, forward);
   PointTransport<true, N> inverse{forward.x};
-  for (const auto& op : c.workpieceProgram) evaluateOp(m.errors, op, q, dir, inverse);
+  for (const auto& op : c.workpieceProgram) evaluateOp(op, q, dir, inverse);
   return inverse.x;
 }
 
@@ -131,11 +131,11 @@ struct FrameProduct {
 
 }  // namespace
 
-Pose runProgram(const ErrorModel& errors, const ChainProgram& program, const double* q, const int* dir,
+Pose runProgram(const ChainProgram& program, const double* q, const int* dir,
                 ChainFrame* markers) {
   FrameProduct t;
   t.markers = markers;
-  for (const auto& op : program) evaluateOp(errors, op, q, dir, t);
+  for (const auto& op : program) evaluateOp(op, q, dir, t);
   Pose out = Pose::Identity();
   out.linear() = t.r;
   out.translation() = t.p;
@@ -143,11 +143,11 @@ Pose runProgram(const ErrorModel& errors, const ChainProgram& program, const dou
 }
 
 Pose toolChainPose(const KinematicModel& m, const double* q, const int* dir) {
-  return runProgram(m.errors, m.chains->toolProgram, q, dir);
+  return runProgram(m.chains->toolProgram, q, dir);
 }
 
 Pose workpiecePose(const KinematicModel& m, const double* q, const int* dir) {
-  return runProgram(m.errors, m.chains->workpieceProgram, q, dir);
+  return runProgram(m.chains->workpieceProgram, q, dir);
 }
 
 Pose toolInWorkpiece(const KinematicModel& m, const double* q, const int* dir) {
@@ -171,7 +171,7 @@ std::vector<Pose> errorFrames(const KinematicModel& m, const double* q) {
   std::vector<Pose> frames(m.machine->axes.size(), Pose::Identity());
   for (const ChainProgram* program : {&m.chains->toolFrameProgram, &m.chains->workpieceFrameProgram}) {
     std::vector<ChainFrame> marked(program->size());
-    runProgram(m.errors, *program, q, nullptr, marked.data());
+    runProgram(*program, q, nullptr, marked.data());
     size_t k = 0;
     for (const auto& op : *program) {
       if (op.kind != ChainOp::Marker) continue;

@@ -25,9 +25,9 @@ void evaluateJacobian(const KinematicModel& m, const double* q, const int* dir, 
   data.motion.resize(factors);
   data.ready.assign(factors, 0);
 
-  const Pose tool = runProgram(m.errors, c.toolHookProgram, q, dir, data.toolFrames.data());
+  const Pose tool = runProgram(c.toolHookProgram, q, dir, data.toolFrames.data());
   const Pose wpInv =
-      runProgram(m.errors, c.workpieceHookProgram, q, dir, data.workpieceFrames.data()).inverse(Eigen::Isometry);
+      runProgram(c.workpieceHookProgram, q, dir, data.workpieceFrames.data()).inverse(Eigen::Isometry);
   const Vec3 inBed = tool * toolPoint;
   const Vec3 beforeAlignment = wpInv * inBed;
   // The map of a direction in the bed frame to the workpiece frame.
@@ -55,7 +55,7 @@ void evaluateJacobian(const KinematicModel& m, const double* q, const int* dir, 
       data.maps[f].noalias() = toWorkpiece[chain] * before.rotation;
       data.local[f].noalias() = after.rotation.transpose() * (points[chain] - after.origin);
       if (t.kind == JacobianTerm::Motion)
-        data.motion[f] = motionComponents(m.errors, (*programs[chain])[static_cast<size_t>(t.op)], qOf[chain], dirOf[chain]);
+        data.motion[f] = motionComponents((*programs[chain])[static_cast<size_t>(t.op)], qOf[chain], dirOf[chain]);
       data.ready[f] = 1;
     }
     Vec3 d = Vec3::Zero(), turn = Vec3::Zero();
@@ -149,7 +149,7 @@ void planJacobian(const KinematicModel& m, ChainPrograms& c) {
   if (!m.parameters.empty() && m.machine->alignment == WorkpieceAlignment::Machine) {
     addChain(JacobianTerm::Reference, c.workpieceHookProgram);
     c.referenceFrames.resize(c.workpieceHookProgram.size());
-    c.reference = runProgram(m.errors, c.workpieceHookProgram, m.machine->referencePose.data(), nullptr,
+    c.reference = runProgram(c.workpieceHookProgram, m.machine->referencePose.data(), nullptr,
                              c.referenceFrames.data());
     c.referenceToWorkpiece = m.alignment.linear() * c.reference.linear().transpose();
   }

@@ -1,6 +1,7 @@
 #include "mtacc/kinematics/kinematic_model.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "chain_program.hpp"
 
@@ -46,6 +47,24 @@ Vec3 linearJointTranslation(const KinematicModel& m, const ChainPrograms& c, con
   return e.sign * (q + zero) * c.tiltedDirections[static_cast<size_t>(e.axis)];
 }
 
+// Sorted by zero and frequency; a group whose frequency is an integer multiple (up to 16) of
+// the last base group at the same zero is evaluated from it (ChainOp::HarmonicGroup).
+void orderHarmonicGroups(std::vector<ChainOp::HarmonicGroup>& groups) {
+  std::sort(groups.begin(), groups.end(),
+            [](const auto& a, const auto& b) { return a.zero != b.zero ? a.zero < b.zero : a.omega < b.omega; });
+  const ChainOp::HarmonicGroup* base = nullptr;
+  for (auto& g : groups) {
+    const double ratio = base && base->zero == g.zero ? g.omega / base->omega : 0.0;
+    const double multiple = std::round(ratio);
+    if (multiple >= 2 && multiple <= 16 && std::abs(ratio - multiple) <= 1e-12 * multiple) {
+      g.multiple = static_cast<int>(multiple);
+    } else {
+      g.multiple = 1;
+      base = &g;
+    }
+  }
+}
+
 ChainOp motionErrorOp(const ErrorModel& errors, const ChainElement& e) {
   ChainOp op;
   op.kind = ChainOp::MotionError;
@@ -55,11 +74,26 @@ ChainOp motionErrorOp(const ErrorModel& errors, const ChainElement& e) {
   std::vector<std::vector<const TableTerm*>> tables;
   for (int k = 0; k < 6; ++k) {
     for (const auto& term : motion[static_cast<size_t>(k)].terms()) {
-      const auto* table = std::get_if<TableTerm>(&term);
-      if (!table) {
-        op.residualMask |= 1u << k;
+      if (const auto* h = std::get_if<HarmonicTerm>(&term)) {
+        const double omega = 2.0 * kPi * h->order / h->period;
+        auto same = std::find_if(op.harmonicGroups.begin(), op.harmonicGroups.end(),
+                                 [&](const auto& g) { return g.omega == omega && g.zero == h->zero; });
+        if (same == op.harmonicGroups.end()) same = op.harmonicGroups.insert(op.harmonicGroups.end(), {.omega = omega, .zero = h->zero});
+        same->components.push_back(k);
+        same->cosine.push_back(h->amplitude * std::cos(h->phase));
+        same->sine.push_back(h->amplitude * std::sin(h->phase));
         continue;
       }
+      if (const auto* p = std::get_if<PolynomialTerm>(&term)) {
+        op.polynomials.push_back({k, p->zero, 1.0 / p->scale, p->coefficients});
+        continue;
+      }
+      if (const auto* r = std::get_if<ReversalTerm>(&term)) {
+        op.halfReversal[k] += 0.5 * r->width;
+        op.hasReversal = true;
+        continue;
+      }
+      const auto* table = std::get_if<TableTerm>(&term);
       auto same = std::find_if(op.tableGroups.begin(), op.tableGroups.end(),
                                [&](const auto& g) { return g.positions == table->positions; });
       if (same == op.tableGroups.end()) {
@@ -79,7 +113,8 @@ ChainOp motionErrorOp(const ErrorModel& errors, const ChainElement& e) {
       for (int power = 0; power < 4; ++power)
         for (const TableTerm* t : tables[g]) group.coefficients.push_back(t->cubic[i][static_cast<size_t>(power)]);
   }
-  op.sixTablesOnOneGrid = op.residualMask == 0 && op.tableGroups.size() == 1 &&
+  orderHarmonicGroups(op.harmonicGroups);
+  op.sixTablesOnOneGrid = op.harmonicGroups.empty() && op.polynomials.empty() && !op.hasReversal && op.tableGroups.size() == 1 &&
                           op.tableGroups[0].components == std::vector<int>{0, 1, 2, 3, 4, 5};
   return op;
 }
@@ -219,8 +254,8 @@ KinematicModel compileModel(std::shared_ptr<const Machine> machine, const ErrorM
     // pose, so M_WC = W_nominal(q_ref)^-1 * W_actual(q_ref).
     const KinematicModel nominal = compileModel(machine, errors, false, {});
     const double* q = machine->referencePose.data();
-    m.alignment = runProgram(errors, nominal.chains->workpieceProgram, q, nullptr).inverse() *
-                  runProgram(errors, c->workpieceProgram, q, nullptr);
+    m.alignment = runProgram(nominal.chains->workpieceProgram, q, nullptr).inverse() *
+                  runProgram(c->workpieceProgram, q, nullptr);
     m.aligned = true;
   }
   m.parameters = jacobianParameters;

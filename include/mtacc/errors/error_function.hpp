@@ -86,8 +86,6 @@ class ErrorFunction {
 
   // direction: +1, -1, or 0 (unknown / standing still).
   double value(double q, int direction) const;
-  // The same, leaving out table terms (which a caller evaluates grouped by grid).
-  double valueWithoutTables(double q, int direction) const;
 
   // The linear parameters of all terms, in order. Names are suffixes such as "c1", "h2",
   // "t3", "rev" (made unique within the function).
@@ -99,7 +97,6 @@ class ErrorFunction {
   double basis(int index, double q, int direction) const;
 
  private:
-  double sum(double q, int direction, bool skipTables) const;
   std::vector<ErrorTerm> terms_;
 };
 
