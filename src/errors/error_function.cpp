@@ -109,12 +109,7 @@ double ErrorFunction::value(double q, int direction) const {
   double sum = 0.0;
   for (const auto& term : terms_) {
     sum += std::visit(
-        Overloaded{[&](const PolynomialTerm& p) {
-                     double v = 0.0;
-                     const double u = (q - p.zero) / p.scale;
-                     for (auto it = p.coefficients.rbegin(); it != p.coefficients.rend(); ++it) v = v * u + *it;
-                     return v;
-                   },
+        Overloaded{[&](const PolynomialTerm& p) { return p.value(q); },
                    [&](const HarmonicTerm& h) { return h.amplitude * harmonicBasis(h, q); },
                    [&](const TableTerm& t) { return t.valueAt(t.locate(q)); },
                    [&](const ReversalTerm& r) { return r.width * reversalBasis(direction); }},

@@ -67,14 +67,12 @@ struct ChainOp {
   };
   struct Polynomial {
     int component = 0;
-    double zero = 0.0, inverseScale = 1.0;
-    std::vector<double> coefficients;
+    PolynomialTerm term;
   };
   std::vector<TableGroup> tableGroups;
   std::vector<HarmonicGroup> harmonicGroups;
   std::vector<Polynomial> polynomials;
   Vec6 halfReversal = Vec6::Zero();  // per component: half the summed reversal widths
-  bool hasReversal = false;
   bool sixTablesOnOneGrid = false;  // exactly one group holding components 0..5 in order, nothing else
 };
 using ChainProgram = std::vector<ChainOp>;
@@ -174,13 +172,8 @@ inline Vec6 motionComponents(const ChainOp& op, const double* q, const int* dir)
     }
     for (size_t t = 0; t < group.components.size(); ++t) c[group.components[t]] += group.cosine[t] * cosine - group.sine[t] * sine;
   }
-  for (const auto& p : op.polynomials) {
-    const double u = (qa - p.zero) * p.inverseScale;
-    double v = 0.0;
-    for (auto it = p.coefficients.rbegin(); it != p.coefficients.rend(); ++it) v = v * u + *it;
-    c[p.component] += v;
-  }
-  if (op.hasReversal && dir && op.joint >= 0 && dir[op.joint] != 0) c += dir[op.joint] > 0 ? op.halfReversal : Vec6(-op.halfReversal);
+  for (const auto& p : op.polynomials) c[p.component] += p.term.value(qa);
+  if (dir && op.joint >= 0 && dir[op.joint] != 0) c += dir[op.joint] > 0 ? op.halfReversal : Vec6(-op.halfReversal);
   return c;
 }
 

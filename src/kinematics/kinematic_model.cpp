@@ -78,19 +78,18 @@ ChainOp motionErrorOp(const ErrorModel& errors, const ChainElement& e) {
         const double omega = 2.0 * kPi * h->order / h->period;
         auto same = std::find_if(op.harmonicGroups.begin(), op.harmonicGroups.end(),
                                  [&](const auto& g) { return g.omega == omega && g.zero == h->zero; });
-        if (same == op.harmonicGroups.end()) same = op.harmonicGroups.insert(op.harmonicGroups.end(), {.omega = omega, .zero = h->zero});
+        if (same == op.harmonicGroups.end()) same = op.harmonicGroups.insert(op.harmonicGroups.end(), {omega, h->zero, 1, {}, {}, {}});
         same->components.push_back(k);
         same->cosine.push_back(h->amplitude * std::cos(h->phase));
         same->sine.push_back(h->amplitude * std::sin(h->phase));
         continue;
       }
       if (const auto* p = std::get_if<PolynomialTerm>(&term)) {
-        op.polynomials.push_back({k, p->zero, 1.0 / p->scale, p->coefficients});
+        op.polynomials.push_back({k, *p});
         continue;
       }
       if (const auto* r = std::get_if<ReversalTerm>(&term)) {
         op.halfReversal[k] += 0.5 * r->width;
-        op.hasReversal = true;
         continue;
       }
       const auto* table = std::get_if<TableTerm>(&term);
@@ -114,7 +113,8 @@ ChainOp motionErrorOp(const ErrorModel& errors, const ChainElement& e) {
         for (const TableTerm* t : tables[g]) group.coefficients.push_back(t->cubic[i][static_cast<size_t>(power)]);
   }
   orderHarmonicGroups(op.harmonicGroups);
-  op.sixTablesOnOneGrid = op.harmonicGroups.empty() && op.polynomials.empty() && !op.hasReversal && op.tableGroups.size() == 1 &&
+  op.sixTablesOnOneGrid = op.harmonicGroups.empty() && op.polynomials.empty() && op.halfReversal.isZero(0.0) &&
+                          op.tableGroups.size() == 1 &&
                           op.tableGroups[0].components == std::vector<int>{0, 1, 2, 3, 4, 5};
   return op;
 }

@@ -15,6 +15,13 @@ struct PolynomialTerm {
   double zero = 0.0;
   double scale = 1.0;
   std::vector<double> coefficients;
+
+  double value(double q) const {
+    const double u = (q - zero) / scale;
+    double v = 0.0;
+    for (auto it = coefficients.rbegin(); it != coefficients.rend(); ++it) v = v * u + *it;
+    return v;
+  }
 };
 
 // f(q) = amplitude * cos(2 pi * order * (q - zero) / period + phase). Harmonics over the
