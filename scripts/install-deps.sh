@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libboost-dev libceres-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libfmt-dev
-  libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev
+  libpng-dev libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev
   python3 python3-dev pybind11-dev python3-numpy python3-scipy python3-matplotlib python3-pytest
   clang libclang-rt-14-dev
   chromium

@@ -21,6 +21,9 @@ echo
 echo "== Benchmark: cone-frustum Monte Carlo, 1000 samples, exact evaluation =="
 ./build/bench/bench_cone_monte_carlo --benchmark_color=false
 echo
+echo "== Benchmark: seed 001 cubic machining test, surface on a 10 um grid, against a per-cell loop over all moves =="
+./build/bench/bench_cubic_zmap
+echo
 echo "== Benchmark: identification of 13 parameters from 10,000 R-test points, against SciPy (analytic Jacobian, LM) =="
 ./build/bench/bench_identify_vs_scipy
 echo

@@ -8,6 +8,7 @@
 
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
+#include "mtacc/procedures/cubic_test.hpp"
 #include "test_helpers.hpp"
 
 namespace mtacc {
@@ -38,7 +39,7 @@ TEST(ReadingJacobian, AllInstrumentsAgainstCentralDifferences) {
   std::vector<MeasurementRun> runs = {ballbarRotaryTest(nominal, b), sphereTest(nominal, r)[0]};
   r.instrument = Instrument::TouchProbe;
   runs.push_back(sphereTest(nominal, r)[0]);
-  runs.push_back(cubicMachiningZones(nominal, 48, 48, 3));
+  for (auto& r : cubicZoneRuns(nominal, seed001CubicTest(), true)) runs.push_back(std::move(r));
   std::vector<SetupParameter> all;
   for (int k = 0; k < kSetupParameterCount; ++k) all.push_back(static_cast<SetupParameter>(k));
 

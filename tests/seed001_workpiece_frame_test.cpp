@@ -11,6 +11,7 @@
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/measurement/identification.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
+#include "mtacc/procedures/cubic_test.hpp"
 #include "test_helpers.hpp"
 
 namespace mtacc {
@@ -92,9 +93,10 @@ TEST(Seed001WorkpieceFrame, Table5AlignedWorkpieceHasNoDeviationAtBC0) {
 
 // §4.3 (L217): for the cubic machining test "the sensitivity coefficients alpha_BY and
 // alpha_CB are the same ... delta_yBY and delta_xCB are both 0". The plan: the nine zones of
-// Tables 1-2 (48 mm cube, top face 48 mm above the pivot, 6 mm ball-end mill), the height
-// deviation of each zone, workpiece aligned with M_WC (eqs. 10-12), the eight errors of
-// Table 5 named as in the seed.
+// Tables 1-2 (all cut at B = +30 deg, data/test-pieces/seed001-cubic.yaml), the height of each
+// zone, workpiece aligned with M_WC (eqs. 10-12), the eight errors of Table 5 named as in the
+// seed. The extraction's §7.3: rank 3 from heights (U, alphaBY + alphaCB, betaBY), 4 with the
+// in-zone tilts (adding K1 = alphaBY cos B + alphaCB + gammaBY sin B).
 TEST(Seed001WorkpieceFrame, CubicTestObservabilityReportsTheSeedAmbiguity) {
   const auto model = modelWith(WorkpieceAlignment::Machine);
   const auto nominal = compileNominal(model.machine);
@@ -103,22 +105,31 @@ TEST(Seed001WorkpieceFrame, CubicTestObservabilityReportsTheSeedAmbiguity) {
   problem.start = ErrorModel::zero(*model.machine);  // first order, as the seed's sensitivities
   for (const char* n : {"dxBY", "dyBY", "dzBY", "alphaBY", "betaBY", "gammaBY", "alphaCB", "dxCB"})
     problem.parameters.push_back(findParameter(*model.machine, problem.start, n));
-  problem.runs = {cubicMachiningZones(nominal, 48, 48, 3)};
-  const auto report = planObservability(problem);
-  // ISO names: dyBY = -Y0B, dxCB = -X0C, alphaBY = -A0B, alphaCB = -A0C. gammaBY (C0B)
-  // has no effect either, which the text does not say: every zone's C angle brings it into
-  // the X-Z plane, where a turn of the B axis about Z moves the surface only sideways.
-  EXPECT_EQ(report.noEffect, (std::vector<std::string>{"Y0B", "C0B", "X0C"}));
-  ASSERT_EQ(report.groups.size(), 1u);
-  EXPECT_EQ(report.groups[0].names, (std::vector<std::string>{"A0B", "A0C"}));
-  ASSERT_EQ(report.groups[0].observable.size(), 1u);
-  EXPECT_NEAR(report.groups[0].observable[0][0], 1.0, 1e-9);
-  EXPECT_NEAR(report.groups[0].observable[0][1], 1.0, 1e-9);
-  EXPECT_EQ(report.rank, 4);
-  const auto findings = report.findings();
+  problem.runs = cubicZoneRuns(nominal, seed001CubicTest(), false);
+  const auto heights = planObservability(problem);
+  // ISO names: dxBY = -X0B, dyBY = -Y0B, dzBY = -Z0B, alphaBY = -A0B, gammaBY = -C0B,
+  // alphaCB = -A0C, dxCB = -X0C. gammaBY (C0B) has no effect on the zone heights either, which
+  // the text does not say: it tilts each zone about its own centre line (extraction §8, C6).
+  EXPECT_EQ(heights.noEffect, (std::vector<std::string>{"Y0B", "C0B", "X0C"}));
+  ASSERT_EQ(heights.groups.size(), 2u);
+  EXPECT_EQ(heights.groups[0].names, (std::vector<std::string>{"X0B", "Z0B"}));  // one uniform offset U of the tilted zones
+  EXPECT_EQ(heights.groups[1].names, (std::vector<std::string>{"A0B", "A0C"}));
+  ASSERT_EQ(heights.groups[1].observable.size(), 1u);
+  EXPECT_NEAR(heights.groups[1].observable[0][0], 1.0, 1e-9);
+  EXPECT_NEAR(heights.groups[1].observable[0][1], 1.0, 1e-9);
+  EXPECT_EQ(heights.rank, 3);
+
+  problem.runs = cubicZoneRuns(nominal, seed001CubicTest(), true);
+  const auto tilts = planObservability(problem);
+  EXPECT_EQ(tilts.noEffect, (std::vector<std::string>{"Y0B", "X0C"}));
+  EXPECT_EQ(tilts.rank, 4);
+  const auto findings = tilts.findings();
   ASSERT_EQ(findings.size(), 4u);
-  EXPECT_EQ(findings[0], "Y0B has no effect on this plan");
-  EXPECT_EQ(findings[3], "A0B and A0C act alike: only A0B + A0C observable");
+  // tan 15 deg = (1 - cos 30) / sin 30: the extraction's null direction (sin 15, -cos 15).
+  EXPECT_EQ(findings[2], "X0B and Z0B act alike: only X0B + 0.2679 Z0B observable");
+  ASSERT_EQ(tilts.groups.size(), 2u);
+  EXPECT_EQ(tilts.groups[1].names, (std::vector<std::string>{"A0B", "C0B", "A0C"}));
+  EXPECT_EQ(tilts.groups[1].observable.size(), 2u);  // K1 and K2
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iostream>
 
 #include "mtacc/core/units.hpp"
@@ -35,7 +36,11 @@ void emit(const MachineOptions& o, const nlohmann::json& json, const std::string
 }
 
 namespace {
-double displayed(const Axis& a, double v) { return a.isRotary() ? v / kDeg : v; }
+// Rounding residue below the printed digits shows as 0, not -0.
+double displayed(const Axis& a, double v) {
+  const double d = a.isRotary() ? v / kDeg : v;
+  return std::abs(d) < 5e-9 ? 0.0 : d;
+}
 }  // namespace
 
 std::string formatPose(const Machine& m, const double* q) {

@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
 namespace mtacc::cli {
@@ -38,6 +39,10 @@ std::string poseHeader(const Machine& m);
 std::string poseCsv(const Machine& m, const double* q);
 std::string poseCsvHeader(const Machine& m);
 
+// The estimates, residuals and quality of an identification (human, JSON or CSV); warnings on
+// stderr, and StrictFailure after them when `strict`.
+void emitIdentification(const MachineOptions& o, const IdentificationOutcome& out, bool strict);
+
 // Registration of each subcommand.
 void addCheckCommand(CLI::App& app);
 void addForwardCommands(CLI::App& app);  // fk, errors
@@ -49,6 +54,7 @@ void addConeCommand(CLI::App& app);
 void addSimulateCommand(CLI::App& app);       // simulate ballbar | rtest | plan
 void addEvaluateCommand(CLI::App& app);
 void addIdentifyCommands(CLI::App& app);      // identify, observability
+void addCubicCommands(CLI::App& app);         // cubic, cubic-identify
 void addDynamicsCommand(CLI::App& app);       // dynamics modes | frf | accel | map
 
 }  // namespace mtacc::cli

@@ -57,7 +57,21 @@ void observability(const IdentifyCliOptions& o) {
 }
 
 void identify(const IdentifyCliOptions& o) {
-  const auto out = identifyParameters(loadMachineSetup(o.source), request(o));
+  emitIdentification(o, identifyParameters(loadMachineSetup(o.source), request(o)), o.strict);
+}
+
+void addOptions(CLI::App* cmd, IdentifyCliOptions& o) {
+  addMachineOptions(*cmd, o);
+  cmd->add_option("--data", o.data, "Measurement CSV files (several after one --data, or --data repeated, or comma-separated)");
+  cmd->add_option("--plan", o.plan, "Test plan (YAML) or bundled plan name");
+  cmd->add_option("--params", o.params, "Parameters to determine, e.g. X0B,Z0B,A0C (ISO names or aliases)");
+  cmd->add_option("--setup", o.setup, "Set-up errors to estimate in every run, e.g. xW,yW,zW (overrides the files)");
+  cmd->add_option("--threads", o.threads, "Threads (0 = all cores)")->capture_default_str();
+}
+
+}  // namespace
+
+void emitIdentification(const MachineOptions& o, const IdentificationOutcome& out, bool strict) {
   const auto& r = out.result;
   std::string human = fmt::format("Identification on {} from {} runs ({} readings, {} unknowns)\n", out.machine->name, out.runs,
                                   r.readings, r.values.size());
@@ -87,19 +101,8 @@ void identify(const IdentifyCliOptions& o) {
     human += "goodness of fit: not tested (state the reading noise with --noise or '# noise:' in the files)\n";
   emit(o, toJson(out), human, csv);
   for (const auto& w : q.warnings) std::cerr << "mtacc: warning: " << w << "\n";
-  if (o.strict && !q.warnings.empty()) throw StrictFailure{q.warnings.size()};
+  if (strict && !q.warnings.empty()) throw StrictFailure{q.warnings.size()};
 }
-
-void addOptions(CLI::App* cmd, IdentifyCliOptions& o) {
-  addMachineOptions(*cmd, o);
-  cmd->add_option("--data", o.data, "Measurement CSV files (several after one --data, or --data repeated, or comma-separated)");
-  cmd->add_option("--plan", o.plan, "Test plan (YAML) or bundled plan name");
-  cmd->add_option("--params", o.params, "Parameters to determine, e.g. X0B,Z0B,A0C (ISO names or aliases)");
-  cmd->add_option("--setup", o.setup, "Set-up errors to estimate in every run, e.g. xW,yW,zW (overrides the files)");
-  cmd->add_option("--threads", o.threads, "Threads (0 = all cores)")->capture_default_str();
-}
-
-}  // namespace
 
 void addIdentifyCommands(CLI::App& app) {
   auto o = std::make_shared<IdentifyCliOptions>();

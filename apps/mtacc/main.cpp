@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
   mtacc::cli::addSensitivityCommand(app);
   mtacc::cli::addBudgetCommand(app);
   mtacc::cli::addConeCommand(app);
+  mtacc::cli::addCubicCommands(app);
   mtacc::cli::addSimulateCommand(app);
   mtacc::cli::addEvaluateCommand(app);
   mtacc::cli::addIdentifyCommands(app);

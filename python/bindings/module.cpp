@@ -15,6 +15,8 @@
 #include "mtacc/workflows/budget.hpp"
 #include "mtacc/workflows/check.hpp"
 #include "mtacc/workflows/cone_study.hpp"
+#include "mtacc/workflows/cubic_identification.hpp"
+#include "mtacc/io/cubic_test_yaml.hpp"
 #include "mtacc/workflows/dynamics.hpp"
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/kinematics_batch.hpp"
@@ -37,6 +39,14 @@ py::array_t<double> toArray(const Matrix& m, double scale = 1.0) {
   auto w = out.mutable_unchecked<2>();
   for (Eigen::Index i = 0; i < m.rows(); ++i)
     for (Eigen::Index k = 0; k < m.cols(); ++k) w(i, k) = m(i, k) * scale;
+  return out;
+}
+
+// A height map as a (ny, nx) float32 array, row j at y(j), scaled (e.g. mm -> um).
+py::array_t<float> heightArray(const HeightMap& m, double scale) {
+  py::array_t<float> out({static_cast<py::ssize_t>(m.grid.ny), static_cast<py::ssize_t>(m.grid.nx)});
+  float* w = out.mutable_data();
+  for (size_t k = 0; k < m.height.size(); ++k) w[k] = static_cast<float>(m.height[k] * scale);
   return out;
 }
 
@@ -209,6 +219,54 @@ PYBIND11_MODULE(_mtacc, mod) {
           r = coneStudy(s, o);
         }
         return toPython(toJson(r));
+      })
+      .def("cubic", [](const MachineSetup& s, const std::string& test, double grid, double inset, bool sensitivities,
+                       const std::vector<std::string>& parameters, double sensitivityGrid, int threads) {
+        CubicTestOptions o;
+        o.spec = loadCubicTest(test);
+        o.gridSpacing = grid;
+        o.inset = inset;
+        o.sensitivities = sensitivities;
+        o.sensitivityParameters = parameters;
+        o.sensitivityGrid = sensitivityGrid;
+        o.threads = threads;
+        CubicTestStudy r;
+        {
+          py::gil_scoped_release release;
+          r = cubicTestStudy(s, o);
+        }
+        py::dict out = toPython(toJson(r));
+        const auto& g = r.actual.grid;
+        out["grid"] = py::dict(py::arg("x0") = g.x0, py::arg("y0") = g.y0, py::arg("spacing") = g.spacing);
+        out["heights_um"] = heightArray(r.actual, 1e3);
+        out["referenced_deviation_um"] = heightArray(referencedDeviation(r), 1e3);
+        py::list paths;
+        for (const auto& z : r.path) paths.append(toArray(z.tips));
+        out["tool_tips"] = paths;
+        if (!r.sensitivities.empty()) {
+          const auto& c = r.sensitivities.front().mapWithAlignment.grid;
+          out["sensitivity_grid"] = py::dict(py::arg("x0") = c.x0, py::arg("y0") = c.y0, py::arg("spacing") = c.spacing);
+          py::dict maps;
+          for (const auto& k : r.sensitivities)
+            maps[py::str(k.name)] = py::dict(py::arg("with_alignment") = heightArray(k.mapWithAlignment, 1.0),
+                                             py::arg("on_table") = heightArray(k.mapOnTable, 1.0));
+          out["sensitivity_maps"] = maps;
+        }
+        return out;
+      })
+      .def("cubic_identify", [](const MachineSetup& s, const std::string& zones, const std::vector<std::string>& parameters,
+                                const std::string& test, const std::string& noise) {
+        CubicIdentificationRequest request;
+        request.test = test;
+        request.zonesFile = zones;
+        request.parameters = parameters;
+        if (!noise.empty()) request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
+        IdentificationOutcome out;
+        {
+          py::gil_scoped_release release;
+          out = identifyFromZones(s, request);
+        }
+        return toPython(toJson(out));
       })
       .def("cone_preset_name", [](const MachineSetup& s) { return conePresetName(*s.machine); })
       .def("simulate", [](const MachineSetup& s, const std::string& plan, const py::object& noise, std::uint64_t seed,

@@ -18,9 +18,12 @@ path = m.ik_path(tcps, tools, branch="negative")  # (n, axes) for a continuous p
 names, J = m.jacobian(q[0])                       # 6 x parameters, exact model
 budget = m.budget()                               # the same numbers as `mtacc budget --json`
 cone = m.cone(single_errors=True)                 # the seed 000 cone frustum, as `mtacc cone`
+cubic = m.cubic(grid=0.05)                        # seed 001 cubic test; cubic["heights_um"] is the surface
 fig = plots.volumetric_error_map(m, ("X", "Y"))
 
 if __name__ == "__main__":
     print(f"TCP error at the first pose: {err[0, :3].round(3)} um")
     print(f"largest single error: {budget['entries'][0]['error']}, cone form error {cone['form_error_um']:.2f} um")
+    print("cubic test zone heights referenced to zone I [um]:",
+          ", ".join(f"{z['name']} {z['measured_um']['mean']:.2f}" for z in cubic["zones"]))
     fig.savefig("map.svg")

@@ -146,6 +146,23 @@ class Machine:
         return self._core.cone(_text(preset), alpha, beta, radius, list(map(float, centre)), gamma, face_milling, points,
                                branch, feed, single_errors, monte_carlo, _text(limits), seed)
 
+    def cubic(self, test="seed001-cubic", grid=0.01, inset=1.0, sensitivities=False, parameters=None,
+              sensitivity_grid=0.02, threads=0):
+        """The cubic machining test of seed 001 (as `mtacc cubic --json`): per zone the clamped axes, the
+        deviation E (machined minus error-free surface) and the surface referenced to zone I, as mean
+        height (um) and tilts (um/mm); with sensitivities, k = E / epsilon of each error with and
+        without M_WC. Adds numpy arrays (ny, nx), row j at y = y0 + (j + 0.5) spacing: "heights_um"
+        (the machined surface about the nominal face), "referenced_deviation_um", and per error
+        "sensitivity_maps"[name]["with_alignment" | "on_table"] (mm/mm or mm/rad); "tool_tips": the CL
+        points (n, 3) of each zone."""
+        return self._core.cubic(str(test), grid, inset, sensitivities, list(parameters or []), sensitivity_grid, threads)
+
+    def cubic_identify(self, zones, parameters, test="seed001-cubic", noise=None):
+        """Errors from the zone results of a cubic machining test (CSV: zone,height_um[,slope_x_um_per_mm,
+        slope_y_um_per_mm]), as `mtacc cubic-identify --json`; refuses (InputError) a set the zones
+        cannot determine, naming what they cannot separate."""
+        return self._core.cubic_identify(str(zones), list(parameters), str(test), _text(noise))
+
     def cone_preset_name(self):
         """The seed 000 §3.6 preset of this machine's family, or None."""
         return self._core.cone_preset_name()

@@ -368,3 +368,105 @@ def dynamics_map(result, title=None):
     ax.set_title(title or result["quantity"], fontsize=9)
     fig.tight_layout()
     return fig
+
+
+def _extent(grid, shape):
+    x0, y0, h = grid["x0"], grid["y0"], grid["spacing"]
+    return [x0, x0 + shape[1] * h, y0, y0 + shape[0] * h]
+
+
+def _zone_outlines(ax, result, labels=None):
+    half = result["zone_size_mm"] / 2
+    for k, z in enumerate(result["zones"]):
+        x, y = z["centre"]
+        ax.add_patch(matplotlib.patches.Rectangle((x - half, y - half), 2 * half, 2 * half, fill=False, lw=0.8,
+                                                  edgecolor="#333"))
+        text = z["name"] if labels is None else f'{z["name"]}\n{labels[k]}'
+        ax.text(x, y, text, ha="center", va="center", fontsize=7)
+
+
+def cubic_layout(result, every=20):
+    """The cubic test seen from above: zones, every `every`-th pass of each zone's zig-zag tool path
+    (CL points), and the tool vector's horizontal part (arrow towards the holder)."""
+    fig, ax = plt.subplots(figsize=(5.2, 5.2))
+    half = result["block_mm"] / 2
+    cx, cy = result["block_centre_mm"]
+    ax.add_patch(matplotlib.patches.Rectangle((cx - half, cy - half), 2 * half, 2 * half, fill=False, lw=1.5))
+    for z, tips in zip(result["zones"], result["tool_tips"]):
+        passes = tips.reshape(-1, 2, 3)[::every]
+        for p in passes:
+            ax.plot(p[:, 0], p[:, 1], color="#1f77b4", lw=0.6)
+        x, y = z["centre"]
+        i, j, _ = z["tool_vector"]
+        if abs(i) + abs(j) > 1e-9:
+            ax.annotate("", xy=(x + 8 * i, y + 8 * j), xytext=(x, y), arrowprops=dict(arrowstyle="->", color="#d62728"))
+    _zone_outlines(ax, result, [" ".join(f"{k}={v:g}" for k, v in z["axes"].items() if k in "ABC") for z in result["zones"]])
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_title("Zones, tool paths (every %dth pass) and tool tilt (red)" % every, fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def cubic_surface_map(result, limit_um=None):
+    """The machined minus the error-free surface referenced to the reference zone's plane (the
+    simulated counterpart of seed 001 Fig. 16), with each zone's mean height."""
+    dev = result["referenced_deviation_um"]
+    limit = limit_um or max(1e-3, float(np.percentile(np.abs(dev), 99.5)))
+    fig, ax = plt.subplots(figsize=(6.2, 5.2))
+    image = ax.imshow(dev, origin="lower", extent=_extent(result["grid"], dev.shape), cmap="RdBu_r", vmin=-limit,
+                      vmax=limit, interpolation="antialiased")
+    _zone_outlines(ax, result, [f'{z["measured_um"]["mean"]:.2f} µm' for z in result["zones"]])
+    fig.colorbar(image, ax=ax, label="height deviation [µm]")
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_title(f"Simulated surface referenced to zone {result['reference_zone']}", fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def cubic_zone_bars(with_alignment, on_table):
+    """Zone mean heights of the same errors with M_WC (eqs. 10-12) and without (eq. 2): the deviation
+    in the workpiece frame, and the surface referenced to zone I, which agree (seed 001 L243)."""
+    names = [z["name"] for z in with_alignment["zones"]]
+    x = np.arange(len(names))
+    series = [("E with M_WC", [z["deviation_um"]["mean"] for z in with_alignment["zones"]], "#1f77b4"),
+              ("E without M_WC", [z["deviation_um"]["mean"] for z in on_table["zones"]], "#ff7f0e"),
+              ("without M_WC, referenced to zone I", [z["measured_um"]["mean"] for z in on_table["zones"]], "#2ca02c")]
+    fig, ax = plt.subplots(figsize=(7.5, 3.4))
+    for k, (label, values, colour) in enumerate(series):
+        ax.bar(x + (k - 1) * 0.27, values, 0.27, label=label, color=colour)
+    ax.axhline(0, color="#333", lw=0.6)
+    ax.set_xticks(x, names)
+    ax.set_ylabel("zone mean height [µm]")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def cubic_sensitivity_maps(result, limit=None):
+    """k = E / epsilon over the block for each error (seed 001 eq. 15), with M_WC (top row, Fig. 12)
+    and without (bottom row, Fig. 10); colours per error, mm/mm or mm/rad. The colour scale is at
+    least 0.05 mm/mm or 1 mm/rad, so that an error without effect, whose map holds only the
+    scallops' sampling (about 0.001 mm/mm), shows white."""
+    maps = result["sensitivity_maps"]
+    names = list(maps)
+    units = {k["parameter"]: k["unit"] for k in result["sensitivities"]}
+    fig, axes = plt.subplots(2, len(names), figsize=(1.9 * len(names) + 0.6, 4.4), squeeze=False)
+    for c, name in enumerate(names):
+        pair = maps[name]
+        floor = 0.05 if units[name] == "mm/mm" else 1.0
+        scale = limit or max(floor, float(max(np.abs(pair["with_alignment"]).max(), np.abs(pair["on_table"]).max())))
+        for r, key in enumerate(["with_alignment", "on_table"]):
+            ax = axes[r][c]
+            image = ax.imshow(pair[key], origin="lower", extent=_extent(result["sensitivity_grid"], pair[key].shape),
+                              cmap="RdBu_r", vmin=-scale, vmax=scale)
+            ax.set_xticks([])
+            ax.set_yticks([])
+            if r == 0:
+                ax.set_title(f"{name}\n±{scale:.3g} {units[name]}", fontsize=8)
+        axes[0][0].set_ylabel("with M_WC", fontsize=8)
+        axes[1][0].set_ylabel("without M_WC", fontsize=8)
+    fig.tight_layout()
+    return fig

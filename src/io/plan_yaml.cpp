@@ -3,6 +3,7 @@
 #include <map>
 
 #include "mtacc/io/bundled_data.hpp"
+#include "mtacc/io/cubic_test_yaml.hpp"
 #include "mtacc/io/text_file.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
 #include "mtacc/procedures/cone_ballbar.hpp"
@@ -125,11 +126,11 @@ std::vector<MeasurementRun> generate(const Context& ctx, const KinematicModel& n
   }
   if (const auto z = entry["cubic_zones"]) {
     const std::string k = key + ".cubic_zones";
-    yamlin::rejectUnknownKeys(ctx, z, k, {"size", "height", "tool_radius"});
-    const double size = yamlin::size(ctx, z["size"], k + ".size", Dimension::Length);
-    const double height = yamlin::size(ctx, z["height"], k + ".height", Dimension::Length);
-    const double radius = yamlin::size(ctx, z["tool_radius"], k + ".tool_radius", Dimension::Length);
-    return wrap([&] { return std::vector{cubicMachiningZones(nominal, size, height, radius)}; });
+    if (!yamlin::isMap(z)) ctx.fail(z, k, "expected {test: FILE or bundled name, slopes: true | false}");
+    yamlin::rejectUnknownKeys(ctx, z, k, {"test", "slopes"});
+    const auto spec = loadCubicTest(z["test"] ? yamlin::scalar(ctx, z["test"], k + ".test") : "seed001-cubic");
+    const bool slopes = z["slopes"] ? yamlin::boolean(ctx, z["slopes"], k + ".slopes") : false;
+    return wrap([&] { return cubicZoneRuns(nominal, spec, slopes); });
   }
   ctx.fail(entry, key, "expected one of circle, rotary, sphere, cone, cubic_zones");
 }

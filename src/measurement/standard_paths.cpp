@@ -249,29 +249,6 @@ std::vector<MeasurementRun> sphereTest(const KinematicModel& nominal, const Sphe
   return runs;
 }
 
-MeasurementRun cubicMachiningZones(const KinematicModel& nominal, double size, double height, double toolRadius) {
-  // Fig. 2 layout and Table 1 tool vectors (i, j, k): zone centres on a 3 x 3 grid, the tool
-  // tilted by 30 deg towards the centre (45 deg turned for the corner zones).
-  const double s = size / 3.0, h = 0.5, c = std::sqrt(2.0) / 4.0, k = std::sqrt(3.0) / 2.0;
-  struct Zone { double x, y, i, j, k; };
-  const Zone zones[9] = {{0, 0, 0, 0, 1},    {-s, 0, h, 0, k},  {0, -s, 0, h, k},   {s, 0, -h, 0, k},  {0, s, 0, -h, k},
-                         {-s, -s, c, c, k},  {s, -s, -c, c, k}, {s, s, -c, -c, k},  {-s, s, c, -c, k}};
-  const Vec3 toolAxis = nominal.machine->toolDirection;
-  MeasurementRun run;
-  run.name = "cubic-zones";
-  run.instrument = Instrument::Directional;
-  run.setup.toolBall = toolRadius * toolAxis;
-  run.setup.direction = Vec3::UnitZ();
-  std::vector<std::vector<double>> rows;
-  for (const auto& z : zones) {
-    const Vec3 t(z.i, z.j, z.k);
-    const Vec3 centre = Vec3(z.x, z.y, height) + toolRadius * Vec3::UnitZ();  // ball centre over the contact point
-    rows.push_back(solveIk(nominal, centre - toolRadius * t, t).q);
-  }
-  run.q = toMatrix(rows);
-  return run;
-}
-
 std::vector<double> evenAngles(double from, double to, int n) {
   std::vector<double> out;
   for (int i = 0; i < n; ++i) out.push_back(n == 1 ? from : from + (to - from) * i / (n - 1));

@@ -43,6 +43,7 @@ Problem buildProblem(const MachineSetup& setup, const IdentificationRequest& req
       throw InputError(InputLocation{"", 0, "data"}, "'" + file + "' is given twice (also as '" + it->second + "')");
     p.problem.runs.push_back(readMeasurementCsv(nominal, file));
   }
+  p.problem.runs.insert(p.problem.runs.end(), request.runs.begin(), request.runs.end());
   if (p.problem.runs.empty()) throw InputError(InputLocation{"", 0, planRuns ? "plan" : "data"}, "no measurement run given");
   if (p.given.empty())
     throw InputError(InputLocation{"", 0, "parameters"}, "no parameter to determine (name them, or use a plan with 'parameters')");

@@ -74,9 +74,4 @@ std::vector<double> evenAngles(double from, double to, int n);
 // Points of one generated run, at most (a reading every 0.0036 deg of a circle).
 constexpr int kMaxPointsPerRun = 100000;
 
-// Seed 001 §2 (Tables 1-2, Fig. 2): a cube of `size` whose top face lies at `height`; the
-// nine zones' centres, tool vectors tilted by 30 deg towards the centre, a ball-end mill of
-// `toolRadius`. The reading is the height deviation of the ball centre (workpiece z).
-MeasurementRun cubicMachiningZones(const KinematicModel& nominal, double size, double height, double toolRadius);
-
 }  // namespace mtacc

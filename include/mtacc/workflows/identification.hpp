@@ -15,6 +15,7 @@ namespace mtacc {
 struct IdentificationRequest {
   std::string plan;                 // test plan (path or bundled name): runs and parameter list
   std::vector<std::string> data{};  // measurement files (identify: the runs; observability: added to the plan's)
+  std::vector<MeasurementRun> runs{};  // runs already read (e.g. from zone results), added to the files' runs
   std::vector<std::string> parameters;  // default: the plan's list
   std::optional<std::vector<std::string>> setup{};  // set-up errors to estimate in every run (overrides the files)
   bool robust = false;

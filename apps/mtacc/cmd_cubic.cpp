@@ -1,0 +1,168 @@
+// mtacc cubic MACHINE: seed 001's cubic machining test — NC program and CL data, the machined
+// surface simulated from the erroneous tool path, zone heights and tilts, sensitivities with
+// and without M_WC. mtacc cubic-identify MACHINE --zones FILE: the errors from zone results.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <iostream>
+
+#include "cli_common.hpp"
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/core/text.hpp"
+#include "mtacc/core/units.hpp"
+#include "mtacc/io/cubic_program.hpp"
+#include "mtacc/io/cubic_test_yaml.hpp"
+#include "mtacc/io/surface_files.hpp"
+#include "mtacc/io/text_file.hpp"
+#include "mtacc/workflows/cubic_identification.hpp"
+
+namespace mtacc::cli {
+namespace {
+
+struct CubicCliOptions : MachineOptions {
+  std::string test = "seed001-cubic", gcode, cl, map, heights, surface, zonesOut, sensitivityParams, mapLimit = "10 um";
+  CubicTestOptions study;
+};
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The file's format from its extension, one of `allowed`; InputError at `option` otherwise.
+std::string formatOf(const std::string& path, const std::string& option, std::initializer_list<const char*> allowed) {
+  std::string list;
+  for (const char* ext : allowed) {
+    if (endsWith(path, std::string(".") + ext)) return ext;
+    list += std::string(list.empty() ? "" : ", ") + "." + ext;
+  }
+  throw InputError(InputLocation{"", 0, option}, "'" + path + "': expected a file ending in " + list);
+}
+
+std::string planRow(const ZonePlane& p) {
+  return fmt::format("{:>9.3f} {:>8.4f} {:>8.4f}", p.mean * 1e3, p.slopeX * 1e3, p.slopeY * 1e3);
+}
+
+void run(CubicCliOptions& o) {
+  // Every output's format first, so that a wrong name fails before anything is written.
+  const std::string mapFormat = o.map.empty() ? "" : formatOf(o.map, "--map", {"svg", "png"});
+  const std::string heightFormat = o.heights.empty() ? "" : formatOf(o.heights, "--heights", {"csv", "npy"});
+  const std::string surfaceFormat = o.surface.empty() ? "" : formatOf(o.surface, "--surface", {"ply", "stl"});
+  const double mapLimit = parseQuantityAs(o.mapLimit, Dimension::Length, "--map-limit");
+  if (!(mapLimit >= 1e-6 && mapLimit <= 10)) throw InputError(InputLocation{"", 0, "--map-limit"}, "must be from 1 nm to 10 mm");
+  const auto setup = loadMachineSetup(o.source);
+  const Machine& m = *setup.machine;
+  CubicTestOptions& options = o.study;
+  options.spec = loadCubicTest(o.test);
+  options.sensitivityParameters = splitList(o.sensitivityParams);
+  if (options.threads < 0 || options.threads > 1024)
+    throw InputError(InputLocation{"", 0, "--threads"}, "must be from 0 (every core) to 1024");
+  const bool tty = !o.json && isatty(2);
+  options.progress = [tty](const std::string& stage) {
+    if (tty) std::cerr << "cubic: " << stage << "\n";
+  };
+  const auto s = cubicTestStudy(setup, options);
+  const CubicTestSpec& spec = s.options.spec;
+  std::string human = fmt::format(
+      "Cubic machining test on {} ({} workpiece): {:g} mm block, {} zones of {:g} mm, {} end R{:g} mm, pick {:g} mm, "
+      "depth {:g} mm\nsurface: {} x {} cells of {:g} mm, {} tool moves; zones evaluated {:g} mm inside their edges\n\n",
+      m.name, m.alignment == WorkpieceAlignment::Machine ? "aligned (M_WC)" : "on the table", spec.blockSize, spec.zones.size(),
+      spec.zoneSize, spec.tool.shape == ToolShape::Ball ? "ball" : "flat", spec.tool.radius, spec.pick, spec.depth,
+      s.actual.grid.nx, s.actual.grid.ny, s.actual.grid.spacing, s.cutterMoves, options.inset);
+  human += fmt::format("{:<7} {}  {:>27}  {:>27}\n{:<7} {}  {:>9} {:>8} {:>8}  {:>9} {:>8} {:>8}\n", "", poseHeader(m),
+                       "deviation E (um, um/mm)", fmt::format("referenced to {} (um)", spec.zones[s.referenceZone].name), "zone",
+                       std::string(poseHeader(m).size(), ' '), "mean", "slope x", "slope y", "mean", "slope x", "slope y");
+  std::string csv = "zone," + poseCsvHeader(m) + "deviation_um,deviation_slope_x_um_per_mm,deviation_slope_y_um_per_mm,"
+                    "measured_um,measured_slope_x_um_per_mm,measured_slope_y_um_per_mm\n";
+  for (const auto& z : s.zones) {
+    human += fmt::format("{:<7} {}  {}  {}\n", z.name, formatPose(m, z.clamped.data()), planRow(z.deviation), planRow(z.measured));
+    csv += fmt::format("{},{}{},{},{},{},{},{}\n", z.name, poseCsv(m, z.clamped.data()), z.deviation.mean * 1e3,
+                       z.deviation.slopeX * 1e3, z.deviation.slopeY * 1e3, z.measured.mean * 1e3, z.measured.slopeX * 1e3,
+                       z.measured.slopeY * 1e3);
+  }
+  for (const auto& c : s.sensitivities) {
+    const bool length = c.dimension == Dimension::Length;
+    human += fmt::format("\nsensitivity k = E / {} ({}, from {} = {:g} {}), per zone: with M_WC | on the table\n", c.name,
+                         length ? "mm/mm" : "mm/rad", c.name, length ? c.step * 1e3 : c.step / kDeg, length ? "um" : "deg");
+    for (size_t k = 0; k < c.withAlignment.size(); ++k)
+      human += fmt::format("  {:<7} {:>9.4f} | {:>9.4f}\n", spec.zones[k].name, c.withAlignment[k].mean, c.onTable[k].mean);
+  }
+  const auto write = [&](const std::string& path, const std::string& content, const std::string& key, const std::string& what) {
+    writeFileAtomically(path, content, key);
+    human += fmt::format("\n{} written: {}", what, path);
+  };
+  if (!o.gcode.empty()) write(o.gcode, cubicNcProgram(m, spec, s.path), "--gcode", "NC program");
+  if (!o.cl.empty()) write(o.cl, cubicClData(spec, s.path), "--cl", "CL data");
+  if (!mapFormat.empty()) {
+    const auto referenced = referencedDeviation(s);
+    const auto& rz = spec.zones[s.referenceZone];
+    const ColourMap colours{mapLimit, 1200};
+    std::vector<ZonePlane> measured;
+    for (const auto& z : s.zones) measured.push_back(z.measured);
+    write(o.map,
+          mapFormat == "png" ? heightMapPng(referenced, colours)
+                             : zoneMapSvg(referenced, colours, spec, measured,
+                                          fmt::format("{}: machined minus error-free surface, referenced to zone {}", m.name, rz.name)),
+          "--map", "surface map");
+  }
+  if (!heightFormat.empty())
+    write(o.heights, heightFormat == "csv" ? heightMapCsv(s.actual) : heightMapNpy(s.actual), "--heights", "heights");
+  if (!surfaceFormat.empty()) {
+    const int stride = exportStride(s.actual.grid);
+    write(o.surface, surfaceFormat == "ply" ? heightMapPly(s.actual, stride) : heightMapStl(s.actual, stride), "--surface",
+          fmt::format("surface (every {} cell{})", stride, stride > 1 ? "s" : ""));
+  }
+  if (!o.zonesOut.empty()) write(o.zonesOut, zoneResultsCsv(zoneResults(s)), "--zones-out", "zone results");
+  if (human.back() != '\n') human += "\n";
+  emit(o, toJson(s), human, csv);
+}
+
+struct CubicIdentifyCliOptions : MachineOptions {
+  CubicIdentificationRequest request;
+  std::string params, noise;
+  bool strict = false;
+};
+
+void identify(CubicIdentifyCliOptions& o) {
+  o.request.parameters = splitList(o.params);
+  if (!o.noise.empty()) o.request.noise = parseQuantityAs(o.noise, Dimension::Length, "--noise");
+  if (o.request.threads < 0 || o.request.threads > 1024)
+    throw InputError(InputLocation{"", 0, "--threads"}, "must be from 0 (every core) to 1024");
+  emitIdentification(o, identifyFromZones(loadMachineSetup(o.source), o.request), o.strict);
+}
+
+}  // namespace
+
+void addCubicCommands(CLI::App& app) {
+  auto o = std::make_shared<CubicCliOptions>();
+  auto* cmd = app.add_subcommand("cubic", "cubic machining test (seed 001): NC program, machined surface, zone heights, sensitivities");
+  addMachineOptions(*cmd, *o);
+  cmd->add_option("--test", o->test, "test piece (YAML) or bundled name (default seed001-cubic)");
+  cmd->add_option("--grid", o->study.gridSpacing, "grid spacing of the simulated surface [mm] (default 0.01)");
+  cmd->add_option("--inset", o->study.inset, "margin left out along each zone edge when zones are evaluated [mm] (default 1)");
+  cmd->add_option("--chord-tolerance", o->study.chordTolerance, "largest departure of the actual path from its chords [mm] (default 1e-6)");
+  cmd->add_flag("--sensitivities", o->study.sensitivities, "sensitivity k = E / epsilon of every zone to each error, with and without M_WC");
+  cmd->add_option("--sensitivity-parameters", o->sensitivityParams, "errors for --sensitivities (default: the rotary axes' location errors)");
+  cmd->add_option("--sensitivity-grid", o->study.sensitivityGrid, "grid spacing for the sensitivities [mm] (default 0.02)");
+  cmd->add_option("--threads", o->study.threads, "threads (0 = all cores)")->capture_default_str();
+  cmd->add_option("--gcode", o->gcode, "write the NC program to FILE");
+  cmd->add_option("--cl", o->cl, "write the CL data (zone, tool tip, tool vector) to FILE.csv");
+  cmd->add_option("--map", o->map, "write the deviation map referenced to zone I to FILE.svg (zones, colour bar) or FILE.png");
+  cmd->add_option("--map-limit", o->mapLimit, "deviation shown at full colour (default 10 um, as seed 001 Fig. 16)");
+  cmd->add_option("--heights", o->heights, "write the machined heights to FILE.csv (um) or FILE.npy (float32, mm)");
+  cmd->add_option("--surface", o->surface, "write the machined surface to FILE.ply or FILE.stl (at most 1e6 vertices)");
+  cmd->add_option("--zones-out", o->zonesOut, "write the zone results (heights and tilts) to FILE.csv, for cubic-identify");
+  cmd->callback([o] { run(*o); });
+
+  auto id = std::make_shared<CubicIdentifyCliOptions>();
+  auto* idc = app.add_subcommand("cubic-identify", "errors from the zone results of a cubic machining test (seed 001 §7.3)");
+  addMachineOptions(*idc, *id);
+  idc->add_option("--test", id->request.test, "test piece (YAML) or bundled name (default seed001-cubic)");
+  idc->add_option("--zones", id->request.zonesFile, "zone results: zone,height_um[,slope_x_um_per_mm,slope_y_um_per_mm]")->required();
+  idc->add_option("--params", id->params, "parameters to determine, e.g. dxBY,alphaBY,alphaCB,betaBY")->required();
+  idc->add_option("--noise", id->noise, "height noise (standard deviation), e.g. 0.2um; default: the file's '# noise:' line");
+  idc->add_option("--threads", id->request.threads, "threads (0 = all cores)")->capture_default_str();
+  idc->add_flag("--strict", id->strict, "exit with status 4 when the fit or the conditioning draws a warning");
+  idc->callback([id] { identify(*id); });
+}
+
+}  // namespace mtacc::cli

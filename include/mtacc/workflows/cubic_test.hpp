@@ -1,0 +1,70 @@
+#pragma once
+// Workflow `cubic`: seed 001's cubic machining test on a machine — the tool path and NC
+// program, the machined surface simulated by material removal from the erroneous path, the
+// zones evaluated as the seed measures them, and the sensitivity of every zone to each error
+// with and without the workpiece-to-table transformation M_WC.
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "mtacc/core/units.hpp"
+#include "mtacc/procedures/zone_planes.hpp"
+#include "mtacc/workflows/machine_setup.hpp"
+
+namespace mtacc {
+
+struct CubicTestOptions {
+  CubicTestSpec spec = seed001CubicTest();
+  double gridSpacing = 0.01;     // mm, over the whole block
+  double chordTolerance = 1e-6;  // mm, of the actual path against its chords
+  double inset = 1.0;            // mm left out along each zone edge when zones are evaluated
+  // Sensitivities k = E / epsilon (seed 001 eq. 15) of each named error (default: every
+  // location error of the rotary axes), each alone at epsilon, both alignments.
+  bool sensitivities = false;
+  std::vector<std::string> sensitivityParameters;
+  // mm; five cells per 0.1 mm pick, so that the scallops, shifted by epsilon, change a zone
+  // mean by about 0.01 um (0.001 mm/mm at epsilon = 10 um); two per pick would give 0.07 um.
+  double sensitivityGrid = 0.02;
+  double lengthStep = 0.01, angleStep = 0.01 * kDeg;  // epsilon: 10 um, 0.01 deg
+  int threads = kAllCores;
+  std::function<void(const std::string&)> progress;  // one line per stage
+};
+
+struct CubicZoneResult {
+  std::string name;
+  std::vector<double> clamped;  // commanded axes while the zone is cut (mm, rad)
+  ZonePlane deviation;          // E = machined - error-free surface (seed 001 L193), workpiece frame
+  ZonePlane measured;           // the machined surface referenced to the reference zone (L239)
+};
+
+// Sensitivity of each zone to one error: E / epsilon of the zone planes.
+struct CubicSensitivity {
+  std::string name;            // as requested
+  Dimension dimension;
+  double step = 0;             // epsilon (mm or rad)
+  std::vector<ZonePlane> withAlignment, onTable;  // per zone, per unit error (mm/mm or mm/rad)
+  HeightMap mapWithAlignment, mapOnTable;          // E / epsilon over the block, sensitivity grid
+};
+
+struct CubicTestStudy {
+  std::shared_ptr<const Machine> machine;
+  CubicTestOptions options;
+  std::vector<CubicZonePath> path;
+  size_t referenceZone = 0;
+  size_t cutterMoves = 0;      // straight moves of the actual path after chord refinement
+  HeightMap nominal, actual;   // machined surfaces without and with the machine's errors
+  std::vector<CubicZoneResult> zones;
+  std::vector<CubicSensitivity> sensitivities;
+};
+
+// Throws InputError for a spec or option out of range and for a zone the machine cannot reach.
+CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestOptions& options);
+nlohmann::json toJson(const CubicTestStudy& study);
+// The deviation E (machined minus error-free surface) less the reference zone's plane of it:
+// the simulated counterpart of the measured map of seed 001 Fig. 16.
+HeightMap referencedDeviation(const CubicTestStudy& study);
+
+}  // namespace mtacc

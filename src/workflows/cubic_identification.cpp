@@ -1,0 +1,51 @@
+#include "mtacc/workflows/cubic_identification.hpp"
+
+#include <algorithm>
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/io/cubic_test_yaml.hpp"
+
+namespace mtacc {
+
+IdentificationOutcome identifyFromZones(const MachineSetup& setup, const CubicTestSpec& spec, const ZoneResults& results,
+                                        const CubicIdentificationRequest& request) {
+  auto machine = std::make_shared<Machine>(*setup.machine);
+  machine->alignment = WorkpieceAlignment::Machine;
+  const MachineSetup aligned{machine, setup.errors};
+  const bool slopes = std::all_of(results.zones.begin(), results.zones.end(), [](const auto& z) { return z.slopeX.has_value(); });
+  std::vector<MeasurementRun> all;
+  try {
+    all = cubicZoneRuns(aligned.nominal(), spec, slopes);
+  } catch (const UnreachablePose& e) {
+    throw InputError(InputLocation{"", 0, "test"}, std::string("the test cannot be machined: ") + e.what());
+  }
+  const auto points = cubicZoneRunPoints(spec, slopes);
+  IdentificationRequest r;
+  r.parameters = request.parameters;
+  r.noise = request.noise;
+  r.threads = request.threads;
+  for (const auto& z : results.zones) {
+    const auto at = std::find_if(spec.zones.begin(), spec.zones.end(), [&](const auto& s) { return s.name == z.name; });
+    if (at == spec.zones.end()) throw InputError(InputLocation{results.file, z.line, "zone"}, "no zone '" + z.name + "' in the test");
+    MeasurementRun run = all[static_cast<size_t>(at - spec.zones.begin())];
+    run.readings.resize(static_cast<Eigen::Index>(points.size()), 1);
+    for (size_t k = 0; k < points.size(); ++k)
+      run.readings(static_cast<Eigen::Index>(k), 0) =
+          z.height + (slopes ? *z.slopeX * points[k][0] + *z.slopeY * points[k][1] : 0.0);
+    run.noise = results.noise;
+    r.runs.push_back(std::move(run));
+  }
+  return identifyParameters(aligned, r);
+}
+
+IdentificationOutcome identifyFromZones(const MachineSetup& setup, const CubicIdentificationRequest& request) {
+  return identifyFromZones(setup, loadCubicTest(request.test), readZoneResults(request.zonesFile), request);
+}
+
+ZoneResults zoneResults(const CubicTestStudy& study) {
+  ZoneResults r;
+  for (const auto& z : study.zones) r.zones.push_back({z.name, z.measured.mean, z.measured.slopeX, z.measured.slopeY, 0});
+  return r;
+}
+
+}  // namespace mtacc

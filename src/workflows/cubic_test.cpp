@@ -1,0 +1,179 @@
+#include "mtacc/workflows/cubic_test.hpp"
+
+#include <fmt/format.h>
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/errors/aliases.hpp"
+
+namespace mtacc {
+namespace {
+
+HeightMap machinedSurface(const KinematicModel& model, const std::vector<CubicZonePath>& path, const CubicTestSpec& spec,
+                          const HeightGrid& grid, const CubicTestOptions& o, size_t* moves = nullptr) {
+  const CutterPath cutter = cutterPath(model, path, spec.tool, o.chordTolerance);
+  if (moves) *moves = cutter.moves();
+  HeightMap map = stockHeightMap(grid, spec.topHeight, spec.depth);
+  cutHeightMap(map, cutter, o.threads);
+  return map;
+}
+
+std::shared_ptr<const Machine> withAlignment(const Machine& m, WorkpieceAlignment alignment) {
+  auto copy = std::make_shared<Machine>(m);
+  copy->alignment = alignment;
+  return copy;
+}
+
+std::vector<ZonePlane> perUnit(std::vector<ZonePlane> planes, double step) {
+  for (auto& p : planes) {
+    p.mean /= step;
+    p.slopeX /= step;
+    p.slopeY /= step;
+    p.residualPeakToValley /= step;
+  }
+  return planes;
+}
+
+HeightMap scaled(HeightMap map, double factor) {
+  for (float& h : map.height) h = static_cast<float>(h * factor);
+  return map;
+}
+
+std::vector<std::string> rotaryLocationErrors(const Machine& m) {
+  std::vector<std::string> names;
+  for (int a = 0; a < static_cast<int>(m.axes.size()); ++a)
+    if (m.axes[static_cast<size_t>(a)].type == AxisType::Rotary)
+      for (auto& n : locationErrorNames(m, a)) names.push_back(std::move(n));
+  return names;
+}
+
+nlohmann::json planeJson(const ZonePlane& p, double unit) {
+  return {{"mean", p.mean * unit}, {"slope_x", p.slopeX * unit}, {"slope_y", p.slopeY * unit},
+          {"residual_peak_to_valley", p.residualPeakToValley * unit}, {"cells", p.cells}};
+}
+
+}  // namespace
+
+CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestOptions& options) {
+  const auto require = [](bool ok, const char* key, const char* what) {
+    if (!ok) throw InputError(InputLocation{"", 0, key}, what);
+  };
+  if (const auto p = cubicTestSpecProblem(options.spec)) throw InputError(InputLocation{"", 0, "test." + p->key}, p->what);
+  require(options.chordTolerance >= 1e-9 && options.chordTolerance <= 1, "chord_tolerance", "must be in [1e-9, 1] mm");
+  require(options.inset >= 0 && options.inset < options.spec.zoneSize / 2, "inset", "must be in [0, half the zone size)");
+  require(options.lengthStep > 0 && options.lengthStep <= 1, "length_step", "must be in (0, 1] mm");
+  require(options.angleStep > 0 && options.angleStep <= 0.02, "angle_step", "must be in (0, 0.02] rad");
+  require(options.threads >= 0 && options.threads <= 1024, "threads", "must be from 0 (every core) to 1024");
+  const auto progress = [&](const std::string& stage) {
+    if (options.progress) options.progress(stage);
+  };
+  CubicTestStudy s;
+  s.machine = setup.machine;
+  s.options = options;
+  const CubicTestSpec& spec = options.spec;
+  const auto nominal = setup.nominal();
+  try {
+    s.path = cubicToolPath(nominal, spec);
+  } catch (const UnreachablePose& e) {
+    throw InputError(InputLocation{"", 0, "test"}, std::string("the test cannot be machined: ") + e.what());
+  }
+  s.referenceZone = referenceZone(spec);
+  const HeightGrid grid = squareGrid(spec.blockSize, options.gridSpacing, "grid", spec.centreX, spec.centreY);
+  progress(fmt::format("machining the error-free surface ({} x {} cells)", grid.nx, grid.ny));
+  s.nominal = machinedSurface(nominal, s.path, spec, grid, options);
+  progress("machining the surface with the machine's errors");
+  s.actual = machinedSurface(setup.actual(), s.path, spec, grid, options, &s.cutterMoves);
+  const auto deviation = zonePlanes(heightDifference(s.actual, s.nominal), spec, options.inset);
+  const auto measured = referencedToZone(zonePlanes(s.actual, spec, options.inset), spec, s.referenceZone);
+  for (size_t k = 0; k < spec.zones.size(); ++k)
+    s.zones.push_back({spec.zones[k].name, s.path[k].clamped, deviation[k], measured[k]});
+  if (!options.sensitivities) return s;
+
+  const auto names = options.sensitivityParameters.empty() ? rotaryLocationErrors(*setup.machine) : options.sensitivityParameters;
+  const auto parameters = findParameters(setup, names, {"", 0, "sensitivity_parameters"});
+  const HeightGrid coarse = squareGrid(spec.blockSize, options.sensitivityGrid, "sensitivity_grid", spec.centreX, spec.centreY);
+  const auto coarseNominal = machinedSurface(nominal, s.path, spec, coarse, options);
+  const auto onTable = withAlignment(*setup.machine, WorkpieceAlignment::Table);
+  const auto aligned = withAlignment(*setup.machine, WorkpieceAlignment::Machine);
+  const ErrorModel zero = ErrorModel::zero(*setup.machine);
+  for (size_t k = 0; k < parameters.size(); ++k) {
+    progress(fmt::format("sensitivity {}/{}: {}", k + 1, parameters.size(), names[k]));
+    CubicSensitivity c;
+    c.name = names[k];
+    c.dimension = parameters[k].dimension;
+    c.step = c.dimension == Dimension::Length ? options.lengthStep : options.angleStep;
+    // The step is in the unit of the name as given (an alias may count the other way round).
+    const ErrorModel single = singleError(*setup.machine, zero, parameters[k], isoSign(names[k]) * c.step);
+    for (const auto& [machine, planes, map] : {std::tuple{aligned, &c.withAlignment, &c.mapWithAlignment},
+                                               std::tuple{onTable, &c.onTable, &c.mapOnTable}}) {
+      const auto e = heightDifference(machinedSurface(compile(machine, single), s.path, spec, coarse, options), coarseNominal);
+      *planes = perUnit(zonePlanes(e, spec, options.inset), c.step);
+      *map = scaled(e, 1 / c.step);
+    }
+    s.sensitivities.push_back(std::move(c));
+  }
+  return s;
+}
+
+HeightMap referencedDeviation(const CubicTestStudy& s) {
+  HeightMap e = heightDifference(s.actual, s.nominal);
+  const auto& spec = s.options.spec;
+  const ZonePlane plane = zonePlanes(e, spec, s.options.inset)[s.referenceZone];
+  const CubicZone& zone = spec.zones[s.referenceZone];
+  for (int j = 0; j < e.grid.ny; ++j)
+    for (int i = 0; i < e.grid.nx; ++i)
+      e.height[static_cast<size_t>(j) * static_cast<size_t>(e.grid.nx) + static_cast<size_t>(i)] -=
+          static_cast<float>(plane.at(e.grid.x(i) - zone.x, e.grid.y(j) - zone.y));
+  return e;
+}
+
+nlohmann::json toJson(const CubicTestStudy& s) {
+  const Machine& m = *s.machine;
+  const CubicTestSpec& spec = s.options.spec;
+  nlohmann::json zones = nlohmann::json::array();
+  for (size_t k = 0; k < s.zones.size(); ++k) {
+    const auto& z = s.zones[k];
+    zones.push_back({{"name", z.name},
+                     {"centre", {spec.zones[k].x, spec.zones[k].y}},
+                     {"tool_vector", vectorJson(spec.zones[k].toolVector)},
+                     {"axes", poseJson(m, z.clamped.data())},
+                     {"deviation_um", planeJson(z.deviation, 1e3)},
+                     {"measured_um", planeJson(z.measured, 1e3)}});
+  }
+  nlohmann::json j = {{"machine", m.name},
+                      {"alignment", m.alignment == WorkpieceAlignment::Machine ? "machine" : "table"},
+                      {"block_mm", spec.blockSize},
+                      {"block_centre_mm", {spec.centreX, spec.centreY}},
+                      {"zone_size_mm", spec.zoneSize},
+                      {"top_mm", spec.topHeight},
+                      {"tool", {{"shape", spec.tool.shape == ToolShape::Ball ? "ball" : "flat"}, {"radius_mm", spec.tool.radius}}},
+                      {"pick_mm", spec.pick},
+                      {"depth_mm", spec.depth},
+                      {"feed_mm_per_min", spec.feed},
+                      {"grid_mm", s.actual.grid.spacing},
+                      {"cells", s.actual.grid.cells()},
+                      {"cutter_moves", s.cutterMoves},
+                      {"inset_mm", s.options.inset},
+                      {"reference_zone", spec.zones[s.referenceZone].name},
+                      {"zones", zones},
+                      {"units", "heights in um; slopes in um/mm (deviation: machined minus error-free surface; measured: "
+                                "the machined surface referenced to the reference zone's plane)"}};
+  if (!s.sensitivities.empty()) {
+    nlohmann::json k = nlohmann::json::array();
+    for (const auto& c : s.sensitivities) {
+      const auto values = [](const std::vector<ZonePlane>& planes) {
+        nlohmann::json a = nlohmann::json::array();
+        for (const auto& p : planes) a.push_back({{"k", p.mean}, {"slope_x", p.slopeX}, {"slope_y", p.slopeY}});
+        return a;
+      };
+      k.push_back({{"parameter", c.name},
+                   {"unit", c.dimension == Dimension::Length ? "mm/mm" : "mm/rad"},
+                   {"step", c.step},
+                   {"with_alignment", values(c.withAlignment)},
+                   {"on_table", values(c.onTable)}});
+    }
+    j["sensitivities"] = k;
+  }
+  return j;
+}
+
+}  // namespace mtacc
