@@ -8,8 +8,11 @@
 
 namespace mtacc {
 
-std::vector<ZonePlane> zonePlanes(const HeightMap& map, const CubicTestSpec& spec, double inset) {
+std::vector<ZonePlane> zonePlanes(const HeightMap& map, const CubicTestSpec& spec, double inset, const HeightMap* baseline) {
   const HeightGrid& g = map.grid;
+  if (baseline && baseline->height.size() != map.height.size()) throw std::invalid_argument("zonePlanes: different grids");
+  const double offset = baseline ? map.reference - baseline->reference : 0.0;
+  const auto at = [&](int i, int j) { return baseline ? map.at(i, j) - baseline->at(i, j) + offset : map.at(i, j); };
   const double half = spec.zoneSize / 2 - inset;
   if (!(half > 0)) throw std::invalid_argument("zonePlanes: the inset leaves nothing of the zones");
   std::vector<ZonePlane> planes;
@@ -25,7 +28,7 @@ std::vector<ZonePlane> zonePlanes(const HeightMap& map, const CubicTestSpec& spe
       const double dy = g.y(j) - zone.y;
       double n = 0, sx = 0, sxx = 0, sz = 0, sxz = 0;
       for (int i = i0; i < i1; ++i) {
-        const double dx = g.x(i) - zone.x, z = map.at(i, j);
+        const double dx = g.x(i) - zone.x, z = at(i, j);
         n += 1;
         sx += dx;
         sxx += dx * dx;
@@ -45,10 +48,10 @@ std::vector<ZonePlane> zonePlanes(const HeightMap& map, const CubicTestSpec& spe
     double lo = INFINITY, hi = -INFINITY, sum = 0;
     for (int j = j0; j < j1; ++j)
       for (int i = i0; i < i1; ++i) {
-        const double r = map.at(i, j) - (c(0) + c(1) * (g.x(i) - zone.x) + c(2) * (g.y(j) - zone.y));
+        const double r = at(i, j) - (c(0) + c(1) * (g.x(i) - zone.x) + c(2) * (g.y(j) - zone.y));
         lo = std::min(lo, r);
         hi = std::max(hi, r);
-        sum += map.at(i, j);
+        sum += at(i, j);
       }
     p.mean = sum / static_cast<double>(p.cells);
     p.residualPeakToValley = hi - lo;

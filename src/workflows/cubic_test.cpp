@@ -82,7 +82,7 @@ CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestOptions&
   s.nominal = machinedSurface(nominal, s.path, spec, grid, options);
   progress("machining the surface with the machine's errors");
   s.actual = machinedSurface(setup.actual(), s.path, spec, grid, options, &s.cutterMoves);
-  const auto deviation = zonePlanes(heightDifference(s.actual, s.nominal), spec, options.inset);
+  const auto deviation = zonePlanes(s.actual, spec, options.inset, &s.nominal);
   const auto measured = referencedToZone(zonePlanes(s.actual, spec, options.inset), spec, s.referenceZone);
   for (size_t k = 0; k < spec.zones.size(); ++k)
     s.zones.push_back({spec.zones[k].name, s.path[k].clamped, deviation[k], measured[k]});
@@ -117,7 +117,7 @@ CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestOptions&
 HeightMap referencedDeviation(const CubicTestStudy& s) {
   HeightMap e = heightDifference(s.actual, s.nominal);
   const auto& spec = s.options.spec;
-  const ZonePlane plane = zonePlanes(e, spec, s.options.inset)[s.referenceZone];
+  const ZonePlane plane = zonePlanes(s.actual, spec, s.options.inset, &s.nominal)[s.referenceZone];
   const CubicZone& zone = spec.zones[s.referenceZone];
   for (int j = 0; j < e.grid.ny; ++j)
     for (int i = 0; i < e.grid.nx; ++i)

@@ -18,8 +18,10 @@ struct ZonePlane {
 };
 
 // The plane of each zone over its square shrunk by `inset` on every side (the neighbours'
-// tools overcut the edges). `heights` is the map (or a difference of maps on its grid).
-std::vector<ZonePlane> zonePlanes(const HeightMap& heights, const CubicTestSpec& spec, double inset);
+// tools overcut the edges), of `heights` less `baseline` (same grid) when one is given — the
+// difference of two surfaces without a third map in memory.
+std::vector<ZonePlane> zonePlanes(const HeightMap& heights, const CubicTestSpec& spec, double inset,
+                                  const HeightMap* baseline = nullptr);
 
 // The planes in the measurement frame of seed 001 (L239): the plane of zone `reference`
 // subtracted from every zone.
