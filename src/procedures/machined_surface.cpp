@@ -35,6 +35,11 @@ struct MoveTracer {
     Vec3 axisM;
     const Vec3 pm = cutterPoint(model, qm.data(), dir, tool, axisM);
     if (depth < 24 && (pm - 0.5 * (pa + pb)).norm() > tolerance) {
+      if (out.points.size() >= kMaxCutterPoints)
+        throw InputError(InputLocation{"", 0, "chord_tolerance"},
+                         fmt::format("the actual path needs more than {} points to follow its chords within {:g} mm; "
+                                     "allow a larger chord tolerance",
+                                     kMaxCutterPoints, tolerance));
       trace(qa, pa, qm, pm, axisM, depth + 1);
       trace(qm, pm, qb, pb, axisB, depth + 1);
       return;

@@ -26,7 +26,9 @@ struct CutterPath {
 
 // Every CL point of the tool path through `model` (all its errors; the workpiece frame with
 // M_WC when the workpiece is aligned). Each commanded straight move is followed by halving
-// until the actual path departs from its chord by less than chordTolerance (mm).
+// until the actual path departs from its chord by less than chordTolerance (mm); InputError
+// (key chord_tolerance) when that takes more than kMaxCutterPoints points.
+constexpr size_t kMaxCutterPoints = 50'000'000;
 CutterPath cutterPath(const KinematicModel& model, const std::vector<CubicZonePath>& path, const CuttingTool& tool,
                       double chordTolerance = 1e-6);
 
