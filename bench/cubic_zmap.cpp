@@ -88,9 +88,10 @@ int main() {
     for (const auto& patch : patches)
       for (int j = patch.j0; j < patch.j0 + kSide; ++j)
         for (int i = patch.i0; i < patch.i0 + kSide; ++i) {
-          double z = spec.topHeight + spec.depth;
+          double z = INFINITY;
           for (const auto& m : all) z = std::min(z, sweptToolBottom(spec.tool, m[0], m[1], m[2], grid.x(i), grid.y(j)));
-          worst = std::max(worst, std::abs(static_cast<double>(static_cast<float>(z - map.reference)) - map.at(i, j)));
+          const double expected = std::min(static_cast<float>(z - map.reference), static_cast<float>(spec.depth));
+          worst = std::max(worst, std::abs(expected - map.at(i, j)));
         }
     perCell.push_back(seconds(start) / (3.0 * kSide * kSide));
   }

@@ -78,10 +78,10 @@ TEST(MachinedSurface, CuttingEqualsEveryMoveAtEveryCell) {
     cutHeightMap(fast, path, 2);
     for (int j = 0; j < grid.ny; j += 3)
       for (int i = 0; i < grid.nx; i += 3) {
-        double z = 0.1;
+        double z = INFINITY;
         for (size_t k = 1; k < path.points.size(); ++k)
           z = std::min(z, sweptToolBottom(path.tool, path.points[k - 1], path.points[k], path.axes[k - 1], grid.x(i), grid.y(j)));
-        ASSERT_EQ(static_cast<float>(z), static_cast<float>(fast.at(i, j))) << i << " " << j;
+        ASSERT_EQ(std::min(static_cast<float>(z), 0.1f), static_cast<float>(fast.at(i, j))) << i << " " << j;
       }
   }
 }

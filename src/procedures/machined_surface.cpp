@@ -119,12 +119,13 @@ class TileCutter {
       float* row = map_.height.data() + static_cast<size_t>(j) * static_cast<size_t>(g.nx);
       for (int i = i0; i < i1; ++i) {
         const double x = g.x(i);
-        double z = row[i] + map_.reference;
+        double lowest = kInf;
         for (int k : kept) {
           const Move& m = moves_[static_cast<size_t>(k)];
-          z = std::min(z, sweptToolBottom(tool_, m.a, m.b, m.axis, x, y));
+          lowest = std::min(lowest, sweptToolBottom(tool_, m.a, m.b, m.axis, x, y));
         }
-        row[i] = static_cast<float>(z - map_.reference);
+        // Only a lower height is written, so an untouched cell keeps its value to the bit.
+        if (lowest - map_.reference < row[i]) row[i] = static_cast<float>(lowest - map_.reference);
       }
     }
   }
