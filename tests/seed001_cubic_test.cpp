@@ -213,7 +213,6 @@ TEST(Seed001CubicTest, AlphaByAndAlphaCbSameHeightsDifferentTilts) {
     EXPECT_NEAR(by.zones[z].deviation.slopeX - cb.zones[z].deviation.slopeX, k * std::sin(c), 1e-6) << by.zones[z].name;
     EXPECT_NEAR(by.zones[z].deviation.slopeY - cb.zones[z].deviation.slopeY, -k * std::cos(c), 1e-6) << by.zones[z].name;
   }
-  EXPECT_NEAR(1 - std::cos(30 * kDeg), 0.134, 0.0005);
 }
 
 // Extraction §7.1: the sensitivities k = E / epsilon (eq. 15) of the simulated surface's zone
@@ -289,9 +288,6 @@ TEST(Seed001CubicTest, IntentionalErrorsOfSection5_3) {
       EXPECT_NEAR(s.zones[z].deviation.mean, expected[k][z], tolerance) << kSeedErrors[e] << " zone " << s.zones[z].name;
     }
   }
-  // dxCB = 0.5 mm moves nothing (C4); the translations are exact at any size: -sin 30 * 0.5 and
-  // (cos 30 - 1) * 0.5.
-  EXPECT_NEAR((std::cos(30 * kDeg) - 1) * 0.5, -0.0670, 0.00005);
 }
 
 // The machined face of each zone from the least-squares plane z = a + b (x - xc) + c (y - yc)

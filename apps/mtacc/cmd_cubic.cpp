@@ -24,15 +24,11 @@ struct CubicCliOptions : MachineOptions {
   CubicTestOptions study;
 };
 
-bool endsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 // The file's format from its extension, one of `allowed`; InputError at `option` otherwise.
 std::string formatOf(const std::string& path, const std::string& option, std::initializer_list<const char*> allowed) {
   std::string list;
   for (const char* ext : allowed) {
-    if (endsWith(path, std::string(".") + ext)) return ext;
+    if (path.ends_with(std::string(".") + ext)) return ext;
     list += std::string(list.empty() ? "" : ", ") + "." + ext;
   }
   throw InputError(InputLocation{"", 0, option}, "'" + path + "': expected a file ending in " + list);
@@ -54,8 +50,6 @@ void run(CubicCliOptions& o) {
   CubicTestOptions& options = o.study;
   options.spec = loadCubicTest(o.test);
   options.sensitivityParameters = splitList(o.sensitivityParams);
-  if (options.threads < 0 || options.threads > 1024)
-    throw InputError(InputLocation{"", 0, "--threads"}, "must be from 0 (every core) to 1024");
   const bool tty = !o.json && isatty(2);
   options.progress = [tty](const std::string& stage) {
     if (tty) std::cerr << "cubic: " << stage << "\n";

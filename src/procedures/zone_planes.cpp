@@ -44,7 +44,6 @@ std::vector<ZonePlane> zonePlanes(const HeightMap& map, const CubicTestSpec& spe
     const Eigen::Vector3d c = normal.ldlt().solve(rhs);
     p.slopeX = c(1);
     p.slopeY = c(2);
-    // The mean of the plane over the square is its value at the square's centroid.
     double lo = INFINITY, hi = -INFINITY, sum = 0;
     for (int j = j0; j < j1; ++j)
       for (int i = i0; i < i1; ++i) {

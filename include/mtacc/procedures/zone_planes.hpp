@@ -9,7 +9,7 @@
 namespace mtacc {
 
 struct ZonePlane {
-  double mean = 0;             // mean height over the evaluated square (the plane at the zone centre)
+  double mean = 0;             // mean height over the evaluated cells (for a plane: its value at the zone centre)
   double slopeX = 0, slopeY = 0;
   double residualPeakToValley = 0;  // of the surface about the plane
   size_t cells = 0;
