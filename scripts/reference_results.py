@@ -32,9 +32,11 @@ PENDING = {
            "the text (only the colour limits of ±0.01 mm); the extraction's predictions from Table 5 "
            "(§9.1) and the intentional errors of Section 5.3 (§9.2) are reproduced by "
            "Seed001CubicTest.*, its equations by Seed001WorkpieceFrame.*.",
-    "003": "Its printed numbers are the fitted error curves and the hole-plate results, which need "
-           "the measurement-to-model chain (issue 16). Its Appendix A transforms are checked by "
-           "Seed003AppendixA.*.",
+    "003": "Its App. D tables are bundled as the Maho machine's errors; the values the extraction "
+           "computed from them (§8.3) are reproduced below, and the extraction's derived error grid "
+           "(§13 item 12) by Seed003AppendixD.DerivedGridOfSection13Item12. The direct-measurement "
+           "processing, the fits, the hole-plate budgets and the plate identification are not built "
+           "yet (issue 16). Its Appendix A transforms are checked by Seed003AppendixA.*.",
     "004": "Its printed numbers belong to the decomposition of measured TCP errors (issue 18).",
 }
 FIELDS = ["seed", "where", "quantity", "printed", "mtacc", "difference", "unit", "verdict"]

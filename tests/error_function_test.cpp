@@ -2,6 +2,7 @@
 // basis functions as exact derivatives with respect to the parameters.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -57,6 +58,7 @@ TEST(ErrorFunction, BasisIsTheExactDerivative) {
   f.add(HarmonicTerm{30.0, 0.0, 1, 0.0005, 0.4, true});
   f.add(TableTerm({-100.0, -20.0, 40.0, 100.0}, {0.001, -0.002, 0.0015, 0.0}, Interpolation::CubicSpline));
   f.add(ReversalTerm{0.003});
+  f.add(piecewiseFromIntervals({-100.0, 0.0, 100.0}, {{{1e-3, 2e-5, 1e-7}, {1e-3, 2e-5, -3e-7}}}));
   std::mt19937 rng(4);
   std::uniform_real_distribution<double> u(-120.0, 120.0);
   for (int trial = 0; trial < 50; ++trial) {
@@ -66,11 +68,37 @@ TEST(ErrorFunction, BasisIsTheExactDerivative) {
       const double v = f.parameter(k);
       g.setParameter(k, v + 1.0);
       // Every term is linear in its parameters: a unit step changes the value by the basis.
-      EXPECT_NEAR(g.value(q, 1) - f.value(q, 1), f.basis(k, q, 1), 1e-12) << k;
+      EXPECT_NEAR(g.value(q, 1) - f.value(q, 1), f.basis(k, q, 1), 1e-12 * std::max(1.0, std::abs(f.basis(k, q, 1)))) << k;
     }
   }
   EXPECT_EQ(f.parameterSuffixes(),
-            (std::vector<std::string>{"c0", "c1", "c2", "cyc", "t0", "t1", "t2", "t3", "rev"}));
+            (std::vector<std::string>{"c0", "c1", "c2", "cyc", "t0", "t1", "t2", "t3", "rev", "k0c0", "k0c1", "k0c2",
+                                      "k1c0", "k1c1", "k1c2"}));
+}
+
+TEST(ErrorFunction, PiecewiseIntervalsRoundTripAndClamp) {
+  // Per-interval polynomials in the absolute position (seed 003 App. D form), not continuous
+  // here on purpose: each interval evaluates to its own polynomial, the value at a break
+  // belongs to the interval on its left, and beyond the breaks the end values are held.
+  const std::vector<std::array<double, 3>> pieces{{1.0, 0.5, -0.01}, {-3.0, 0.2, 0.002}, {4.0, -0.1, 0.0}};
+  const auto p = piecewiseFromIntervals({0.0, 20.0, 50.0, 80.0}, pieces);
+  auto poly = [&](size_t i, double u) { return pieces[i][0] + pieces[i][1] * u + pieces[i][2] * u * u; };
+  for (const double u : {0.0, 7.5, 20.0}) EXPECT_NEAR(p.value(u), poly(0, u), 1e-12) << u;
+  for (const double u : {20.0 + 1e-9, 33.0, 50.0}) EXPECT_NEAR(p.value(u), poly(1, u), 1e-9) << u;
+  for (const double u : {61.0, 80.0}) EXPECT_NEAR(p.value(u), poly(2, u), 1e-9) << u;
+  EXPECT_NEAR(p.value(-10.0), poly(0, 0.0), 1e-12);
+  EXPECT_NEAR(p.value(95.0), poly(2, 80.0), 1e-9);
+  const auto back = p.intervals();
+  for (size_t i = 0; i < pieces.size(); ++i)
+    for (size_t j = 0; j < 3; ++j) EXPECT_NEAR(back[i][j], pieces[i][j], 1e-12) << i << " " << j;
+}
+
+TEST(ErrorFunction, PiecewisePeriodicWrapsAroundItsZero) {
+  const auto p = piecewiseFromIntervals({0.0, 5.0, 10.0}, {{{0.0, 0.4, -0.04}, {0.0, 0.4, -0.04}}}, 10.0, 3.0);
+  for (const double q : {-17.0, 2.0, 3.0, 8.5, 31.0}) {
+    const double u = std::fmod(std::fmod(q - 3.0, 10.0) + 10.0, 10.0);
+    EXPECT_NEAR(p.value(q), 0.4 * u - 0.04 * u * u, 1e-12) << q;
+  }
 }
 
 }  // namespace

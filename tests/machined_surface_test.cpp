@@ -47,7 +47,9 @@ TEST(MachinedSurface, SweptToolBottomAgreesWithSamplingTheMove) {
       const double exact = sweptToolBottom(tool, a, b, axis, x, y), sampled = sampledBottom(tool, a, b, axis, x, y);
       if (std::isinf(sampled)) {
         // The samples miss only a sliver along the rim: the exact bottom is then at its edge.
-        if (!std::isinf(exact)) EXPECT_LT(std::abs(exact - a.z()) + std::abs(exact - b.z()), 10) << trial;
+        if (!std::isinf(exact)) {
+          EXPECT_LT(std::abs(exact - a.z()) + std::abs(exact - b.z()), 10) << trial;
+        }
         continue;
       }
       ++hits;

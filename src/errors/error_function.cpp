@@ -25,7 +25,8 @@ int termParameterCount(const ErrorTerm& term) {
   return std::visit(Overloaded{[](const PolynomialTerm& p) { return static_cast<int>(p.coefficients.size()); },
                                [](const HarmonicTerm&) { return 1; },
                                [](const TableTerm& t) { return static_cast<int>(t.values.size()); },
-                               [](const ReversalTerm&) { return 1; }},
+                               [](const ReversalTerm&) { return 1; },
+                               [](const PiecewiseTerm& p) { return static_cast<int>(p.coefficients.size()); }},
                     term);
 }
 
@@ -52,6 +53,62 @@ double harmonicBasis(const HarmonicTerm& h, double q) {
 double reversalBasis(int direction) { return 0.5 * static_cast<double>((direction > 0) - (direction < 0)); }
 
 }  // namespace
+
+double PiecewiseTerm::position(double q) const {
+  if (period > 0.0) {
+    const double u = std::fmod(q - zero, period);
+    return u < 0.0 ? u + period : u;
+  }
+  return std::clamp(q, breaks.front(), breaks.back());
+}
+
+double PiecewiseTerm::basis(const Coefficient& c, double u) const {
+  const double v = c.knot == 0 ? u : u - breaks[static_cast<size_t>(c.knot)];
+  if (c.knot > 0 && v <= 0.0) return 0.0;
+  return c.power == 0 ? 1.0 : (c.power == 1 ? v : v * v);
+}
+
+double PiecewiseTerm::value(double q) const {
+  const double u = position(q);
+  double sum = 0.0;
+  for (const auto& c : coefficients) sum += c.value * basis(c, u);
+  return sum;
+}
+
+std::vector<std::array<double, 3>> PiecewiseTerm::intervals() const {
+  std::vector<std::array<double, 3>> out(breaks.size() - 1, {0.0, 0.0, 0.0});
+  for (const auto& c : coefficients) {
+    // (u - t)^j in powers of u, added to every interval from the one starting at t.
+    const double t = c.knot == 0 ? 0.0 : breaks[static_cast<size_t>(c.knot)];
+    const std::array<double, 3> powers = c.power == 0   ? std::array<double, 3>{1.0, 0.0, 0.0}
+                                         : c.power == 1 ? std::array<double, 3>{-t, 1.0, 0.0}
+                                                        : std::array<double, 3>{t * t, -2.0 * t, 1.0};
+    for (size_t i = static_cast<size_t>(c.knot); i < out.size(); ++i)
+      for (size_t j = 0; j < 3; ++j) out[i][j] += c.value * powers[j];
+  }
+  return out;
+}
+
+PiecewiseTerm piecewiseFromIntervals(std::vector<double> breaks, const std::vector<std::array<double, 3>>& intervals,
+                                     double period, double zero) {
+  PiecewiseTerm p;
+  p.period = period;
+  p.zero = zero;
+  for (int j = 0; j < 3; ++j) p.coefficients.push_back({0, j, intervals[0][static_cast<size_t>(j)]});
+  for (size_t i = 1; i < intervals.size(); ++i) {
+    const double t = breaks[i];
+    const double d0 = intervals[i][0] - intervals[i - 1][0];
+    const double d1 = intervals[i][1] - intervals[i - 1][1];
+    const double d2 = intervals[i][2] - intervals[i - 1][2];
+    // d0 + d1 u + d2 u^2 = (d0 + d1 t + d2 t^2) + (d1 + 2 d2 t)(u - t) + d2 (u - t)^2
+    const int knot = static_cast<int>(i);
+    p.coefficients.push_back({knot, 0, d0 + d1 * t + d2 * t * t});
+    p.coefficients.push_back({knot, 1, d1 + 2.0 * d2 * t});
+    p.coefficients.push_back({knot, 2, d2});
+  }
+  p.breaks = std::move(breaks);
+  return p;
+}
 
 TableTerm::TableTerm(std::vector<double> p, std::vector<double> v, Interpolation interp)
     : positions(std::move(p)), values(std::move(v)), interpolation(interp) {
@@ -112,7 +169,8 @@ double ErrorFunction::value(double q, int direction) const {
         Overloaded{[&](const PolynomialTerm& p) { return p.value(q); },
                    [&](const HarmonicTerm& h) { return h.amplitude * harmonicBasis(h, q); },
                    [&](const TableTerm& t) { return t.valueAt(t.locate(q)); },
-                   [&](const ReversalTerm& r) { return r.width * reversalBasis(direction); }},
+                   [&](const ReversalTerm& r) { return r.width * reversalBasis(direction); },
+                   [&](const PiecewiseTerm& p) { return p.value(q); }},
         term);
   }
   return sum;
@@ -139,7 +197,10 @@ std::vector<std::string> ErrorFunction::parameterSuffixes() const {
                           [&](const TableTerm& t) {
                             for (size_t k = 0; k < t.values.size(); ++k) push(fmt::format("t{}", k));
                           },
-                          [&](const ReversalTerm&) { push("rev"); }},
+                          [&](const ReversalTerm&) { push("rev"); },
+                          [&](const PiecewiseTerm& p) {
+                            for (const auto& c : p.coefficients) push(fmt::format("k{}c{}", c.knot, c.power));
+                          }},
                term);
   }
   return names;
@@ -163,7 +224,8 @@ double ErrorFunction::parameter(int index) const {
     return std::visit(Overloaded{[&](const PolynomialTerm& p) { return p.coefficients[static_cast<size_t>(k)]; },
                                  [&](const HarmonicTerm& h) { return h.amplitude; },
                                  [&](const TableTerm& t) { return t.values[static_cast<size_t>(k)]; },
-                                 [&](const ReversalTerm& r) { return r.width; }},
+                                 [&](const ReversalTerm& r) { return r.width; },
+                                 [&](const PiecewiseTerm& p) { return p.coefficients[static_cast<size_t>(k)].value; }},
                       term);
   });
 }
@@ -176,7 +238,8 @@ void ErrorFunction::setParameter(int index, double v) {
                             t.values[static_cast<size_t>(k)] = v;
                             t.refresh();
                           },
-                          [&](ReversalTerm& r) { r.width = v; }},
+                          [&](ReversalTerm& r) { r.width = v; },
+                          [&](PiecewiseTerm& p) { p.coefficients[static_cast<size_t>(k)].value = v; }},
                term);
   });
 }
@@ -194,7 +257,10 @@ double ErrorFunction::basis(int index, double q, int direction) const {
                                           w.d * t.splineOperator(static_cast<Eigen::Index>(w.i + 1), k);
                                    return v;
                                  },
-                                 [&](const ReversalTerm&) { return reversalBasis(direction); }},
+                                 [&](const ReversalTerm&) { return reversalBasis(direction); },
+                                 [&](const PiecewiseTerm& p) {
+                                   return p.basis(p.coefficients[static_cast<size_t>(k)], p.position(q));
+                                 }},
                       term);
   });
 }

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -42,6 +43,66 @@ std::pair<double, double> defaultSpan(const Axis& a) {
   return {0.0, 2.0 * kPi};
 }
 
+// One `piecewise:` block (seed 003 App. D): breaks and coefficients in `per` units of position,
+// values in `unit`; coefficient j of an interval in unit per per^j.
+PiecewiseTerm readPiecewise(const Context& ctx, const Axis& axis, const YAML::Node& v, const std::string& k,
+                            Dimension valueDim, Dimension posDim) {
+  yamlin::rejectUnknownKeys(ctx, v, k, {"unit", "per", "breaks", "intervals", "period", "zero"});
+  auto unitOf = [&](const char* name, Dimension dim) {
+    const std::string key = k + "." + name;
+    if (!v[name]) ctx.fail(v, key, std::string("missing '") + name + "': the unit of the " + (dim == Dimension::Length ? "lengths" : "angles"));
+    const auto text = yamlin::scalar(ctx, v[name], key);
+    const auto q = parseQuantity("1 " + text);
+    if (!q || q->dimension != dim) ctx.fail(v[name], key, "'" + text + "' is not a unit of " + withArticle(dim));
+    return q->value;
+  };
+  const double unit = unitOf("unit", valueDim);
+  const double per = unitOf("per", posDim);
+  const auto breaks = v["breaks"];
+  const auto rows = v["intervals"];
+  if (!yamlin::isSequence(breaks) || breaks.size() < 2) ctx.fail(v, k + ".breaks", "expected a list of at least two positions");
+  if (!yamlin::isSequence(rows)) ctx.fail(v, k + ".intervals", "expected a list of [c0, c1, c2] per interval");
+  if (rows.size() + 1 != breaks.size())
+    ctx.fail(rows, k + ".intervals", fmt::format("{} interval(s) for {} breaks: expected {}", rows.size(), breaks.size(), breaks.size() - 1));
+  std::vector<double> t;
+  for (const auto& b : breaks) {
+    t.push_back(per * yamlin::number(ctx, b, k + ".breaks"));
+    if (std::abs(t.back()) > largestMagnitude(posDim)) ctx.fail(b, k + ".breaks", "position beyond the largest allowed");
+    if (t.size() > 1 && !(t.back() > t[t.size() - 2])) ctx.fail(b, k + ".breaks", "breaks must increase strictly");
+  }
+  double period = 0.0, zero = 0.0;
+  if (v["period"]) {
+    period = per * yamlin::number(ctx, v["period"], k + ".period");
+    if (!(period > 0.0 && period <= largestMagnitude(posDim))) ctx.fail(v["period"], k + ".period", "the period must be positive");
+    if (v["zero"]) zero = per * yamlin::number(ctx, v["zero"], k + ".zero");
+    if (std::abs(zero) > largestMagnitude(posDim)) ctx.fail(v["zero"], k + ".zero", "position beyond the largest allowed");
+    if (t.front() != 0.0 || std::abs(t.back() - period) > 1e-9 * period)
+      ctx.fail(breaks, k + ".breaks", "the breaks of a periodic term run from 0 to the period");
+  } else if (v["zero"]) {
+    ctx.fail(v["zero"], k + ".zero", "'zero' needs a 'period'");
+  } else if (axis.travel) {
+    const double slack = 1e-9 * std::max(1.0, axis.travel->max - axis.travel->min);
+    if (t.front() < axis.travel->min - slack || t.back() > axis.travel->max + slack)
+      ctx.fail(breaks, k + ".breaks",
+               fmt::format("the breaks {:g} to {:g} reach beyond the axis travel {:g} to {:g}", t.front() / per,
+                           t.back() / per, axis.travel->min / per, axis.travel->max / per));
+  }
+  std::vector<std::array<double, 3>> intervals;
+  for (const auto& row : rows) {
+    if (!yamlin::isSequence(row) || row.size() < 1 || row.size() > 3)
+      ctx.fail(row, k + ".intervals", "expected [c0], [c0, c1] or [c0, c1, c2] (degree at most 2)");
+    std::array<double, 3> c{0.0, 0.0, 0.0};
+    for (size_t j = 0; j < row.size(); ++j) c[j] = unit * yamlin::number(ctx, row[j], k + ".intervals") / std::pow(per, static_cast<double>(j));
+    const size_t i = intervals.size();
+    const double vertex = c[2] != 0.0 ? std::clamp(-c[1] / (2.0 * c[2]), t[i], t[i + 1]) : t[i];
+    for (const double u : {t[i], t[i + 1], vertex})
+      if (!(std::abs(c[0] + u * (c[1] + u * c[2])) <= largestMagnitude(valueDim)))
+        ctx.fail(row, k + ".intervals", "the polynomial exceeds the largest allowed value on its interval");
+    intervals.push_back(c);
+  }
+  return piecewiseFromIntervals(std::move(t), intervals, period, zero);
+}
+
 void readTerms(const Context& ctx, const Machine& m, const MotionTarget& t, const YAML::Node& node,
                const std::string& key, ErrorFunction& f) {
   const Axis& axis = m.axes[static_cast<size_t>(t.axis)];
@@ -51,7 +112,7 @@ void readTerms(const Context& ctx, const Machine& m, const MotionTarget& t, cons
     f.add(PolynomialTerm{0.0, 1.0, {yamlin::quantity(ctx, node, key, valueDim)}});
     return;
   }
-  yamlin::rejectUnknownKeys(ctx, node, key, {"constant", "linear", "polynomial", "harmonics", "cyclic", "table", "reversal"});
+  yamlin::rejectUnknownKeys(ctx, node, key, {"constant", "linear", "polynomial", "harmonics", "cyclic", "table", "reversal", "piecewise"});
   for (const auto& kv : node) {
     const auto type = kv.first.as<std::string>();
     const auto& v = kv.second;
@@ -114,6 +175,12 @@ void readTerms(const Context& ctx, const Machine& m, const MotionTarget& t, cons
         else if (s != "spline") ctx.fail(v["interpolation"], k + ".interpolation", "expected 'linear' or 'spline'");
       }
       f.add(TableTerm(std::move(p), std::move(y), interp));
+    } else if (type == "piecewise") {
+      if (yamlin::isSequence(v)) {
+        for (const auto& block : v) f.add(readPiecewise(ctx, axis, block, k, valueDim, posDim));
+      } else {
+        f.add(readPiecewise(ctx, axis, v, k, valueDim, posDim));
+      }
     } else if (type == "reversal") {
       f.add(ReversalTerm{yamlin::quantity(ctx, v, k, valueDim)});
     }

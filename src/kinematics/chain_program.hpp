@@ -50,7 +50,7 @@ struct ChainOp {
   // cos(theta) - a sin(phase) sin(theta), with one sine and cosine per pose for a group whose
   // frequency is not an integer multiple of the one before it at the same zero, and the
   // multiple-angle product for one that is (the orders of a harmonic series);
-  // polynomial terms with their component; reversal terms summed per component.
+  // polynomial and piecewise terms with their component; reversal terms summed per component.
   struct TableGroup {
     std::vector<double> positions;
     bool uniform = false;
@@ -69,9 +69,14 @@ struct ChainOp {
     int component = 0;
     PolynomialTerm term;
   };
+  struct Piecewise {
+    int component = 0;
+    PiecewiseTerm term;
+  };
   std::vector<TableGroup> tableGroups;
   std::vector<HarmonicGroup> harmonicGroups;
   std::vector<Polynomial> polynomials;
+  std::vector<Piecewise> piecewise;
   Vec6 halfReversal = Vec6::Zero();  // per component: half the summed reversal widths
   bool sixTablesOnOneGrid = false;  // exactly one group holding components 0..5 in order, nothing else
 };
@@ -173,6 +178,7 @@ inline Vec6 motionComponents(const ChainOp& op, const double* q, const int* dir)
     for (size_t t = 0; t < group.components.size(); ++t) c[group.components[t]] += group.cosine[t] * cosine - group.sine[t] * sine;
   }
   for (const auto& p : op.polynomials) c[p.component] += p.term.value(qa);
+  for (const auto& p : op.piecewise) c[p.component] += p.term.value(qa);
   if (dir && op.joint >= 0 && dir[op.joint] != 0) c += dir[op.joint] > 0 ? op.halfReversal : Vec6(-op.halfReversal);
   return c;
 }

@@ -88,6 +88,10 @@ ChainOp motionErrorOp(const ErrorModel& errors, const ChainElement& e) {
         op.polynomials.push_back({k, *p});
         continue;
       }
+      if (const auto* p = std::get_if<PiecewiseTerm>(&term)) {
+        op.piecewise.push_back({k, *p});
+        continue;
+      }
       if (const auto* r = std::get_if<ReversalTerm>(&term)) {
         op.halfReversal[k] += 0.5 * r->width;
         continue;
@@ -113,7 +117,7 @@ ChainOp motionErrorOp(const ErrorModel& errors, const ChainElement& e) {
         for (const TableTerm* t : tables[g]) group.coefficients.push_back(t->cubic[i][static_cast<size_t>(power)]);
   }
   orderHarmonicGroups(op.harmonicGroups);
-  op.sixTablesOnOneGrid = op.harmonicGroups.empty() && op.polynomials.empty() && op.halfReversal.isZero(0.0) &&
+  op.sixTablesOnOneGrid = op.harmonicGroups.empty() && op.polynomials.empty() && op.piecewise.empty() && op.halfReversal.isZero(0.0) &&
                           op.tableGroups.size() == 1 &&
                           op.tableGroups[0].components == std::vector<int>{0, 1, 2, 3, 4, 5};
   return op;

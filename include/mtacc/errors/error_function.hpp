@@ -83,7 +83,36 @@ struct ReversalTerm {
   double width = 0.0;
 };
 
-using ErrorTerm = std::variant<PolynomialTerm, HarmonicTerm, TableTerm, ReversalTerm>;
+// A piecewise polynomial of degree <= 2 over breaks t_0 < t_1 < ... < t_n, in the truncated-power
+// form of seed 003 eq. [5.2]:
+//   f(u) = sum_j a_0j u^j + sum_{i=1..n-1} sum_j a_ij (u - t_i)_+^j,   v_+ = v if v > 0, else 0,
+// in the absolute position u (as seed 003 App. D publishes its tables), clamped to [t_0, t_n].
+// A C1 function has only the j = 2 terms at its interior breaks (a quadratic spline); a term
+// that a stepwise fit removed is absent. With a period, u = (q - zero) mod period: a pitch
+// error fitted over one period (breaks from 0 to the period).
+struct PiecewiseTerm {
+  struct Coefficient {
+    int knot;   // 0: the plain powers of u; i >= 1: the powers of (u - t_i)_+
+    int power;  // 0, 1, 2
+    double value;
+  };
+  std::vector<double> breaks;
+  std::vector<Coefficient> coefficients;
+  double period = 0.0;  // 0: not periodic
+  double zero = 0.0;
+
+  double position(double q) const;  // u
+  double basis(const Coefficient& c, double u) const;
+  double value(double q) const;
+  // The polynomial of each interval in the absolute position, (c0, c1, c2): c0 + c1 u + c2 u^2.
+  std::vector<std::array<double, 3>> intervals() const;
+};
+// The truncated-power form of per-interval polynomials (all three terms at every interior
+// break, so that each interval evaluates to its own polynomial even where the table is not C1).
+PiecewiseTerm piecewiseFromIntervals(std::vector<double> breaks, const std::vector<std::array<double, 3>>& intervals,
+                                     double period = 0.0, double zero = 0.0);
+
+using ErrorTerm = std::variant<PolynomialTerm, HarmonicTerm, TableTerm, ReversalTerm, PiecewiseTerm>;
 
 class ErrorFunction {
  public:
@@ -95,7 +124,7 @@ class ErrorFunction {
   double value(double q, int direction) const;
 
   // The linear parameters of all terms, in order. Names are suffixes such as "c1", "h2",
-  // "t3", "rev" (made unique within the function).
+  // "t3", "rev", "k4c2" (piecewise: break 4, power 2), made unique within the function.
   int parameterCount() const;
   std::vector<std::string> parameterSuffixes() const;
   double parameter(int index) const;
