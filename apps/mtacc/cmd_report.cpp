@@ -16,6 +16,7 @@ struct ReportOptions {
   std::string errorsFile;
   std::string output = ".";
   std::string plan, structure, compare;
+  std::vector<std::string> positioning;
   int samples = 5;
 };
 
@@ -35,6 +36,10 @@ struct ReportOptions {
       args.push_back(flag);
       args.push_back(value);
     }
+  for (const auto& file : o.positioning) {
+    args.push_back("--positioning");
+    args.push_back(file);
+  }
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -54,6 +59,7 @@ void addReportCommand(CLI::App& app) {
   cmd->add_option("--plan", o->plan, "test plan to simulate, evaluate and identify from (e.g. tilting-table-rtest)");
   cmd->add_option("--structure", o->structure, "structure model for the dynamics section (e.g. tzyx-arm-x)");
   cmd->add_option("--compare", o->compare, "a second structure model to compare with (e.g. tzyx-arm-y)");
+  cmd->add_option("--positioning", o->positioning, "ISO 230-2 positioning-test files for the positioning section");
   cmd->callback([o] { run(*o); });
 }
 

@@ -69,6 +69,7 @@ int main(int argc, char** argv) {
   mtacc::cli::addCubicCommands(app);
   mtacc::cli::addSimulateCommand(app);
   mtacc::cli::addEvaluateCommand(app);
+  mtacc::cli::addPositioningCommand(app);
   mtacc::cli::addIdentifyCommands(app);
   mtacc::cli::addDynamicsCommand(app);
   mtacc::cli::addReportCommand(app);

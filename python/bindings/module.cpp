@@ -21,6 +21,7 @@
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/kinematics_batch.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
+#include "mtacc/workflows/positioning.hpp"
 #include "mtacc/workflows/report_paths.hpp"
 
 namespace py = pybind11;
@@ -96,6 +97,7 @@ PYBIND11_MODULE(_mtacc, mod) {
   mod.doc() = "mtacc: geometric accuracy of multi-axis machine tools (C++ core)";
   static py::exception<InputError> inputError(mod, "InputError", PyExc_ValueError);
   static py::exception<UnreachablePose> unreachable(mod, "UnreachablePose", PyExc_ValueError);
+  mod.def("positioning", [](const std::string& path) { return toPython(toJson(evaluatePositioningFile(path))); }, py::arg("path"));
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

@@ -26,8 +26,16 @@ if os.path.isdir(_DATA):  # the installed package carries its own copy of the bu
 from ._mtacc import InputError, UnreachablePose  # noqa: E402
 from ._mtacc import Machine as _CoreMachine  # noqa: E402
 from ._mtacc import Structure as _CoreStructure  # noqa: E402
+from ._mtacc import positioning as _positioning  # noqa: E402
 
-__all__ = ["Machine", "Errors", "Structure", "InputError", "UnreachablePose"]
+__all__ = ["Machine", "Errors", "Structure", "InputError", "UnreachablePose", "positioning"]
+
+
+def positioning(path):
+    """ISO 230-2 evaluation of a positioning-test file (KEY=value or CSV, docs/file-formats.md),
+    as `mtacc positioning --json`: per-target means, reversal, s and R, the axis values A, B, E, M,
+    R (keys "A_forward", "A", ... in "axis_values") and the deviations, in um or arcsec ("unit")."""
+    return _positioning(str(path))
 
 
 def _text(value):

@@ -470,3 +470,41 @@ def cubic_sensitivity_maps(result, limit=None):
         axes[1][0].set_ylabel("without M_WC", fontsize=8)
     fig.tight_layout()
     return fig
+
+
+def positioning_chart(result, title=None):
+    """The ISO 230-2 chart of a positioning test (`mtacc.positioning`): every deviation by
+    direction, the mean unidirectional deviations x̄i↑ and x̄i↓ with their ±2 s bands, and the
+    axis values A, B, E, M, R beside them."""
+    t = np.array([p["target"] for p in result["positions"]])
+    unit, target_unit = result["unit"], result["target_unit"]
+    fig, ax = plt.subplots(figsize=(9, 4.8))
+    colours = {"forward": "#c0392b", "backward": "#2471a3"}
+    for key, arrow in (("forward", "↑"), ("backward", "↓")):
+        dev = np.asarray(result[f"deviations_{key}"])
+        mean = np.array([p[f"mean_{key}"] for p in result["positions"]])
+        s = np.array([p[f"s_{key}"] for p in result["positions"]])
+        c = colours[key]
+        for j in range(dev.shape[1]):
+            ax.plot(t, dev[:, j], ".", color=c, alpha=0.45, markersize=5)
+        ax.plot(t, mean, "-", color=c, linewidth=1.8, label=f"x̄i{arrow} (mean of {dev.shape[1]} cycles)")
+        ax.plot(t, mean + 2 * s, "--", color=c, linewidth=0.9, label=f"x̄i{arrow} ± 2 si{arrow}")
+        ax.plot(t, mean - 2 * s, "--", color=c, linewidth=0.9)
+    ax.plot(t, [p["mean"] for p in result["positions"]], ":", color="k", linewidth=1.2, label="x̄i (bidirectional)")
+    ax.axhline(0, color="0.6", linewidth=0.6)
+    ax.set_xlabel(f"target position [{target_unit}]")
+    ax.set_ylabel(f"positional deviation [{unit}]")
+    ax.set_title(title or f"ISO 230-2: {result['name']}")
+    v = result["axis_values"]
+    text = "\n".join([f"{'':9}{'↑':>8}{'↓':>8}{'↑↓':>8}",
+                      f"{'A':9}{v['A_forward']:8.2f}{v['A_backward']:8.2f}{v['A']:8.2f}",
+                      f"{'E':9}{v['E_forward']:8.2f}{v['E_backward']:8.2f}{v['E']:8.2f}",
+                      f"{'R':9}{v['R_forward']:8.2f}{v['R_backward']:8.2f}{v['R']:8.2f}",
+                      f"{'M':9}{'':16}{v['M']:8.2f}",
+                      f"{'B':9}{'':16}{v['B']:8.2f}",
+                      f"{'B mean':9}{'':16}{v['B_mean']:8.2f}",
+                      f"[{unit}]"])
+    ax.text(1.02, 1.0, text, transform=ax.transAxes, va="top", family="monospace", fontsize=8)
+    ax.legend(fontsize=8, loc="lower left")
+    fig.tight_layout()
+    return fig

@@ -265,8 +265,25 @@ def cubic_section(machine_path, errors):
     return out
 
 
+def positioning_section(results):
+    """ISO 230-2 charts and axis values of each positioning-test file."""
+    out = ("<h2>Positioning (ISO 230-2)</h2><p>Accuracy A, systematic deviation E and repeatability R of "
+           "positioning in each direction (↑, ↓) and both, range of the mean bidirectional deviation M, reversal "
+           "value B and its mean; formulas in docs/conventions.md.</p>")
+    for r in results:
+        v = r["axis_values"]
+        out += figure(plots.positioning_chart(r), f"{html.escape(r['name'])}: deviations of every cycle, means and "
+                                                  f"±2 s bands ({len(r['positions'])} targets, {r['cycles']} cycles each way)")
+        out += table(["", "↑", "↓", "bidirectional"],
+                     [[q, f"{v[q + '_forward']:.3f}", f"{v[q + '_backward']:.3f}", f"{v[q]:.3f}"] for q in ("A", "E", "R")]
+                     + [[q, "", "", f"{v[key]:.3f}"] for q, key in (("M", "M"), ("B", "B"), ("B mean", "B_mean"))])
+        out += "".join(f"<p>Note: {html.escape(n)}.</p>" for n in r["notes"])
+        out += f"<p class='meta'>{html.escape(r['file'])}, values in {r['unit']}.</p>"
+    return out
+
+
 def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=None, plan=None, structure=None,
-                 compare=None):
+                 compare=None, positioning=()):
     """Writes <output_dir>/<machine>-report.html atomically and returns its path."""
     start = time.perf_counter()
     steps = ["machine", "error budget", "volumetric error maps", "circular test", "5-axis circle", "cone frustum",
@@ -275,6 +292,8 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
         steps.insert(-1, "identification")
     if structure:
         steps.insert(-1, "structural dynamics")
+    if positioning:
+        steps.insert(-1, "positioning")
     done = []
 
     def step(name):
@@ -293,6 +312,8 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
         Structure(structure)
         if compare:
             Structure(compare)
+    from . import positioning as evaluate_positioning
+    positioning_results = [evaluate_positioning(f) for f in positioning]
     step("machine")
     parts = [f"<h1>Accuracy report: {html.escape(machine.name)}</h1>",
              f'<p class="meta">{html.escape(machine.file)} · structure {html.escape(machine.structure)} · '
@@ -367,6 +388,9 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     if structure:
         parts.append(dynamics_section(structure, compare))
         step("structural dynamics")
+    if positioning:
+        parts.append(positioning_section(positioning_results))
+        step("positioning")
 
     elapsed = time.perf_counter() - start
     parts.append(f'<p class="meta">Built in {elapsed:.1f} s.</p>')
@@ -399,11 +423,13 @@ def main(argv=None):
     parser.add_argument("--plan", help="test plan (YAML or bundled name) to simulate, evaluate and identify from")
     parser.add_argument("--structure", help="structure model (YAML or bundled name) for the dynamics section")
     parser.add_argument("--compare", help="a second structure model to compare with")
+    parser.add_argument("--positioning", action="append", default=[],
+                        help="ISO 230-2 positioning-test file (KEY=value or CSV); may be given several times")
     args = parser.parse_args(argv)
     try:
         path = build_report(args.machine, args.output, args.errors, args.samples,
                             progress=lambda s: print(s, file=sys.stderr, flush=True), plan=args.plan,
-                            structure=args.structure, compare=args.compare)
+                            structure=args.structure, compare=args.compare, positioning=args.positioning)
     except (InputError, UnreachablePose) as e:
         message = str(e)
         first = message.split(":", 1)[0]
@@ -411,6 +437,7 @@ def main(argv=None):
             message = "--" + message
         else:  # a file or name as a whole: named by the option that gave it
             given = {value: name for name, value in vars(args).items() if isinstance(value, str)}
+            given.update({value: name for name, values in vars(args).items() if isinstance(values, list) for value in values})
             if first in given:
                 name = given[first]
                 message = (name if name == "machine" else "--" + name) + ": " + message

@@ -33,6 +33,12 @@ std::vector<std::string> splitFields(const std::string& text, char separator) {
   }
 }
 
+std::optional<Assignment> commentAssignment(const std::string& line) {
+  const auto colon = line.find(':');
+  if (colon == std::string::npos) return std::nullopt;
+  return Assignment{trim(line.substr(1, colon - 1)), trim(line.substr(colon + 1))};
+}
+
 std::vector<Assignment> parseAssignments(const std::string& text, const std::string& key) {
   std::vector<Assignment> out;
   for (const auto& item : splitList(text)) {

@@ -46,20 +46,20 @@ std::map<std::string, Meta> readMeta(const std::string& text, const std::string&
     const std::string s = trim(line);
     if (s.empty()) continue;
     if (s[0] != '#') break;
-    const auto colon = s.find(':');
-    if (colon == std::string::npos) {
+    const auto assignment = commentAssignment(s);
+    if (!assignment) {
       const std::string comment = trim(s.substr(1));
       const std::string firstWord = comment.substr(0, comment.find(' '));
       if (isMetaKey(firstWord))
         throw InputError(InputLocation{source, n, firstWord}, "write '# " + firstWord + ": value' (the colon is missing)");
       continue;
     }
-    const std::string key = trim(s.substr(1, colon - 1));
+    const auto& [key, value] = *assignment;
     if (!isMetaKey(key))
       throw InputError(InputLocation{source, n, key},
                        "unknown key (expected one of: machine, instrument, name, length, target, set_at, plane, pose, "
                        "tool_ball, direction, feed, noise, estimate, note)");
-    if (!meta.emplace(key, Meta{trim(s.substr(colon + 1)), n}).second)
+    if (!meta.emplace(key, Meta{value, n}).second)
       throw InputError(InputLocation{source, n, key}, "given twice (first on line " + std::to_string(meta[key].line) + ")");
   }
   return meta;

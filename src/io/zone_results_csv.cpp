@@ -34,13 +34,12 @@ ZoneResults parseZoneResults(const std::string& text, const std::string& source)
     const std::string line = trim(raw);
     if (line.empty()) continue;
     if (line[0] == '#') {
-      const auto colon = line.find(':');
-      if (colon == std::string::npos) continue;
-      const std::string key = trim(line.substr(1, colon - 1));
+      const auto comment = commentAssignment(line);
+      if (!comment) continue;
+      const auto& [key, value] = *comment;
       if (key != "noise" && key != "note") fail(key, "unknown key (expected noise or note)");
       if (key == "noise") {
         if (r.noise) fail(key, "given twice");
-        const std::string value = trim(line.substr(colon + 1));
         try {
           r.noise = parseQuantityAs(value, Dimension::Length, "noise");
         } catch (const InputError& e) {

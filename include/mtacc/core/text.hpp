@@ -2,6 +2,7 @@
 // The small text forms of command-line options and Python arguments: comma lists,
 // NAME=value assignments, plain numbers and x,y,z vectors. Every failure is an InputError
 // naming `key` (the option or argument).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,10 @@ struct Assignment {
 // "X=10,B=-15 deg" -> {{"X", "10"}, {"B", "-15 deg"}}; an item without '=' or without a name is
 // an error.
 std::vector<Assignment> parseAssignments(const std::string& text, const std::string& key);
+
+// A trimmed comment line "# key: value" of the CSV inputs -> {"key", "value"}; nullopt for a
+// comment without a colon (free text).
+std::optional<Assignment> commentAssignment(const std::string& line);
 
 // The whole text is one finite number.
 double parseNumber(const std::string& text, const std::string& key);
