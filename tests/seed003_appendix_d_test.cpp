@@ -14,7 +14,6 @@
 #include <fmt/format.h>
 #include <initializer_list>
 
-#include "mtacc/errors/aliases.hpp"
 #include "mtacc/kinematics/forward.hpp"
 #include "reference_values.hpp"
 #include "test_helpers.hpp"
@@ -27,10 +26,7 @@ struct AppendixD {
   ErrorModel errors = loadMachineErrors(*machine);
 
   // The error function of a seed 003 component name (xrx, ztz, ...).
-  const ErrorFunction& component(const std::string& seedName) const {
-    const auto p = findParameter(*machine, errors, findAlias(seedName)->terms[0].isoName + ".k0c0");
-    return errors.axes[static_cast<size_t>(p.axis)].motion[static_cast<size_t>(p.component)];
-  }
+  const ErrorFunction& component(const std::string& seedName) const { return test::seed003Component(*machine, errors, seedName); }
   double arcsec(const std::string& name, double x) const { return component(name).value(x, 0) / kArcsec; }
 };
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "mtacc/core/units.hpp"
+#include "mtacc/errors/aliases.hpp"
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/kinematics/kinematic_model.hpp"
 #include "mtacc/io/machine_yaml.hpp"
@@ -57,5 +58,11 @@ struct MachineName {
 
 inline const char* kFiveAxisMachines[] = {"tilting-table", "swivel-head-table", "double-pivot-head",
                                           "inclined-a-table", "multitasking-b-c", "maho"};
+
+// The error function of a component named in seed 003's notation (xrx, ztz, ...) in `errors`.
+inline const ErrorFunction& seed003Component(const Machine& machine, const ErrorModel& errors, const std::string& name) {
+  const auto p = findParameter(machine, errors, findAlias(name)->terms[0].isoName + ".k0c0");
+  return errors.axes[static_cast<size_t>(p.axis)].motion[static_cast<size_t>(p.component)];
+}
 
 }  // namespace mtacc::test

@@ -16,7 +16,7 @@ struct ReportOptions {
   std::string errorsFile;
   std::string output = ".";
   std::string plan, structure, compare;
-  std::vector<std::string> positioning;
+  std::vector<std::string> positioning, components;
   int samples = 5;
 };
 
@@ -36,10 +36,11 @@ struct ReportOptions {
       args.push_back(flag);
       args.push_back(value);
     }
-  for (const auto& file : o.positioning) {
-    args.push_back("--positioning");
-    args.push_back(file);
-  }
+  for (const auto& [flag, files] : {std::pair{"--positioning", &o.positioning}, {"--component", &o.components}})
+    for (const auto& file : *files) {
+      args.push_back(flag);
+      args.push_back(file);
+    }
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -60,6 +61,7 @@ void addReportCommand(CLI::App& app) {
   cmd->add_option("--structure", o->structure, "structure model for the dynamics section (e.g. tzyx-arm-x)");
   cmd->add_option("--compare", o->compare, "a second structure model to compare with (e.g. tzyx-arm-y)");
   cmd->add_option("--positioning", o->positioning, "ISO 230-2 positioning-test files for the positioning section");
+  cmd->add_option("--component", o->components, "direct-measurement runs (seed 003) to fit and plot, one section each");
   cmd->callback([o] { run(*o); });
 }
 

@@ -9,6 +9,7 @@
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/pose_text.hpp"
+#include "mtacc/workflows/component_fit.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
 
 namespace mtacc::cli {
@@ -128,6 +129,30 @@ void addSimulateCommand(CLI::App& app) {
     spec.toolBall = parseVector(o->toolBall, "--tool-ball");
     if (!o->pose.empty()) spec.pose = parsePose(*setup.machine, o->pose, "--pose", true);
     report(*o, simulateSphereTest(setup, spec, simulationOptions(*o, *setup.machine, false)));
+  });
+
+  auto component = std::make_shared<ComponentSimulationRequest>();
+  auto componentMachine = std::make_shared<MachineSource>();
+  auto abbe = std::make_shared<std::string>();
+  auto* comp = sim->add_subcommand("component", "Direct-measurement runs of one component error (seed 003), forward and backward");
+  comp->add_option("machine", componentMachine->machine, "machine file, or the name of a bundled machine")->required();
+  comp->add_option("--errors", componentMachine->errorsFile, "errors file; default: the machine file's");
+  comp->add_option("--component", component->component, "component error: seed 003 name (xrx, ztz, ...) or ISO (EAX, EZZ)")->required();
+  comp->add_option("-o,--output", component->output, "CSV to write (atomically)")->required();
+  comp->add_option("--step", component->step, "step between positions over the travel (mm or deg, default 10)");
+  comp->add_option("--runs", component->runs, "runs, each forward and backward (default 20)");
+  comp->add_option("--noise", component->noise, "standard deviation of one reading, e.g. 0.5arcsec or 0.2um (default 0)");
+  comp->add_option("--abbe-offset", *abbe, "measuring point relative to the carriage centroid, e.g. 0,60,110mm (translations)");
+  comp->add_option("--instrument", component->instrument, "instrument named in the file (e.g. levels, laser)");
+  comp->add_option("--reading-time", component->readingTime, "seconds per reading (default 6)");
+  comp->add_option("--disturbance", component->disturbance, "a periodic disturbance of one reading, e.g. 1.5arcsec (the lubrication pump)");
+  comp->add_option("--disturbance-interval", component->disturbanceInterval, "seconds between disturbances (default 1800)");
+  comp->add_option("--seed", component->seed, "random seed (default 1)");
+  comp->callback([component, componentMachine, abbe] {
+    if (!abbe->empty()) component->abbeOffset = parseLengths(*abbe, "--abbe-offset");
+    const auto f = simulateComponentFile(loadMachineSetup(*componentMachine), *component);
+    std::cout << fmt::format("{}: {} positions x {} runs each way -> {}\n", component->component, f.runs.positions.size(),
+                             f.runs.forward.cols(), component->output);
   });
 
   auto* plan = sim->add_subcommand("plan", "Every run of a test plan, one CSV per run in a directory");

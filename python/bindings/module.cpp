@@ -14,6 +14,7 @@
 #include "mtacc/kinematics/jacobian.hpp"
 #include "mtacc/workflows/budget.hpp"
 #include "mtacc/workflows/check.hpp"
+#include "mtacc/workflows/component_fit.hpp"
 #include "mtacc/workflows/cone_study.hpp"
 #include "mtacc/workflows/cubic_identification.hpp"
 #include "mtacc/io/cubic_test_yaml.hpp"
@@ -271,6 +272,26 @@ PYBIND11_MODULE(_mtacc, mod) {
         return toPython(toJson(out));
       })
       .def("cone_preset_name", [](const MachineSetup& s) { return conePresetName(*s.machine); })
+      .def("fit_component", [](const MachineSetup& s, const std::string& file, const std::vector<double>& breaks, int pieces, int degree,
+                               double significance, const py::object& period, double periodZero, double threshold, bool removeDisturbed) {
+        ComponentFitRequest r{.file = file, .breaks = breaks, .pieces = pieces, .degree = degree, .significance = significance};
+        if (!period.is_none()) r.period = period.cast<double>();
+        r.periodZero = periodZero;
+        r.disturbanceThreshold = threshold;
+        r.removeDisturbed = removeDisturbed;
+        return toPython(toJson(fitComponentFile(s, r)));
+      })
+      .def("simulate_component", [](const MachineSetup& s, const std::string& component, const std::string& output, double step, int runs,
+                                    const std::string& noise, const std::vector<double>& abbe, const std::string& disturbance,
+                                    double interval, std::uint64_t seed) {
+        ComponentSimulationRequest r{.component = component, .output = output, .step = step, .runs = runs, .noise = noise};
+        if (abbe.size() != 3) throw InputError(InputLocation{"", 0, "abbe_offset"}, "expected (dx, dy, dz) in mm");
+        r.abbeOffset = Vec3(abbe[0], abbe[1], abbe[2]);
+        r.disturbance = disturbance;
+        r.disturbanceInterval = interval;
+        r.seed = seed;
+        simulateComponentFile(s, r);
+      })
       .def("simulate", [](const MachineSetup& s, const std::string& plan, const py::object& noise, std::uint64_t seed,
                           const std::string& outputDir) {
         SimulationOptions o;

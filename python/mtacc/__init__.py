@@ -171,6 +171,22 @@ class Machine:
         cannot determine, naming what they cannot separate."""
         return self._core.cubic_identify(str(zones), list(parameters), str(test), _text(noise))
 
+    def fit_component(self, path, breaks=None, pieces=0, degree=2, significance=0.05, period=None, period_zero=0.0,
+                      disturbance_threshold=5.0, remove_disturbed=False):
+        """A component error fitted to its direct-measurement runs (seed 003), as `mtacc fit --json`: the
+        runs, their means, the C1 piecewise-polynomial fit (breaks in mm or deg) with its uncertainty,
+        the terms removed by the stepwise test, flagged readings, and "yaml", the machine YAML entry."""
+        return self._core.fit_component(str(path), [float(b) for b in (breaks or [])], int(pieces), int(degree),
+                                        float(significance), period, float(period_zero), float(disturbance_threshold),
+                                        bool(remove_disturbed))
+
+    def simulate_component(self, component, output, step=10.0, runs=20, noise="0 um", abbe_offset=(0.0, 0.0, 0.0),
+                           disturbance="", disturbance_interval=1800.0, seed=1):
+        """Writes direct-measurement runs of one component (seed 003 name or ISO) simulated from this
+        machine's errors to `output`, as `mtacc simulate component`."""
+        self._core.simulate_component(str(component), str(output), float(step), int(runs), str(noise),
+                                      [float(v) for v in abbe_offset], str(disturbance), float(disturbance_interval), int(seed))
+
     def cone_preset_name(self):
         """The seed 000 §3.6 preset of this machine's family, or None."""
         return self._core.cone_preset_name()

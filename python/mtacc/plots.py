@@ -508,3 +508,35 @@ def positioning_chart(result, title=None):
     ax.legend(fontsize=8, loc="lower left")
     fig.tight_layout()
     return fig
+
+
+def component_fit(result, title=None):
+    """A component error as seed 003 Figs 5.1 and D.x show it (`Machine.fit_component`): every run
+    forward and backward, their mean (dashed) and the fitted C1 piecewise polynomial (solid) with
+    its ±2 u band; the breaks marked, flagged readings circled."""
+    x = np.asarray(result["positions"])
+    unit, pos_unit = result["unit"], result["position_unit"]
+    fig, ax = plt.subplots(figsize=(9, 4.5))
+    for key, colour in (("runs_forward", "#c0392b"), ("runs_backward", "#2471a3")):
+        for k, run in enumerate(result[key]):
+            ax.plot(x, run, color=colour, alpha=0.18, linewidth=0.7,
+                    label=f"{len(result[key])} runs {key.split('_')[1]}" if k == 0 else None)
+    ax.plot(x, result["mean"], "k--", linewidth=1.2, label="mean of the runs")
+    f = result["fit"]
+    grid, value, u = np.asarray(f["grid"]), np.asarray(f["grid_value"]), np.asarray(f["grid_uncertainty"])
+    ax.plot(grid, value, color="k", linewidth=1.8, label="fit (C1 piecewise quadratic)")
+    ax.fill_between(grid, value - 2 * u, value + 2 * u, color="0.5", alpha=0.3, label="fit ± 2 u")
+    for b in f["breaks"]:
+        ax.axvline(b, color="0.8", linewidth=0.6, zorder=0)
+    flagged = result["disturbances"]["readings"]
+    if flagged:
+        ys = [result[f"runs_{d['direction']}"][d["run"] - 1][int(np.argmin(abs(x - d["position"])))] for d in flagged]
+        ax.plot([d["position"] for d in flagged], ys, "o", mfc="none", color="#8e44ad", markersize=8,
+                label=f"flagged ({len(flagged)})")
+    ax.set_xlabel(f"{result['axis']} position [{pos_unit}]")
+    ax.set_ylabel(f"{result['component']} [{unit}]")
+    removed = f", removed: {' '.join(f['removed'])}" if f["removed"] else ""
+    ax.set_title(title or f"{result['component']} ({result['iso_name']}): residual {f['residual_std']:.3g} {unit}{removed}")
+    ax.legend(fontsize=8, ncol=2)
+    fig.tight_layout()
+    return fig

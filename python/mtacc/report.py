@@ -265,6 +265,27 @@ def cubic_section(machine_path, errors):
     return out
 
 
+def components_section(results):
+    """Seed 003: each directly measured component with its runs, mean and C1 piecewise fit."""
+    out = ("<h2>Component errors from direct measurements (seed 003)</h2><p>Each component measured along its "
+           "axis, forward and backward over several runs; the mean of the runs fitted by a C1 piecewise "
+           "quadratic with fixed breaks and stepwise removal of terms that are not significant.</p>")
+    for r in results:
+        f = r["fit"]
+        out += figure(plots.component_fit(r), f"{html.escape(r['component'])} ({r['iso_name']}) from "
+                                              f"{html.escape(r['file'])}: {len(r['runs_forward'])} runs each way")
+        notes = [html.escape(c) for c in r["corrections"]]
+        flagged = r["disturbances"]
+        if flagged["readings"]:
+            every = (f", recurring every {flagged['interval_s'] / 60:.1f} min" if flagged["interval_s"] else "")
+            notes.append(f"{len(flagged['readings'])} disturbed reading(s) flagged{every}")
+        out += "".join(f"<p>{n}.</p>" for n in notes)
+        out += (f"<p>Residual {f['residual_std']:.3g} {r['unit']} ({f['degrees_of_freedom']} degrees of freedom); "
+                f"removed: {html.escape(' '.join(f['removed'])) or 'none'}. The fitted function as the machine YAML "
+                f"loads it:</p><pre>{html.escape(r['yaml'])}</pre>")
+    return out
+
+
 def positioning_section(results):
     """ISO 230-2 charts and axis values of each positioning-test file."""
     out = ("<h2>Positioning (ISO 230-2)</h2><p>Accuracy A, systematic deviation E and repeatability R of "
@@ -283,7 +304,7 @@ def positioning_section(results):
 
 
 def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=None, plan=None, structure=None,
-                 compare=None, positioning=()):
+                 compare=None, positioning=(), components=()):
     """Writes <output_dir>/<machine>-report.html atomically and returns its path."""
     start = time.perf_counter()
     steps = ["machine", "error budget", "volumetric error maps", "circular test", "5-axis circle", "cone frustum",
@@ -294,6 +315,8 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
         steps.insert(-1, "structural dynamics")
     if positioning:
         steps.insert(-1, "positioning")
+    if components:
+        steps.insert(-1, "component errors")
     done = []
 
     def step(name):
@@ -314,6 +337,7 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
             Structure(compare)
     from . import positioning as evaluate_positioning
     positioning_results = [evaluate_positioning(f) for f in positioning]
+    component_results = [machine.fit_component(f) for f in components]
     step("machine")
     parts = [f"<h1>Accuracy report: {html.escape(machine.name)}</h1>",
              f'<p class="meta">{html.escape(machine.file)} · structure {html.escape(machine.structure)} · '
@@ -388,6 +412,9 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     if structure:
         parts.append(dynamics_section(structure, compare))
         step("structural dynamics")
+    if components:
+        parts.append(components_section(component_results))
+        step("component errors")
     if positioning:
         parts.append(positioning_section(positioning_results))
         step("positioning")
@@ -425,11 +452,13 @@ def main(argv=None):
     parser.add_argument("--compare", help="a second structure model to compare with")
     parser.add_argument("--positioning", action="append", default=[],
                         help="ISO 230-2 positioning-test file (KEY=value or CSV); may be given several times")
+    parser.add_argument("--component", action="append", default=[],
+                        help="direct-measurement runs of a component (CSV) to fit and plot; may be given several times")
     args = parser.parse_args(argv)
     try:
         path = build_report(args.machine, args.output, args.errors, args.samples,
                             progress=lambda s: print(s, file=sys.stderr, flush=True), plan=args.plan,
-                            structure=args.structure, compare=args.compare, positioning=args.positioning)
+                            structure=args.structure, compare=args.compare, positioning=args.positioning, components=args.component)
     except (InputError, UnreachablePose) as e:
         message = str(e)
         first = message.split(":", 1)[0]

@@ -1,5 +1,7 @@
 #include "mtacc/core/text.hpp"
 
+#include "mtacc/core/units.hpp"
+
 #include <cmath>
 #include <sstream>
 
@@ -31,6 +33,15 @@ std::vector<std::string> splitFields(const std::string& text, char separator) {
     if (end == std::string::npos) return out;
     start = end + 1;
   }
+}
+
+std::vector<TextLine> contentLines(const std::string& text) {
+  std::vector<TextLine> lines;
+  std::stringstream in(text);
+  std::string raw;
+  for (int n = 1; std::getline(in, raw); ++n)
+    if (auto line = trim(raw); !line.empty()) lines.push_back({n, std::move(line)});
+  return lines;
 }
 
 std::optional<Assignment> commentAssignment(const std::string& line) {
@@ -77,6 +88,25 @@ Vec3 parseVector(const std::string& text, const std::string& key) {
   while (std::getline(ss, item, ',')) items.push_back(item);
   if (items.size() != 3) throw InputError(InputLocation{"", 0, key}, "expected three numbers x,y,z");
   return {parseNumber(items[0], key), parseNumber(items[1], key), parseNumber(items[2], key)};
+}
+
+}  // namespace mtacc
+
+namespace mtacc {
+
+Vec3 parseLengths(const std::string& text, const std::string& key) {
+  const auto parts = splitFields(text);
+  if (parts.size() != 3) throw InputError(InputLocation{"", 0, key}, "expected three values 'x, y, z mm'");
+  const auto unitStart = parts[2].find_first_not_of("+-.0123456789eE");
+  if (unitStart == std::string::npos) throw InputError(InputLocation{"", 0, key}, "missing unit in '" + text + "' (e.g. '0, 0, 50 mm')");
+  const std::string unit = parts[2].substr(unitStart);
+  Vec3 v;
+  for (int k = 0; k < 3; ++k) {
+    std::string p = parts[static_cast<size_t>(k)];
+    if (k < 2 && p.find_first_not_of("+-.0123456789eE") == std::string::npos) p += unit;
+    v[k] = parseQuantityAs(p, Dimension::Length, key);
+  }
+  return v;
 }
 
 }  // namespace mtacc

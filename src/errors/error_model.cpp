@@ -1,5 +1,7 @@
 #include "mtacc/errors/error_model.hpp"
 
+#include <string_view>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -51,6 +53,21 @@ std::vector<std::string> locationErrorNames(const Machine& machine, int axis) {
 
 std::string motionErrorName(const Machine& machine, int axis, int component) {
   return std::string("E") + kComponentLetters[component] + machine.axes[static_cast<size_t>(axis)].name;
+}
+
+std::optional<MotionComponent> findMotionComponent(const Machine& machine, const std::string& name) {
+  std::string iso = name;
+  if (const auto alias = findAlias(name)) {
+    if (alias->composite() || alias->terms[0].sign < 0) return std::nullopt;
+    iso = alias->terms[0].isoName;
+  }
+  if (iso.size() < 3 || iso[0] != 'E') return std::nullopt;
+  const std::string_view letters(kComponentLetters, 6);
+  const auto c = letters.find(iso[1]);
+  if (c == std::string_view::npos) return std::nullopt;
+  const int axis = machine.axisIndex(iso.substr(2));
+  if (axis < 0) return std::nullopt;
+  return MotionComponent{axis, static_cast<int>(c)};
 }
 
 std::vector<Parameter> parameterCatalogue(const Machine& machine, const ErrorModel& errors) {

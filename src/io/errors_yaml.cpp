@@ -19,22 +19,6 @@ namespace {
 
 using yamlin::Context;
 
-constexpr std::string_view kComponents = "XYZABC";
-
-struct MotionTarget {
-  int axis;
-  int component;
-};
-
-std::optional<MotionTarget> parseMotionName(const Machine& m, const std::string& name) {
-  if (name.size() < 3 || name[0] != 'E') return std::nullopt;
-  const auto c = kComponents.find(name[1]);
-  if (c == std::string_view::npos) return std::nullopt;
-  const int axis = m.axisIndex(name.substr(2));
-  if (axis < 0) return std::nullopt;
-  return MotionTarget{axis, static_cast<int>(c)};
-}
-
 Dimension axisDimension(const Axis& a) { return a.isRotary() ? Dimension::Angle : Dimension::Length; }
 
 // Default span for harmonics over the travel: the travel, or one turn.
@@ -103,7 +87,7 @@ PiecewiseTerm readPiecewise(const Context& ctx, const Axis& axis, const YAML::No
   return piecewiseFromIntervals(std::move(t), intervals, period, zero);
 }
 
-void readTerms(const Context& ctx, const Machine& m, const MotionTarget& t, const YAML::Node& node,
+void readTerms(const Context& ctx, const Machine& m, const MotionComponent& t, const YAML::Node& node,
                const std::string& key, ErrorFunction& f) {
   const Axis& axis = m.axes[static_cast<size_t>(t.axis)];
   const Dimension valueDim = t.component < 3 ? Dimension::Length : Dimension::Angle;
@@ -206,7 +190,7 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
     std::vector<AliasTerm> terms{{name, 1.0}};
     if (const auto alias = findAlias(name)) terms = alias->terms;
     const std::string& iso = terms[0].isoName;
-    if (const auto target = parseMotionName(machine, iso); target && terms.size() == 1) {
+    if (const auto target = findMotionComponent(machine, iso); target && terms.size() == 1) {
       auto& f = model.axes[static_cast<size_t>(target->axis)].motion[static_cast<size_t>(target->component)];
       if (!f.empty()) ctx.fail(kv.first, key, "error given twice (" + iso + ")");
       if (terms[0].sign < 0) ctx.fail(kv.first, key, "a negated alias of a component error is not supported");
@@ -230,6 +214,23 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
     }
   }
   return model;
+}
+
+std::string piecewiseErrorYaml(const std::string& name, const std::vector<PiecewiseTerm>& terms, Dimension valueDimension,
+                               Dimension positionDimension) {
+  const bool angle = valueDimension == Dimension::Angle, rotary = positionDimension == Dimension::Angle;
+  const double unit = angle ? kArcsec : 1.0, per = rotary ? kDeg : 1.0;
+  std::string out = fmt::format("  {}:\n    piecewise:\n", name);
+  for (const auto& t : terms) {
+    out += fmt::format("      - unit: {}\n        per: {}\n        breaks: [", angle ? "arcsec" : "mm", rotary ? "deg" : "mm");
+    for (size_t i = 0; i < t.breaks.size(); ++i) out += fmt::format("{}{:.10g}", i ? ", " : "", t.breaks[i] / per);
+    out += "]\n";
+    if (t.period > 0.0) out += fmt::format("        period: {:.10g}\n        zero: {:.10g}\n", t.period / per, t.zero / per);
+    out += "        intervals:\n";
+    for (const auto& c : t.intervals())
+      out += fmt::format("          - [{:.9e}, {:.9e}, {:.9e}]\n", c[0] / unit, c[1] * per / unit, c[2] * per * per / unit);
+  }
+  return out;
 }
 
 ErrorModel loadErrors(const Machine& machine, const std::string& path) {

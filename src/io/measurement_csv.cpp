@@ -79,18 +79,11 @@ class MetaReader {
   double quantity(const std::string& key, Dimension d) const { return parse(key, text(key), d); }
   // "x, y, z mm"
   Vec3 lengths(const std::string& key) const {
-    auto parts = splitFields(text(key));
-    if (parts.size() != 3) fail(key, "expected three values 'x, y, z mm'");
-    const auto unitStart = parts[2].find_first_not_of("+-.0123456789eE");
-    if (unitStart == std::string::npos) fail(key, "missing unit in '" + text(key) + "' (e.g. '0, 0, 50 mm')");
-    const std::string unit = parts[2].substr(unitStart);
-    Vec3 v;
-    for (int k = 0; k < 3; ++k) {
-      std::string p = parts[static_cast<size_t>(k)];
-      if (k < 2 && p.find_first_not_of("+-.0123456789eE") == std::string::npos) p += unit;
-      v[k] = parse(key, p, Dimension::Length);
+    try {
+      return parseLengths(text(key), key);
+    } catch (const InputError& e) {
+      fail(key, e.reason());
     }
-    return v;
   }
   // "1000 mm/min"
   double feed(const std::string& key) const {

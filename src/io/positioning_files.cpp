@@ -8,7 +8,6 @@
 #include <map>
 #include <numeric>
 #include <optional>
-#include <sstream>
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
@@ -94,8 +93,6 @@ std::string stem(const std::string& path) { return std::filesystem::path(path).s
 
 // KEY=value, KEY[i]=value, KEY[i,j]=value.
 PositioningTest parseKeyForm(const std::string& text, const std::string& source) {
-  std::stringstream in(text);
-  std::string raw;
   int n = 0;
   std::map<std::string, std::string> scalars;
   std::map<std::string, int> scalarLines;
@@ -106,10 +103,9 @@ PositioningTest parseKeyForm(const std::string& text, const std::string& source)
   };
   std::vector<Indexed> indexed;
   const auto fail = [&](const std::string& key, const std::string& what) { throw InputError(InputLocation{source, n, key}, what); };
-  while (std::getline(in, raw)) {
-    ++n;
-    const std::string line = trim(raw);
-    if (line.empty() || line[0] == '#') continue;
+  for (const auto& [lineNumber, line] : contentLines(text)) {
+    n = lineNumber;
+    if (line[0] == '#') continue;
     const auto eq = line.find('=');
     if (eq == std::string::npos) fail("line", "expected KEY=value");
     std::string key = trim(line.substr(0, eq));
@@ -177,8 +173,6 @@ PositioningTest parseKeyForm(const std::string& text, const std::string& source)
 
 // target,cycle,forward,backward with '# unit:', '# values:', '# name:'.
 PositioningTest parseCsvForm(const std::string& text, const std::string& source) {
-  std::stringstream in(text);
-  std::string raw;
   int n = 0;
   std::optional<Unit> unit;
   bool positions = true, valuesGiven = false, headerSeen = false;
@@ -192,10 +186,8 @@ PositioningTest parseCsvForm(const std::string& text, const std::string& source)
   };
   std::vector<Row> rows;
   const auto fail = [&](const std::string& key, const std::string& what) { throw InputError(InputLocation{source, n, key}, what); };
-  while (std::getline(in, raw)) {
-    ++n;
-    const std::string line = trim(raw);
-    if (line.empty()) continue;
+  for (const auto& [lineNumber, line] : contentLines(text)) {
+    n = lineNumber;
     if (line[0] == '#') {
       const auto comment = commentAssignment(line);
       if (!comment) continue;
@@ -265,13 +257,8 @@ PositioningTest parseCsvForm(const std::string& text, const std::string& source)
 
 PositioningTest parsePositioningTest(const std::string& text, const std::string& source) {
   // The key form has '=' on its first line that is not a comment; the CSV form never does.
-  std::stringstream in(text);
-  std::string raw;
-  while (std::getline(in, raw)) {
-    const std::string line = trim(raw);
-    if (line.empty() || line[0] == '#') continue;
-    return line.find('=') != std::string::npos ? parseKeyForm(text, source) : parseCsvForm(text, source);
-  }
+  for (const auto& [lineNumber, line] : contentLines(text))
+    if (line[0] != '#') return line.find('=') != std::string::npos ? parseKeyForm(text, source) : parseCsvForm(text, source);
   throw InputError(InputLocation{source, 0, ""}, "no data: expected ISO 230-2 KEY=value lines or a CSV 'target,cycle,forward,backward'");
 }
 

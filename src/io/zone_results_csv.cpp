@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
-#include <sstream>
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
@@ -23,16 +22,12 @@ constexpr double kLargestSlope = 1.0;    // mm/mm
 ZoneResults parseZoneResults(const std::string& text, const std::string& source) {
   ZoneResults r;
   r.file = source;
-  std::stringstream in(text);
-  std::string raw;
   int n = 0;
   std::vector<std::string> header;
   std::set<std::string> seen;
   const auto fail = [&](const std::string& key, const std::string& what) { throw InputError(InputLocation{source, n, key}, what); };
-  while (std::getline(in, raw)) {
-    ++n;
-    const std::string line = trim(raw);
-    if (line.empty()) continue;
+  for (const auto& [lineNumber, line] : contentLines(text)) {
+    n = lineNumber;
     if (line[0] == '#') {
       const auto comment = commentAssignment(line);
       if (!comment) continue;

@@ -25,6 +25,13 @@ struct Assignment {
 // an error.
 std::vector<Assignment> parseAssignments(const std::string& text, const std::string& key);
 
+// The lines of a text file that are not blank, trimmed, with their 1-based numbers.
+struct TextLine {
+  int number;
+  std::string text;
+};
+std::vector<TextLine> contentLines(const std::string& text);
+
 // A trimmed comment line "# key: value" of the CSV inputs -> {"key", "value"}; nullopt for a
 // comment without a colon (free text).
 std::optional<Assignment> commentAssignment(const std::string& line);
@@ -35,5 +42,7 @@ double parseNumber(const std::string& text, const std::string& key);
 int parseCount(const std::string& text, const std::string& key, int min, int max);
 // "x,y,z": exactly three finite numbers.
 Vec3 parseVector(const std::string& text, const std::string& key);
+// "x, y, z mm" (the unit after the last, or after each): three lengths in mm.
+Vec3 parseLengths(const std::string& text, const std::string& key);
 
 }  // namespace mtacc

@@ -3,6 +3,7 @@
 // error motions of every axis, each a function of that axis's position. Every scalar that
 // can be identified or varied is a named Parameter.
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,13 @@ struct Parameter {
 std::vector<std::string> locationErrorNames(const Machine& machine, int axis);
 // "E" + component letter + axis name, e.g. "EXC".
 std::string motionErrorName(const Machine& machine, int axis, int component);
+
+// The component error motion named by an ISO name ("EAX") or a one-term alias ("xrx").
+struct MotionComponent {
+  int axis;
+  int component;  // 0..5 (X Y Z A B C): translations, then rotations
+};
+std::optional<MotionComponent> findMotionComponent(const Machine& machine, const std::string& name);
 
 // Every location parameter of the machine, then every parameter of the motion functions
 // defined in `errors`.

@@ -3,6 +3,7 @@
 // (schema in docs/errors-file.md). Names are ISO 230-1 or an alias from aliases.hpp; every
 // value states its unit.
 #include <string>
+#include <vector>
 
 #include "mtacc/errors/error_model.hpp"
 
@@ -16,5 +17,12 @@ ErrorModel loadErrors(const Machine& machine, const std::string& path);
 enum class ErrorsKey { Optional, Required };
 ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, const std::string& sourceName,
                        ErrorsKey errorsKey = ErrorsKey::Optional);
+
+// One component's entry of an `errors:` mapping with its piecewise terms, as the machine YAML
+// loads it back: values in arcsec (rotations) or mm (translations), positions in mm or deg, per
+// interval [c0, c1, c2] to nine significant digits. `valueDimension` is the component's,
+// `positionDimension` its axis's.
+std::string piecewiseErrorYaml(const std::string& name, const std::vector<PiecewiseTerm>& terms, Dimension valueDimension,
+                               Dimension positionDimension);
 
 }  // namespace mtacc

@@ -1,0 +1,80 @@
+// mtacc fit: a component error from its direct-measurement runs (seed 003): corrections, the
+// mean of the runs, the C1 piecewise-polynomial fit with stepwise removal, and its YAML entry.
+#include <fmt/format.h>
+
+#include <iostream>
+
+#include "cli_common.hpp"
+#include "mtacc/core/text.hpp"
+#include "mtacc/core/units.hpp"
+#include "mtacc/io/text_file.hpp"
+#include "mtacc/workflows/component_fit.hpp"
+
+namespace mtacc::cli {
+namespace {
+
+struct FitCliOptions : MachineOptions {
+  ComponentFitRequest request;
+  std::string breaks, period, yamlOut;
+};
+
+void run(FitCliOptions& o) {
+  if (!o.breaks.empty())
+    for (const auto& b : splitList(o.breaks)) o.request.breaks.push_back(parseNumber(b, "--breaks"));
+  if (!o.period.empty()) o.request.period = parseNumber(o.period, "--period");
+  const auto s = fitComponentFile(loadMachineSetup(o.source), o.request);
+  const auto j = toJson(s);
+  if (!o.yamlOut.empty()) writeFileAtomically(o.yamlOut, "errors:\n" + s.yaml, "--yaml-out");
+  const std::string unit = j["unit"], posUnit = j["position_unit"];
+  const auto& f = j["fit"];
+  std::string human = fmt::format("Component {} ({}) of axis {} from {}: {} positions, {} runs each way\n", s.data.componentName,
+                                  j["iso_name"].get<std::string>(), j["axis"].get<std::string>(), s.data.file, s.curve.positions.size(),
+                                  s.data.runs.forward.cols());
+  for (const auto& c : s.corrections) human += "  corrected: " + c + "\n";
+  human += fmt::format("\nFit: degree {}, breaks", o.request.degree);
+  for (const double b : f["breaks"]) human += fmt::format(" {:g}", b);
+  human += fmt::format(" {}; {} terms kept", posUnit, s.fit.trend.coefficients.size());
+  if (!s.fit.removed.empty()) human += ", removed as not significant: " + fmt::format("{}", fmt::join(s.fit.removed, " "));
+  if (s.fit.periodic) human += fmt::format("; periodic term of {:g} {}", f["periodic"].get<double>(), posUnit);
+  human += fmt::format("\nresidual standard deviation {:.4g} {} ({} degrees of freedom)\n\n", f["residual_std"].get<double>(), unit,
+                       s.fit.degreesOfFreedom);
+  human += fmt::format("{:>10} {:>10} {:>10} {:>10} {:>10} {:>10}   ({} / {})\n", "position", "mean", "forward", "backward", "fit", "u(fit)",
+                       posUnit, unit);
+  std::string csv = fmt::format("position_{0},mean_{1},mean_forward_{1},mean_backward_{1},fit_{1},fit_uncertainty_{1}\n", posUnit, unit);
+  for (size_t i = 0; i < s.curve.positions.size(); ++i) {
+    const std::vector<double> row{j["positions"][i], j["mean"][i], j["mean_forward"][i], j["mean_backward"][i], f["at_positions"][i],
+                                  f["uncertainty_at_positions"][i]};
+    human += fmt::format("{:>10.3f} {:>10.4f} {:>10.4f} {:>10.4f} {:>10.4f} {:>10.4f}\n", row[0], row[1], row[2], row[3], row[4], row[5]);
+    csv += fmt::format("{}\n", fmt::join(row, ","));
+  }
+  if (!s.disturbances.readings.empty()) {
+    human += fmt::format("\n{} disturbed reading(s) (beyond {:g} robust standard deviations of their position)", s.disturbances.readings.size(),
+                         o.request.disturbanceThreshold);
+    if (s.disturbances.interval) human += fmt::format(", recurring every {:.1f} min", *s.disturbances.interval / 60.0);
+    human += "\n";
+  }
+  human += "\n" + std::string(o.yamlOut.empty() ? "Error function (machine YAML, under errors:):\n" + s.yaml : "Error function written to " + o.yamlOut + "\n");
+  emit(o, j, human, csv);
+}
+
+}  // namespace
+
+void addFitCommand(CLI::App& app) {
+  auto o = std::make_shared<FitCliOptions>();
+  auto* cmd = app.add_subcommand("fit", "fit a component error to its direct-measurement runs (seed 003: C1 piecewise polynomial)");
+  addMachineOptions(*cmd, *o);
+  cmd->add_option("data", o->request.file, "component runs CSV (docs/file-formats.md \"Component runs\")")->required();
+  cmd->add_option("--breaks", o->breaks, "fixed breaks in the axis unit (mm or deg), e.g. 0,50,100,200; default: --pieces");
+  cmd->add_option("--pieces", o->request.pieces, "equal intervals over the measured range (default: about 100 mm or 30 deg each)");
+  cmd->add_option("--degree", o->request.degree, "1 (piecewise linear) or 2 (C1 quadratic, default)");
+  cmd->add_option("--significance", o->request.significance, "stepwise removal level of the t-test (default 0.05; 0 keeps every term)");
+  cmd->add_option("--period", o->period, "a periodic term of this wavelength (axis unit), fitted with the trend");
+  cmd->add_option("--period-zero", o->request.periodZero, "position where the periodic term starts (axis unit, default 0)");
+  cmd->add_option("--disturbance-threshold", o->request.disturbanceThreshold,
+                  "flag readings beyond this many robust standard deviations (default 5)");
+  cmd->add_flag("--remove-disturbed", o->request.removeDisturbed, "leave the flagged readings out of the means");
+  cmd->add_option("--yaml-out", o->yamlOut, "write the fitted function as an errors file (YAML), atomically");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace mtacc::cli
