@@ -55,6 +55,7 @@ void addSimulateCommand(CLI::App& app);       // simulate ballbar | rtest | plan
 void addEvaluateCommand(CLI::App& app);
 void addPositioningCommand(CLI::App& app);    // positioning (ISO 230-2)
 void addFitCommand(CLI::App& app);            // fit (seed 003 component fits)
+void addPlateCommand(CLI::App& app);          // plate (seed 003 hole plates)
 void addIdentifyCommands(CLI::App& app);      // identify, observability
 void addCubicCommands(CLI::App& app);         // cubic, cubic-identify
 void addDynamicsCommand(CLI::App& app);       // dynamics modes | frf | accel | map

@@ -16,7 +16,7 @@ struct ReportOptions {
   std::string errorsFile;
   std::string output = ".";
   std::string plan, structure, compare;
-  std::vector<std::string> positioning, components;
+  std::vector<std::string> positioning, components, plates;
   int samples = 5;
 };
 
@@ -36,7 +36,7 @@ struct ReportOptions {
       args.push_back(flag);
       args.push_back(value);
     }
-  for (const auto& [flag, files] : {std::pair{"--positioning", &o.positioning}, {"--component", &o.components}})
+  for (const auto& [flag, files] : {std::pair{"--positioning", &o.positioning}, {"--component", &o.components}, {"--plate", &o.plates}})
     for (const auto& file : *files) {
       args.push_back(flag);
       args.push_back(file);
@@ -61,6 +61,7 @@ void addReportCommand(CLI::App& app) {
   cmd->add_option("--structure", o->structure, "structure model for the dynamics section (e.g. tzyx-arm-x)");
   cmd->add_option("--compare", o->compare, "a second structure model to compare with (e.g. tzyx-arm-y)");
   cmd->add_option("--positioning", o->positioning, "ISO 230-2 positioning-test files for the positioning section");
+  cmd->add_option("--plate", o->plates, "plate measurements (seed 003) to compare with the model, one section each");
   cmd->add_option("--component", o->components, "direct-measurement runs (seed 003) to fit and plot, one section each");
   cmd->callback([o] { run(*o); });
 }

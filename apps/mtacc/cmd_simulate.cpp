@@ -11,6 +11,7 @@
 #include "mtacc/io/pose_text.hpp"
 #include "mtacc/workflows/component_fit.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
+#include "mtacc/workflows/plates.hpp"
 
 namespace mtacc::cli {
 namespace {
@@ -153,6 +154,46 @@ void addSimulateCommand(CLI::App& app) {
     const auto f = simulateComponentFile(loadMachineSetup(*componentMachine), *component);
     std::cout << fmt::format("{}: {} positions x {} runs each way -> {}\n", component->component, f.runs.positions.size(),
                              f.runs.forward.cols(), component->output);
+  });
+
+  struct PlateSimulateOptions {
+    MachineSource machine;
+    PlateSimulationRequest request;
+    std::string origin, axes = "1,0,0 / 0,1,0", stylus = "0,0,0 mm", plate = "9 x 9, pitch 50 mm", features = "all", pose, probe, simulation;
+  };
+  auto plateOptions = std::make_shared<PlateSimulateOptions>();
+  auto* plate = sim->add_subcommand("plate", "A hole-plate measurement (seed 003): each feature as the machine with its errors measures it");
+  plate->add_option("machine", plateOptions->machine.machine, "machine file, or the name of a bundled machine")->required();
+  plate->add_option("--errors", plateOptions->machine.errorsFile, "errors file; default: the machine file's");
+  plate->add_option("--origin", plateOptions->origin, "reference feature in the workpiece frame, e.g. -350,-455,-160mm")->required();
+  plate->add_option("--axes", plateOptions->axes, "plate u and v axes in the workpiece frame (default '1,0,0 / 0,1,0')");
+  plate->add_option("--stylus", plateOptions->stylus, "probe tip relative to the TCP, tool frame (default 0,0,0 mm)");
+  plate->add_option("--plate", plateOptions->plate, "plate layout (default '9 x 9, pitch 50 mm')");
+  plate->add_option("--features", plateOptions->features, "all (default) or outer");
+  plate->add_option("--pose", plateOptions->pose, "positions of the axes that stay, e.g. B=0,C=0");
+  plate->add_option("--probe", plateOptions->probe, "2S of the probe along u and v to state in the file, e.g. '1.1, 0.8 um'");
+  plate->add_option("--simulation", plateOptions->simulation, "2S of the model's prediction to state in the file, e.g. '6.3 um'");
+  plate->add_option("--noise", plateOptions->request.noise, "standard deviation of each measured coordinate (default 0 um)");
+  plate->add_option("--seed", plateOptions->request.seed, "random seed (default 1)");
+  plate->add_option("-o,--output", plateOptions->request.output, "CSV to write (atomically)")->required();
+  plate->callback([plateOptions] {
+    auto& o = *plateOptions;
+    const auto setup = loadMachineSetup(o.machine);
+    // The options are written as the file's header and read back: one parser for both.
+    std::string header = "# plate: " + o.plate + "\n# features: " + o.features + "\n# origin: " + o.origin + "\n# axes: " + o.axes +
+                         "\n# stylus: " + o.stylus + "\n";
+    if (!o.pose.empty()) header += "# pose: " + o.pose + "\n";
+    if (!o.probe.empty()) header += "# probe: " + o.probe + "\n";
+    if (!o.simulation.empty()) header += "# simulation: " + o.simulation + "\n";
+    PlateMeasurement layout;
+    try {
+      layout = parsePlateLayout(*setup.machine, header, "options");
+    } catch (const InputError& e) {
+      throw InputError(InputLocation{"", 0, "--" + e.where().key}, e.reason());
+    }
+    o.request.layout = layout;
+    const auto m = simulatePlateFile(setup, o.request);
+    std::cout << fmt::format("{} features -> {}\n", m.features.size(), o.request.output);
   });
 
   auto* plan = sim->add_subcommand("plan", "Every run of a test plan, one CSV per run in a directory");

@@ -22,6 +22,7 @@
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/kinematics_batch.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
+#include "mtacc/workflows/plates.hpp"
 #include "mtacc/workflows/positioning.hpp"
 #include "mtacc/workflows/report_paths.hpp"
 
@@ -280,6 +281,16 @@ PYBIND11_MODULE(_mtacc, mod) {
         r.disturbanceThreshold = threshold;
         r.removeDisturbed = removeDisturbed;
         return toPython(toJson(fitComponentFile(s, r)));
+      })
+      .def("compare_plate", [](const MachineSetup& s, const std::string& path) { return toPython(toJson(comparePlateFile(s, path))); })
+      .def("simulate_plate", [](const MachineSetup& s, const std::string& output, const std::string& header, const std::string& noise,
+                                std::uint64_t seed) {
+        PlateSimulationRequest r;
+        r.output = output;
+        r.layout = parsePlateLayout(*s.machine, header, "layout");
+        r.noise = noise;
+        r.seed = seed;
+        simulatePlateFile(s, r);
       })
       .def("simulate_component", [](const MachineSetup& s, const std::string& component, const std::string& output, double step, int runs,
                                     const std::string& noise, const std::vector<double>& abbe, const std::string& disturbance,

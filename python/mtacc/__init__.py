@@ -180,6 +180,27 @@ class Machine:
                                         float(significance), period, float(period_zero), float(disturbance_threshold),
                                         bool(remove_disturbed))
 
+    def compare_plate(self, path):
+        """A measured hole or ball plate (CSV, docs/file-formats.md) against this machine's error model, as
+        `mtacc plate --json`: per feature the measured and modelled deviations and the residual (um) with
+        the misalignment removed, and the residual's k = 2 bound when the file states the 2S values."""
+        return self._core.compare_plate(str(path))
+
+    def simulate_plate(self, output, origin, axes=((1, 0, 0), (0, 1, 0)), stylus=(0, 0, 0), plate=(9, 9, 50.0),
+                       features="all", noise="0 um", probe=None, simulation=None, seed=1):
+        """Writes the plate measurement this machine with its errors gives (as `mtacc simulate plate`):
+        reference feature at `origin` (mm, workpiece frame), plate axes u, v, stylus (mm, tool frame),
+        plate = (rows, columns, pitch mm); probe = (2S_u, 2S_v) and simulation 2S in um, to state in the file."""
+        u, v = axes
+        header = (f"# plate: {plate[0]} x {plate[1]}, pitch {plate[2]} mm\n# features: {features}\n"
+                  f"# origin: {origin[0]}, {origin[1]}, {origin[2]} mm\n# axes: {u[0]},{u[1]},{u[2]} / {v[0]},{v[1]},{v[2]}\n"
+                  f"# stylus: {stylus[0]}, {stylus[1]}, {stylus[2]} mm\n")
+        if probe is not None:
+            header += f"# probe: {probe[0]}, {probe[1]} um\n"
+        if simulation is not None:
+            header += f"# simulation: {simulation} um\n"
+        self._core.simulate_plate(str(output), header, str(noise), int(seed))
+
     def simulate_component(self, component, output, step=10.0, runs=20, noise="0 um", abbe_offset=(0.0, 0.0, 0.0),
                            disturbance="", disturbance_interval=1800.0, seed=1):
         """Writes direct-measurement runs of one component (seed 003 name or ISO) simulated from this

@@ -540,3 +540,32 @@ def component_fit(result, title=None):
     ax.legend(fontsize=8, ncol=2)
     fig.tight_layout()
     return fig
+
+
+def plate_vectors(result, magnification=None, title=None):
+    """A plate comparison (`Machine.compare_plate`) as seed 003 Figs 5.4-5.15 draw it: the nominal
+    grid with the measured and the modelled deviation of each feature as magnified vectors, and
+    the residual beside it."""
+    nominal = np.array([f["nominal_mm"] for f in result["features"]])
+    fig, axes = plt.subplots(1, 2, figsize=(11, 5.2), sharex=True, sharey=True)
+    largest = max(np.abs(np.array([f[k] for f in result["features"] for k in ("measured_um", "simulated_um")])).max(), 1e-9)
+    pitch = result["plate"]["pitch_mm"]
+    scale = magnification or 0.4 * pitch / largest * 1e3  # the largest vector 0.4 pitch long
+    for ax, keys, heading in ((axes[0], (("measured_um", "#c0392b", "measured"), ("simulated_um", "#2471a3", "model")), "deviations"),
+                              (axes[1], (("residual_um", "k", "measured − model"),), "residual")):
+        ax.plot(nominal[:, 0], nominal[:, 1], "+", color="0.6", markersize=5)
+        for key, colour, label in keys:
+            d = np.array([f[key] for f in result["features"]]) * 1e-3 * scale
+            ax.quiver(nominal[:, 0], nominal[:, 1], d[:, 0], d[:, 1], angles="xy", scale_units="xy", scale=1, color=colour,
+                      width=0.004, label=label)
+        ax.set_aspect("equal")
+        ax.set_xlabel("u [mm]")
+        ax.set_title(f"{heading} × {scale:.0f}")
+        ax.legend(fontsize=8, loc="upper left")
+    axes[0].set_ylabel("v [mm]")
+    bound = result["bound_um"]
+    fig.suptitle(title or (f"Plate at ({', '.join(f'{c:g}' for c in result['origin_mm'])}) mm: residual RMS "
+                           f"{result['residual_rms_um']:.2f} µm" + (f", k = 2 bound {bound:.2f} µm, {result['beyond_bound']} beyond"
+                                                                     if bound is not None else "")))
+    fig.tight_layout()
+    return fig

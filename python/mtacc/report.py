@@ -286,6 +286,19 @@ def components_section(results):
     return out
 
 
+def plates_section(results):
+    """Seed 003 §5.3: each measured plate against the machine's error model."""
+    out = ("<h2>Hole and ball plates (seed 003)</h2><p>Each plate measured relative to its reference feature, "
+           "corrected for the scale and plate temperatures, its misalignment removed; the model's deviations "
+           "from the machine's errors (D<sub>h</sub> = E(q<sub>h</sub>) − E(q<sub>ref</sub>)), and the residual.</p>")
+    for r in results:
+        out += figure(plots.plate_vectors(r), f"{html.escape(r['file'])}: measured and modelled deviations, and the residual")
+        bound = (f"; k = 2 bound {r['bound_um']:.2f} µm, {r['beyond_bound']} component(s) beyond it"
+                 if r["bound_um"] is not None else "")
+        out += f"<p>Residual RMS {r['residual_rms_um']:.3f} µm, largest {r['residual_max_um']:.3f} µm{bound}.</p>"
+    return out
+
+
 def positioning_section(results):
     """ISO 230-2 charts and axis values of each positioning-test file."""
     out = ("<h2>Positioning (ISO 230-2)</h2><p>Accuracy A, systematic deviation E and repeatability R of "
@@ -304,7 +317,7 @@ def positioning_section(results):
 
 
 def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=None, plan=None, structure=None,
-                 compare=None, positioning=(), components=()):
+                 compare=None, positioning=(), components=(), plates=()):
     """Writes <output_dir>/<machine>-report.html atomically and returns its path."""
     start = time.perf_counter()
     steps = ["machine", "error budget", "volumetric error maps", "circular test", "5-axis circle", "cone frustum",
@@ -317,6 +330,8 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
         steps.insert(-1, "positioning")
     if components:
         steps.insert(-1, "component errors")
+    if plates:
+        steps.insert(-1, "plates")
     done = []
 
     def step(name):
@@ -338,6 +353,7 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     from . import positioning as evaluate_positioning
     positioning_results = [evaluate_positioning(f) for f in positioning]
     component_results = [machine.fit_component(f) for f in components]
+    plate_results = [machine.compare_plate(f) for f in plates]
     step("machine")
     parts = [f"<h1>Accuracy report: {html.escape(machine.name)}</h1>",
              f'<p class="meta">{html.escape(machine.file)} · structure {html.escape(machine.structure)} · '
@@ -415,6 +431,9 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     if components:
         parts.append(components_section(component_results))
         step("component errors")
+    if plates:
+        parts.append(plates_section(plate_results))
+        step("plates")
     if positioning:
         parts.append(positioning_section(positioning_results))
         step("positioning")
@@ -452,13 +471,15 @@ def main(argv=None):
     parser.add_argument("--compare", help="a second structure model to compare with")
     parser.add_argument("--positioning", action="append", default=[],
                         help="ISO 230-2 positioning-test file (KEY=value or CSV); may be given several times")
+    parser.add_argument("--plate", action="append", default=[],
+                        help="hole- or ball-plate measurement (CSV) to compare with the model; may be given several times")
     parser.add_argument("--component", action="append", default=[],
                         help="direct-measurement runs of a component (CSV) to fit and plot; may be given several times")
     args = parser.parse_args(argv)
     try:
         path = build_report(args.machine, args.output, args.errors, args.samples,
                             progress=lambda s: print(s, file=sys.stderr, flush=True), plan=args.plan,
-                            structure=args.structure, compare=args.compare, positioning=args.positioning, components=args.component)
+                            structure=args.structure, compare=args.compare, positioning=args.positioning, components=args.component, plates=args.plate)
     except (InputError, UnreachablePose) as e:
         message = str(e)
         first = message.split(":", 1)[0]

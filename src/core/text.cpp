@@ -44,6 +44,18 @@ std::vector<TextLine> contentLines(const std::string& text) {
   return lines;
 }
 
+void readCommentedLines(const std::string& text, int& line, const std::function<void(const std::string&, const std::string&)>& comment,
+                        const std::function<void(const std::string&)>& row) {
+  for (const auto& [number, content] : contentLines(text)) {
+    line = number;
+    if (content[0] != '#') {
+      row(content);
+    } else if (const auto a = commentAssignment(content)) {
+      comment(a->name, a->value);
+    }
+  }
+}
+
 std::optional<Assignment> commentAssignment(const std::string& line) {
   const auto colon = line.find(':');
   if (colon == std::string::npos) return std::nullopt;

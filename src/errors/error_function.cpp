@@ -110,6 +110,14 @@ PiecewiseTerm piecewiseFromIntervals(std::vector<double> breaks, const std::vect
   return p;
 }
 
+PiecewiseTerm continuousPiecewise(std::vector<double> breaks, int degree) {
+  PiecewiseTerm p;
+  for (int j = 0; j <= degree; ++j) p.coefficients.push_back({0, j, 0.0});
+  for (size_t i = 1; i + 1 < breaks.size(); ++i) p.coefficients.push_back({static_cast<int>(i), degree, 0.0});
+  p.breaks = std::move(breaks);
+  return p;
+}
+
 TableTerm::TableTerm(std::vector<double> p, std::vector<double> v, Interpolation interp)
     : positions(std::move(p)), values(std::move(v)), interpolation(interp) {
   const size_t n = positions.size();

@@ -35,94 +35,91 @@ ComponentRunsFile parseComponentRuns(const Machine& machine, const std::string& 
   // (run, direction) -> position -> reading
   std::map<std::pair<int, int>, std::map<double, Reading>> runs;
   bool componentGiven = false;
-  for (const auto& [lineNumber, line] : contentLines(text)) {
-    n = lineNumber;
-    if (line[0] == '#') {
-      const auto comment = commentAssignment(line);
-      if (!comment) continue;
-      const auto& [key, value] = *comment;
-      if (key != "note" && !seen.emplace(key, n).second) fail(key, fmt::format("given twice (first on line {})", seen[key]));
-      if (key == "component") {
-        const auto c = findMotionComponent(machine, value);
-        if (!c) fail(key, "'" + value + "' is not a component error of this machine (e.g. EXX, xtx, EAX, xrx)");
-        f.componentName = value;
-        f.component = *c;
-        componentGiven = true;
-      } else if (key == "unit") {
-        if (!componentGiven) fail(key, "give '# component:' before '# unit:'");
-        const Dimension dim = f.component.component < 3 ? Dimension::Length : Dimension::Angle;
-        const auto q = parseQuantity("1 " + value);
-        if (!q || q->dimension != dim) fail(key, "'" + value + "' is not a unit of " + withArticle(dim) + " (the component's)");
-        unit = q->value;
-      } else if (key == "instrument") {
-        f.instrument = value;
-      } else if (key == "uncertainty" || key == "abbe_offset") {
-        if (!componentGiven) fail(key, "give '# component:' first");
-        try {
-          if (key == "uncertainty") {
-            f.uncertainty = parseQuantityAs(value, f.component.component < 3 ? Dimension::Length : Dimension::Angle, key);
-            if (!(*f.uncertainty > 0.0)) fail(key, "must be positive");
-          } else {
-            if (f.component.component >= 3) fail(key, "an Abbe offset applies to a translation component");
-            f.abbeOffset = parseLengths(value, key);
+  readCommentedLines(
+      text, n,
+      [&](const std::string& key, const std::string& value) {
+        if (key != "note" && !seen.emplace(key, n).second) fail(key, fmt::format("given twice (first on line {})", seen[key]));
+        if (key == "component") {
+          const auto c = findMotionComponent(machine, value);
+          if (!c) fail(key, "'" + value + "' is not a component error of this machine (e.g. EXX, xtx, EAX, xrx)");
+          f.componentName = value;
+          f.component = *c;
+          componentGiven = true;
+        } else if (key == "unit") {
+          if (!componentGiven) fail(key, "give '# component:' before '# unit:'");
+          const Dimension dim = f.component.component < 3 ? Dimension::Length : Dimension::Angle;
+          const auto q = parseQuantity("1 " + value);
+          if (!q || q->dimension != dim) fail(key, "'" + value + "' is not a unit of " + withArticle(dim) + " (the component's)");
+          unit = q->value;
+        } else if (key == "instrument") {
+          f.instrument = value;
+        } else if (key == "uncertainty" || key == "abbe_offset") {
+          if (!componentGiven) fail(key, "give '# component:' first");
+          try {
+            if (key == "uncertainty") {
+              f.uncertainty = parseQuantityAs(value, f.component.component < 3 ? Dimension::Length : Dimension::Angle, key);
+              if (!(*f.uncertainty > 0.0)) fail(key, "must be positive");
+            } else {
+              if (f.component.component >= 3) fail(key, "an Abbe offset applies to a translation component");
+              f.abbeOffset = parseLengths(value, key);
+            }
+          } catch (const InputError& e) {
+            fail(key, e.reason());
           }
-        } catch (const InputError& e) {
-          fail(key, e.reason());
+        } else if (key == "expansion") {
+          try {
+            f.expansion = parseNumber(value, key);
+          } catch (const InputError& e) {
+            fail(key, e.reason());
+          }
+          if (!(std::abs(*f.expansion) < 1e-3)) fail(key, "an expansion coefficient in 1/K (e.g. 11.5e-6)");
+        } else if (key == "reference_temperature") {
+          try {
+            f.referenceTemperature = parseNumber(value, key);
+          } catch (const InputError& e) {
+            fail(key, e.reason());
+          }
+          if (!(f.referenceTemperature > -50 && f.referenceTemperature < 100)) fail(key, "a temperature in deg C");
+        } else if (key != "note") {
+          fail(key, "unknown key (expected component, unit, instrument, uncertainty, abbe_offset, expansion, reference_temperature, note)");
         }
-      } else if (key == "expansion") {
+      },
+      [&](const std::string& line) {
+        const auto fields = splitFields(line);
+        if (header.empty()) {
+          header = fields;
+          const bool ok =
+              header.size() >= 4 && header[0] == "position" && header[1] == "run" && header[2] == "direction" && header[3] == "value";
+          std::set<std::string> extra(header.begin() + std::min<size_t>(4, header.size()), header.end());
+          if (!ok || extra.size() != header.size() - 4 ||
+              !std::all_of(extra.begin(), extra.end(), [](const std::string& c) { return c == "time_s" || c == "temperature_C"; }))
+            fail("header", "expected 'position,run,direction,value' and optionally 'time_s', 'temperature_C'");
+          return;
+        }
+        if (fields.size() != header.size()) fail("row", fmt::format("expected {} fields, found {}", header.size(), fields.size()));
+        if (!unit) fail("unit", "missing '# unit:' before the data (the unit of the values)");
+        double position = 0, value = 0, time = NAN, temperature = NAN;
+        int run = 0, direction = 0;
         try {
-          f.expansion = parseNumber(value, key);
+          position = parseNumber(fields[0], "position");
+          run = parseCount(fields[1], "run", 1, kMostRuns);
+          direction = parseCount(fields[2], "direction", -1, 1);
+          value = parseNumber(fields[3], "value") * *unit;
+          for (size_t k = 4; k < fields.size(); ++k) (header[k] == "time_s" ? time : temperature) = parseNumber(fields[k], header[k]);
         } catch (const InputError& e) {
-          fail(key, e.reason());
+          fail(e.where().key, e.reason());
         }
-        if (!(std::abs(*f.expansion) < 1e-3)) fail(key, "an expansion coefficient in 1/K (e.g. 11.5e-6)");
-      } else if (key == "reference_temperature") {
-        try {
-          f.referenceTemperature = parseNumber(value, key);
-        } catch (const InputError& e) {
-          fail(key, e.reason());
-        }
-        if (!(f.referenceTemperature > -50 && f.referenceTemperature < 100)) fail(key, "a temperature in deg C");
-      } else if (key != "note") {
-        fail(key, "unknown key (expected component, unit, instrument, uncertainty, abbe_offset, expansion, reference_temperature, note)");
-      }
-      continue;
-    }
-    const auto fields = splitFields(line);
-    if (header.empty()) {
-      header = fields;
-      const bool ok = header.size() >= 4 && header[0] == "position" && header[1] == "run" && header[2] == "direction" && header[3] == "value";
-      std::set<std::string> extra(header.begin() + std::min<size_t>(4, header.size()), header.end());
-      if (!ok || extra.size() != header.size() - 4 || !std::all_of(extra.begin(), extra.end(), [](const std::string& c) {
-            return c == "time_s" || c == "temperature_C";
-          }))
-        fail("header", "expected 'position,run,direction,value' and optionally 'time_s', 'temperature_C'");
-      continue;
-    }
-    if (fields.size() != header.size()) fail("row", fmt::format("expected {} fields, found {}", header.size(), fields.size()));
-    if (!unit) fail("unit", "missing '# unit:' before the data (the unit of the values)");
-    double position = 0, value = 0, time = NAN, temperature = NAN;
-    int run = 0, direction = 0;
-    try {
-      position = parseNumber(fields[0], "position");
-      run = parseCount(fields[1], "run", 1, kMostRuns);
-      direction = parseCount(fields[2], "direction", -1, 1);
-      value = parseNumber(fields[3], "value") * *unit;
-      for (size_t k = 4; k < fields.size(); ++k) (header[k] == "time_s" ? time : temperature) = parseNumber(fields[k], header[k]);
-    } catch (const InputError& e) {
-      fail(e.where().key, e.reason());
-    }
-    if (direction == 0) fail("direction", "1 (forward) or -1 (backward)");
-    const Axis& axis = machine.axes[static_cast<size_t>(f.component.axis)];
-    if (axis.isRotary()) position *= kDeg;
-    if (axis.travel && (position < axis.travel->min - 1e-9 || position > axis.travel->max + 1e-9))
-      fail("position", fmt::format("{} is beyond the travel of {}", fields[0], axis.name));
-    const double largest = f.component.component < 3 ? 10.0 : 10.0 * kDeg;
-    if (!(std::abs(value) <= largest)) fail("value", "beyond ±10 mm or ±10° (a wrong unit?)");
-    if (!std::isnan(temperature) && !(temperature > -50 && temperature < 100)) fail("temperature_C", "a temperature in deg C");
-    if (!runs[{run, direction}].emplace(position, Reading{value, time, temperature, n}).second)
-      fail("row", fmt::format("run {} {} at position {} is given twice", run, direction > 0 ? "forward" : "backward", fields[0]));
-  }
+        if (direction == 0) fail("direction", "1 (forward) or -1 (backward)");
+        const Axis& axis = machine.axes[static_cast<size_t>(f.component.axis)];
+        if (axis.isRotary()) position *= kDeg;
+        if (axis.travel && (position < axis.travel->min - 1e-9 || position > axis.travel->max + 1e-9))
+          fail("position", fmt::format("{} is beyond the travel of {}", fields[0], axis.name));
+        const double largest = f.component.component < 3 ? 10.0 : 10.0 * kDeg;
+        if (!(std::abs(value) <= largest)) fail("value", "beyond ±10 mm or ±10° (a wrong unit?)");
+        if (!std::isnan(temperature) && !(temperature > -50 && temperature < 100)) fail("temperature_C", "a temperature in deg C");
+        if (!runs[{run, direction}].emplace(position, Reading{value, time, temperature, n}).second)
+          fail("row", fmt::format("run {} {} at position {} is given twice", run, direction > 0 ? "forward" : "backward", fields[0]));
+      });
   n = 0;
   if (!componentGiven) fail("component", "missing '# component:' (e.g. '# component: xrx')");
   if (runs.empty()) fail("row", "no readings");
@@ -138,8 +135,9 @@ ComponentRunsFile parseComponentRuns(const Machine& machine, const std::string& 
         n = runs.at({run, -direction}).begin()->second.line;  // the run's other pass
         fail("direction", what + " is missing: every run goes both ways");
       }
-      n = std::min_element(it->second.begin(), it->second.end(), [](const auto& a, const auto& b) { return a.second.line < b.second.line; })
-              ->second.line;
+      n = std::min_element(it->second.begin(), it->second.end(), [](const auto& a, const auto& b) {
+            return a.second.line < b.second.line;
+          })->second.line;
       if (it->second.size() != first.size())
         fail("position", fmt::format("{} has {} positions, run {} forward {} (ragged runs)", what, it->second.size(),
                                      runs.begin()->first.first, first.size()));

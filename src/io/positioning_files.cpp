@@ -49,8 +49,8 @@ struct Grid {
 
 // Deviations in mm / rad from the gathered grid, rows sorted by target; values are positions
 // (deviation = value - target) or deviations. `countsLine`: where the counts were declared.
-PositioningTest assemble(const std::string& source, const Grid& g, const Unit& unit, bool valuesArePositions,
-                         const std::string& name, int countsLine) {
+PositioningTest assemble(const std::string& source, const Grid& g, const Unit& unit, bool valuesArePositions, const std::string& name,
+                         int countsLine) {
   const auto fail = [&](const std::string& key, const std::string& what, int line = 0) {
     throw InputError(InputLocation{source, line, key}, what);
   };
@@ -72,7 +72,8 @@ PositioningTest assemble(const std::string& source, const Grid& g, const Unit& u
     const double target = given.value * unit.scale;
     if (r > 0 && !(target > t.targets.back())) fail("target", fmt::format("target {:g} is given twice", given.value), given.line);
     t.targets.push_back(target);
-    for (const auto& [rows, matrix, key] : {std::tuple{&g.forward, &t.forward, "forward"}, std::tuple{&g.backward, &t.backward, "backward"}}) {
+    for (const auto& [rows, matrix, key] :
+         {std::tuple{&g.forward, &t.forward, "forward"}, std::tuple{&g.backward, &t.backward, "backward"}}) {
       for (size_t j = 0; j < n; ++j) {
         const auto& v = (*rows)[i][j];
         if (!v) fail(key, fmt::format("no {} reading of cycle {} at target {:g} (given here)", key, j + 1, given.value), given.line);
@@ -114,8 +115,9 @@ PositioningTest parseKeyForm(const std::string& text, const std::string& source)
     if (open == std::string::npos) {
       if (key != "UNIT" && key != "CYCLES" && key != "POSITIONS" && key != "DEC" && key != "REF_PV" && key != "TEST_PV" &&
           key != "TGT_SET_PV")
-        fail(key, "unknown key (expected UNIT, CYCLES, POSITIONS, DEC, REF_PV, TEST_PV, TGT_SET_PV, TGT_DATA[i], "
-                  "REF_DATA_FWD[i,j] or REF_DATA_BWD[i,j])");
+        fail(key,
+             "unknown key (expected UNIT, CYCLES, POSITIONS, DEC, REF_PV, TEST_PV, TGT_SET_PV, TGT_DATA[i], "
+             "REF_DATA_FWD[i,j] or REF_DATA_BWD[i,j])");
       if (!scalars.emplace(key, value).second) fail(key, "given twice");
       scalarLines[key] = n;
       continue;
@@ -126,8 +128,7 @@ PositioningTest parseKeyForm(const std::string& text, const std::string& source)
     const size_t expected = name == "TGT_DATA" ? 1 : (name == "REF_DATA_FWD" || name == "REF_DATA_BWD") ? 2 : 0;
     if (expected == 0) fail(key, "unknown key (expected TGT_DATA[i], REF_DATA_FWD[i,j] or REF_DATA_BWD[i,j])");
     if (indices.size() != expected) fail(key, fmt::format("{} takes {} index(es)", name, expected));
-    Indexed e{name, parseCount(indices[0], key, 1, kMostTargets), expected == 2 ? parseCount(indices[1], key, 1, kMostCycles) : 0, n,
-              0.0};
+    Indexed e{name, parseCount(indices[0], key, 1, kMostTargets), expected == 2 ? parseCount(indices[1], key, 1, kMostCycles) : 0, n, 0.0};
     try {
       e.value = parseNumber(value, key);
     } catch (const InputError& err) {
@@ -159,7 +160,7 @@ PositioningTest parseKeyForm(const std::string& text, const std::string& source)
     const std::string key = e.j ? fmt::format("{}[{},{}]", e.key, e.i, e.j) : fmt::format("{}[{}]", e.key, e.i);
     if (e.i > positions) fail(key, fmt::format("position {} beyond POSITIONS={}", e.i, positions));
     if (e.j > cycles) fail(key, fmt::format("cycle {} beyond CYCLES={}", e.j, cycles));
-    auto& slot = e.key == "TGT_DATA" ? g.targets[static_cast<size_t>(e.i - 1)]
+    auto& slot = e.key == "TGT_DATA"       ? g.targets[static_cast<size_t>(e.i - 1)]
                  : e.key == "REF_DATA_FWD" ? g.forward[static_cast<size_t>(e.i - 1)][static_cast<size_t>(e.j - 1)]
                                            : g.backward[static_cast<size_t>(e.i - 1)][static_cast<size_t>(e.j - 1)];
     if (slot) fail(key, "given twice");
@@ -186,50 +187,48 @@ PositioningTest parseCsvForm(const std::string& text, const std::string& source)
   };
   std::vector<Row> rows;
   const auto fail = [&](const std::string& key, const std::string& what) { throw InputError(InputLocation{source, n, key}, what); };
-  for (const auto& [lineNumber, line] : contentLines(text)) {
-    n = lineNumber;
-    if (line[0] == '#') {
-      const auto comment = commentAssignment(line);
-      if (!comment) continue;
-      const auto& [key, value] = *comment;
-      if (key == "unit") {
-        if (unit) fail(key, "given twice");
-        unit = parseUnit(value);
-        if (!unit) fail(key, "'" + value + "' is not a unit of length or angle");
-      } else if (key == "values") {
-        if (valuesGiven) fail(key, "given twice");
-        valuesGiven = true;
-        if (value != "positions" && value != "deviations") fail(key, "expected 'positions' or 'deviations'");
-        positions = value == "positions";
-      } else if (key == "name") {
-        name = value;
-      } else if (key != "note") {
-        fail(key, "unknown key (expected unit, values, name or note)");
-      }
-      continue;
-    }
-    const auto fields = splitFields(line);
-    if (!headerSeen) {
-      if (fields != std::vector<std::string>{"target", "cycle", "forward", "backward"})
-        fail("header", "expected the header 'target,cycle,forward,backward'");
-      headerSeen = true;
-      headerLine = n;
-      continue;
-    }
-    if (fields.size() != 4) fail("row", fmt::format("expected 4 fields, found {}", fields.size()));
-    Row r{0, 0, n, 0, 0};
-    try {
-      r.target = parseNumber(fields[0], "target");
-      r.cycle = parseCount(fields[1], "cycle", 1, kMostCycles);
-      r.forward = parseNumber(fields[2], "forward");
-      r.backward = parseNumber(fields[3], "backward");
-    } catch (const InputError& e) {
-      fail(e.where().key, e.reason());
-    }
-    for (const double v : {r.target, r.forward, r.backward})
-      if (!(std::abs(v) <= kLargestLength)) fail("row", "value beyond the largest allowed");
-    rows.push_back(r);
-  }
+  readCommentedLines(
+      text, n,
+      [&](const std::string& key, const std::string& value) {
+        if (key == "unit") {
+          if (unit) fail(key, "given twice");
+          unit = parseUnit(value);
+          if (!unit) fail(key, "'" + value + "' is not a unit of length or angle");
+        } else if (key == "values") {
+          if (valuesGiven) fail(key, "given twice");
+          valuesGiven = true;
+          if (value != "positions" && value != "deviations") fail(key, "expected 'positions' or 'deviations'");
+          positions = value == "positions";
+        } else if (key == "name") {
+          name = value;
+        } else if (key != "note") {
+          fail(key, "unknown key (expected unit, values, name or note)");
+        }
+      },
+      [&](const std::string& line) {
+        const auto fields = splitFields(line);
+        if (!headerSeen) {
+          if (fields != std::vector<std::string>{"target", "cycle", "forward", "backward"})
+            fail("header", "expected the header 'target,cycle,forward,backward'");
+          headerSeen = true;
+          headerLine = n;
+          return;
+        }
+        if (!unit) fail("unit", "give '# unit:' before the data (a length unit for a linear axis, an angle for a rotary one)");
+        if (fields.size() != 4) fail("row", fmt::format("expected 4 fields, found {}", fields.size()));
+        Row r{0, 0, n, 0, 0};
+        try {
+          r.target = parseNumber(fields[0], "target");
+          r.cycle = parseCount(fields[1], "cycle", 1, kMostCycles);
+          r.forward = parseNumber(fields[2], "forward");
+          r.backward = parseNumber(fields[3], "backward");
+        } catch (const InputError& e) {
+          fail(e.where().key, e.reason());
+        }
+        for (const double v : {r.target, r.forward, r.backward})
+          if (!(std::abs(v) <= kLargestLength)) fail("row", "value beyond the largest allowed");
+        rows.push_back(r);
+      });
   n = 0;
   if (!unit) fail("unit", "missing '# unit:' line (a length unit for a linear axis, an angle for a rotary one)");
   if (!headerSeen) fail("header", "no header row 'target,cycle,forward,backward'");

@@ -26,56 +26,53 @@ ZoneResults parseZoneResults(const std::string& text, const std::string& source)
   std::vector<std::string> header;
   std::set<std::string> seen;
   const auto fail = [&](const std::string& key, const std::string& what) { throw InputError(InputLocation{source, n, key}, what); };
-  for (const auto& [lineNumber, line] : contentLines(text)) {
-    n = lineNumber;
-    if (line[0] == '#') {
-      const auto comment = commentAssignment(line);
-      if (!comment) continue;
-      const auto& [key, value] = *comment;
-      if (key != "noise" && key != "note") fail(key, "unknown key (expected noise or note)");
-      if (key == "noise") {
-        if (r.noise) fail(key, "given twice");
-        try {
-          r.noise = parseQuantityAs(value, Dimension::Length, "noise");
-        } catch (const InputError& e) {
-          fail("noise", e.reason());
+  readCommentedLines(
+      text, n,
+      [&](const std::string& key, const std::string& value) {
+        if (key != "noise" && key != "note") fail(key, "unknown key (expected noise or note)");
+        if (key == "noise") {
+          if (r.noise) fail(key, "given twice");
+          try {
+            r.noise = parseQuantityAs(value, Dimension::Length, "noise");
+          } catch (const InputError& e) {
+            fail("noise", e.reason());
+          }
+          if (!(*r.noise >= 1e-6 && *r.noise <= 1.0)) fail("noise", "the height noise must be from 1 nm to 1 mm");
         }
-        if (!(*r.noise >= 1e-6 && *r.noise <= 1.0)) fail("noise", "the height noise must be from 1 nm to 1 mm");
-      }
-      continue;
-    }
-    const auto fields = splitFields(line);
-    if (header.empty()) {
-      header = fields;
-      const bool heights = header.size() == 2, tilts = header.size() == 4;
-      if (!((heights || tilts) && header[0] == "zone" && header[1] == "height_um" &&
-            (heights || (header[2] == "slope_x_um_per_mm" && header[3] == "slope_y_um_per_mm"))))
-        fail("header", "expected 'zone,height_um' or 'zone,height_um,slope_x_um_per_mm,slope_y_um_per_mm'");
-      continue;
-    }
-    if (fields.size() != header.size()) fail("row", fmt::format("expected {} fields, found {}", header.size(), fields.size()));
-    ZoneMeasurement z;
-    z.name = fields[0];
-    z.line = n;
-    if (z.name.empty()) fail("zone", "empty zone name");
-    if (!seen.insert(z.name).second) fail("zone", "zone '" + z.name + "' is given twice");
-    const auto number = [&](size_t k, double largest) {
-      double v = 0;
-      try {
-        v = parseNumber(fields[k], header[k]);
-      } catch (const InputError& e) {
-        fail(header[k], e.reason());
-      }
-      if (!(std::abs(v) * 1e-3 <= largest)) fail(header[k], fmt::format("must be within +-{:g} (a unit mistake?)", largest * 1e3));
-      return v * 1e-3;
-    };
-    z.height = number(1, kLargestHeight);
-    if (header.size() == 4) {
-      z.slopeX = number(2, kLargestSlope);
-      z.slopeY = number(3, kLargestSlope);
-    }
-    r.zones.push_back(z);
-  }
+      },
+      [&](const std::string& line) {
+        const auto fields = splitFields(line);
+        if (header.empty()) {
+          header = fields;
+          const bool heights = header.size() == 2, tilts = header.size() == 4;
+          if (!((heights || tilts) && header[0] == "zone" && header[1] == "height_um" &&
+                (heights || (header[2] == "slope_x_um_per_mm" && header[3] == "slope_y_um_per_mm"))))
+            fail("header", "expected 'zone,height_um' or 'zone,height_um,slope_x_um_per_mm,slope_y_um_per_mm'");
+          return;
+        }
+        if (fields.size() != header.size()) fail("row", fmt::format("expected {} fields, found {}", header.size(), fields.size()));
+        ZoneMeasurement z;
+        z.name = fields[0];
+        z.line = n;
+        if (z.name.empty()) fail("zone", "empty zone name");
+        if (!seen.insert(z.name).second) fail("zone", "zone '" + z.name + "' is given twice");
+        const auto number = [&](size_t k, double largest) {
+          double v = 0;
+          try {
+            v = parseNumber(fields[k], header[k]);
+          } catch (const InputError& e) {
+            fail(header[k], e.reason());
+          }
+          if (!(std::abs(v) * 1e-3 <= largest)) fail(header[k], fmt::format("must be within +-{:g} (a unit mistake?)", largest * 1e3));
+          return v * 1e-3;
+        };
+        z.height = number(1, kLargestHeight);
+        if (header.size() == 4) {
+          z.slopeX = number(2, kLargestSlope);
+          z.slopeY = number(3, kLargestSlope);
+        }
+        r.zones.push_back(z);
+      });
   if (header.empty()) fail("header", "no header row 'zone,height_um[,slope_x_um_per_mm,slope_y_um_per_mm]'");
   if (r.zones.empty()) fail("row", "no zone results");
   return r;

@@ -10,16 +10,6 @@
 namespace mtacc {
 namespace {
 
-// The C^(degree-1) truncated-power basis: 1, x, ..., x^degree, then (x - t_i)_+^degree at each
-// interior break.
-PiecewiseTerm fullTrend(const std::vector<double>& breaks, int degree) {
-  PiecewiseTerm p;
-  p.breaks = breaks;
-  for (int j = 0; j <= degree; ++j) p.coefficients.push_back({0, j, 0.0});
-  for (size_t i = 1; i + 1 < breaks.size(); ++i) p.coefficients.push_back({static_cast<int>(i), degree, 0.0});
-  return p;
-}
-
 // A C1 quadratic over quarters of the period, zero at 0 and at the period, with equal slopes
 // at both ends; `map` (6 x 3) takes its free parameters to its coefficients.
 PiecewiseTerm periodicShape(double period, double zero, Eigen::MatrixXd& map) {
@@ -96,7 +86,7 @@ ComponentFit fitComponent(const std::vector<double>& x, const std::vector<double
   for (const double v : x)
     if (!(v >= o.breaks.front() && v <= o.breaks.back())) throw std::invalid_argument("component fit: a position outside the breaks");
   ComponentFit fit;
-  fit.trend = fullTrend(o.breaks, o.degree);
+  fit.trend = continuousPiecewise(o.breaks, o.degree);
   if (o.period) fit.periodic = periodicShape(*o.period, o.periodZero, fit.periodicMap);
   const auto n = static_cast<Eigen::Index>(x.size());
   const Eigen::Map<const Eigen::VectorXd> values(y.data(), n);

@@ -2,6 +2,7 @@
 // The small text forms of command-line options and Python arguments: comma lists,
 // NAME=value assignments, plain numbers and x,y,z vectors. Every failure is an InputError
 // naming `key` (the option or argument).
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,12 @@ struct Assignment {
 // "X=10,B=-15 deg" -> {{"X", "10"}, {"B", "-15 deg"}}; an item without '=' or without a name is
 // an error.
 std::vector<Assignment> parseAssignments(const std::string& text, const std::string& key);
+
+// Reads a CSV input with '#' comment lines: `comment(key, value)` for each "# key: value" line
+// (free-text comments are skipped), `row(text)` for every other line that is not blank (trimmed).
+// `line` holds the current line number throughout, for the callbacks' error messages.
+void readCommentedLines(const std::string& text, int& line, const std::function<void(const std::string&, const std::string&)>& comment,
+                        const std::function<void(const std::string&)>& row);
 
 // The lines of a text file that are not blank, trimmed, with their 1-based numbers.
 struct TextLine {

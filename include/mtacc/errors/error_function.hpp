@@ -112,6 +112,10 @@ struct PiecewiseTerm {
 PiecewiseTerm piecewiseFromIntervals(std::vector<double> breaks, const std::vector<std::array<double, 3>>& intervals,
                                      double period = 0.0, double zero = 0.0);
 
+// The C^(degree-1) spline of degree 1 or 2 over the breaks in this form, every coefficient zero:
+// 1, u, ..., u^degree, then (u - t_i)_+^degree at each interior break (the terms a fit solves for).
+PiecewiseTerm continuousPiecewise(std::vector<double> breaks, int degree = 2);
+
 using ErrorTerm = std::variant<PolynomialTerm, HarmonicTerm, TableTerm, ReversalTerm, PiecewiseTerm>;
 
 class ErrorFunction {

@@ -1,0 +1,129 @@
+#pragma once
+// Hole plates and ball plates (seed 003 ch. 4.3, 5.3, App. C; extraction §7): a calibrated
+// grid of features probed on the machine in any plane and position. Simulation of a plate
+// measurement (D_h = E(q_h) - E(q_ref), axis positions from the generic inverse kinematics),
+// processing of measured plates (temperatures, misalignment), the k = 2 budget of the
+// residual model - measurement (§7.5), and the identification of component errors from
+// several plate positions with per-position nuisance parameters (§7.7).
+// Lengths in mm; in-plane deviations along the plate's u (rows) and v (columns) axes.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mtacc/core/joint_matrix.hpp"
+#include "mtacc/errors/error_model.hpp"
+#include "mtacc/kinematics/kinematic_model.hpp"
+#include "mtacc/measurement/observability.hpp"
+
+namespace mtacc {
+
+struct Plate {
+  std::string name;
+  int rows = 9, columns = 9;
+  double pitch = 50.0;
+  // Calibrated feature centres in the plate frame (u along a row, v along a column), one per
+  // feature, row-major from the reference feature (0, 0); empty: the nominal grid.
+  std::vector<Eigen::Vector2d> calibrated;
+  double calibrationUncertainty = 0.35e-3;  // standard uncertainty of a centre (PTB: 2S = 0.7 um)
+
+  Eigen::Vector2d centre(int row, int column) const;
+};
+
+// The features a placement probes: all, or the outer ring only (seed 003 L3013-3015).
+enum class PlateFeatures { All, Outer };
+
+struct PlatePlacement {
+  std::string name;
+  Vec3 origin = Vec3::Zero();    // reference feature (0, 0), workpiece frame
+  Vec3 u = Vec3::UnitX();        // plate axes in the workpiece frame (orthonormal)
+  Vec3 v = Vec3::UnitY();
+  Vec3 stylus = Vec3::Zero();    // probe tip relative to the TCP, tool frame
+  std::vector<double> fixedAxes;  // positions (mm, rad) of every axis for the IK hint; the rotaries stay there
+  PlateFeatures features = PlateFeatures::All;
+};
+
+// The probed features of one placement: their (row, column), the axis positions reaching each
+// (rotaries at the placement's fixed values), first the reference feature.
+struct PlatePoses {
+  std::vector<std::pair<int, int>> features;
+  JointMatrix q;
+};
+// Throws UnreachablePose naming the feature that cannot be reached within travel.
+PlatePoses platePoses(const KinematicModel& nominal, const Plate& plate, const PlatePlacement& placement);
+
+// A campaign over the working volume of the linear axes (rotaries at the reference pose), as
+// seed 003 §7.7 describes it: plates in the three coordinate planes of the workpiece frame, in
+// each plane at the two ends of both in-plane ranges (2 x 2 positions) and on two levels along the
+// normal (a quarter and three quarters of its range), the second level probed with a stylus
+// `stylus` mm off the TCP along the normal (a second stylus, for the rotations): 24 placements,
+// named XY1..XY8, XZ9..XZ16, YZ17..YZ24. Throws std::invalid_argument when the plate does not fit.
+std::vector<PlatePlacement> cubePlacements(const KinematicModel& nominal, const Plate& plate, double stylus = 60.0);
+
+// Deviations (u, v) of each probed feature relative to the reference feature, as the machine
+// with `actual`'s errors measures them (seed 003 §5.3: D_h = E(q_h) - E(q_ref)), mm; one row per
+// feature, the reference first (zero).
+Eigen::MatrixX2d simulatePlate(const KinematicModel& actual, const KinematicModel& nominal, const Plate& plate,
+                               const PlatePlacement& placement, const PlatePoses& poses);
+
+// A measured plate referred to the calibration (§7.3): measured coordinates (relative to the
+// reference feature, plate axes) scaled for the machine scales' temperature, the calibrated
+// positions for the plate's, and the misalignment (in-plane rotation and translation) removed
+// by least squares. Returns the deviations d_h = corrected measured - calibrated.
+struct PlateTemperatures {
+  double scale = 20.0, plate = 20.0, reference = 20.0;  // deg C
+  double scaleExpansion = 0.0, plateExpansion = 0.0;     // 1/K
+};
+Eigen::MatrixX2d plateDeviations(const Plate& plate, const std::vector<std::pair<int, int>>& features,
+                                 const Eigen::MatrixX2d& measured, const PlateTemperatures& temperatures);
+// Least-squares in-plane rotation and translation removed from deviations at the given nominal
+// positions (the same treatment for simulated and measured deviations).
+Eigen::MatrixX2d withoutMisalignment(const Eigen::MatrixX2d& deviations, const std::vector<Eigen::Vector2d>& positions);
+
+// The k = 2 bound of a residual model - measurement (§7.5): the simulation's own 2S once, and
+// for each of the two features of a difference the plate calibration, the probe's
+// repeatability in both plate axes, the scale- and plate-expansion corrections.
+struct ResidualBudget {
+  double simulation = 0, plate = 0, probeU = 0, probeV = 0, scaleCorrection = 0, plateCorrection = 0;  // each 2S
+};
+double residualBound(const ResidualBudget& budget);
+
+// Identification from a plate campaign (§7.7): the chosen machine parameters (to first order
+// about the error-free machine, so the problem is linear) and, per placement, an in-plane
+// translation and rotation. Parameters the campaign cannot determine are named by the
+// observability report and left at zero (the minimum-norm solution in scaled units).
+struct PlateCampaign {
+  Plate plate;
+  std::vector<PlatePlacement> placements;
+  std::vector<PlatePoses> poses;             // per placement
+  std::vector<Eigen::MatrixX2d> deviations;  // per placement, measured (u, v) per feature, mm
+  // Per placement, the standard deviation of a u and a v reading (the probe's), mm: the
+  // readings are weighted by them. Empty: equal weights, the scale from the residual.
+  std::vector<Eigen::Vector2d> noise;
+};
+struct PlateIdentification {
+  std::vector<std::string> names;  // the machine parameters, then "<placement>.tu", ".tv", ".rot"
+  Eigen::VectorXd values, uncertainty;
+  Eigen::MatrixXd covariance;
+  std::vector<bool> determined;    // false: in a group the campaign cannot separate, or without effect
+  double sigma = 0;                // residual standard deviation (mm), or with noise given the ratio to it (should be ~1)
+  int readings = 0, degreesOfFreedom = 0;
+  ObservabilityReport observability;
+};
+// The parameters a plate campaign estimates for the linear axes X, Y, Z (each may be absent):
+// the piecewise terms of their component functions in `shape` (continuous ones: the value jumps
+// and, for quadratics, the slope jumps at interior breaks stay as given), under the usual gauge
+// of a measurement of differences: no constant term of any function (plates see no absolute
+// position or orientation); no linear term of a straightness (its line is a squareness); the
+// squareness as C0Y (Y about z), B0Z and A0Z (Z about y and x), X's direction and Y's plane
+// being the reference (ISO 230-1).
+std::vector<Parameter> plateParameters(const Machine& machine, const ErrorModel& shape);
+
+// The design matrix (readings x parameters, then 3 nuisance columns per placement) of the campaign.
+Eigen::MatrixXd plateDesignMatrix(const KinematicModel& withParameters, const PlateCampaign& campaign, int threads = kAllCores);
+PlateIdentification identifyFromPlates(const std::shared_ptr<const Machine>& machine, const ErrorModel& shape,
+                                       const std::vector<Parameter>& parameters, const PlateCampaign& campaign,
+                                       int threads = kAllCores);
+
+}  // namespace mtacc
