@@ -27,6 +27,9 @@ echo
 echo "== Benchmark: identification of 13 parameters from 10,000 R-test points, against SciPy (analytic Jacobian, LM) =="
 ./build/bench/bench_identify_vs_scipy
 echo
+echo "== Benchmark: component errors from a 24-plate campaign (seed 003), against NumPy + SciPy =="
+./build/bench/bench_plate_identification
+echo
 echo "== Benchmark: 3x3 FRF at 500 frequencies at 10,000 positions of a 10-body model, against vectorised NumPy =="
 ./build/bench/bench_dynamics_vs_numpy
 echo

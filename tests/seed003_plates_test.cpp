@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 #include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/forward.hpp"
@@ -123,36 +122,12 @@ TEST(Seed003Plates, CampaignOfTwentyFourPositionsIdentifiesTheComponents) {
   const auto truthErrors = loadMachineErrors(*machine);
   const auto actual = compile(machine, truthErrors), nominal = compileNominal(machine);
   // The identification's shape: the truth's own functions where App. D has them.
-  ErrorModel shape = truthErrors;
-  for (const char* axis : {"X", "Y", "Z"}) {
-    const int a = machine->axisIndex(axis);
-    const auto& travel = *machine->axes[static_cast<size_t>(a)].travel;
-    for (int c = 0; c < 6; ++c) {
-      auto& f = shape.axes[static_cast<size_t>(a)].motion[static_cast<size_t>(c)];
-      if (!f.empty()) continue;
-      std::vector<double> breaks;
-      for (double b = travel.min; b <= travel.max + 1e-9; b += 100.0) breaks.push_back(b);
-      f.add(continuousPiecewise(breaks));
-    }
-  }
+  const ErrorModel shape = plateShape(*machine, truthErrors);
   const auto parameters = plateParameters(*machine, shape);
   Plate plate;
-  PlateCampaign campaign;
-  campaign.plate = plate;
-  campaign.placements = cubePlacements(nominal, plate);
-  std::mt19937 rng(17);
-  std::normal_distribution<double> unit(0.0, 1.0);
-  for (const auto& placement : campaign.placements) {
-    campaign.poses.push_back(platePoses(nominal, plate, placement));
-    Eigen::MatrixX2d d = simulatePlate(actual, nominal, plate, placement, campaign.poses.back());
-    const char plane = placement.name[1];
-    const Eigen::Vector2d sigma = plane == 'Y' && placement.name[0] == 'X' ? Eigen::Vector2d(0.55e-3, 0.40e-3)
-                                  : placement.name[0] == 'X'             ? Eigen::Vector2d(0.315e-3, 0.42e-3)
-                                                                         : Eigen::Vector2d(0.7e-3, 3.75e-3);
-    for (Eigen::Index k = 0; k < d.rows(); ++k) d.row(k) += Eigen::RowVector2d(sigma[0] * unit(rng), sigma[1] * unit(rng));
-    campaign.deviations.push_back(d);
-    campaign.noise.push_back(sigma);
-  }
+  const auto placements = cubePlacements(nominal, plate);
+  const auto noise = seed003ProbeNoise(placements);
+  const auto campaign = simulatePlateCampaign(actual, nominal, plate, placements, noise, 17);
   const auto r = identifyFromPlates(machine, shape, parameters, campaign, 1);
   EXPECT_EQ(r.readings, 24 * 81 * 2);
   EXPECT_NEAR(r.sigma, 1.0, 0.1);  // the weighted residual matches the stated probe noise

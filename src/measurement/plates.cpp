@@ -2,10 +2,12 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <Eigen/SVD>
 
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <stdexcept>
 
 #include "mtacc/core/input_error.hpp"
@@ -90,7 +92,7 @@ std::vector<PlatePlacement> cubePlacements(const KinematicModel& nominal, const 
   const double size = plate.pitch * (std::max(plate.rows, plate.columns) - 1);
   std::vector<PlatePlacement> out;
   const char* axisNames = "XYZ";
-  for (const auto [a, b] : {std::pair{0, 1}, {0, 2}, {1, 2}}) {
+  for (const auto& [a, b] : {std::pair{0, 1}, {0, 2}, {1, 2}}) {
     const int normal = 3 - a - b;
     for (const double level : {0.25, 0.75})
       for (const double ua : {0.0, 1.0})
@@ -168,6 +170,50 @@ double residualBound(const ResidualBudget& b) {
   const double perFeature = b.plate * b.plate + b.probeU * b.probeU + b.probeV * b.probeV + b.scaleCorrection * b.scaleCorrection +
                             b.plateCorrection * b.plateCorrection;
   return std::sqrt(b.simulation * b.simulation + 2.0 * perFeature);
+}
+
+ErrorModel plateShape(const Machine& machine, const ErrorModel& known, double pieceLength) {
+  ErrorModel shape = known;
+  for (const char* name : {"X", "Y", "Z"}) {
+    const int a = machine.axisIndex(name);
+    if (a < 0 || !machine.axes[static_cast<size_t>(a)].travel) continue;
+    const auto& travel = *machine.axes[static_cast<size_t>(a)].travel;
+    const int pieces = std::max(1, static_cast<int>(std::round((travel.max - travel.min) / pieceLength)));
+    std::vector<double> breaks;
+    for (int i = 0; i <= pieces; ++i) breaks.push_back(travel.min + (travel.max - travel.min) * i / pieces);
+    for (auto& f : shape.axes[static_cast<size_t>(a)].motion)
+      if (f.empty()) f.add(continuousPiecewise(breaks));
+  }
+  return shape;
+}
+
+std::vector<Eigen::Vector2d> seed003ProbeNoise(const std::vector<PlatePlacement>& placements) {
+  std::vector<Eigen::Vector2d> out;
+  for (const auto& p : placements) {
+    const Vec3 normal = p.u.cross(p.v).cwiseAbs();
+    const Eigen::Vector2d twoS = normal.z() > 0.5 ? Eigen::Vector2d(1.1, 0.8) : normal.y() > 0.5 ? Eigen::Vector2d(0.63, 0.84) : Eigen::Vector2d(1.4, 7.5);
+    out.push_back(0.5e-3 * twoS);
+  }
+  return out;
+}
+
+PlateCampaign simulatePlateCampaign(const KinematicModel& actual, const KinematicModel& nominal, const Plate& plate,
+                                    const std::vector<PlatePlacement>& placements, const std::vector<Eigen::Vector2d>& noise,
+                                    std::uint64_t seed) {
+  if (noise.size() != placements.size()) throw std::invalid_argument("plate campaign: noise per placement");
+  PlateCampaign c;
+  c.plate = plate;
+  c.placements = placements;
+  c.noise = noise;
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  for (size_t k = 0; k < placements.size(); ++k) {
+    c.poses.push_back(platePoses(nominal, plate, placements[k]));
+    Eigen::MatrixX2d d = simulatePlate(actual, nominal, plate, placements[k], c.poses.back());
+    for (Eigen::Index i = 0; i < d.rows(); ++i) d.row(i) += Eigen::RowVector2d(noise[k][0] * unit(rng), noise[k][1] * unit(rng));
+    c.deviations.push_back(d);
+  }
+  return c;
 }
 
 std::vector<Parameter> plateParameters(const Machine& machine, const ErrorModel& shape) {
@@ -257,37 +303,38 @@ PlateIdentification identifyFromPlates(const std::shared_ptr<const Machine>& mac
   for (const auto& p : campaign.placements)
     for (const char* n : {".tu", ".tv", ".rot"}) out.names.push_back(p.name + n);
   const Eigen::Index n = a.cols();
-  // Normal equations with unit columns; their eigen-decomposition gives the minimum-norm
-  // solution on the observable subspace and its covariance.
+  // One QR of [A D^-1 | b] (D the column norms): R and Q^T b. The SVD of the small R gives the
+  // minimum-norm solution on the observable subspace, its covariance, and (as R D, which has
+  // A's singular values and column norms) the observability report, without squaring A's
+  // condition number as normal equations would.
   const Eigen::VectorXd norms = a.colwise().norm().transpose().cwiseMax(1e-300);
-  const Eigen::MatrixXd scaled = a * norms.cwiseInverse().asDiagonal();
-  Eigen::MatrixXd gram(n, n);
-  gram.setZero();
-  gram.selfadjointView<Eigen::Lower>().rankUpdate(scaled.transpose());
-  gram = gram.selfadjointView<Eigen::Lower>();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram);
-  const double largest = eigen.eigenvalues().maxCoeff();
-  const double tolerance = kRankTolerance * kRankTolerance * largest;  // singular values squared
-  Eigen::VectorXd inverse = Eigen::VectorXd::Zero(n);
+  Eigen::MatrixXd augmented(a.rows(), n + 1);
+  augmented.leftCols(n) = a * norms.cwiseInverse().asDiagonal();
+  augmented.col(n) = b;
+  Eigen::HouseholderQR<Eigen::Ref<Eigen::MatrixXd>> qr(augmented);
+  const Eigen::Index k = std::min(augmented.rows(), n + 1);
+  const Eigen::MatrixXd r = augmented.topRows(k).triangularView<Eigen::Upper>();
+  const Eigen::MatrixXd rn = r.topLeftCorner(std::min(k, n), n);
+  const Eigen::VectorXd qtb = r.col(n).head(rn.rows());
+  const double outside = k > n ? r(n, n) * r(n, n) : 0.0;  // |b|^2 beyond the columns' span
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(rn, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd& sv = svd.singularValues();
   int rank = 0;
-  for (Eigen::Index k = 0; k < n; ++k)
-    if (eigen.eigenvalues()[k] > tolerance) {
-      inverse[k] = 1.0 / eigen.eigenvalues()[k];
-      ++rank;
-    }
-  const Eigen::MatrixXd pseudo = eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
-  const Eigen::VectorXd x = pseudo * (scaled.transpose() * b);
-  out.values = x.cwiseQuotient(norms);
-  const Eigen::VectorXd residual = b - scaled * x;
+  while (rank < sv.size() && sv[rank] > kRankTolerance * sv[0]) ++rank;
+  const Eigen::MatrixXd v = svd.matrixV().leftCols(rank);
+  const Eigen::VectorXd projected = svd.matrixU().leftCols(rank).transpose() * qtb;
+  out.values = (v * projected.cwiseQuotient(sv.head(rank))).cwiseQuotient(norms);
+  const double residualSquares = outside + (qtb.squaredNorm() - projected.squaredNorm());
+  const Eigen::MatrixXd pseudo = v * sv.head(rank).cwiseAbs2().cwiseInverse().asDiagonal() * v.transpose();
   out.readings = static_cast<int>(a.rows());
   out.degreesOfFreedom = out.readings - rank;
-  out.sigma = std::sqrt(residual.squaredNorm() / std::max(1, out.degreesOfFreedom));
+  out.sigma = std::sqrt(std::max(0.0, residualSquares) / std::max(1, out.degreesOfFreedom));
   const double scale = weighted ? 1.0 : out.sigma;  // weighted: the stated noise sets the scale
   out.covariance = scale * scale * norms.cwiseInverse().asDiagonal() * pseudo * norms.cwiseInverse().asDiagonal();
   out.uncertainty = out.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
   Eigen::VectorXd typical(n);
   for (Eigen::Index k = 0; k < n; ++k) typical[k] = k < static_cast<Eigen::Index>(parameters.size()) && parameters[static_cast<size_t>(k)].dimension == Dimension::Angle ? 1e-5 : 1e-3;
-  out.observability = analyseObservability(std::move(a), out.names, typical, kRankTolerance, threads);
+  out.observability = analyseObservability(rn * norms.asDiagonal(), out.names, typical, kRankTolerance, threads);
   out.determined.assign(static_cast<size_t>(n), true);
   for (const auto& name : out.observability.noEffect)
     for (size_t k = 0; k < out.names.size(); ++k)

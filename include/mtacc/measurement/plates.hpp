@@ -6,6 +6,7 @@
 // residual model - measurement (§7.5), and the identification of component errors from
 // several plate positions with per-position nuisance parameters (§7.7).
 // Lengths in mm; in-plane deviations along the plate's u (rows) and v (columns) axes.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -111,6 +112,11 @@ struct PlateIdentification {
   int readings = 0, degreesOfFreedom = 0;
   ObservabilityReport observability;
 };
+// The error model a plate identification solves for: `known`'s component functions of the
+// linear axes X, Y, Z as they are, and every empty one of them a C1 piecewise quadratic with
+// pieces of about `pieceLength` mm over the travel (the functions to find).
+ErrorModel plateShape(const Machine& machine, const ErrorModel& known, double pieceLength = 100.0);
+
 // The parameters a plate campaign estimates for the linear axes X, Y, Z (each may be absent):
 // the piecewise terms of their component functions in `shape` (continuous ones: the value jumps
 // and, for quadratics, the slope jumps at interior breaks stay as given), under the usual gauge
@@ -119,6 +125,18 @@ struct PlateIdentification {
 // squareness as C0Y (Y about z), B0Z and A0Z (Z about y and x), X's direction and Y's plane
 // being the reference (ISO 230-1).
 std::vector<Parameter> plateParameters(const Machine& machine, const ErrorModel& shape);
+
+// The standard deviation of a u and a v reading for each placement with the probe seed 003 used
+// in its plane (§7.2, half the printed 2S): XY probe 2 (1.1, 0.8 um), XZ probe 1 (0.63, 0.84 um),
+// YZ probe 5 (1.4, 7.5 um), by the plate's axes in the workpiece frame.
+std::vector<Eigen::Vector2d> seed003ProbeNoise(const std::vector<PlatePlacement>& placements);
+
+// A whole campaign measured on the machine `actual`: the poses of every placement, its
+// deviations (simulatePlate) with Gaussian noise of the placement's (sigma_u, sigma_v), and
+// that noise as the campaign's weights.
+PlateCampaign simulatePlateCampaign(const KinematicModel& actual, const KinematicModel& nominal, const Plate& plate,
+                                    const std::vector<PlatePlacement>& placements, const std::vector<Eigen::Vector2d>& noise,
+                                    std::uint64_t seed);
 
 // The design matrix (readings x parameters, then 3 nuisance columns per placement) of the campaign.
 Eigen::MatrixXd plateDesignMatrix(const KinematicModel& withParameters, const PlateCampaign& campaign, int threads = kAllCores);
