@@ -1,8 +1,10 @@
 // mtacc plate: a measured hole or ball plate against the machine's error model (seed 003 §5.3):
 // per feature the measured and simulated deviations and the residual, with its k = 2 bound.
+// mtacc plate-identify: the component errors from several plates (§7.7).
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
+#include "mtacc/io/text_file.hpp"
 #include "mtacc/workflows/plates.hpp"
 
 namespace mtacc::cli {
@@ -37,6 +39,36 @@ void run(const PlateCliOptions& o) {
   emit(o, j, human, csv);
 }
 
+struct PlateIdentifyCliOptions : MachineOptions {
+  std::vector<std::string> files;
+  double piece = 100.0;
+  std::string yamlOut;
+};
+
+void runIdentify(const PlateIdentifyCliOptions& o) {
+  const auto s = identifyPlateFiles(loadMachineSetup(o.source), o.files, o.piece);
+  const auto j = toJson(s);
+  if (!o.yamlOut.empty()) writeFileAtomically(o.yamlOut, "errors:\n" + s.yaml, "--yaml-out");
+  std::string human = fmt::format("{} plates, {} readings; {} parameters (component functions of X, Y, Z in pieces of {:g} mm, "
+                                  "squareness) + 3 per plate; rank {} of {}\n",
+                                  o.files.size(), s.result.readings, s.parameters.size(), o.piece, s.result.observability.rank,
+                                  s.result.names.size());
+  human += s.weighted ? fmt::format("residual / the probes' stated noise: {:.3f}\n\n", s.result.sigma)
+                      : fmt::format("residual standard deviation {:.3f} um (no probe 2S stated)\n\n", s.result.sigma * 1e3);
+  std::string csv = "parameter,value,uncertainty,unit,determined\n";
+  human += fmt::format("{:<14} {:>12} {:>12}  {}\n", "parameter", "value", "u", "unit");
+  for (const auto& e : j["estimates"]) {
+    const std::string name = e["name"], unit = e["unit"];
+    const bool determined = e["determined"];
+    human += fmt::format("{:<14} {:>12.4f} {:>12.4f}  {}{}\n", name, e["value"].get<double>(), e["uncertainty"].get<double>(), unit,
+                         determined ? "" : "  (not determined)");
+    csv += fmt::format("{},{},{},{},{}\n", name, e["value"].get<double>(), e["uncertainty"].get<double>(), unit, determined ? 1 : 0);
+  }
+  if (!j["findings"].empty()) human += "\nWhat these plates cannot determine:\n";
+  for (const auto& f : j["findings"]) human += "  " + f.get<std::string>() + "\n";
+  emit(o, j, human, csv);
+}
+
 }  // namespace
 
 void addPlateCommand(CLI::App& app) {
@@ -45,6 +77,14 @@ void addPlateCommand(CLI::App& app) {
   addMachineOptions(*cmd, *o);
   cmd->add_option("data", o->data, "plate measurement CSV (docs/file-formats.md \"Plate measurements\")")->required();
   cmd->callback([o] { run(*o); });
+
+  auto io = std::make_shared<PlateIdentifyCliOptions>();
+  auto* identify = app.add_subcommand("plate-identify", "component errors and squareness from several measured plates (seed 003 §7.7)");
+  addMachineOptions(*identify, *io);
+  identify->add_option("files", io->files, "plate measurement CSVs, one per placement")->required();
+  identify->add_option("--piece", io->piece, "length of the pieces of the identified functions [mm] (default 100)");
+  identify->add_option("--yaml-out", io->yamlOut, "write the identified functions as an errors file (YAML), atomically");
+  identify->callback([io] { runIdentify(*io); });
 }
 
 }  // namespace mtacc::cli

@@ -282,6 +282,14 @@ PYBIND11_MODULE(_mtacc, mod) {
         r.removeDisturbed = removeDisturbed;
         return toPython(toJson(fitComponentFile(s, r)));
       })
+      .def("identify_plates", [](const MachineSetup& s, const std::vector<std::string>& files, double piece) {
+        PlateIdentificationStudy study;
+        {
+          py::gil_scoped_release release;
+          study = identifyPlateFiles(s, files, piece);
+        }
+        return toPython(toJson(study));
+      })
       .def("compare_plate", [](const MachineSetup& s, const std::string& path) { return toPython(toJson(comparePlateFile(s, path))); })
       .def("simulate_plate", [](const MachineSetup& s, const std::string& output, const std::string& header, const std::string& noise,
                                 std::uint64_t seed) {

@@ -186,6 +186,13 @@ class Machine:
         the misalignment removed, and the residual's k = 2 bound when the file states the 2S values."""
         return self._core.compare_plate(str(path))
 
+    def identify_plates(self, files, piece_length=100.0):
+        """The component functions of X, Y, Z (C1 piecewise, pieces of about piece_length mm) and the
+        squareness from measured plates, one file per placement, as `mtacc plate-identify --json`:
+        estimates with uncertainties (um, urad) and whether the plates determine each, the
+        observability findings, and "yaml", the identified errors for the machine YAML."""
+        return self._core.identify_plates([str(f) for f in files], float(piece_length))
+
     def simulate_plate(self, output, origin, axes=((1, 0, 0), (0, 1, 0)), stylus=(0, 0, 0), plate=(9, 9, 50.0),
                        features="all", noise="0 um", probe=None, simulation=None, seed=1):
         """Writes the plate measurement this machine with its errors gives (as `mtacc simulate plate`):

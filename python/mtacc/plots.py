@@ -58,9 +58,9 @@ def budget_bar_chart(budget, top=20):
     return fig
 
 
-def volumetric_error_map(machine, plane=("X", "Y"), fixed=None, samples=41):
-    """|TCP position error| over a plane of two linear axes across their travel, other axes at
-    `fixed` (dict, mm/deg; default mid-travel for linear, 0 for rotary). Arrows: in-plane error."""
+def _plane_grid(machine, plane, fixed, samples):
+    """Axis positions over a plane of two linear axes across their travel, the others at `fixed`
+    (dict, mm/deg; default mid-travel for linear, 0 for rotary): (q, u, v, base)."""
     names = machine.axis_names
     axes = {a["name"]: a for a in machine.axes}
     base = []
@@ -80,20 +80,92 @@ def volumetric_error_map(machine, plane=("X", "Y"), fixed=None, samples=41):
     q = np.tile(base, (uu.size, 1))
     q[:, i] = uu.ravel()
     q[:, j] = vv.ravel()
+    return q, u, v, base
+
+
+def _along(machine, err, axis):
+    """The TCP error component along an axis's direction of motion (workpiece frame)."""
+    direction = np.asarray(next(a["direction"] for a in machine.axes if a["name"] == axis), float)
+    return err[:, :3] @ direction
+
+
+def volumetric_error_map(machine, plane=("X", "Y"), fixed=None, samples=41):
+    """|TCP position error| over a plane of two linear axes across their travel, other axes at
+    `fixed` (dict, mm/deg; default mid-travel for linear, 0 for rotary). Arrows: the error along
+    the two axes' directions of motion."""
+    q, u, v, base = _plane_grid(machine, plane, fixed, samples)
+    names = machine.axis_names
+    i, j = names.index(plane[0]), names.index(plane[1])
+    shape = (len(v), len(u))
     err = machine.tcp_errors(q)
-    magnitude = np.linalg.norm(err[:, :3], axis=1).reshape(uu.shape)
+    magnitude = np.linalg.norm(err[:, :3], axis=1).reshape(shape)
     fig, ax = plt.subplots(figsize=(6.4, 5.0))
     mesh = ax.imshow(magnitude, origin="lower", extent=(u[0], u[-1], v[0], v[-1]), cmap="viridis",
                      interpolation="bilinear", aspect="equal")
     fig.colorbar(mesh, ax=ax, label="|TCP position error| [µm]")
     step = max(1, samples // 10)
-    if np.any(err[:, [i, j]] != 0.0):
-        ax.quiver(uu[::step, ::step], vv[::step, ::step], err[:, i].reshape(uu.shape)[::step, ::step],
-                  err[:, j].reshape(uu.shape)[::step, ::step], color="white", alpha=0.8)
+    du, dv = _along(machine, err, plane[0]).reshape(shape), _along(machine, err, plane[1]).reshape(shape)
+    if np.any(du != 0.0) or np.any(dv != 0.0):
+        uu, vv = np.meshgrid(u, v)
+        ax.quiver(uu[::step, ::step], vv[::step, ::step], du[::step, ::step], dv[::step, ::step], color="white", alpha=0.8)
     others = ", ".join(f"{n}={b:g}" for k, (n, b) in enumerate(zip(names, base)) if k not in (i, j))
     ax.set_title(f"Volumetric error over {plane[0]}-{plane[1]} ({others})", fontsize=9)
     ax.set_xlabel(f"{plane[0]} [mm]")
     ax.set_ylabel(f"{plane[1]} [mm]")
+    fig.tight_layout()
+    return fig
+
+
+def _relative_errors(machine, plane, fixed, reference, samples):
+    """TCP errors over a plane grid minus the error at `reference` (the two axes; default their
+    travel start): (errors, u, v, base, reference pose)."""
+    q, u, v, base = _plane_grid(machine, plane, fixed, samples)
+    names = machine.axis_names
+    ref = q[:1].copy()
+    for k, axis in enumerate(plane):
+        ref[0, names.index(axis)] = (reference or {}).get(axis, (u, v)[k][0])
+    return machine.tcp_errors(q) - machine.tcp_errors(ref), u, v, base, ref
+
+
+def relative_error_vectors(machine, plane=("X", "Z"), fixed=None, reference=None, samples=8, magnification=None):
+    """Seed 003 Fig. 5.2: the TCP error vectors over a plane of two linear axes (the others at
+    `fixed`), relative to the error at `reference` (dict of the two axes; default their travel
+    start), drawn magnified at the grid points in the plane of the two axes' directions."""
+    err, u, v, base, ref = _relative_errors(machine, plane, fixed, reference, samples)
+    names = machine.axis_names
+    du, dv = _along(machine, err, plane[0]), _along(machine, err, plane[1])
+    largest = max(np.hypot(du, dv).max(), 1e-12)
+    scale = magnification or 0.45 * min(u[1] - u[0], v[1] - v[0]) / largest
+    uu, vv = np.meshgrid(u, v)
+    fig, ax = plt.subplots(figsize=(7, 5.6))
+    ax.plot(uu.ravel(), vv.ravel(), "+", color="0.6")
+    ax.quiver(uu.ravel(), vv.ravel(), du * scale, dv * scale, angles="xy", scale_units="xy", scale=1, color="#c0392b", width=0.004)
+    ax.set_aspect("equal")
+    ax.set_xlabel(f"{plane[0]} [mm]")
+    ax.set_ylabel(f"{plane[1]} [mm]")
+    others = ", ".join(f"{n}={b:g}" for n, b in zip(names, base) if n not in plane)
+    at = ", ".join(f"{n}={ref[0, names.index(n)]:g}" for n in plane)
+    ax.set_title(f"TCP error along {plane[0]}, {plane[1]} relative to {at} ({others}); arrows × {scale:.3g} µm⁻¹·mm, "
+                 f"largest {largest:.1f} µm", fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def error_component_surface(machine, plane=("X", "Z"), axis="Y", fixed=None, reference=None, samples=25):
+    """Seed 003 Fig. 5.3: one component of the TCP error (along `axis`'s direction of motion) as a
+    surface over a plane of two linear axes, relative to `reference` as in relative_error_vectors."""
+    err, u, v, base, _ = _relative_errors(machine, plane, fixed, reference, samples)
+    names = machine.axis_names
+    w = _along(machine, err, axis).reshape(len(v), len(u))
+    uu, vv = np.meshgrid(u, v)
+    fig = plt.figure(figsize=(7, 5.4))
+    ax = fig.add_subplot(projection="3d")
+    ax.plot_surface(uu, vv, w, cmap="viridis", linewidth=0.2, edgecolor="0.3")
+    ax.set_xlabel(f"{plane[0]} [mm]")
+    ax.set_ylabel(f"{plane[1]} [mm]")
+    ax.set_zlabel(f"error along {axis} [µm]")
+    others = ", ".join(f"{n}={b:g}" for n, b in zip(names, base) if n not in plane)
+    ax.set_title(f"TCP error along {axis} over {plane[0]}-{plane[1]} ({others})", fontsize=9)
     fig.tight_layout()
     return fig
 

@@ -54,6 +54,7 @@ PlateMeasurement parse(const Machine& machine, const std::string& text, const st
             m.plate.pitch = parseQuantityAs(trim(pitchText), Dimension::Length, key);
             if (!(m.plate.pitch >= 1.0 && m.plate.pitch <= 1000.0)) fail(key, "a pitch from 1 to 1000 mm");
             plateGiven = true;
+          m.plateLine = n;
           } else if (key == "features") {
             if (value != "all" && value != "outer") fail(key, "expected 'all' or 'outer'");
             m.placement.features = value == "all" ? PlateFeatures::All : PlateFeatures::Outer;

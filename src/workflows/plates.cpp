@@ -3,7 +3,10 @@
 #include <random>
 
 #include "mtacc/core/units.hpp"
+#include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/io/text_file.hpp"
+
+#include <fmt/format.h>
 
 namespace mtacc {
 
@@ -54,6 +57,88 @@ nlohmann::json toJson(const PlateComparison& c) {
           {"residual_max_um", c.residual.cwiseAbs().maxCoeff() * 1e3},
           {"bound_um", c.bound ? nlohmann::json(*c.bound * 1e3) : nlohmann::json(nullptr)},
           {"beyond_bound", c.beyond}};
+}
+
+PlateIdentificationStudy identifyPlateFiles(const MachineSetup& setup, const std::vector<std::string>& files, double pieceLength) {
+  if (files.empty()) throw InputError(InputLocation{"", 0, "files"}, "no plate measurements");
+  if (!(pieceLength >= 1.0 && pieceLength <= 10000.0)) throw InputError(InputLocation{"", 0, "piece"}, "a piece length from 1 to 10000 mm");
+  PlateIdentificationStudy s;
+  s.machine = setup.machine;
+  s.files = files;
+  const auto nominal = setup.nominal();
+  PlateCampaign campaign;
+  bool weighted = true;
+  for (const auto& file : files) {
+    const auto m = readPlateMeasurement(*setup.machine, file);
+    if (!campaign.placements.empty() && (m.plate.pitch != campaign.plate.pitch || m.plate.rows != campaign.plate.rows ||
+                                         m.plate.columns != campaign.plate.columns))
+      throw InputError(InputLocation{file, m.plateLine, "plate"}, "every plate of a campaign must be the same plate (as the first file's)");
+    campaign.plate = m.plate;
+    PlatePoses poses;
+    try {
+      poses = platePoses(nominal, m.plate, m.placement);
+    } catch (const UnreachablePose& e) {
+      throw InputError(InputLocation{file, m.originLine, "origin"}, e.what());
+    }
+    // Deviations from the calibration after the temperature corrections; the misalignment is
+    // the identification's nuisance.
+    const double scale = 1.0 + m.temperatures.scaleExpansion * (m.temperatures.scale - m.temperatures.reference);
+    const double grows = 1.0 + m.temperatures.plateExpansion * (m.temperatures.plate - m.temperatures.reference);
+    Eigen::MatrixX2d d(m.measured.rows(), 2);
+    for (size_t k = 0; k < m.features.size(); ++k)
+      d.row(static_cast<Eigen::Index>(k)) =
+          (m.measured.row(static_cast<Eigen::Index>(k)).transpose() * scale - m.plate.centre(m.features[k].first, m.features[k].second) * grows)
+              .transpose();
+    weighted = weighted && m.probe.has_value();
+    campaign.placements.push_back(m.placement);
+    campaign.poses.push_back(poses);
+    campaign.deviations.push_back(d);
+    campaign.noise.push_back(m.probe ? Eigen::Vector2d(0.5 * *m.probe) : Eigen::Vector2d::Zero());
+  }
+  if (!weighted) campaign.noise.clear();
+  s.weighted = weighted;
+  const ErrorModel shape = plateShape(*setup.machine, ErrorModel::zero(*setup.machine), pieceLength);
+  s.parameters = plateParameters(*setup.machine, shape);
+  s.result = identifyFromPlates(setup.machine, shape, s.parameters, campaign);
+  s.identified = shape;
+  for (size_t k = 0; k < s.parameters.size(); ++k) setParameterValue(s.identified, s.parameters[k], s.result.values[static_cast<Eigen::Index>(k)]);
+  for (const char* name : {"X", "Y", "Z"}) {
+    const int a = setup.machine->axisIndex(name);
+    if (a < 0) continue;
+    for (int c = 0; c < 6; ++c) {
+      std::vector<PiecewiseTerm> terms;
+      for (const auto& t : s.identified.axes[static_cast<size_t>(a)].motion[static_cast<size_t>(c)].terms())
+        if (const auto* p = std::get_if<PiecewiseTerm>(&t)) terms.push_back(*p);
+      if (!terms.empty())
+        s.yaml += piecewiseErrorYaml(motionErrorName(*setup.machine, a, c), terms, c < 3 ? Dimension::Length : Dimension::Angle, Dimension::Length);
+    }
+  }
+  for (const auto& p : s.parameters)
+    if (p.kind == ParameterKind::Location) s.yaml += fmt::format("  {}: {:.6f} urad\n", p.name, parameterValue(s.identified, p) * 1e6);
+  return s;
+}
+
+nlohmann::json toJson(const PlateIdentificationStudy& s) {
+  nlohmann::json estimates = nlohmann::json::array();
+  for (size_t k = 0; k < s.result.names.size(); ++k) {
+    const bool machine = k < s.parameters.size();
+    const bool angle = machine ? s.parameters[k].dimension == Dimension::Angle : s.result.names[k].ends_with(".rot");
+    const double unit = angle ? 1e6 : 1e3;
+    estimates.push_back({{"name", s.result.names[k]},
+                         {"value", s.result.values[static_cast<Eigen::Index>(k)] * unit},
+                         {"uncertainty", s.result.uncertainty[static_cast<Eigen::Index>(k)] * unit},
+                         {"unit", angle ? "urad" : "um"},
+                         {"determined", static_cast<bool>(s.result.determined[k])}});
+  }
+  return {{"files", s.files},
+          {"readings", s.result.readings},
+          {"degrees_of_freedom", s.result.degreesOfFreedom},
+          {"weighted", !s.result.names.empty() && s.weighted},
+          {"sigma", s.weighted ? nlohmann::json(s.result.sigma) : nlohmann::json(s.result.sigma * 1e3)},
+          {"rank", s.result.observability.rank},
+          {"estimates", estimates},
+          {"findings", s.result.observability.findings()},
+          {"yaml", s.yaml}};
 }
 
 PlateMeasurement simulatePlateFile(const MachineSetup& setup, const PlateSimulationRequest& r) {

@@ -44,3 +44,50 @@ def test_plot_and_report_section(cli, tmp_path):
                          capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     assert "Hole and ball plates (seed 003)" in (tmp_path / "maho-report.html").read_text()
+
+
+def test_figures_5_2_and_5_3_of_the_bundled_model():
+    # Fig. 5.2 set-up (XZ plane at Y = 250, relative to X = Z = 0): the arrow at X = 700, Z = 0 is
+    # the extraction's §13 item 12 value there, -26.63 um along x, i.e. +26.63 along X's direction
+    # of motion (the table moves the workpiece, seed 003 §4.2); the figure's title states the largest.
+    m = mtacc.Machine("maho")
+    names = m.axis_names
+    q = np.zeros((2, len(names)))
+    q[:, names.index("Y")] = 250
+    q[1, names.index("X")] = 700
+    err = m.tcp_errors(q)
+    assert err[1, 0] - err[0, 0] == pytest.approx(-26.63, abs=0.01)
+    fig = plots.relative_error_vectors(m, ("X", "Z"), fixed={"Y": 250}, reference={"X": 0, "Z": 0})
+    arrows = fig.axes[0].collections[0]
+    grid = np.asarray(arrows.get_offsets())
+    k = int(np.argmin(np.hypot(grid[:, 0] - 700, grid[:, 1] - 0)))
+    assert arrows.U[k] / arrows.U.max() == pytest.approx(1.0, abs=0.5) and arrows.U[k] > 0
+    surface = plots.error_component_surface(m, ("X", "Z"), "Y", fixed={"Y": 250}, reference={"X": 0, "Z": 0}, samples=9)
+    assert surface.axes
+
+
+def test_identify_from_plates(cli, tmp_path):
+    # Six plates of the Maho machine (two per plane, the second level with a 60 mm stylus), with the
+    # probes' noise: the weighted residual matches that noise, the YAML loads into the machine, and
+    # what six plates cannot determine is named. CLI and API give the same numbers.
+    m = mtacc.Machine("maho")
+    files = []
+    layouts = [((-350, -455, -160), ((1, 0, 0), (0, 1, 0)), (0, 0, 0), (1.1, 0.8)),
+               ((-50, -355, 140), ((1, 0, 0), (0, 1, 0)), (0, 0, 60), (1.1, 0.8)),
+               ((-350, -330, -310), ((1, 0, 0), (0, 0, 1)), (0, 0, 0), (0.63, 0.84)),
+               ((-50, -130, -110), ((1, 0, 0), (0, 0, 1)), (0, 60, 0), (0.63, 0.84)),
+               ((-175, -455, -310), ((0, 1, 0), (0, 0, 1)), (0, 0, 0), (1.4, 7.5)),
+               ((175, -355, -110), ((0, 1, 0), (0, 0, 1)), (60, 0, 0), (1.4, 7.5))]
+    for k, (origin, axes, stylus, probe) in enumerate(layouts):
+        path = tmp_path / f"p{k}.csv"
+        m.simulate_plate(path, origin=origin, axes=axes, stylus=stylus, noise=f"{probe[0] / 2} um", probe=probe, seed=k + 1)
+        files.append(str(path))
+    r = m.identify_plates(files, piece_length=175)
+    assert r["weighted"] and r["readings"] == 6 * 81 * 2
+    assert r["findings"]
+    assert any(not e["determined"] for e in r["estimates"])
+    out = subprocess.run([cli, "plate-identify", "maho", *files, "--piece", "175", "--json"], capture_output=True, text=True, check=True)
+    assert json.loads(out.stdout) == r
+    path = tmp_path / "identified.yaml"
+    path.write_text("errors:\n" + r["yaml"])
+    assert mtacc.Machine("maho", errors=path).tcp_errors(np.zeros((1, 5))).shape == (1, 6)

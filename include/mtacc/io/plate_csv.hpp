@@ -33,6 +33,7 @@ struct PlateMeasurement {
   std::vector<std::pair<int, int>> features;  // the reference first
   Eigen::MatrixX2d measured;             // mm, per feature
   int originLine = 0;                    // where the placement is given, for errors about it
+  int plateLine = 0;                     // where the plate is given
 };
 
 // Throws InputError naming file, line and key: a missing or repeated feature (every feature of

@@ -39,4 +39,21 @@ struct PlateSimulationRequest {
 // written atomically to `output`; returns it.
 PlateMeasurement simulatePlateFile(const MachineSetup& setup, const PlateSimulationRequest& request);
 
+// The component functions of X, Y, Z (C1 piecewise, pieces of about `pieceLength` mm) and the
+// squareness identified from measured plates (seed 003 §7.7): each file one placement, read
+// with its temperatures corrected, weighted by its probe's 2S (or unweighted when no file states
+// it), a translation and rotation per plate; with the observability report naming what the set
+// of plates cannot determine, and the identified functions as the machine YAML's errors.
+struct PlateIdentificationStudy {
+  std::shared_ptr<const Machine> machine;
+  std::vector<std::string> files;
+  ErrorModel identified;  // the shape with the estimates (undetermined parameters at the minimum-norm value)
+  std::vector<Parameter> parameters;
+  PlateIdentification result;
+  bool weighted = false;  // by the files' probe 2S: result.sigma is then the residual over that noise (~1), else in mm
+  std::string yaml;
+};
+PlateIdentificationStudy identifyPlateFiles(const MachineSetup& setup, const std::vector<std::string>& files, double pieceLength = 100.0);
+nlohmann::json toJson(const PlateIdentificationStudy& study);
+
 }  // namespace mtacc
