@@ -34,9 +34,12 @@ PENDING = {
            "Seed001CubicTest.*, its equations by Seed001WorkpieceFrame.*.",
     "003": "Its App. D tables are bundled as the Maho machine's errors; the values the extraction "
            "computed from them (§8.3) are reproduced below, and the extraction's derived error grid "
-           "(§13 item 12) by Seed003AppendixD.DerivedGridOfSection13Item12. The direct-measurement "
-           "processing, the fits, the hole-plate budgets and the plate identification are not built "
-           "yet (issue 16). Its Appendix A transforms are checked by Seed003AppendixA.*.",
+           "(§13 item 12) by Seed003AppendixD.DerivedGridOfSection13Item12. App. B.5's squareness and "
+           "§5.3's residual bounds are reproduced from their procedures. Not computed: the hole-plate "
+           "predictions of §5.3 (±12/±20 um at XY pos. 1, ±30/±25 um at XY pos. 8), because the plate "
+           "positions other than Z = 292 mm and the stylus offsets are not given (extraction §14), and "
+           "the 260 kg stiffness case, whose measured changes are only plotted (Figs 4.17-4.20). Its "
+           "Appendix A transforms are checked by Seed003AppendixA.*.",
     "004": "Its printed numbers belong to the decomposition of measured TCP errors (issue 18).",
 }
 FIELDS = ["seed", "where", "quantity", "printed", "mtacc", "difference", "unit", "verdict"]

@@ -56,6 +56,24 @@ TEST(Seed003DirectMeasurement, SquarenessOfAppendixB5) {
                               "printed result -4.0\" (reference extraction §6.4)");
 }
 
+TEST(Seed003DirectMeasurement, StraightnessIsDataMinusArtefactMinusItsLine) {
+  // Readings along a straightedge: the machine's straightness (a bow, even about the middle, so no line), the
+  // edge's own calibrated deviation, and the set-up's offset and tilt. What remains is the bow.
+  std::vector<double> x, readings, artefact, bow;
+  for (double v = 0; v <= 600; v += 20) {
+    const double s = 3e-3 * std::pow((v - 300) / 300, 2);
+    x.push_back(v);
+    bow.push_back(s);
+    artefact.push_back(0.5e-3 * std::sin(v / 90.0));
+    readings.push_back(s + artefact.back() + 0.02 + 4e-6 * v);
+  }
+  // The bow's own mean over the sampled positions (it is even about the middle: no line).
+  double mean = 0;
+  for (const double b : bow) mean += b / static_cast<double>(bow.size());
+  const auto s = straightness(x, readings, artefact);
+  for (size_t i = 0; i < s.size(); ++i) EXPECT_NEAR(s[i], bow[i] - mean, 1e-12) << x[i];
+}
+
 TEST(Seed003DirectMeasurement, YryFromTwoStraightnessRuns) {
   // Geometry of eq. B.2: a straightedge along Y on the table at X = x_i; the probe reads
   // ytz_i(Y) = profile(Y) + straightness(Y) - yry(Y) (x_i - xc) + Y xrx_i, the table turning

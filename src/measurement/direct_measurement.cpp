@@ -120,6 +120,20 @@ double squarenessFromBlock(double alpha, double beta, double blockSquareness, co
   return s.reference * alpha + s.other * beta + s.block * blockSquareness;
 }
 
+std::vector<double> straightness(const std::vector<double>& x, const std::vector<double>& readings, const std::vector<double>& artefact) {
+  if (artefact.size() != readings.size()) throw std::invalid_argument("straightness: one artefact deviation per reading");
+  std::vector<double> y(readings.size());
+  for (size_t i = 0; i < y.size(); ++i) y[i] = readings[i] - artefact[i];
+  const double slope = leastSquaresSlope(x, y);
+  double meanX = 0, meanY = 0;
+  for (size_t i = 0; i < y.size(); ++i) {
+    meanX += x[i] / static_cast<double>(y.size());
+    meanY += y[i] / static_cast<double>(y.size());
+  }
+  for (size_t i = 0; i < y.size(); ++i) y[i] -= meanY + slope * (x[i] - meanX);
+  return y;
+}
+
 double leastSquaresSlope(const std::vector<double>& x, const std::vector<double>& y) {
   if (x.size() != y.size() || x.size() < 2) throw std::invalid_argument("least-squares slope: needs two or more points");
   const Eigen::Map<const Eigen::VectorXd> xs(x.data(), static_cast<Eigen::Index>(x.size())), ys(y.data(), static_cast<Eigen::Index>(y.size()));

@@ -91,6 +91,12 @@ inline constexpr SquarenessSetup kBlockAlignedToX{-1.0, -1.0, 1.0};
 // Block aligned to Z (Y w.r.t. Z, L4730-4741): alpha - beta - block.
 inline constexpr SquarenessSetup kBlockAlignedToZ{1.0, -1.0, -1.0};
 double squarenessFromBlock(double alpha, double beta, double blockSquareness, const SquarenessSetup& setup);
+// Straightness from probe readings along a straightedge or a square's side (seed 003 App. B):
+// the readings minus the artefact's own calibrated deviation at each position, minus their
+// least-squares line (the line is the alignment, or, against a square, the squareness).
+std::vector<double> straightness(const std::vector<double>& positions, const std::vector<double>& readings,
+                                 const std::vector<double>& artefact);
+
 // The slope of the least-squares line through (x, y): what the straightness of a side leaves.
 double leastSquaresSlope(const std::vector<double>& x, const std::vector<double>& y);
 
