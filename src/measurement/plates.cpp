@@ -151,19 +151,28 @@ Eigen::MatrixX2d withoutMisalignment(const Eigen::MatrixX2d& d, const std::vecto
   return out;
 }
 
-Eigen::MatrixX2d plateDeviations(const Plate& plate, const std::vector<std::pair<int, int>>& features, const Eigen::MatrixX2d& measured,
-                                 const PlateTemperatures& t) {
+std::vector<Eigen::Vector2d> featurePositions(const Plate& plate, const std::vector<std::pair<int, int>>& features) {
+  std::vector<Eigen::Vector2d> out;
+  for (const auto& [row, column] : features)
+    out.push_back(plate.centre(row, column) - plate.centre(features[0].first, features[0].second));
+  return out;
+}
+
+Eigen::MatrixX2d temperatureCorrectedDeviations(const Plate& plate, const std::vector<std::pair<int, int>>& features,
+                                                const Eigen::MatrixX2d& measured, const PlateTemperatures& t) {
   if (measured.rows() != static_cast<Eigen::Index>(features.size())) throw std::invalid_argument("plate deviations: one row per feature");
   const double scale = 1.0 + t.scaleExpansion * (t.scale - t.reference);
   const double grows = 1.0 + t.plateExpansion * (t.plate - t.reference);
-  std::vector<Eigen::Vector2d> nominal;
+  const auto nominal = featurePositions(plate, features);
   Eigen::MatrixX2d d(measured.rows(), 2);
-  for (size_t k = 0; k < features.size(); ++k) {
-    const Eigen::Vector2d c = plate.centre(features[k].first, features[k].second) - plate.centre(features[0].first, features[0].second);
-    nominal.push_back(c);
-    d.row(static_cast<Eigen::Index>(k)) = (measured.row(static_cast<Eigen::Index>(k)).transpose() * scale - c * grows).transpose();
-  }
-  return withoutMisalignment(d, nominal);
+  for (size_t k = 0; k < features.size(); ++k)
+    d.row(static_cast<Eigen::Index>(k)) = (measured.row(static_cast<Eigen::Index>(k)).transpose() * scale - nominal[k] * grows).transpose();
+  return d;
+}
+
+Eigen::MatrixX2d plateDeviations(const Plate& plate, const std::vector<std::pair<int, int>>& features, const Eigen::MatrixX2d& measured,
+                                 const PlateTemperatures& t) {
+  return withoutMisalignment(temperatureCorrectedDeviations(plate, features, measured, t), featurePositions(plate, features));
 }
 
 double residualBound(const ResidualBudget& b) {

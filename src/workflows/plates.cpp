@@ -10,18 +10,27 @@
 
 namespace mtacc {
 
+namespace {
+
+// The poses of a measured placement; one beyond the travel is an error at the file's origin line.
+PlatePoses measuredPlatePoses(const KinematicModel& nominal, const PlateMeasurement& m) {
+  try {
+    return platePoses(nominal, m.plate, m.placement);
+  } catch (const UnreachablePose& e) {
+    throw InputError(InputLocation{m.file, m.originLine, "origin"}, e.what());
+  }
+}
+
+}  // namespace
+
 PlateComparison comparePlateFile(const MachineSetup& setup, const std::string& path) {
   PlateComparison c;
   c.machine = setup.machine;
   c.measurement = readPlateMeasurement(*setup.machine, path);
   const auto& m = c.measurement;
   const auto nominal = setup.nominal(), actual = setup.actual();
-  try {
-    c.poses = platePoses(nominal, m.plate, m.placement);
-  } catch (const UnreachablePose& e) {
-    throw InputError(InputLocation{path, m.originLine, "origin"}, e.what());
-  }
-  for (const auto& [row, column] : c.poses.features) c.nominal.push_back(m.plate.centre(row, column) - m.plate.centre(0, 0));
+  c.poses = measuredPlatePoses(nominal, m);
+  c.nominal = featurePositions(m.plate, c.poses.features);
   c.measured = plateDeviations(m.plate, m.features, m.measured, m.temperatures);
   c.simulated = withoutMisalignment(simulatePlate(actual, nominal, m.plate, m.placement, c.poses), c.nominal);
   c.residual = c.measured - c.simulated;
@@ -74,25 +83,11 @@ PlateIdentificationStudy identifyPlateFiles(const MachineSetup& setup, const std
                                          m.plate.columns != campaign.plate.columns))
       throw InputError(InputLocation{file, m.plateLine, "plate"}, "every plate of a campaign must be the same plate (as the first file's)");
     campaign.plate = m.plate;
-    PlatePoses poses;
-    try {
-      poses = platePoses(nominal, m.plate, m.placement);
-    } catch (const UnreachablePose& e) {
-      throw InputError(InputLocation{file, m.originLine, "origin"}, e.what());
-    }
-    // Deviations from the calibration after the temperature corrections; the misalignment is
-    // the identification's nuisance.
-    const double scale = 1.0 + m.temperatures.scaleExpansion * (m.temperatures.scale - m.temperatures.reference);
-    const double grows = 1.0 + m.temperatures.plateExpansion * (m.temperatures.plate - m.temperatures.reference);
-    Eigen::MatrixX2d d(m.measured.rows(), 2);
-    for (size_t k = 0; k < m.features.size(); ++k)
-      d.row(static_cast<Eigen::Index>(k)) =
-          (m.measured.row(static_cast<Eigen::Index>(k)).transpose() * scale - m.plate.centre(m.features[k].first, m.features[k].second) * grows)
-              .transpose();
+    // The misalignment is the identification's nuisance, so it stays in the deviations.
     weighted = weighted && m.probe.has_value();
     campaign.placements.push_back(m.placement);
-    campaign.poses.push_back(poses);
-    campaign.deviations.push_back(d);
+    campaign.poses.push_back(measuredPlatePoses(nominal, m));
+    campaign.deviations.push_back(temperatureCorrectedDeviations(m.plate, m.features, m.measured, m.temperatures));
     campaign.noise.push_back(m.probe ? Eigen::Vector2d(0.5 * *m.probe) : Eigen::Vector2d::Zero());
   }
   if (!weighted) campaign.noise.clear();
@@ -153,9 +148,9 @@ PlateMeasurement simulatePlateFile(const MachineSetup& setup, const PlateSimulat
   std::normal_distribution<double> g(0.0, 1.0);
   m.features = poses.features;
   m.measured.resize(d.rows(), 2);
+  const auto nominalPositions = featurePositions(m.plate, poses.features);
   for (Eigen::Index k = 0; k < d.rows(); ++k) {
-    const auto [row, column] = poses.features[static_cast<size_t>(k)];
-    const Eigen::Vector2d c = m.plate.centre(row, column) - m.plate.centre(0, 0);
+    const Eigen::Vector2d& c = nominalPositions[static_cast<size_t>(k)];
     m.measured.row(k) = (c + d.row(k).transpose() + (k == 0 ? Eigen::Vector2d::Zero() : Eigen::Vector2d(noise * g(rng), noise * g(rng)))).transpose();
   }
   m.file = r.output;

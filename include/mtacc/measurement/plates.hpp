@@ -78,6 +78,11 @@ struct PlateTemperatures {
 };
 Eigen::MatrixX2d plateDeviations(const Plate& plate, const std::vector<std::pair<int, int>>& features,
                                  const Eigen::MatrixX2d& measured, const PlateTemperatures& temperatures);
+// The same before the misalignment removal (an identification estimates it instead).
+Eigen::MatrixX2d temperatureCorrectedDeviations(const Plate& plate, const std::vector<std::pair<int, int>>& features,
+                                                const Eigen::MatrixX2d& measured, const PlateTemperatures& temperatures);
+// The features' calibrated positions relative to the first (the reference feature), mm.
+std::vector<Eigen::Vector2d> featurePositions(const Plate& plate, const std::vector<std::pair<int, int>>& features);
 // Least-squares in-plane rotation and translation removed from deviations at the given nominal
 // positions (the same treatment for simulated and measured deviations).
 Eigen::MatrixX2d withoutMisalignment(const Eigen::MatrixX2d& deviations, const std::vector<Eigen::Vector2d>& positions);
