@@ -117,6 +117,7 @@ ComponentRunsFile parseComponentRuns(const Machine& machine, const std::string& 
         const double largest = f.component.component < 3 ? 10.0 : 10.0 * kDeg;
         if (!(std::abs(value) <= largest)) fail("value", "beyond ±10 mm or ±10° (a wrong unit?)");
         if (!std::isnan(temperature) && !(temperature > -50 && temperature < 100)) fail("temperature_C", "a temperature in deg C");
+        if (!std::isnan(time) && !(time >= 0.0 && time <= 1e9)) fail("time_s", "seconds since the start of the measurement, from 0 to 1e9");
         if (!runs[{run, direction}].emplace(position, Reading{value, time, temperature, n}).second)
           fail("row", fmt::format("run {} {} at position {} is given twice", run, direction > 0 ? "forward" : "backward", fields[0]));
       });
