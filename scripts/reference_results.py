@@ -38,7 +38,9 @@ PENDING = {
            "§5.3's residual bounds are reproduced from their procedures. Not computed: the hole-plate "
            "predictions of §5.3 (±12/±20 um at XY pos. 1, ±30/±25 um at XY pos. 8), because the plate "
            "positions other than Z = 292 mm and the stylus offsets are not given (extraction §14), and "
-           "the 260 kg stiffness case, whose measured changes are only plotted (Figs 4.17-4.20). Its "
+           "the 260 kg stiffness case of §5.4 (±20 um at XY pos. 1, ±25 um at XY pos. 8), whose measured "
+           "changes are only plotted (Figs 4.17-4.20): the model is built (Stiffness.*) and the bundled "
+           "data/stiffness/maho-260kg.yaml holds illustrative values. Its "
            "Appendix A transforms are checked by Seed003AppendixA.*.",
     "004": "Its printed numbers belong to the decomposition of measured TCP errors (issue 18).",
 }

@@ -79,9 +79,7 @@ TEST_P(JacobianAllMachines, RandomLocationErrors) {
 INSTANTIATE_TEST_SUITE_P(Bundled, JacobianAllMachines, ::testing::ValuesIn(test::kFiveAxisMachines),
                          test::MachineName());
 
-TEST(Jacobian, MahoMotionErrorsOnFixedAndMovingFrames) {
-  const auto machine = test::bundled("maho");
-  const auto errors = parseErrors(*machine, R"(errors:
+const char* kMahoMotionErrors = R"(
   zry: {linear: {value: 20 urad, over: 600 mm}, constant: 3 urad}
   zrx: {harmonics: {terms: [{order: 1, amplitude: 5 urad}]}}
   ztx: {reversal: 2 um}
@@ -92,9 +90,27 @@ TEST(Jacobian, MahoMotionErrorsOnFixedAndMovingFrames) {
   ctz: {harmonics: {terms: [{order: 2, amplitude: 1 um, phase: 30 deg}]}}
   X0B: 10 um
   A0C: 20 urad
-)",
-                                    "maho-test");
-  checkJacobian(machine, errors, 6);
+)";
+
+TEST(Jacobian, MahoMotionErrorsOnFixedAndMovingFrames) {
+  const auto machine = test::bundled("maho");
+  checkJacobian(machine, parseErrors(*machine, std::string("errors:") + kMahoMotionErrors, "maho-test"), 6);
+}
+
+// Stiffness changes are not parameters, but they are part of the factor every motion-error
+// column is taken at: with changes on axes whose other components have parameters (xtx, xrx on
+// X; yrz on Y), with and without the load, the columns stay exact.
+TEST(Jacobian, MahoMotionErrorsWithStiffnessChanges) {
+  const auto machine = test::bundled("maho");
+  const std::string changes = R"(
+  xry: {stiffness: {load: 260 kg, unit: arcsec, positions: [0 mm, 350 mm, 700 mm], values: [5.5, 0.4, 4.1]}}
+  EAY: {stiffness: {load: 260 kg, with: X, unit: arcsec, positions: [0 mm, 500 mm], with_positions: [0 mm, 700 mm],
+                    values: [[3, 3.2], [0.4, 0.5]]}}
+  EBY: {stiffness: {with: X, unit: urad, positions: [0 mm, 500 mm], with_positions: [0 mm, 700 mm], values: [[-4, 4], [-1, 1]]}}
+)";
+  const auto errors = parseErrors(*machine, "workpiece_load: 400 kg\nerrors:" + std::string(kMahoMotionErrors) + changes, "maho-test");
+  ASSERT_EQ(errors.stiffness.size(), 3u);
+  checkJacobian(machine, errors, 4);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "mtacc/core/units.hpp"
 #include "mtacc/measurement/direct_measurement.hpp"
 #include "reference_values.hpp"
+#include "test_helpers.hpp"
 
 namespace mtacc {
 namespace {
@@ -131,6 +132,28 @@ TEST(Seed003DirectMeasurement, LubricationPumpPeaksRecurEvery30Minutes) {
   EXPECT_NEAR(*d.interval, 1800.0, 6.0);
   EXPECT_EQ(d.readings.size(), static_cast<size_t>(std::floor((t + 400.0) / 1800.0)));  // every peak, nothing else
   for (const auto& reading : d.readings) EXPECT_GT(reading.departure, 1.0 * kArcsec);
+}
+
+// Settling: a drift at the start of the measurement that dies away (seed 003's program waits for
+// each reading to settle, L2347-2351; a whole run that did not is flagged).
+TEST(Seed003DirectMeasurement, UnsettledRunsAtTheStartAreFlagged) {
+  const auto machine = test::bundled("maho");
+  const auto errors = loadMachineErrors(*machine);
+  const auto& x = errors.axes[static_cast<size_t>(machine->axisIndex("X"))];
+  ComponentRunsSpec spec;
+  for (int i = 0; i <= 70; ++i) spec.positions.push_back(10.0 * i);
+  spec.noise = 0.1 * kArcsec;
+  spec.seed = 3;
+  EXPECT_TRUE(findDisturbances(simulateComponentRuns(x, 3, spec)).unsettledRuns.empty());
+  // Run j (852 s: 142 readings of 6 s) drifts by about 2" exp(-(852 j + 426) s / 900 s) on average:
+  // 1.25", 0.48", 0.18", 0.07", 0.03", 0.01", ... against a scatter of the run means of
+  // 0.1" / sqrt(142) = 0.008": five robust standard deviations flag the first three or four.
+  spec.settlingOffset = 2.0 * kArcsec;
+  spec.settlingTime = 900.0;
+  const auto d = findDisturbances(simulateComponentRuns(x, 3, spec));
+  ASSERT_GE(d.unsettledRuns.size(), 3u);
+  EXPECT_LE(d.unsettledRuns.size(), 5u);
+  for (size_t k = 0; k < d.unsettledRuns.size(); ++k) EXPECT_EQ(d.unsettledRuns[k], static_cast<int>(k));
 }
 
 }  // namespace

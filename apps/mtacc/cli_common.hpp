@@ -24,8 +24,10 @@ struct MachineOptions {
   std::string output;
 };
 
-// Adds MACHINE, --errors, --alignment, --json, -o to a subcommand.
+// Adds MACHINE, --errors, --alignment, --load, --json, -o to a subcommand.
 void addMachineOptions(CLI::App& cmd, MachineOptions& o);
+// A workpiece load in kg, 0 to 1e6 (--load).
+CLI::Validator loadInKg();
 // Adds --json and -o only.
 void addOutputOptions(CLI::App& cmd, MachineOptions& o);
 
@@ -56,6 +58,7 @@ void addEvaluateCommand(CLI::App& app);
 void addPositioningCommand(CLI::App& app);    // positioning (ISO 230-2)
 void addFitCommand(CLI::App& app);            // fit (seed 003 component fits)
 void addPlateCommand(CLI::App& app);          // plate (seed 003 hole plates)
+void addStiffnessCommand(CLI::App& app);      // stiffness (seed 003 finite stiffness)
 void addIdentifyCommands(CLI::App& app);      // identify, observability
 void addCubicCommands(CLI::App& app);         // cubic, cubic-identify
 void addDynamicsCommand(CLI::App& app);       // dynamics modes | frf | accel | map

@@ -53,6 +53,9 @@ void run(const MachineOptions& o) {
   for (const auto& p : c.nonZero)
     human += fmt::format("  {:<10} {:>10.3f} {}\n", p.name, toDisplay(parameterValue(c.setup.errors, p), p.dimension),
                          displayUnit(p.dimension));
+  if (!c.setup.errors.stiffness.empty())
+    human += fmt::format("Stiffness changes: {} at a workpiece load of {:g} kg (mtacc stiffness shows them)\n",
+                         c.setup.errors.stiffness.size(), c.setup.errors.workpieceLoad);
   emit(o, toJson(c), human, csv);
 }
 

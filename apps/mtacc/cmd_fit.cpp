@@ -53,6 +53,10 @@ void run(FitCliOptions& o) {
     if (s.disturbances.interval) human += fmt::format(", recurring every {:.1f} min", *s.disturbances.interval / 60.0);
     human += "\n";
   }
+  if (!s.disturbances.unsettledRuns.empty())
+    human += fmt::format("\nRuns 1 to {} have not settled: their mean lies beyond {:g} robust standard deviations of the run means{}\n",
+                         s.disturbances.unsettledRuns.size(), o.request.disturbanceThreshold,
+                         o.request.removeDisturbed ? " (left out)" : " (--remove-disturbed leaves them out)");
   human += "\n" + std::string(o.yamlOut.empty() ? "Error function (machine YAML, under errors:):\n" + s.yaml : "Error function written to " + o.yamlOut + "\n");
   emit(o, j, human, csv);
 }

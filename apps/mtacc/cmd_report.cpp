@@ -15,7 +15,7 @@ struct ReportOptions {
   std::string machine;
   std::string errorsFile;
   std::string output = ".";
-  std::string plan, structure, compare;
+  std::string plan, structure, compare, load;
   std::vector<std::string> positioning, components, plates;
   int samples = 5;
 };
@@ -31,7 +31,8 @@ struct ReportOptions {
     args.push_back("--errors");
     args.push_back(o.errorsFile);
   }
-  for (const auto& [flag, value] : {std::pair{"--plan", o.plan}, {"--structure", o.structure}, {"--compare", o.compare}})
+  for (const auto& [flag, value] :
+       {std::pair{"--plan", o.plan}, {"--structure", o.structure}, {"--compare", o.compare}, {"--load", o.load}})
     if (!value.empty()) {
       args.push_back(flag);
       args.push_back(value);
@@ -56,6 +57,8 @@ void addReportCommand(CLI::App& app) {
   cmd->add_option("machine", o->machine, "machine file, or the name of a bundled machine")->required();
   cmd->add_option("-o,--output", o->output, "output directory (default: current)");
   cmd->add_option("--errors", o->errorsFile, "errors file (default: the machine file's)");
+  cmd->add_option("--load", o->load, "workpiece load in kg for the errors' stiffness changes (default: the errors' workpiece_load)")
+      ->check(loadInKg());
   cmd->add_option("--samples", o->samples, "positions per axis for the error budget (default 5)");
   cmd->add_option("--plan", o->plan, "test plan to simulate, evaluate and identify from (e.g. tilting-table-rtest)");
   cmd->add_option("--structure", o->structure, "structure model for the dynamics section (e.g. tzyx-arm-x)");

@@ -148,6 +148,8 @@ void addSimulateCommand(CLI::App& app) {
   comp->add_option("--reading-time", component->readingTime, "seconds per reading (default 6)");
   comp->add_option("--disturbance", component->disturbance, "a periodic disturbance of one reading, e.g. 1.5arcsec (the lubrication pump)");
   comp->add_option("--disturbance-interval", component->disturbanceInterval, "seconds between disturbances (default 1800)");
+  comp->add_option("--settling", component->settling, "a drift at the start that dies away, e.g. 2arcsec (the machine settling)");
+  comp->add_option("--settling-time", component->settlingTime, "seconds: the settling drift's time constant (default 600)");
   comp->add_option("--seed", component->seed, "random seed (default 1)");
   comp->callback([component, componentMachine, abbe] {
     if (!abbe->empty()) component->abbeOffset = parseLengths(*abbe, "--abbe-offset");

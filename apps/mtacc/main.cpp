@@ -72,6 +72,7 @@ int main(int argc, char** argv) {
   mtacc::cli::addPositioningCommand(app);
   mtacc::cli::addFitCommand(app);
   mtacc::cli::addPlateCommand(app);
+  mtacc::cli::addStiffnessCommand(app);
   mtacc::cli::addIdentifyCommands(app);
   mtacc::cli::addDynamicsCommand(app);
   mtacc::cli::addReportCommand(app);

@@ -25,6 +25,7 @@
 #include "mtacc/workflows/plates.hpp"
 #include "mtacc/workflows/positioning.hpp"
 #include "mtacc/workflows/report_paths.hpp"
+#include "mtacc/workflows/stiffness.hpp"
 
 namespace py = pybind11;
 using namespace mtacc;
@@ -111,10 +112,10 @@ PYBIND11_MODULE(_mtacc, mod) {
   });
 
   py::class_<MachineSetup>(mod, "Machine")
-      .def(py::init([](const std::string& machine, const std::string& errors, const std::string& alignment) {
-             return loadMachineSetup({machine, errors, alignment});
+      .def(py::init([](const std::string& machine, const std::string& errors, const std::string& alignment, std::optional<double> load) {
+             return loadMachineSetup({machine, errors, alignment, load});
            }),
-           py::arg("machine"), py::arg("errors") = "", py::arg("alignment") = "")
+           py::arg("machine"), py::arg("errors") = "", py::arg("alignment") = "", py::arg("load") = py::none())
       .def("check", [](const MachineSetup& s) { return toPython(toJson(checkMachine(s))); })
       .def("error_unit", [](const MachineSetup& s, const std::string& name) {
         return findParameter(*s.machine, s.errors, name).dimension == Dimension::Length ? "mm" : "rad";
@@ -290,6 +291,7 @@ PYBIND11_MODULE(_mtacc, mod) {
         }
         return toPython(toJson(study));
       })
+      .def("stiffness", [](const MachineSetup& s, int samples) { return toPython(toJson(summariseStiffness(s, samples))); })
       .def("compare_plate", [](const MachineSetup& s, const std::string& path) { return toPython(toJson(comparePlateFile(s, path))); })
       .def("simulate_plate", [](const MachineSetup& s, const std::string& output, const std::string& header, const std::string& noise,
                                 std::uint64_t seed) {
@@ -302,12 +304,14 @@ PYBIND11_MODULE(_mtacc, mod) {
       })
       .def("simulate_component", [](const MachineSetup& s, const std::string& component, const std::string& output, double step, int runs,
                                     const std::string& noise, const std::vector<double>& abbe, const std::string& disturbance,
-                                    double interval, std::uint64_t seed) {
+                                    double interval, const std::string& settling, double settlingTime, std::uint64_t seed) {
         ComponentSimulationRequest r{.component = component, .output = output, .step = step, .runs = runs, .noise = noise};
         if (abbe.size() != 3) throw InputError(InputLocation{"", 0, "abbe_offset"}, "expected (dx, dy, dz) in mm");
         r.abbeOffset = Vec3(abbe[0], abbe[1], abbe[2]);
         r.disturbance = disturbance;
         r.disturbanceInterval = interval;
+        r.settling = settling;
+        r.settlingTime = settlingTime;
         r.seed = seed;
         simulateComponentFile(s, r);
       })

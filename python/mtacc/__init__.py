@@ -78,10 +78,12 @@ class Errors(MutableMapping):
 
 
 class Machine:
-    """A machine description with its errors (from the machine file, or `errors=FILE`)."""
+    """A machine description with its errors (from the machine file, or `errors=FILE`); `load` is the
+    workpiece load in kg that scales the errors' load-dependent stiffness changes (default: their
+    file's workpiece_load)."""
 
-    def __init__(self, machine, errors=None, alignment=None):
-        self._core = _CoreMachine(str(machine), _text(errors), _text(alignment))
+    def __init__(self, machine, errors=None, alignment=None, load=None):
+        self._core = _CoreMachine(str(machine), _text(errors), _text(alignment), None if load is None else float(load))
         self._description = self._core.check()
         self.errors = Errors(self._core)
 
@@ -180,6 +182,12 @@ class Machine:
                                         float(significance), period, float(period_zero), float(disturbance_threshold),
                                         bool(remove_disturbed))
 
+    def stiffness(self, samples=5):
+        """The finite-stiffness changes of the errors (seed 003) at this machine's workpiece load, and the
+        largest TCP errors over the working-volume grid (`samples` per axis) of the geometric errors, of the
+        changes alone and added by them, as `mtacc stiffness --json` (values in um or urad)."""
+        return self._core.stiffness(int(samples))
+
     def compare_plate(self, path):
         """A measured hole or ball plate (CSV, docs/file-formats.md) against this machine's error model, as
         `mtacc plate --json`: per feature the measured and modelled deviations and the residual (um) with
@@ -208,12 +216,14 @@ class Machine:
             header += f"# simulation: {simulation} um\n"
         self._core.simulate_plate(str(output), header, str(noise), int(seed))
 
-    def simulate_component(self, component, output, step=10.0, runs=20, noise="0 um", abbe_offset=(0.0, 0.0, 0.0),
-                           disturbance="", disturbance_interval=1800.0, seed=1):
+    def simulate_component(self, component, output, step=10.0, runs=20, noise="", abbe_offset=(0.0, 0.0, 0.0),
+                           disturbance="", disturbance_interval=1800.0, settling="", settling_time=600.0, seed=1):
         """Writes direct-measurement runs of one component (seed 003 name or ISO) simulated from this
-        machine's errors to `output`, as `mtacc simulate component`."""
+        machine's errors to `output`, as `mtacc simulate component`; `settling` (e.g. "2 arcsec") adds a
+        drift at the start that dies away with the time constant `settling_time` (s)."""
         self._core.simulate_component(str(component), str(output), float(step), int(runs), str(noise),
-                                      [float(v) for v in abbe_offset], str(disturbance), float(disturbance_interval), int(seed))
+                                      [float(v) for v in abbe_offset], str(disturbance), float(disturbance_interval),
+                                      str(settling), float(settling_time), int(seed))
 
     def cone_preset_name(self):
         """The seed 000 §3.6 preset of this machine's family, or None."""

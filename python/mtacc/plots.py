@@ -641,3 +641,31 @@ def plate_vectors(result, magnification=None, title=None):
                                                                      if bound is not None else "")))
     fig.tight_layout()
     return fig
+
+
+def stiffness_changes(result, title=None):
+    """The finite-stiffness changes of `Machine.stiffness` as seed 003 Figs. 4.18 and 4.20 show them:
+    one panel per changed axis, each change against its axis's position at the machine's load, one
+    line per measured position of the other axis it depends on."""
+    terms = result["terms"]
+    axes = list(dict.fromkeys(t["axis"] for t in terms))
+    fig, panels = plt.subplots(1, len(axes), figsize=(4.8 * len(axes), 4), squeeze=False)
+    for ax, name in zip(panels[0], axes):
+        for k, t in enumerate(t for t in terms if t["axis"] == name):
+            values = np.asarray(t["values"])
+            colour = f"C{k}"
+            if t["with"] is None:
+                ax.plot(t["positions"], values[:, 0], "o-", color=colour, label=t["error"])
+                continue
+            styles = ("-", "--", ":", "-.")
+            for j, at in enumerate(t["with_positions"]):
+                ax.plot(t["positions"], values[:, j], "o" + styles[j % 4], color=colour, markersize=3,
+                        label=f"{t['error']}, {t['with']} = {at:g}")
+        units = sorted({t["unit"] for t in terms if t["axis"] == name})
+        ax.axhline(0, color="0.7", linewidth=0.6)
+        ax.set_xlabel(f"{name} position")
+        ax.set_ylabel(f"change [{', '.join(units)}]")
+        ax.legend(fontsize=7)
+    fig.suptitle(title or f"Changes of the errors under a workpiece load of {result['workpiece_load_kg']:g} kg")
+    fig.tight_layout()
+    return fig

@@ -235,13 +235,13 @@ def dynamics_section(structure_name, compare=None):
     return out
 
 
-def cubic_section(machine_path, errors):
+def cubic_section(machine_path, errors, load):
     """Seed 001's cubic machining test on this machine: tool paths, the simulated surface, the zone
     heights with and without M_WC, and the sensitivity maps of the rotary axes' location errors."""
     grid = 0.02
     try:
-        aligned = Machine(machine_path, errors, alignment="machine").cubic(grid=grid, sensitivities=True, sensitivity_grid=0.05)
-        on_table = Machine(machine_path, errors, alignment="table").cubic(grid=grid)
+        aligned = Machine(machine_path, errors, alignment="machine", load=load).cubic(grid=grid, sensitivities=True, sensitivity_grid=0.05)
+        on_table = Machine(machine_path, errors, alignment="table", load=load).cubic(grid=grid)
     except (UnreachablePose, InputError) as e:
         return f"<h2>Cubic machining test (seed 001)</h2><p>Not machinable on this machine: {html.escape(str(e))}</p>"
     out = ("<h2>Cubic machining test (seed 001)</h2><p>A 48 mm block cut in 3 × 3 zones of 16 mm by 3-axis zig-zag "
@@ -299,6 +299,26 @@ def plates_section(results):
     return out
 
 
+def stiffness_section(result):
+    """Seed 003 §4.2 and §5.4: the finite-stiffness changes of the errors and what they add to the TCP."""
+    largest = result["largest_tcp_error"]
+    out = ("<h2>Finite stiffness (seed 003)</h2><p>Changes of the component errors with another axis's position or "
+           f"the workpiece load, at a load of <b>{result['workpiece_load_kg']:g} kg</b> (each load-dependent change "
+           "scaled linearly from the load it was measured under). They are part of every result above.</p>")
+    out += figure(plots.stiffness_changes(result), "Changes of the errors along their axes")
+    out += table(["change", "along", "measured under", "scale here", "largest change"],
+                 [[t["error"], t["axis"] + (f" and {t['with']}" if t["with"] else ""),
+                   "no load dependence" if t["reference_load_kg"] is None else f"{t['reference_load_kg']:g} kg",
+                   f"{t['load_factor']:.3g}", f"{np.abs(np.asarray(t['values'])).max():.3f} {t['unit']}"]
+                  for t in result["terms"]], left=2)
+    out += table(["largest TCP position error", "µm", "at"],
+                 [[label, f"{largest[key]['um']:.3f}", fmt_pose(largest[key]["pose"])]
+                  for key, label in (("geometric", "geometric errors alone"), ("stiffness_alone", "stiffness changes alone"),
+                                     ("added_by_stiffness", "added by the stiffness changes"))], left=1)
+    out += f"<p class='meta'>Over {result['poses']} poses, {result['samples_per_axis']} positions per axis.</p>"
+    return out
+
+
 def positioning_section(results):
     """ISO 230-2 charts and axis values of each positioning-test file."""
     out = ("<h2>Positioning (ISO 230-2)</h2><p>Accuracy A, systematic deviation E and repeatability R of "
@@ -317,7 +337,7 @@ def positioning_section(results):
 
 
 def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=None, plan=None, structure=None,
-                 compare=None, positioning=(), components=(), plates=()):
+                 compare=None, positioning=(), components=(), plates=(), load=None):
     """Writes <output_dir>/<machine>-report.html atomically and returns its path."""
     start = time.perf_counter()
     steps = ["machine", "error budget", "volumetric error maps", "circular test", "5-axis circle", "cone frustum",
@@ -342,7 +362,10 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     # Every input is read before the first progress line, so that bad input ends in one line.
     if os.path.exists(output_dir) and not os.path.isdir(output_dir):
         raise InputError(f"output: '{output_dir}' is a file; name a folder for the report")
-    machine = Machine(machine_path, errors)
+    machine = Machine(machine_path, errors, load=load)
+    stiffness = machine.stiffness(samples) if machine.check()["stiffness_changes"] else None
+    if stiffness:
+        steps.insert(-1, "finite stiffness")
     budget = machine.budget(samples=samples)
     observability = machine.observability(plan) if plan else None
     if structure:
@@ -420,7 +443,7 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     parts.append(cone_section(machine))
     step("cone frustum")
     if machine.cone_preset_name() is not None:
-        parts.append(cubic_section(machine_path, errors))
+        parts.append(cubic_section(machine_path, errors, load))
     step("cubic machining test")
     if plan:
         parts.append(identification_section(machine, plan, observability))
@@ -431,6 +454,9 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     if components:
         parts.append(components_section(component_results))
         step("component errors")
+    if stiffness:
+        parts.append(stiffness_section(stiffness))
+        step("finite stiffness")
     if plates:
         parts.append(plates_section(plate_results))
         step("plates")
@@ -465,6 +491,8 @@ def main(argv=None):
     parser.add_argument("machine", help="machine file, or the name of a bundled machine")
     parser.add_argument("-o", "--output", default=".", help="output directory (default: current)")
     parser.add_argument("--errors", help="errors file (default: the machine file's errors)")
+    parser.add_argument("--load", type=float, help="workpiece load in kg for the errors' stiffness changes "
+                                                   "(default: the errors' workpiece_load)")
     parser.add_argument("--samples", type=int, default=5, help="positions per axis for the budget grid")
     parser.add_argument("--plan", help="test plan (YAML or bundled name) to simulate, evaluate and identify from")
     parser.add_argument("--structure", help="structure model (YAML or bundled name) for the dynamics section")
@@ -479,7 +507,8 @@ def main(argv=None):
     try:
         path = build_report(args.machine, args.output, args.errors, args.samples,
                             progress=lambda s: print(s, file=sys.stderr, flush=True), plan=args.plan,
-                            structure=args.structure, compare=args.compare, positioning=args.positioning, components=args.component, plates=args.plate)
+                            structure=args.structure, compare=args.compare, positioning=args.positioning, components=args.component, plates=args.plate,
+                            load=args.load)
     except (InputError, UnreachablePose) as e:
         message = str(e)
         first = message.split(":", 1)[0]

@@ -128,6 +128,7 @@ Parameter findParameter(const Machine& machine, const ErrorModel& errors, const 
 
 ErrorModel singleError(const Machine& machine, const ErrorModel& shape, const Parameter& p, double value) {
   ErrorModel e = shape;
+  e.stiffness.clear();
   for (const auto& q : parameterCatalogue(machine, e)) setParameterValue(e, q, 0.0);
   setParameterValue(e, p, value);
   return e;

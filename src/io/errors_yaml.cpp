@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
+#include <string_view>
 
 #include "mtacc/core/input_error.hpp"
 #include "yaml_input.hpp"
@@ -87,8 +89,79 @@ PiecewiseTerm readPiecewise(const Context& ctx, const Axis& axis, const YAML::No
   return piecewiseFromIntervals(std::move(t), intervals, period, zero);
 }
 
+// A mass "<number> kg" within [0, 1e6] kg (above 0 when `positive`).
+double readLoad(const Context& ctx, const YAML::Node& node, const std::string& key, bool positive) {
+  const std::string text = yamlin::scalar(ctx, node, key);
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  const double load = std::strtod(begin, &end);
+  std::string_view unit(end, static_cast<size_t>(begin + text.size() - end));
+  while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
+  if (end == begin || unit != "kg") ctx.fail(node, key, "'" + text + "' is not a mass: expected e.g. '260 kg'");
+  if (!(load >= 0.0 && load <= 1e6) || (positive && load == 0.0))
+    ctx.fail(node, key, fmt::format("'{}' is not a load: expected {} to 1e6 kg", text, positive ? "above 0" : "0"));
+  return load;
+}
+
+// One `stiffness:` block (seed 003 §4.2): the change of component t over its axis's positions
+// and, with `with`, another axis's positions, measured under `load` (none: independent of the load).
+StiffnessError readStiffness(const Context& ctx, const Machine& m, const MotionComponent& t, const YAML::Node& v,
+                             const std::string& k, Dimension valueDim) {
+  yamlin::rejectUnknownKeys(ctx, v, k, {"load", "with", "unit", "positions", "with_positions", "values"});
+  StiffnessError s;
+  s.axis = t.axis;
+  s.component = t.component;
+  if (v["load"]) s.referenceLoad = readLoad(ctx, v["load"], k + ".load", true);
+  auto grid = [&](const YAML::Node& node, const std::string& key, const Axis& axis) {
+    if (!yamlin::isSequence(node) || node.size() < 2) ctx.fail(node ? node : v, key, "expected a list of at least two positions");
+    std::vector<double> p;
+    for (const auto& x : node) {
+      p.push_back(yamlin::quantity(ctx, x, key, axisDimension(axis)));
+      if (p.size() > 1 && !(p.back() > p[p.size() - 2])) ctx.fail(x, key, "positions must increase strictly");
+    }
+    return p;
+  };
+  s.positions = grid(v["positions"], k + ".positions", m.axes[static_cast<size_t>(t.axis)]);
+  if (v["with"]) {
+    const std::string other = yamlin::scalar(ctx, v["with"], k + ".with");
+    s.otherAxis = m.axisIndex(other);
+    if (s.otherAxis < 0 || !m.axes[static_cast<size_t>(s.otherAxis)].commanded())
+      ctx.fail(v["with"], k + ".with", "'" + other + "' is not a commanded axis of this machine");
+    if (s.otherAxis == t.axis)
+      ctx.fail(v["with"], k + ".with", "a change with the axis's own position belongs in its geometric error");
+    s.otherPositions = grid(v["with_positions"], k + ".with_positions", m.axes[static_cast<size_t>(s.otherAxis)]);
+  } else if (v["with_positions"]) {
+    ctx.fail(v["with_positions"], k + ".with_positions", "'with_positions' needs 'with' (the other axis)");
+  } else {
+    s.otherPositions = {0.0};
+  }
+  if (s.referenceLoad == 0.0 && s.otherAxis < 0)
+    ctx.fail(v, k, "a stiffness change needs 'load' (the workpiece load it was measured with), 'with' (another axis), or both");
+  const std::string unitText = v["unit"] ? yamlin::scalar(ctx, v["unit"], k + ".unit") : "";
+  const auto unit = parseQuantity("1 " + unitText);
+  if (!v["unit"] || !unit || unit->dimension != valueDim)
+    ctx.fail(v["unit"] ? v["unit"] : v, k + ".unit", std::string("expected the unit of the values, ") + withArticle(valueDim) + " such as " +
+                                                         (valueDim == Dimension::Angle ? "'arcsec'" : "'um'"));
+  const auto rows = v["values"];
+  const size_t columns = s.otherPositions.size();
+  if (!yamlin::isSequence(rows) || rows.size() != s.positions.size())
+    ctx.fail(rows ? rows : v, k + ".values", fmt::format("expected one {} per position ({})", columns > 1 ? "row" : "value", s.positions.size()));
+  s.values.resize(static_cast<Eigen::Index>(s.positions.size()), static_cast<Eigen::Index>(columns));
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const auto& row = rows[i];
+    if (columns > 1 && (!yamlin::isSequence(row) || row.size() != columns))
+      ctx.fail(row, k + ".values", fmt::format("expected a row of {} values, one per position of {}", columns, m.axes[static_cast<size_t>(s.otherAxis)].name));
+    for (size_t j = 0; j < columns; ++j) {
+      const double x = unit->value * yamlin::number(ctx, columns > 1 ? row[j] : row, k + ".values");
+      if (!(std::abs(x) <= largestMagnitude(valueDim))) ctx.fail(row, k + ".values", "value beyond the largest allowed");
+      s.values(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = x;
+    }
+  }
+  return s;
+}
+
 void readTerms(const Context& ctx, const Machine& m, const MotionComponent& t, const YAML::Node& node,
-               const std::string& key, ErrorFunction& f) {
+               const std::string& key, ErrorFunction& f, std::vector<StiffnessError>& stiffness) {
   const Axis& axis = m.axes[static_cast<size_t>(t.axis)];
   const Dimension valueDim = t.component < 3 ? Dimension::Length : Dimension::Angle;
   const Dimension posDim = axisDimension(axis);
@@ -96,7 +169,7 @@ void readTerms(const Context& ctx, const Machine& m, const MotionComponent& t, c
     f.add(PolynomialTerm{0.0, 1.0, {yamlin::quantity(ctx, node, key, valueDim)}});
     return;
   }
-  yamlin::rejectUnknownKeys(ctx, node, key, {"constant", "linear", "polynomial", "harmonics", "cyclic", "table", "reversal", "piecewise"});
+  yamlin::rejectUnknownKeys(ctx, node, key, {"constant", "linear", "polynomial", "harmonics", "cyclic", "table", "reversal", "piecewise", "stiffness"});
   for (const auto& kv : node) {
     const auto type = kv.first.as<std::string>();
     const auto& v = kv.second;
@@ -165,6 +238,12 @@ void readTerms(const Context& ctx, const Machine& m, const MotionComponent& t, c
       } else {
         f.add(readPiecewise(ctx, axis, v, k, valueDim, posDim));
       }
+    } else if (type == "stiffness") {
+      if (yamlin::isSequence(v)) {
+        for (const auto& block : v) stiffness.push_back(readStiffness(ctx, m, t, block, k, valueDim));
+      } else {
+        stiffness.push_back(readStiffness(ctx, m, t, v, k, valueDim));
+      }
     } else if (type == "reversal") {
       f.add(ReversalTerm{yamlin::quantity(ctx, v, k, valueDim)});
     }
@@ -179,11 +258,19 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
   const auto root = yamlin::loadText(yamlText, sourceName);
   ErrorModel model = ErrorModel::zero(machine);
   if (!root.IsMap()) ctx.fail(root, "", "expected a YAML mapping with an 'errors' key");
+  if (errorsKey == ErrorsKey::Required && root["base"]) {
+    if (yamlin::scalar(ctx, root["base"], "base") != "machine")
+      ctx.fail(root["base"], "base", "expected 'machine' (this file's errors add to the machine file's own)");
+    model = loadMachineErrors(machine);
+  }
+  auto loadDependent = [&] { return std::any_of(model.stiffness.begin(), model.stiffness.end(), [](const auto& s) { return s.referenceLoad > 0.0; }); };
+  const bool loadStated = loadDependent() || root["workpiece_load"];  // a base with load changes stated its load
   const auto errors = root["errors"];
   if (!errors && errorsKey == ErrorsKey::Required) ctx.fail(root, "errors", "an errors file needs an 'errors:' mapping");
+  if (root["workpiece_load"]) model.workpieceLoad = readLoad(ctx, root["workpiece_load"], "workpiece_load", false);
   if (!errors) return model;
   if (!errors.IsMap()) ctx.fail(errors, "errors", "expected a mapping of error names to values");
-  std::map<std::string, std::string> namedBy;  // parameter -> the key that gave it alone
+  std::map<std::string, std::string> namedBy;  // parameter or component -> the key that gave it alone
   for (const auto& kv : errors) {
     const auto name = kv.first.as<std::string>();
     const std::string key = "errors." + name;
@@ -192,9 +279,9 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
     const std::string& iso = terms[0].isoName;
     if (const auto target = findMotionComponent(machine, iso); target && terms.size() == 1) {
       auto& f = model.axes[static_cast<size_t>(target->axis)].motion[static_cast<size_t>(target->component)];
-      if (!f.empty()) ctx.fail(kv.first, key, "error given twice (" + iso + ")");
+      if (!namedBy.emplace(iso, name).second) ctx.fail(kv.first, key, "error given twice (" + iso + ")");
       if (terms[0].sign < 0) ctx.fail(kv.first, key, "a negated alias of a component error is not supported");
-      readTerms(ctx, machine, *target, kv.second, key, f);
+      readTerms(ctx, machine, *target, kv.second, key, f, model.stiffness);
       continue;
     }
     for (const auto& term : terms) {
@@ -213,6 +300,8 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
           term.sign * yamlin::quantity(ctx, kv.second, key, p.dimension);
     }
   }
+  if (loadDependent() && !loadStated)
+    ctx.fail(root, "workpiece_load", "stiffness changes measured under a load need the load of this state, e.g. 'workpiece_load: 260 kg'");
   return model;
 }
 

@@ -50,7 +50,8 @@ struct ChainOp {
   // cos(theta) - a sin(phase) sin(theta), with one sine and cosine per pose for a group whose
   // frequency is not an integer multiple of the one before it at the same zero, and the
   // multiple-angle product for one that is (the orders of a harmonic series);
-  // polynomial and piecewise terms with their component; reversal terms summed per component.
+  // polynomial and piecewise terms with their component; reversal terms summed per component;
+  // stiffness changes with their component, the joint of their other axis and their load factor.
   struct TableGroup {
     std::vector<double> positions;
     bool uniform = false;
@@ -77,6 +78,13 @@ struct ChainOp {
   std::vector<HarmonicGroup> harmonicGroups;
   std::vector<Polynomial> polynomials;
   std::vector<Piecewise> piecewise;
+  struct Stiffness {
+    int component = 0;
+    int otherJoint = -1;
+    double loadFactor = 1.0;
+    StiffnessError term;
+  };
+  std::vector<Stiffness> stiffness;
   Vec6 halfReversal = Vec6::Zero();  // per component: half the summed reversal widths
   bool sixTablesOnOneGrid = false;  // exactly one group holding components 0..5 in order, nothing else
 };
@@ -179,6 +187,7 @@ inline Vec6 motionComponents(const ChainOp& op, const double* q, const int* dir)
   }
   for (const auto& p : op.polynomials) c[p.component] += p.term.value(qa);
   for (const auto& p : op.piecewise) c[p.component] += p.term.value(qa);
+  for (const auto& s : op.stiffness) c[s.component] += s.loadFactor * s.term.value(qa, s.otherJoint >= 0 ? q[s.otherJoint] : 0.0);
   if (dir && op.joint >= 0 && dir[op.joint] != 0) c += dir[op.joint] > 0 ? op.halfReversal : Vec6(-op.halfReversal);
   return c;
 }

@@ -18,7 +18,7 @@ bool hasMotionErrors(const KinematicModel& m, int axis) {
   if (!m.withErrors) return false;
   for (const auto& f : m.errors.axes[static_cast<size_t>(axis)].motion)
     if (!f.empty()) return true;
-  return false;
+  return std::any_of(m.errors.stiffness.begin(), m.errors.stiffness.end(), [&](const auto& s) { return s.axis == axis; });
 }
 
 std::vector<ChainElement> buildChain(const Machine& machine, const std::vector<int>& indices, double sign) {
@@ -65,7 +65,7 @@ void orderHarmonicGroups(std::vector<ChainOp::HarmonicGroup>& groups) {
   }
 }
 
-ChainOp motionErrorOp(const ErrorModel& errors, const ChainElement& e) {
+ChainOp motionErrorOp(const Machine& machine, const ErrorModel& errors, const ChainElement& e) {
   ChainOp op;
   op.kind = ChainOp::MotionError;
   op.joint = e.joint;
@@ -116,8 +116,14 @@ ChainOp motionErrorOp(const ErrorModel& errors, const ChainElement& e) {
       for (int power = 0; power < 4; ++power)
         for (const TableTerm* t : tables[g]) group.coefficients.push_back(t->cubic[i][static_cast<size_t>(power)]);
   }
+  for (const auto& s : errors.stiffness) {
+    if (s.axis != e.axis) continue;
+    const int otherJoint = s.otherAxis >= 0 && machine.axes[static_cast<size_t>(s.otherAxis)].commanded() ? s.otherAxis : -1;
+    op.stiffness.push_back({s.component, otherJoint, s.loadFactor(errors.workpieceLoad), s});
+  }
   orderHarmonicGroups(op.harmonicGroups);
-  op.sixTablesOnOneGrid = op.harmonicGroups.empty() && op.polynomials.empty() && op.piecewise.empty() && op.halfReversal.isZero(0.0) &&
+  op.sixTablesOnOneGrid = op.harmonicGroups.empty() && op.polynomials.empty() && op.piecewise.empty() && op.stiffness.empty() &&
+                          op.halfReversal.isZero(0.0) &&
                           op.tableGroups.size() == 1 &&
                           op.tableGroups[0].components == std::vector<int>{0, 1, 2, 3, 4, 5};
   return op;
@@ -158,7 +164,7 @@ ChainProgram buildProgram(const KinematicModel& m, const ChainPrograms& c, const
       pushMarker(Markers::ErrorFrames, Hook::ErrorFrame, e.axis);
       if (motion) {
         pushMarker(Markers::Hooks, Hook::Motion, e.axis);
-        ops.push_back(motionErrorOp(m.errors, e));
+        ops.push_back(motionErrorOp(*m.machine, m.errors, e));
         pushMarker(Markers::Hooks, Hook::Motion, e.axis);
       }
       pushConstant(translation(-e.location));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <random>
 #include <stdexcept>
 
@@ -38,6 +39,7 @@ ComponentRuns simulateComponentRuns(const AxisErrors& axis, int component, const
       v += rotation.cross(spec.abbeOffset)[component];
     }
     v += spec.noise * noise(rng);
+    if (spec.settlingOffset != 0.0) v += spec.settlingOffset * std::exp(-time / spec.settlingTime);
     if (time >= nextDisturbance) {
       v += spec.disturbanceAmplitude;
       nextDisturbance += spec.disturbanceInterval;
@@ -57,6 +59,16 @@ ComponentRuns simulateComponentRuns(const AxisErrors& axis, int component, const
   return r;
 }
 
+ComponentRuns withoutRuns(const ComponentRuns& r, const std::vector<int>& left) {
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index j = 0; j < r.forward.cols(); ++j)
+    if (std::find(left.begin(), left.end(), static_cast<int>(j)) == left.end()) kept.push_back(j);
+  const bool timed = r.forwardTime.size() > 0;
+  return {r.positions, r.forward(Eigen::all, kept), r.backward(Eigen::all, kept),
+          timed ? Eigen::MatrixXd(r.forwardTime(Eigen::all, kept)) : Eigen::MatrixXd(),
+          timed ? Eigen::MatrixXd(r.backwardTime(Eigen::all, kept)) : Eigen::MatrixXd()};
+}
+
 ComponentCurve averageRuns(const ComponentRuns& r) {
   ComponentCurve c;
   c.positions = r.positions;
@@ -69,22 +81,52 @@ ComponentCurve averageRuns(const ComponentRuns& r) {
   return c;
 }
 
-Disturbances findDisturbances(const ComponentRuns& r, double threshold) {
+namespace {
+
+// Each reading's departure from the mean of the runs `kept` at its position and direction.
+std::vector<DisturbedReading> departures(const ComponentRuns& r, const std::vector<Eigen::Index>& kept) {
   std::vector<DisturbedReading> all;
   const bool timed = r.forwardTime.size() > 0;
   for (const bool forward : {true, false}) {
     const Eigen::MatrixXd& m = forward ? r.forward : r.backward;
-    const Eigen::VectorXd mean = m.rowwise().mean();
+    const Eigen::VectorXd mean = m(Eigen::all, kept).rowwise().mean();
     for (Eigen::Index i = 0; i < m.rows(); ++i)
-      for (Eigen::Index j = 0; j < m.cols(); ++j)
+      for (const Eigen::Index j : kept)
         all.push_back({static_cast<int>(j), forward, r.positions[static_cast<size_t>(i)], m(i, j) - mean[i],
                        timed ? (forward ? r.forwardTime : r.backwardTime)(i, j) : std::numeric_limits<double>::quiet_NaN()});
   }
+  return all;
+}
+
+double robustSigmaOf(const std::vector<DisturbedReading>& all) {
   std::vector<double> sizes;
   for (const auto& d : all) sizes.push_back(std::abs(d.departure));
-  const double robustSigma = 1.4826 * median(sizes);
+  return 1.4826 * median(sizes);
+}
+
+}  // namespace
+
+Disturbances findDisturbances(const ComponentRuns& r, double threshold) {
   Disturbances out;
+  std::vector<Eigen::Index> kept(static_cast<size_t>(r.forward.cols()));
+  std::iota(kept.begin(), kept.end(), Eigen::Index{0});
+  const auto everyRun = departures(r, kept);
+  const double readingSigma = robustSigmaOf(everyRun);
+  if (!(readingSigma > 0.0)) return out;
+  std::vector<double> runMeans(kept.size(), 0.0);
+  for (const auto& d : everyRun) runMeans[static_cast<size_t>(d.run)] += d.departure / static_cast<double>(2 * r.forward.rows());
+  const double settled = median(runMeans);
+  std::vector<double> spread;
+  for (double m : runMeans) spread.push_back(std::abs(m - settled));
+  const double runSigma = std::max(1.4826 * median(spread), readingSigma / std::sqrt(static_cast<double>(2 * r.forward.rows())));
+  for (size_t j = 0; j < runMeans.size() && std::abs(runMeans[j] - settled) > threshold * runSigma; ++j)
+    out.unsettledRuns.push_back(static_cast<int>(j));
+  // Single readings are judged among the settled runs only, so that a drift is not read as peaks.
+  kept.erase(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(std::min(out.unsettledRuns.size(), kept.size() - 2)));
+  const auto all = departures(r, kept);
+  const double robustSigma = robustSigmaOf(all);
   if (!(robustSigma > 0.0)) return out;
+  const bool timed = r.forwardTime.size() > 0;
   for (const auto& d : all)
     if (std::abs(d.departure) > threshold * robustSigma) out.readings.push_back(d);
   if (timed && out.readings.size() >= 3) {

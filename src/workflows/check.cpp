@@ -49,6 +49,8 @@ nlohmann::json toJson(const MachineCheck& c) {
   }
   j["parameters"] = nlohmann::json::array();
   for (const auto& p : c.parameters) j["parameters"].push_back(p.name);
+  j["stiffness_changes"] = c.setup.errors.stiffness.size();
+  j["workpiece_load_kg"] = c.setup.errors.workpieceLoad;
   j["parameter_count"] = c.parameters.size();
   j["location_parameter_count"] = c.locationCount;
   j["valid"] = true;

@@ -86,6 +86,13 @@ ComponentFitStudy fitComponentFile(const MachineSetup& setup, const ComponentFit
     }
     s.corrections.push_back(fmt::format("{} disturbed reading(s) left out of the means", s.disturbances.readings.size()));
   }
+  if (r.removeDisturbed && !s.disturbances.unsettledRuns.empty()) {
+    if (s.disturbances.unsettledRuns.size() + 2 > static_cast<size_t>(runs.forward.cols()))
+      throw InputError(InputLocation{r.file, 0, "run"}, fmt::format("{} of the {} runs have not settled: fewer than two would be left",
+                                                                     s.disturbances.unsettledRuns.size(), runs.forward.cols()));
+    runs = withoutRuns(runs, s.disturbances.unsettledRuns);
+    s.corrections.push_back(fmt::format("the first {} run(s), not yet settled, left out", s.disturbances.unsettledRuns.size()));
+  }
   s.curve = averageRuns(runs);
   ComponentFitOptions o;
   o.breaks = chooseBreaks(axis, runs.positions, r);
@@ -124,17 +131,20 @@ ComponentRunsFile simulateComponentFile(const MachineSetup& setup, const Compone
   if (!(r.step > 0.0) || (hi - lo) / (r.step * unit) > 100000) fail("step", "a positive step, at most 100000 positions over the travel");
   if (r.runs < 2 || r.runs > 1000) fail("runs", "from 2 to 1000 runs");
   if (!(r.readingTime > 0.0) || !(r.disturbanceInterval > 0.0)) fail("reading-time", "times must be positive");
+  if (!(r.settlingTime > 0.0 && r.settlingTime <= 1e9)) fail("settling-time", "seconds, above 0 and at most 1e9");
   if (c->component >= 3 && !r.abbeOffset.isZero()) fail("abbe-offset", "an Abbe offset applies to a translation component");
   ComponentRunsSpec spec;
   for (double x = lo; x <= hi + 1e-9 * std::max(1.0, std::abs(hi)); x += r.step * unit) spec.positions.push_back(std::min(x, hi));
   if (spec.positions.size() < 2) fail("step", "the step leaves fewer than two positions on the travel");
   spec.runs = r.runs;
-  spec.noise = parseQuantityAs(r.noise, dim, "noise");
+  spec.noise = r.noise.empty() ? 0.0 : parseQuantityAs(r.noise, dim, "noise");
   if (!(spec.noise >= 0.0)) fail("noise", "must not be negative");
   spec.abbeOffset = r.abbeOffset;
   spec.readingTime = r.readingTime;
   if (!r.disturbance.empty()) spec.disturbanceAmplitude = parseQuantityAs(r.disturbance, dim, "disturbance");
   spec.disturbanceInterval = r.disturbanceInterval;
+  if (!r.settling.empty()) spec.settlingOffset = parseQuantityAs(r.settling, dim, "settling");
+  spec.settlingTime = r.settlingTime;
   spec.seed = r.seed;
   ComponentRunsFile f;
   f.file = r.output;
@@ -200,8 +210,11 @@ nlohmann::json toJson(const ComponentFitStudy& s) {
   for (const auto& d : s.disturbances.readings)
     flags.push_back({{"run", d.run + 1}, {"direction", d.forward ? "forward" : "backward"}, {"position", d.position * pos},
                      {"departure", d.departure * val}, {"time_s", std::isnan(d.time) ? nlohmann::json(nullptr) : nlohmann::json(d.time)}});
+  nlohmann::json unsettled = nlohmann::json::array();
+  for (int run : s.disturbances.unsettledRuns) unsettled.push_back(run + 1);
   j["disturbances"] = {{"readings", flags},
-                       {"interval_s", s.disturbances.interval ? nlohmann::json(*s.disturbances.interval) : nlohmann::json(nullptr)}};
+                       {"interval_s", s.disturbances.interval ? nlohmann::json(*s.disturbances.interval) : nlohmann::json(nullptr)},
+                       {"unsettled_runs", unsettled}};
   j["yaml"] = s.yaml;
   return j;
 }

@@ -14,6 +14,11 @@ MachineSetup loadMachineSetup(const MachineSource& source) {
   else if (!source.alignment.empty()) throw InputError(InputLocation{"", 0, "alignment"}, "expected 'table' or 'machine'");
   auto machine = std::make_shared<const Machine>(std::move(loaded));
   ErrorModel errors = source.errorsFile.empty() ? loadMachineErrors(*machine) : loadErrors(*machine, source.errorsFile);
+  if (source.load) {
+    if (!(*source.load >= 0.0 && *source.load <= 1e6))
+      throw InputError(InputLocation{"", 0, "load"}, "the workpiece load must lie in 0 to 1e6 kg");
+    errors.workpieceLoad = *source.load;
+  }
   return {machine, std::move(errors)};
 }
 

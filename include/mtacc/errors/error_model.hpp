@@ -10,6 +10,7 @@
 #include "mtacc/core/transform.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/errors/error_function.hpp"
+#include "mtacc/errors/stiffness_error.hpp"
 #include "mtacc/machine/machine.hpp"
 
 namespace mtacc {
@@ -26,6 +27,10 @@ struct AxisErrors {
 
 struct ErrorModel {
   std::vector<AxisErrors> axes;  // indexed like Machine::axes
+  // Changes of component errors with another axis's position or the workpiece load (not
+  // parameters: measured, then held fixed), and the load on the table in this state (kg).
+  std::vector<StiffnessError> stiffness;
+  double workpieceLoad = 0.0;
   static ErrorModel zero(const Machine& machine);
 };
 
@@ -60,7 +65,8 @@ std::vector<Parameter> parameterCatalogue(const Machine& machine, const ErrorMod
 std::vector<Parameter> nonZeroParameters(const Machine& machine, const ErrorModel& errors);
 
 double parameterValue(const ErrorModel& errors, const Parameter& p);
-// `shape` with every parameter zero except p, which is set to value (one error alone).
+// `shape` with every parameter zero except p, which is set to value, and no stiffness
+// changes (one error alone).
 ErrorModel singleError(const Machine& machine, const ErrorModel& shape, const Parameter& p, double value);
 void setParameterValue(ErrorModel& errors, const Parameter& p, double value);
 // Looks a parameter up by ISO name or alias (see aliases.hpp); throws InputError (key: the

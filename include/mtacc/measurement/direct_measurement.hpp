@@ -31,12 +31,15 @@ struct ComponentCurve {
   Eigen::VectorXd scatter;  // per position: standard deviation of one reading about its direction's mean
 };
 ComponentCurve averageRuns(const ComponentRuns& runs);
+// The runs without the given ones (indices into the columns).
+ComponentRuns withoutRuns(const ComponentRuns& runs, const std::vector<int>& left);
 
 // Direct-measurement runs of one component simulated from an axis's error functions: `runs`
 // passes forward (positions ascending) and backward, one reading every `readingTime` seconds,
 // each the component at the carriage centroid, plus (for a translation) the rotations' Abbe
 // term (rotation x abbeOffset), Gaussian noise, and a disturbance of `disturbanceAmplitude` for
-// one reading every `disturbanceInterval` seconds (the lubrication pump), if any.
+// one reading every `disturbanceInterval` seconds (the lubrication pump), if any, and a settling
+// drift `settlingOffset * exp(-t / settlingTime)` on every reading at time t, if any.
 struct ComponentRunsSpec {
   std::vector<double> positions;
   int runs = 20;
@@ -44,13 +47,19 @@ struct ComponentRunsSpec {
   Vec3 abbeOffset = Vec3::Zero();
   double readingTime = 6.0;
   double disturbanceAmplitude = 0.0, disturbanceInterval = 1800.0;
+  double settlingOffset = 0.0, settlingTime = 600.0;
   std::uint64_t seed = 1;
 };
 ComponentRuns simulateComponentRuns(const AxisErrors& axis, int component, const ComponentRunsSpec& spec);
 
 // A reading far from the others at its position and direction (beyond `threshold` robust
 // standard deviations of all such departures), and whether such readings recur at a steady
-// interval (seed 003's lubrication-pump peaks every 30 min, L2500-2510).
+// interval (seed 003's lubrication-pump peaks every 30 min, L2500-2510). Unsettled runs: the
+// runs at the start of the measurement whose mean departure from the others (both directions)
+// lies beyond `threshold` robust standard deviations of the run means (at least the reading
+// scatter over the square root of the readings per run) from their median: the machine or the
+// instrument still drifting. Seed 003's program waits for each reading to settle (L2347-2351);
+// this finds whole runs that did not.
 struct DisturbedReading {
   int run;
   bool forward;
@@ -59,6 +68,7 @@ struct DisturbedReading {
 struct Disturbances {
   std::vector<DisturbedReading> readings;
   std::optional<double> interval;  // s: the median spacing when at least 3 recur within 10 % of it
+  std::vector<int> unsettledRuns;  // leading runs, from 0
 };
 Disturbances findDisturbances(const ComponentRuns& runs, double threshold = 5.0);
 

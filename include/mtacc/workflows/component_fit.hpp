@@ -26,7 +26,7 @@ struct ComponentFitRequest {
   std::optional<double> period = std::nullopt;  // mm or deg
   double periodZero = 0.0;                      // mm or deg
   double disturbanceThreshold = 5.0;  // robust standard deviations
-  bool removeDisturbed = false;       // leave the flagged readings out of the means
+  bool removeDisturbed = false;       // leave the flagged readings and unsettled runs out of the means
 };
 
 struct ComponentFitStudy {
@@ -54,12 +54,14 @@ struct ComponentSimulationRequest {
   std::string output = "";
   double step = 10.0;          // mm or deg, over the axis travel (one turn for a continuous axis)
   int runs = 20;
-  std::string noise = "0 um";  // one reading's standard deviation, a length or an angle as the component
+  std::string noise = "";  // one reading's standard deviation, a length or an angle as the component; empty: none
   Vec3 abbeOffset = Vec3::Zero();  // mm, translations only
   std::string instrument = "";
   double readingTime = 6.0;    // s per reading
   std::string disturbance = "";  // e.g. "1.5 arcsec": one reading that high every `disturbanceInterval`
   double disturbanceInterval = 1800.0;  // s
+  std::string settling = "";      // e.g. "2 arcsec": a drift of that size at the start, decaying
+  double settlingTime = 600.0;    // s: its time constant
   std::uint64_t seed = 1;
 };
 ComponentRunsFile simulateComponentFile(const MachineSetup& setup, const ComponentSimulationRequest& request);

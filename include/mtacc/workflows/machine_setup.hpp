@@ -1,8 +1,9 @@
 #pragma once
 // What every machine workflow starts from: a machine description and its errors, loaded from
-// the machine file (a path or a bundled name), an optional errors file and an optional
-// workpiece alignment. The JSON helpers write poses and vectors the same way in every result.
+// the machine file (a path or a bundled name), an optional errors file, an optional
+// workpiece alignment and an optional workpiece load. The JSON helpers write poses and vectors the same way in every result.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@ struct MachineSource {
   std::string machine;     // file, or the name of a bundled machine
   std::string errorsFile;  // empty: the machine file's own `errors:`
   std::string alignment;   // "table", "machine", or empty for the machine file's choice
+  std::optional<double> load;  // workpiece load (kg), in place of the errors' `workpiece_load`
 };
 
 struct MachineSetup {
