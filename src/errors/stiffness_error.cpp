@@ -14,8 +14,10 @@ std::pair<Eigen::Index, double> linearWeight(const std::vector<double>& grid, do
 }  // namespace
 
 double StiffnessError::value(double q, double qOther) const {
-  const auto [i, s] = linearWeight(positions, q);
-  auto column = [&](Eigen::Index j) { return (1.0 - s) * values(i, j) + s * values(i + 1, j); };
+  const auto own = linearWeight(positions, q);
+  auto column = [&](Eigen::Index j) {
+    return (1.0 - own.second) * values(own.first, j) + own.second * values(own.first + 1, j);
+  };
   if (otherPositions.size() < 2) return column(0);
   const auto [j, t] = linearWeight(otherPositions, qOther);
   return (1.0 - t) * column(j) + t * column(j + 1);
