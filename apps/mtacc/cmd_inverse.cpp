@@ -12,7 +12,7 @@ namespace {
 
 struct InverseCliOptions : MachineOptions {
   std::string tcp, tool = "0,0,1", targetsFile, branch = "auto";
-  bool all = false;
+  bool all = false, withErrors = false;
 };
 
 void run(const InverseCliOptions& o) {
@@ -23,6 +23,7 @@ void run(const InverseCliOptions& o) {
   InverseRequest request;
   request.options.branch = parseTiltBranch(o.branch);
   request.all = o.all;
+  request.withErrors = o.withErrors;
   if (!o.tcp.empty()) {
     request.positions.push_back(parseVector(o.tcp, "--tcp"));
     request.directions.push_back(parseVector(o.tool, "--tool"));
@@ -47,6 +48,20 @@ void run(const InverseCliOptions& o) {
     human += formatPose(m, s.q.data()) + "   " + notes + "\n";
     csv += poseCsv(m, s.q.data()) + fmt::format("{},{}\n", s.singular ? 1 : 0, s.withinTravel ? 1 : 0);
   }
+  if (!r.withErrors.empty()) {
+    human = poseHeader(m) + "   residual um, urad; notes\n";
+    csv = poseCsvHeader(m) + "position_residual_um,direction_residual_urad,converged,singular,within_travel\n";
+  }
+  for (const auto& s : r.withErrors) {
+    std::string notes = s.converged ? "" : "not converged; ";
+    if (s.singular) notes += "near a singular orientation: the position reached, the direction not corrected; ";
+    if (!s.directionControlled) notes += "direction not corrected (fewer than two rotary axes); ";
+    notes += s.travelViolation;
+    const double position = toDisplay(s.positionResidual, Dimension::Length), direction = toDisplay(s.directionResidual, Dimension::Angle);
+    human += formatPose(m, s.q.data()) + fmt::format("   {:.2e}, {:.2e}; {}\n", position, direction, notes);
+    csv += poseCsv(m, s.q.data()) + fmt::format("{},{},{},{},{}\n", position, direction, s.converged ? 1 : 0, s.singular ? 1 : 0,
+                                                 s.travelViolation.empty() ? 1 : 0);
+  }
   emit(o, toJson(r), human, csv);
 }
 
@@ -60,6 +75,9 @@ void addInverseCommand(CLI::App& app) {
   cmd->add_option("--tool", o->tool, "tool direction i,j,k (TCP towards spindle), default 0,0,1");
   cmd->add_option("--targets", o->targetsFile, "CSV with columns x,y,z,i,j,k: solved as a continuous path");
   cmd->add_option("--branch", o->branch, "tilt branch of the first pose: auto, positive or negative");
+  cmd->add_flag("--with-errors", o->withErrors,
+                "the commands that reach the pose on the machine with its errors (the inverse error model), with the "
+                "residual");
   cmd->add_flag("--all", o->all, "list every solution of a single target (including those beyond travel)");
   cmd->callback([o] { run(*o); });
 }

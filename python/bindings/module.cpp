@@ -144,18 +144,22 @@ PYBIND11_MODULE(_mtacc, mod) {
         return py::make_tuple(toArray(r.error.leftCols<3>(), 1e3), toArray(r.error.rightCols<3>(), 1e6));
       })
       .def("ik", [](const MachineSetup& s, const std::vector<std::vector<double>>& tcps, const std::vector<std::vector<double>>& tools,
-                    const std::string& branch, bool all) {
+                    const std::string& branch, bool all, bool withErrors) {
         InverseRequest request;
+        request.withErrors = withErrors;
         for (const auto& p : tcps) request.positions.push_back(vec3(p, "tcp"));
         for (const auto& t : tools) request.directions.push_back(vec3(t, "tool"));
         request.options.branch = parseTiltBranch(branch);
         request.all = all;
         const auto r = inverseKinematics(s, request);
-        JointMatrix q(static_cast<Eigen::Index>(r.solutions.size()), s.machine->commandedCount());
-        for (size_t i = 0; i < r.solutions.size(); ++i)
+        std::vector<const std::vector<double>*> rows;
+        for (const auto& solution : r.solutions) rows.push_back(&solution.q);
+        for (const auto& solution : r.withErrors) rows.push_back(&solution.q);
+        JointMatrix q(static_cast<Eigen::Index>(rows.size()), s.machine->commandedCount());
+        for (size_t i = 0; i < rows.size(); ++i)
           for (int k = 0; k < q.cols(); ++k)
-            q(static_cast<Eigen::Index>(i), k) = s.machine->axes[static_cast<size_t>(k)].isRotary() ? r.solutions[i].q[static_cast<size_t>(k)] / kDeg
-                                                                                          : r.solutions[i].q[static_cast<size_t>(k)];
+            q(static_cast<Eigen::Index>(i), k) = s.machine->axes[static_cast<size_t>(k)].isRotary() ? (*rows[i])[static_cast<size_t>(k)] / kDeg
+                                                                                                     : (*rows[i])[static_cast<size_t>(k)];
         return py::make_tuple(toPython(toJson(r)), toArray(q));
       })
       .def("jacobian", [](const MachineSetup& s, const Array& q, const std::vector<std::string>& names) {

@@ -116,14 +116,17 @@ class Machine:
         position, orientation = self._core.fk(self._q(q), directions, False, True, threads)
         return np.hstack([position, orientation])
 
-    def ik(self, tcp, tool=(0, 0, 1), branch="auto", all=False):
-        """Solutions for one TCP [mm] and tool direction, as `mtacc ik --json` lists them."""
-        result, _ = self._core.ik([list(map(float, tcp))], [list(map(float, tool))], branch, all)
+    def ik(self, tcp, tool=(0, 0, 1), branch="auto", all=False, with_errors=False):
+        """Solutions for one TCP [mm] and tool direction, as `mtacc ik --json` lists them; with_errors: the
+        commands that reach the pose on the machine with its errors (the inverse error model), with the
+        nominal pose it started from and the residual (um, urad)."""
+        result, _ = self._core.ik([list(map(float, tcp))], [list(map(float, tool))], branch, all, with_errors)
         return result["solutions"]
 
-    def ik_path(self, tcps, tools, branch="auto"):
-        """Axis positions (n, axes) [mm, deg] along a continuous path."""
-        _, q = self._core.ik(np.asarray(tcps, float).tolist(), np.asarray(tools, float).tolist(), branch, False)
+    def ik_path(self, tcps, tools, branch="auto", with_errors=False):
+        """Axis positions (n, axes) [mm, deg] along a continuous path; with_errors: on the machine with its
+        errors (as `ik`)."""
+        _, q = self._core.ik(np.asarray(tcps, float).tolist(), np.asarray(tools, float).tolist(), branch, False, with_errors)
         return q
 
     def jacobian(self, q, params=None):

@@ -64,9 +64,23 @@ InverseResult inverseKinematics(const MachineSetup& setup, const InverseRequest&
       throw InputError(where(i, "tool"), "the tool direction has zero length");
   }
   const auto nominal = setup.nominal();
-  InverseResult out{setup.machine, {}};
+  InverseResult out{setup.machine, {}, {}};
   try {
-    if (request.all && request.positions.size() == 1)
+    if (request.withErrors) {
+      if (request.all) throw InputError(InputLocation{"", 0, "all"}, "every solution is listed for the nominal machine only, not with its errors");
+      const auto actual = setup.actual();
+      ErrorIkOptions o;
+      o.ik = request.options;
+      for (size_t i = 0; i < request.positions.size(); ++i) {
+        try {
+          out.withErrors.push_back(solveIkWithErrors(actual, nominal, request.positions[i], request.directions[i], o));
+        } catch (const UnreachablePose& e) {
+          throw UnreachableTarget(i, e.what());
+        }
+        o.ik.hint = out.withErrors.back().q;
+        o.ik.branch = TiltBranch::Auto;
+      }
+    } else if (request.all && request.positions.size() == 1)
       out.solutions = inverseKinematics(nominal, request.positions[0], request.directions[0], request.options).solutions;
     else
       out.solutions = solveIkPath(nominal, request.positions, request.directions, request.options);
@@ -86,6 +100,17 @@ nlohmann::json toJson(const InverseResult& r) {
                               {"singular", s.singular},
                               {"free_axis", s.singularAxis},
                               {"within_travel", s.withinTravel},
+                              {"travel_violation", s.travelViolation}});
+  for (const auto& s : r.withErrors)
+    j["solutions"].push_back({{"pose", poseJson(*r.machine, s.q.data())},
+                              {"nominal_pose", poseJson(*r.machine, s.nominalQ.data())},
+                              {"position_residual_um", toDisplay(s.positionResidual, Dimension::Length)},
+                              {"direction_residual_urad", toDisplay(s.directionResidual, Dimension::Angle)},
+                              {"direction_controlled", s.directionControlled},
+                              {"iterations", s.iterations},
+                              {"converged", s.converged},
+                              {"singular", s.singular},
+                              {"within_travel", s.travelViolation.empty()},
                               {"travel_violation", s.travelViolation}});
   return j;
 }

@@ -42,6 +42,26 @@ def test_ik(cli):
     assert data["solutions"] == py
 
 
+def test_ik_with_errors(cli):
+    # The inverse error model: the same commands from both, and with them the machine with its
+    # errors puts the TCP where it was asked (fk of the actual machine), where the nominal
+    # commands miss by the machine's error there.
+    machine = mtacc.Machine("maho")
+    py = machine.ik([100, -300, 50], [0.3, -1, 0], with_errors=True)
+    data = run_json(cli, "ik", "maho", "--tcp", "100,-300,50", "--tool", "0.3,-1,0", "--with-errors")
+    assert data["solutions"] == py
+    s = py[0]
+    assert s["converged"] and not s["singular"] and s["direction_controlled"]
+    names = machine.axis_names
+    q = np.array([[s["pose"][n] for n in names], [s["nominal_pose"][n] for n in names]])
+    tcp, tool = machine.fk(q)
+    np.testing.assert_allclose(tcp[0], [100, -300, 50], atol=1e-9)
+    np.testing.assert_allclose(tool[0], np.array([0.3, -1, 0]) / np.linalg.norm([0.3, -1, 0]), atol=1e-12)
+    assert np.linalg.norm(tcp[1] - [100, -300, 50]) > 1e-3
+    path = machine.ik_path([[100, -300, 50], [110, -300, 50]], [[0.3, -1, 0], [0.3, -1, 0]], with_errors=True)
+    np.testing.assert_allclose(path[0], q[0], atol=1e-12)
+
+
 def test_budget(cli):
     machine = mtacc.Machine("tilting-table")
     py = machine.budget(samples=4)

@@ -9,6 +9,7 @@
 #include "mtacc/core/parallel.hpp"
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/kinematics/inverse.hpp"
+#include "mtacc/kinematics/inverse_with_errors.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
 namespace mtacc {
@@ -40,6 +41,7 @@ struct InverseRequest {
   std::vector<Vec3> directions;  // tool direction (TCP towards spindle)
   IkOptions options;
   bool all = false;              // every solution of a single target, those beyond travel included
+  bool withErrors = false;       // the commands for the machine with its errors (the inverse error model)
   // Where the targets come from, for messages: a file and each target's line; otherwise a
   // single target is named by the keys "tcp" and "tool", several by their number.
   std::string file;
@@ -48,10 +50,13 @@ struct InverseRequest {
 
 struct InverseResult {
   std::shared_ptr<const Machine> machine;
-  std::vector<IkSolution> solutions;
+  std::vector<IkSolution> solutions;          // nominal machine
+  std::vector<ErrorIkSolution> withErrors;    // withErrors: one per target instead
 };
 
-// A single target: its preferred solution (or all); several: one continuous path.
+// A single target: its preferred solution (or all); several: one continuous path. With
+// withErrors, each target's commands on the machine with its errors, started from the nominal
+// solution (the previous target's commands as the hint along a path).
 InverseResult inverseKinematics(const MachineSetup& setup, const InverseRequest& request);
 nlohmann::json toJson(const InverseResult& result);
 

@@ -1,0 +1,47 @@
+#pragma once
+// The inverse error model: the axis commands that put the tool at a wanted pose on the machine
+// with its errors (the step before compensation, issue 17). Newton's method on the exact
+// model, started from the nominal inverse kinematics, with the Jacobian of the model with its
+// errors taken at the start by central differences (the errors change it by their own small
+// relative size, so the iteration converges at that rate per step). Machines with two rotary
+// axes get position and tool direction; the others the position only, their direction error
+// reported as what cannot be corrected.
+#include <string>
+#include <vector>
+
+#include "mtacc/kinematics/inverse.hpp"
+#include "mtacc/kinematics/kinematic_model.hpp"
+
+namespace mtacc {
+
+struct ErrorIkOptions {
+  IkOptions ik;                      // branch and hint of the nominal start
+  double positionTolerance = 1e-9;   // mm
+  double directionTolerance = 1e-12; // rad
+  int maxIterations = 20;
+  // A direction of the commands whose singular value lies below this share of the largest is not
+  // used: the pose is singular. The Jacobian is scaled so that this is about the sine of the
+  // angle between the tool and the rotary axis that cannot turn it there (1e-2: 0.6 deg, where
+  // a direction error of 1e-4 rad would need 0.6 deg of the other rotary axis).
+  double singularRatio = 1e-2;
+};
+
+struct ErrorIkSolution {
+  std::vector<double> q;           // mm, rad
+  std::vector<double> nominalQ;    // the nominal IK's commands it started from
+  double positionResidual = 0.0;   // mm: |TCP(q) - wanted|
+  double directionResidual = 0.0;  // rad: angle between the tool direction at q and the wanted one
+  int iterations = 0;
+  bool converged = false;          // within the tolerances of what it controls (the position alone when singular)
+  bool directionControlled = true; // false with fewer than two rotary axes
+  bool singular = false;           // near a singular orientation (singularRatio): the direction is given up,
+                                   // the position reached, and directionResidual says how far off it is
+  std::string travelViolation;     // empty when q is within travel
+};
+
+// `actual` compiled with the errors, `nominal` without; position and direction in the workpiece
+// frame. Throws UnreachablePose when the nominal IK cannot reach the pose.
+ErrorIkSolution solveIkWithErrors(const KinematicModel& actual, const KinematicModel& nominal, const Vec3& position,
+                                  const Vec3& toolDirection, const ErrorIkOptions& options = {});
+
+}  // namespace mtacc
