@@ -32,16 +32,14 @@ void run(const StiffnessOptions& o) {
                                  ? "independent of the load"
                                  : fmt::format("measured under {:g} kg, scaled x{:.3g}", t["reference_load_kg"].get<double>(),
                                                t["load_factor"].get<double>());
-    double largest = 0.0;
     for (size_t i = 0; i < t["positions"].size(); ++i)
       for (size_t k = 0; k < t["values"][i].size(); ++k) {
         const double v = t["values"][i][k];
-        largest = std::max(largest, std::abs(v));
         csv += fmt::format("{},{},{},{},{},{},{}\n", t["error"].get<std::string>(), t["axis"].get<std::string>(),
                            with ? t["with"].get<std::string>() : "", t["positions"][i].get<double>(),
                            with ? fmt::format("{}", t["with_positions"][k].get<double>()) : "", v, t["unit"].get<std::string>());
       }
-    human += fmt::format("  {:<5} along {:<8} {:<40} largest {:.3f} {}\n", t["error"].get<std::string>(), along, load, largest,
+    human += fmt::format("  {:<5} along {:<8} {:<40} largest {:.3f} {}\n", t["error"].get<std::string>(), along, load, t["largest"].get<double>(),
                          t["unit"].get<std::string>());
   }
   human += fmt::format("Largest TCP position error over {} poses ({} per axis):\n", summary.poses, summary.samplesPerAxis);

@@ -309,7 +309,7 @@ def stiffness_section(result):
     out += table(["change", "along", "measured under", "scale here", "largest change"],
                  [[t["error"], t["axis"] + (f" and {t['with']}" if t["with"] else ""),
                    "no load dependence" if t["reference_load_kg"] is None else f"{t['reference_load_kg']:g} kg",
-                   f"{t['load_factor']:.3g}", f"{np.abs(np.asarray(t['values'])).max():.3f} {t['unit']}"]
+                   f"{t['load_factor']:.3g}", f"{t['largest']:.3f} {t['unit']}"]
                   for t in result["terms"]], left=2)
     out += table(["largest TCP position error", "µm", "at"],
                  [[label, f"{largest[key]['um']:.3f}", fmt_pose(largest[key]["pose"])]

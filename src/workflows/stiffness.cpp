@@ -76,6 +76,7 @@ nlohmann::json toJson(const StiffnessSummary& s) {
                           {"with", t.otherAxis >= 0 ? nlohmann::json(m.axes[static_cast<size_t>(t.otherAxis)].name) : nlohmann::json(nullptr)},
                           {"reference_load_kg", t.referenceLoad > 0.0 ? nlohmann::json(t.referenceLoad) : nlohmann::json(nullptr)},
                           {"load_factor", factor},
+                          {"largest", toDisplay(std::abs(factor) * t.values.cwiseAbs().maxCoeff(), dim)},
                           {"unit", displayUnit(dim)},
                           {"positions", positions},
                           {"with_positions", other},

@@ -32,8 +32,8 @@ StiffnessSummary summariseStiffness(const MachineSetup& setup, int samplesPerAxi
 ErrorModel withoutStiffness(const ErrorModel& errors);
 ErrorModel stiffnessOnly(const Machine& machine, const ErrorModel& errors);
 
-// Each change with its values at the state's load (um or urad; positions in mm or deg), and
-// the three largest TCP errors in um.
+// Each change with its values and its largest magnitude at the state's load (um or urad;
+// positions in mm or deg), and the three largest TCP errors in um.
 nlohmann::json toJson(const StiffnessSummary& summary);
 
 }  // namespace mtacc
