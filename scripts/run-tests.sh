@@ -30,6 +30,9 @@ echo
 echo "== Benchmark: component errors from a 24-plate campaign (seed 003), against NumPy + SciPy =="
 ./build/bench/bench_plate_identification
 echo
+echo "== Benchmark: compensating a 1,000,000-line 5-axis program, against a vectorised NumPy Newton =="
+./build/bench/bench_program_compensation
+echo
 echo "== Benchmark: 3x3 FRF at 500 frequencies at 10,000 positions of a 10-body model, against vectorised NumPy =="
 ./build/bench/bench_dynamics_vs_numpy
 echo

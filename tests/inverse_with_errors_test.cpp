@@ -56,7 +56,9 @@ void expectEveryPoseReached(std::shared_ptr<const Machine> machine, const ErrorM
                              << " mm, " << s.directionResidual << " rad";
     const ToolPoint reached = toolPoint(actual, s.q.data());
     EXPECT_LE((reached.position - wanted.position).norm(), 1e-6) << machine->describePose(q);
-    if (s.directionControlled) EXPECT_LE(reached.direction.cross(wanted.direction).norm(), 1e-9) << machine->describePose(q);
+    if (s.directionControlled) {
+      EXPECT_LE(reached.direction.cross(wanted.direction).norm(), 1e-9) << machine->describePose(q);
+    }
     for (size_t k = 0; k < q.size(); ++k) largestCorrection = std::max(largestCorrection, std::abs(s.q[k] - s.nominalQ[k]));
   }
   std::cout << machine->name.substr(0, 32) << ": " << singular << " of " << poses << " poses near a singular orientation\n";  // within 0.6 deg of a singular orientation: 1 % of random poses on the Maho (C within ±60 deg)

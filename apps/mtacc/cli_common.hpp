@@ -59,6 +59,7 @@ void addPositioningCommand(CLI::App& app);    // positioning (ISO 230-2)
 void addFitCommand(CLI::App& app);            // fit (seed 003 component fits)
 void addPlateCommand(CLI::App& app);          // plate (seed 003 hole plates)
 void addStiffnessCommand(CLI::App& app);      // stiffness (seed 003 finite stiffness)
+void addCompensateCommand(CLI::App& app);     // compensate (compensated programs)
 void addIdentifyCommands(CLI::App& app);      // identify, observability
 void addCubicCommands(CLI::App& app);         // cubic, cubic-identify
 void addDynamicsCommand(CLI::App& app);       // dynamics modes | frf | accel | map

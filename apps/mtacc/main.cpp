@@ -73,6 +73,7 @@ int main(int argc, char** argv) {
   mtacc::cli::addFitCommand(app);
   mtacc::cli::addPlateCommand(app);
   mtacc::cli::addStiffnessCommand(app);
+  mtacc::cli::addCompensateCommand(app);
   mtacc::cli::addIdentifyCommands(app);
   mtacc::cli::addDynamicsCommand(app);
   mtacc::cli::addReportCommand(app);

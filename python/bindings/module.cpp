@@ -26,6 +26,7 @@
 #include "mtacc/workflows/positioning.hpp"
 #include "mtacc/workflows/report_paths.hpp"
 #include "mtacc/workflows/stiffness.hpp"
+#include "mtacc/workflows/compensation.hpp"
 
 namespace py = pybind11;
 using namespace mtacc;
@@ -296,6 +297,23 @@ PYBIND11_MODULE(_mtacc, mod) {
         return toPython(toJson(study));
       })
       .def("stiffness", [](const MachineSetup& s, int samples) { return toPython(toJson(summariseStiffness(s, samples))); })
+      .def("compensate_program",
+           [](const MachineSetup& s, const std::string& path, const std::map<int, double>& toolLengths, std::optional<double> tolerance,
+              std::optional<double> directionTolerance) {
+             ProgramCompensationRequest request;
+             request.programFile = path;
+             request.toolLengths = toolLengths;
+             if (tolerance) request.options.tolerance = *tolerance;
+             if (directionTolerance) request.options.directionTolerance = *directionTolerance;
+             ProgramCompensationResult r;
+             {
+               py::gil_scoped_release release;
+               r = compensateProgramFile(s, request);
+             }
+             nlohmann::json j = toJson(r);
+             j["gcode"] = r.gcode;
+             return toPython(j);
+           })
       .def("compare_plate", [](const MachineSetup& s, const std::string& path) { return toPython(toJson(comparePlateFile(s, path))); })
       .def("simulate_plate", [](const MachineSetup& s, const std::string& output, const std::string& header, const std::string& noise,
                                 std::uint64_t seed) {

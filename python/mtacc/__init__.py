@@ -191,6 +191,18 @@ class Machine:
         changes alone and added by them, as `mtacc stiffness --json` (values in um or urad)."""
         return self._core.stiffness(int(samples))
 
+    def compensate_program(self, path, tool_lengths=None, tolerance=None, direction_tolerance=None):
+        """The axis program (G-code) at `path` compensated for this machine's errors, as `mtacc compensate
+        --json`, plus "gcode", the compensated program's text. tool_lengths: {H number: mm beyond the
+        machine's tool} for G43 H<n>; tolerance (um) and direction_tolerance (urad): the deviation allowed
+        between written points (default 0.1 um and 5 urad). "deviation_before" and "deviation_after": the
+        TCP deviation from the program's nominal path on the machine with its errors, as written and
+        compensated."""
+        lengths = {int(k): float(v) for k, v in (tool_lengths or {}).items()}
+        mm = None if tolerance is None else float(tolerance) * 1e-3
+        rad = None if direction_tolerance is None else float(direction_tolerance) * 1e-6
+        return self._core.compensate_program(str(path), lengths, mm, rad)
+
     def compare_plate(self, path):
         """A measured hole or ball plate (CSV, docs/file-formats.md) against this machine's error model, as
         `mtacc plate --json`: per feature the measured and modelled deviations and the residual (um) with

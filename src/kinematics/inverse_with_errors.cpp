@@ -1,7 +1,5 @@
 #include "mtacc/kinematics/inverse_with_errors.hpp"
 
-#include <Eigen/SVD>
-
 #include <algorithm>
 #include <cmath>
 
@@ -15,14 +13,17 @@ namespace {
 // singularity the smallest is about the sine of the angle to it.
 constexpr double kDirectionWeight = 1000.0;  // mm per rad
 
+// Position, then the weighted direction when controlled: at most six rows, on the stack.
+using Residual = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+
 // The residual of the pose at q: position (mm), then, when controlled, the direction's
-// difference times the weight.
-Eigen::VectorXd residual(const KinematicModel& m, const std::vector<double>& q, const Vec3& position, const Vec3& direction,
-                         bool withDirection) {
-  const ToolPoint t = toolPoint(m, q.data());
-  Eigen::VectorXd r(withDirection ? 6 : 3);
-  r.head<3>() = t.position - position;
-  if (withDirection) r.tail<3>() = kDirectionWeight * (t.direction - direction);
+// difference times the weight; `reached` the tool there.
+Residual residual(const KinematicModel& m, const std::vector<double>& q, const Vec3& position, const Vec3& direction, bool withDirection,
+                  ToolPoint& reached) {
+  reached = toolPoint(m, q.data());
+  Residual r(withDirection ? 6 : 3);
+  r.head<3>() = reached.position - position;
+  if (withDirection) r.tail<3>() = kDirectionWeight * (reached.direction - direction);
   return r;
 }
 
@@ -32,66 +33,97 @@ int rotaryCount(const Machine& machine) {
   return n;
 }
 
+// The Jacobian of the residual at q by central differences (h in mm or rad: the model is smooth
+// over it, and rounding stays far below the step's effect), columns scaled, factorised. For the
+// position alone, a machine with three linear axes moves only those: the rotary axes keep their
+// commands rather than turn the tool to reach a few micrometres.
+void factorise(ErrorIkJacobian& jacobian, const KinematicModel& m, const std::vector<double>& q, const Vec3& position,
+               const Vec3& direction, bool withDirection, const Eigen::VectorXd& scale, double singularRatio) {
+  const auto n = static_cast<Eigen::Index>(q.size());
+  const bool positionByLinearAxes = n - rotaryCount(*m.machine) >= 3;
+  Eigen::MatrixXd j(withDirection ? 6 : 3, n);
+  std::vector<double> plus = q, minus = q;
+  ToolPoint reached;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const auto kk = static_cast<size_t>(k);
+    if (!withDirection && positionByLinearAxes && m.machine->axes[kk].isRotary()) {
+      j.col(k).setZero();
+      continue;
+    }
+    const double h = 1e-4;
+    plus[kk] += h;
+    minus[kk] -= h;
+    j.col(k) = scale[k] *
+               (residual(m, plus, position, direction, withDirection, reached) - residual(m, minus, position, direction, withDirection, reached)) /
+               (2.0 * h);
+    plus[kk] = minus[kk] = q[kk];
+  }
+  jacobian.svd.compute(j, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  jacobian.svd.setThreshold(singularRatio);
+  jacobian.valid = true;
+  jacobian.withDirection = withDirection;
+}
+
 }  // namespace
 
-ErrorIkSolution solveIkWithErrors(const KinematicModel& actual, const KinematicModel& nominal, const Vec3& position,
-                                  const Vec3& toolDirection, const ErrorIkOptions& o) {
+ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& position, const Vec3& toolDirection,
+                                 const std::vector<double>& start, const ErrorIkOptions& o, ErrorIkJacobian& jacobian,
+                                 bool singularStart) {
   const Vec3 direction = toolDirection.normalized();
-  const IkSolution start = solveIk(nominal, position, direction, o.ik);
   ErrorIkSolution s;
-  s.q = start.q;
-  s.nominalQ = start.q;
+  s.q = start;
+  s.nominalQ = start;
   s.directionControlled = rotaryCount(*actual.machine) >= 2;
+  s.singular = singularStart;
   const auto n = static_cast<Eigen::Index>(s.q.size());
-  // At a singular pose the direction is given up and the position alone is reached.
-  bool withDirection = s.directionControlled && !start.singular;
-  Eigen::VectorXd r = residual(actual, s.q, position, direction, withDirection);
-  auto within = [&](const Eigen::VectorXd& res) {
-    return res.head<3>().norm() <= o.positionTolerance && (!withDirection || res.tail<3>().norm() / kDirectionWeight <= o.directionTolerance);
-  };
-  Eigen::MatrixXd jacobian;
   Eigen::VectorXd scale(n);
   for (Eigen::Index k = 0; k < n; ++k) scale[k] = actual.machine->axes[static_cast<size_t>(k)].isRotary() ? 1.0 / kDirectionWeight : 1.0;
-  s.singular = start.singular;
+  // At a singular pose the direction is given up and the position alone is reached.
+  bool withDirection = s.directionControlled && !singularStart;
+  ToolPoint reached;
+  Residual r = residual(actual, s.q, position, direction, withDirection, reached);
+  auto within = [&](const Residual& res) {
+    return res.head<3>().norm() <= o.positionTolerance && (!withDirection || res.tail<3>().norm() / kDirectionWeight <= o.directionTolerance);
+  };
   while (!within(r) && s.iterations < o.maxIterations) {
-    // Newton: the Jacobian at the current commands, by central differences (h in mm or rad: the
-    // model is smooth over it, and rounding stays far below the step's effect).
-    jacobian.resize(r.size(), n);
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const double h = 1e-4;
-      std::vector<double> plus = s.q, minus = s.q;
-      plus[static_cast<size_t>(k)] += h;
-      minus[static_cast<size_t>(k)] -= h;
-      jacobian.col(k) = scale[k] * (residual(actual, plus, position, direction, withDirection) -
-                                    residual(actual, minus, position, direction, withDirection)) / (2.0 * h);
-    }
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(jacobian, Eigen::ComputeThinU | Eigen::ComputeThinV);
-    svd.setThreshold(o.singularRatio);
-    if (svd.rank() < std::min<Eigen::Index>(n, withDirection ? 5 : 3)) {
+    const bool fresh = !jacobian.valid || jacobian.withDirection != withDirection;
+    if (fresh) factorise(jacobian, actual, s.q, position, direction, withDirection, scale, o.singularRatio);
+    if (jacobian.svd.rank() < std::min<Eigen::Index>(n, withDirection ? 5 : 3)) {
+      if (!fresh) {  // a kept Jacobian from a pose that was singular: take it here
+        jacobian.valid = false;
+        continue;
+      }
       s.singular = true;
       if (withDirection) {
         withDirection = false;
-        r = residual(actual, s.q, position, direction, false);
+        r = residual(actual, s.q, position, direction, false, reached);
         continue;
       }
     }
-    const Eigen::VectorXd step = scale.cwiseProduct(svd.solve(-r));
+    const Eigen::VectorXd step = scale.cwiseProduct(jacobian.svd.solve(-r));
     for (Eigen::Index k = 0; k < n; ++k) s.q[static_cast<size_t>(k)] += step[k];
-    const Eigen::VectorXd next = residual(actual, s.q, position, direction, withDirection);
+    const Residual next = residual(actual, s.q, position, direction, withDirection, reached);
     ++s.iterations;
-    // At a singular pose the part of the residual no command reaches stays: stop when the
-    // reachable part no longer shrinks.
-    const auto reachable = svd.matrixU().leftCols(svd.rank());
-    const bool stalled = (reachable.transpose() * next).norm() >= 0.5 * (reachable.transpose() * r).norm();
+    const auto reachable = jacobian.svd.matrixU().leftCols(jacobian.svd.rank());
+    const double contraction = (reachable.transpose() * next).norm() / std::max((reachable.transpose() * r).norm(), 1e-300);
     r = next;
-    if (stalled) break;
+    // At a singular pose the part of the residual no command reaches stays: stop when the
+    // reachable part no longer shrinks under a Jacobian taken here.
+    if (fresh && contraction >= 0.5) break;
+    if (contraction > 0.1) jacobian.valid = false;
   }
-  const ToolPoint t = toolPoint(actual, s.q.data());
-  s.positionResidual = (t.position - position).norm();
-  s.directionResidual = std::atan2(t.direction.cross(direction).norm(), t.direction.dot(direction));
-  s.converged = s.positionResidual <= o.positionTolerance && (!withDirection || s.directionResidual <= o.directionTolerance);
+  s.positionResidual = (reached.position - position).norm();
+  s.directionResidual = std::atan2(reached.direction.cross(direction).norm(), reached.direction.dot(direction));
+  s.converged = within(r);
   s.travelViolation = actual.machine->travelViolation(s.q);
   return s;
+}
+
+ErrorIkSolution solveIkWithErrors(const KinematicModel& actual, const KinematicModel& nominal, const Vec3& position,
+                                  const Vec3& toolDirection, const ErrorIkOptions& o) {
+  const IkSolution start = solveIk(nominal, position, toolDirection.normalized(), o.ik);
+  ErrorIkJacobian jacobian;
+  return refineWithErrors(actual, position, toolDirection, start.q, o, jacobian, start.singular);
 }
 
 }  // namespace mtacc

@@ -1,13 +1,16 @@
 #pragma once
 // The inverse error model: the axis commands that put the tool at a wanted pose on the machine
 // with its errors (the step before compensation, issue 17). Newton's method on the exact
-// model, started from the nominal inverse kinematics, with the Jacobian of the model with its
-// errors taken at the start by central differences (the errors change it by their own small
-// relative size, so the iteration converges at that rate per step). Machines with two rotary
-// axes get position and tool direction; the others the position only, their direction error
-// reported as what cannot be corrected.
+// model, started from the nominal inverse kinematics (or from the commands of a nearby pose),
+// with the Jacobian of the model with its errors taken by central differences and kept while
+// the iteration contracts fast (the errors change it by their own small relative size, so a
+// Jacobian from a nearby pose still converges at about that rate per step). Machines with two
+// rotary axes get position and tool direction; the others the position only, their direction
+// error reported as what cannot be corrected.
 #include <string>
 #include <vector>
+
+#include <Eigen/SVD>
 
 #include "mtacc/kinematics/inverse.hpp"
 #include "mtacc/kinematics/kinematic_model.hpp"
@@ -39,9 +42,26 @@ struct ErrorIkSolution {
   std::string travelViolation;     // empty when q is within travel
 };
 
+// The factorised, scaled Jacobian of the last Newton step, reused from one solve to the next
+// along a path or program while consecutive poses are close; refreshed when a step contracts
+// the residual by less than 10x.
+struct ErrorIkJacobian {
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd;
+  bool valid = false;
+  bool withDirection = false;
+};
+
 // `actual` compiled with the errors, `nominal` without; position and direction in the workpiece
 // frame. Throws UnreachablePose when the nominal IK cannot reach the pose.
 ErrorIkSolution solveIkWithErrors(const KinematicModel& actual, const KinematicModel& nominal, const Vec3& position,
                                   const Vec3& toolDirection, const ErrorIkOptions& options = {});
+
+// The same Newton iteration from `start` (the commands of a nearby pose, e.g. the nominal
+// commands plus the previous line's correction in a program), reusing `jacobian` while it
+// serves. nominalQ of the result is `start`. `singularStart`: the direction is known to be
+// uncontrollable at this pose.
+ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& position, const Vec3& toolDirection,
+                                 const std::vector<double>& start, const ErrorIkOptions& options, ErrorIkJacobian& jacobian,
+                                 bool singularStart = false);
 
 }  // namespace mtacc

@@ -1,0 +1,31 @@
+#pragma once
+// NC programs in axis positions (G-code, RS-274 / ISO 6983 as LinuxCNC, Fanuc and Siemens read
+// it): G0/G1/G2/G3 in the planes G17/G18/G19, G90/G91, G20/G21, F, G43 H/G49 tool lengths and
+// rotary words on G0/G1. Every axis word is an axis position of the machine (mm, or inch under
+// G20; deg for rotary axes), with the machine file's zero as the zero of G54. Words that do not
+// move the machine (M, S, T, N, G4 P, G40, G54, G61, G64, G80, G94, comments) are kept for the
+// writer; anything else is refused with its file and line (never dropped).
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mtacc/compensation/nc_program.hpp"
+#include "mtacc/machine/machine.hpp"
+
+namespace mtacc {
+
+struct GcodeReadOptions {
+  // Axis positions before the first move; empty: unknown, the first move starts at its end (an
+  // approach, its path not judged) and the axes it does not name at zero.
+  std::vector<double> start;
+  std::map<int, double> toolLengths;    // G43 H<n>: tool n's length in mm (see GcodeMove::toolLength)
+};
+
+// Throws InputError naming file, line and word. The machine's commanded axes must be named by
+// single letters (their G-code addresses).
+GcodeProgram parseGcodeProgram(std::string_view text, const std::string& file, const Machine& machine,
+                               const GcodeReadOptions& options = {});
+GcodeProgram readGcodeProgram(const std::string& path, const Machine& machine, const GcodeReadOptions& options = {});
+
+}  // namespace mtacc

@@ -1,0 +1,270 @@
+#include "mtacc/compensation/program_compensation.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdint>
+#include <iterator>
+#include <map>
+
+#include "mtacc/core/text.hpp"
+#include "mtacc/core/units.hpp"
+#include "mtacc/kinematics/forward.hpp"
+
+namespace mtacc {
+namespace {
+
+struct Models {
+  KinematicModel actual, nominal;
+};
+
+// The machine with the tool of the given length (mm beyond the machine file's TCP, along the tool).
+// The machine and its errors with the tool of each length met, compiled once.
+class ToolModels {
+ public:
+  ToolModels(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors) : machine_(machine), errors_(errors) {}
+  const Models& operator()(double toolLength) {
+    auto it = cache_.find(toolLength);
+    if (it != cache_.end()) return it->second;
+    auto machine = std::make_shared<Machine>(*machine_);
+    machine->toolOffset -= toolLength * machine->toolDirection;
+    return cache_.emplace(toolLength, Models{compile(machine, errors_), compileNominal(machine)}).first->second;
+  }
+
+ private:
+  std::shared_ptr<const Machine> machine_;
+  const ErrorModel& errors_;
+  std::map<double, Models> cache_;
+};
+
+double angleBetween(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
+
+std::vector<double> lerp(const std::vector<double>& a, const std::vector<double>& b, double t) {
+  std::vector<double> q(a.size());
+  for (size_t k = 0; k < q.size(); ++k) q[k] = a[k] + t * (b[k] - a[k]);
+  return q;
+}
+
+class Compensator {
+ public:
+  Compensator(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
+              const ProgramCompensationOptions& options)
+      : models_(machine, errors), program_(program), o_(options) {
+    out_.largestCorrection.assign(static_cast<size_t>(machine->commandedCount()), 0.0);
+    correction_.assign(out_.largestCorrection.size(), 0.0);
+    previousCorrection_ = correction_;
+  }
+
+  CompensatedProgram run() {
+    if (program_.moves.empty()) return out_;
+    const GcodeMove& first = program_.moves.front();
+    out_.points.push_back(solve(0, first, 0.0, false));
+    for (size_t m = 0; m < program_.moves.size(); ++m) compensate(static_cast<int>(m));
+    return std::move(out_);
+  }
+
+ private:
+  // `counted`: the point is written (the start, before the first move, is not: where the
+  // machine stands then is the controller's business).
+  CompensatedPoint solve(int index, const GcodeMove& move, double s, bool counted = true) {
+    const Models& models = models_(move.toolLength);
+    const std::vector<double> q = move.at(s);
+    const ToolPoint wanted = toolPoint(models.nominal, q.data());
+    // The correction changes smoothly along a program: extrapolated from the last two points,
+    // it leaves the Newton iteration little or nothing to do.
+    std::vector<double> start = q;
+    for (size_t k = 0; k < q.size(); ++k) start[k] += 2.0 * correction_[k] - previousCorrection_[k];
+    if (&models != lastModels_) jacobian_.valid = false;
+    lastModels_ = &models;
+    const ErrorIkSolution solution = refineWithErrors(models.actual, wanted.position, wanted.direction, start, o_.ik, jacobian_);
+    previousCorrection_ = correction_;
+    for (size_t k = 0; k < q.size(); ++k) correction_[k] = solution.q[k] - q[k];
+    const CompensatedPoint point{index, s, solution.q, solution.positionResidual, solution.directionResidual};
+    if (!counted) return point;
+    for (size_t k = 0; k < q.size(); ++k) {
+      out_.largestCorrection[k] = std::max(out_.largestCorrection[k], std::abs(correction_[k]));
+    }
+    out_.largestResidual = std::max(out_.largestResidual, solution.positionResidual);
+    const bool problem = !solution.converged || solution.singular || !solution.travelViolation.empty();
+    out_.notConverged += solution.converged ? 0 : 1;
+    out_.singular += solution.singular ? 1 : 0;
+    if (problem && out_.firstProblemLine == 0) out_.firstProblemLine = move.line;
+    if (!solution.travelViolation.empty() && out_.travelViolation.empty()) {
+      out_.travelViolation = solution.travelViolation;
+      out_.travelViolationLine = move.line;
+    }
+    return point;
+  }
+
+  // Where the written segment a-b, interpolated by the controller, leaves the nominal path at
+  // its midpoint by more than the tolerances, it is halved.
+  void refine(int index, const GcodeMove& move, const CompensatedPoint& a, CompensatedPoint b, int depth) {
+    const Models& models = models_(move.toolLength);
+    const double s = 0.5 * (a.s + b.s);
+    const std::vector<double> written = lerp(a.q, b.q, 0.5), programmed = move.at(s);
+    const ToolPoint reached = toolPoint(models.actual, written.data()), wanted = toolPoint(models.nominal, programmed.data());
+    // What the ends themselves cannot correct (the direction at a singular pose, on a machine
+    // without two rotary axes) is not the interpolation's fault.
+    const double position = o_.tolerance + std::max(a.positionResidual, b.positionResidual);
+    const double direction = o_.directionTolerance + std::max(a.directionResidual, b.directionResidual);
+    if (depth >= o_.maxSplits || ((reached.position - wanted.position).norm() <= position &&
+                                  angleBetween(reached.direction, wanted.direction) <= direction)) {
+      out_.points.push_back(std::move(b));
+      return;
+    }
+    CompensatedPoint middle = solve(index, move, s);
+    refine(index, move, a, middle, depth + 1);
+    refine(index, move, out_.points.back(), std::move(b), depth + 1);
+  }
+
+  void compensate(int index) {
+    const GcodeMove& move = program_.moves[static_cast<size_t>(index)];
+    if (move.mode == MotionMode::Rapid) {
+      out_.points.push_back(solve(index, move, 1.0));
+      return;
+    }
+    // Arcs start as chords within the tolerance (sagitta r (1 - cos(angle / 2))), then halve.
+    int pieces = 1;
+    if (move.isArc()) {
+      const double r = move.radius();
+      const double chordAngle = r > o_.tolerance ? 2.0 * std::acos(1.0 - o_.tolerance / r) : std::abs(move.sweep);
+      pieces = std::max(2, static_cast<int>(std::ceil(std::abs(move.sweep) / chordAngle)));
+    }
+    for (int i = 1; i <= pieces; ++i) {
+      CompensatedPoint end = solve(index, move, static_cast<double>(i) / pieces);
+      CompensatedPoint start = out_.points.back();
+      if (start.move != index) {
+        start.move = index;
+        start.s = 0.0;
+      }  // the previous move's end is this one's start
+      refine(index, move, start, std::move(end), 0);
+    }
+  }
+
+  ToolModels models_;
+  const GcodeProgram& program_;
+  const ProgramCompensationOptions& o_;
+  CompensatedProgram out_;
+  std::vector<double> correction_, previousCorrection_;
+  const Models* lastModels_ = nullptr;
+  ErrorIkJacobian jacobian_;
+};
+
+// v with five decimals, as "{:.5f}" writes it up to the rounding of v * 1e5: the writer's inner
+// loop formats five numbers on each of a million lines, where fmt's general float path is the
+// larger part of the time.
+void appendFixed5(std::string& out, double v) {
+  const double scaled = std::round(std::abs(v) * 1e5);
+  if (!(scaled < 9e15)) {
+    fmt::format_to(std::back_inserter(out), "{:.5f}", v);
+    return;
+  }
+  auto n = static_cast<uint64_t>(scaled);
+  if (v < 0 && n != 0) out += '-';
+  const fmt::format_int whole(n / 100000);
+  out.append(whole.data(), whole.size());
+  char fraction[6] = {'.', '0', '0', '0', '0', '0'};
+  for (int i = 5, f = static_cast<int>(n % 100000); i > 0; --i, f /= 10) fraction[i] = static_cast<char>('0' + f % 10);
+  out.append(fraction, 6);
+}
+
+// RS-274/NGC stops a program after the motion of its line; everything else kept acts before it.
+bool actsAfterMotion(const std::string& word) {
+  return word == "M0" || word == "M00" || word == "M1" || word == "M01" || word == "M2" || word == "M02" || word == "M30" ||
+         word == "M60";
+}
+
+}  // namespace
+
+// Every feed segment sampled at quarters: the controller's linear interpolation of the written
+// commands against the program's nominal path at the same place on the move, and the program
+// as written (no correction) at the same places for `before`.
+ProgramDeviation programDeviation(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
+                                  const std::vector<CompensatedPoint>& points) {
+  ToolModels models(machine, errors);
+  ProgramDeviation d;
+  double before = 0.0, after = 0.0;
+  for (size_t i = 1; i < points.size(); ++i) {
+    const CompensatedPoint &a = points[i - 1], &b = points[i];
+    const GcodeMove& move = program.moves[static_cast<size_t>(b.move)];
+    if (move.mode == MotionMode::Rapid) continue;
+    const Models& m = models(move.toolLength);
+    const double from = a.move == b.move ? a.s : 0.0;
+    for (int k = 1; k <= 4; ++k) {
+      const double t = k / 4.0, s = from + t * (b.s - from);
+      const std::vector<double> programmed = move.at(s), written = lerp(a.q, b.q, t);
+      const ToolPoint wanted = toolPoint(m.nominal, programmed.data());
+      const ToolPoint uncompensated = toolPoint(m.actual, programmed.data()), compensated = toolPoint(m.actual, written.data());
+      const double eBefore = (uncompensated.position - wanted.position).norm(), eAfter = (compensated.position - wanted.position).norm();
+      d.before.maxPosition = std::max(d.before.maxPosition, eBefore);
+      d.after.maxPosition = std::max(d.after.maxPosition, eAfter);
+      d.before.maxDirection = std::max(d.before.maxDirection, angleBetween(uncompensated.direction, wanted.direction));
+      d.after.maxDirection = std::max(d.after.maxDirection, angleBetween(compensated.direction, wanted.direction));
+      before += eBefore * eBefore;
+      after += eAfter * eAfter;
+      ++d.after.samples;
+    }
+  }
+  d.before.samples = d.after.samples;
+  if (d.after.samples > 0) {
+    d.before.rmsPosition = std::sqrt(before / d.before.samples);
+    d.after.rmsPosition = std::sqrt(after / d.after.samples);
+  }
+  return d;
+}
+
+CompensatedProgram compensateProgram(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
+                                     const ProgramCompensationOptions& options) {
+  return Compensator(machine, errors, program, options).run();
+}
+
+std::string compensatedGcode(const Machine& m, const GcodeProgram& program, const CompensatedProgram& compensated,
+                             const std::string& header) {
+  const auto axes = static_cast<size_t>(m.commandedCount());
+  std::string g;
+  auto out = std::back_inserter(g);
+  size_t line = 0;
+  if (!program.lines.empty() && program.lines.front().kept.size() == 1 && program.lines.front().kept.front().starts_with('%'))
+    g += program.lines[line++].kept.front() + "\n";
+  for (const auto& h : splitList(header, '\n')) fmt::format_to(out, "({})\n", h);
+  g += "G21 G90\n";
+  size_t point = 1;  // points[0] is the start, not written
+  double feed = -1.0;
+  for (; line < program.lines.size(); ++line) {
+    const GcodeLine& l = program.lines[line];
+    std::string before = l.sequence, after;
+    for (const auto& word : l.kept) {
+      // A ';' comment runs to the end of the line: it goes last.
+      std::string& to = l.move >= 0 && (actsAfterMotion(word) || word.starts_with(';')) ? after : before;
+      to += (to.empty() ? "" : " ") + word;
+    }
+    if (l.move < 0) {
+      g += before + "\n";
+      continue;
+    }
+    const GcodeMove& move = program.moves[static_cast<size_t>(l.move)];
+    bool firstSegment = true;
+    while (point < compensated.points.size() && compensated.points[point].move == l.move) {
+      const CompensatedPoint& p = compensated.points[point++];
+      if (firstSegment && !before.empty()) fmt::format_to(out, "{} ", before);
+      g += move.mode == MotionMode::Rapid ? "G0" : "G1";
+      for (size_t k = 0; k < axes; ++k) {
+        const Axis& a = m.axes[k];
+        g += ' ';
+        g += a.name;
+        appendFixed5(g, a.isRotary() ? p.q[k] / kDeg : p.q[k]);
+      }
+      if (move.mode != MotionMode::Rapid && move.feed != feed) {
+        fmt::format_to(out, " F{:g}", move.feed);
+        feed = move.feed;
+      }
+      const bool last = point == compensated.points.size() || compensated.points[point].move != l.move;
+      if (last && !after.empty()) fmt::format_to(out, " {}", after);
+      g += "\n";
+      firstSegment = false;
+    }
+  }
+  return g;
+}
+
+}  // namespace mtacc

@@ -1,0 +1,341 @@
+#include "mtacc/io/gcode_program.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <array>
+#include <cstdint>
+#include <set>
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/core/units.hpp"
+#include "mtacc/io/text_file.hpp"
+
+namespace mtacc {
+namespace {
+
+constexpr double kInch = 25.4;        // mm
+constexpr double kLargestWord = 1e5;  // mm, deg or mm/min: beyond any machine's travel or feed
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+struct Word {
+  char letter;
+  double value;
+  std::string_view text;  // as written, for the kept words
+};
+
+struct Token {
+  bool comment = false;
+  std::string_view text;
+  Word word{};
+};
+
+// G codes that change nothing mtacc evaluates and go to the compensated program as written:
+// dwell, cutter compensation off, the first work offset, path control, canned cycle off, feed per
+// minute.
+const std::set<int> kKeptGcodes = {4, 40, 54, 61, 64, 80, 94};
+
+class LineReader {
+ public:
+  LineReader(const std::string& file, int line) : file_(file), line_(line) {}
+
+  [[noreturn]] void fail(std::string_view key, const std::string& why) const { throw InputError({file_, line_, std::string(key)}, why); }
+
+  // The line's words and comments into `out` (reused from line to line).
+  void tokens(std::string_view text, std::vector<Token>& out) const {
+    out.clear();
+    size_t i = 0;
+    while (i < text.size()) {
+      const char c = text[i];
+      if (std::isspace(static_cast<unsigned char>(c))) {
+        ++i;
+      } else if (c == '(') {
+        const size_t end = text.find(')', i);
+        if (end == std::string_view::npos) fail("(", "a comment opened with '(' is not closed on its line");
+        out.push_back({true, text.substr(i, end - i + 1), {}});
+        i = end + 1;
+      } else if (c == ';') {
+        out.push_back({true, text.substr(i), {}});
+        break;
+      } else if (std::isalpha(static_cast<unsigned char>(c))) {
+        const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+        size_t j = i + 1;
+        while (j < text.size() && text[j] == ' ') ++j;
+        size_t end = j;
+        if (end < text.size() && (text[end] == '+' || text[end] == '-')) ++end;
+        while (end < text.size() && (std::isdigit(static_cast<unsigned char>(text[end])) || text[end] == '.')) ++end;
+        const std::string_view number = text.substr(j, end - j);
+        double value = 0.0;
+        const char* first = number.data();
+        if (!number.empty() && number[0] == '+') ++first;
+        const auto [ptr, ec] = std::from_chars(first, number.data() + number.size(), value);
+        if (number.empty() || ec != std::errc() || ptr != number.data() + number.size() || !std::isfinite(value))
+          fail(std::string(1, letter), fmt::format("'{}' is not a word: a letter must be followed by a number", text.substr(i, std::max(end, i + 1) - i)));
+        if (std::abs(value) > kLargestWord) fail(std::string(1, letter), fmt::format("{}{} is beyond {:g}", letter, number, kLargestWord));
+        out.push_back({false, text.substr(i, end - i), {letter, value, text.substr(i, end - i)}});
+        i = end;
+      } else {
+        fail(std::string(1, c), fmt::format("unexpected '{}': mtacc reads words (a letter and a number) and comments", c));
+      }
+    }
+  }
+
+ private:
+  const std::string& file_;
+  int line_;
+};
+
+struct ModalState {
+  std::optional<MotionMode> motion;
+  int plane = 17;
+  bool inch = false;
+  bool incremental = false;
+  double feed = 0.0;  // mm/min; 0 until an F word
+  double toolLength = 0.0;
+};
+
+int wholeNumber(const Word& w, const LineReader& reader) {
+  if (w.value != std::round(w.value) || w.value < 0)
+    reader.fail(w.text, fmt::format("{} must be a whole number", std::string(1, w.letter)));
+  return static_cast<int>(w.value);
+}
+
+bool isAxisLetter(char c) { return std::string_view("XYZUVWABC").find(c) != std::string_view::npos; }
+
+// Plane axes (first, second, normal) for G17, G18, G19 as letters; I, J, K are X, Y, Z offsets.
+std::string_view planeLetters(int plane) { return plane == 17 ? "XYZ" : plane == 18 ? "ZXY" : "YZX"; }
+
+void setArc(GcodeMove& move, const std::map<char, double>& offsets, std::optional<double> radius, int turns, const Machine& machine,
+            int plane, const LineReader& reader, const std::string& key) {
+  const std::string_view letters = planeLetters(plane);
+  for (int k = 0; k < 3; ++k) {
+    const int index = machine.commandedAxisIndex(std::string(1, letters[static_cast<size_t>(k)]));
+    if (index < 0 || machine.axes[static_cast<size_t>(index)].isRotary())
+      reader.fail(key, fmt::format("an arc in G{} needs the linear axes {}, {} and {}", plane, letters[0], letters[1], letters[2]));
+    move.planeAxes[k] = index;
+  }
+  for (size_t k = 0; k < move.from.size(); ++k)
+    if (machine.axes[k].isRotary() && move.from[k] != move.to[k]) reader.fail(key, "rotary axes cannot move in an arc: use G1");
+  const auto a = static_cast<size_t>(move.planeAxes[0]), b = static_cast<size_t>(move.planeAxes[1]);
+  const double x0 = move.from[a], y0 = move.from[b], x1 = move.to[a], y1 = move.to[b];
+  const bool ccw = move.mode == MotionMode::ArcCounterClockwise;
+  const bool closed = std::hypot(x1 - x0, y1 - y0) < 1e-9;
+  if (radius) {
+    const double chord = std::hypot(x1 - x0, y1 - y0);
+    if (closed) reader.fail("R", "an arc given by R cannot end where it starts: give the centre with I, J, K for a full circle");
+    const double r = std::abs(*radius);
+    if (r < chord / 2.0 - 1e-6) reader.fail("R", fmt::format("R{:g} is shorter than half the chord ({:g} mm)", r, chord / 2.0));
+    const double h = std::sqrt(std::max(0.0, r * r - chord * chord / 4.0));
+    const double side = (ccw ? 1.0 : -1.0) * (*radius > 0 ? 1.0 : -1.0);
+    move.centre[0] = (x0 + x1) / 2.0 - side * h * (y1 - y0) / chord;
+    move.centre[1] = (y0 + y1) / 2.0 + side * h * (x1 - x0) / chord;
+  } else {
+    auto offset = [&](char letter) {
+      const auto it = offsets.find(letter);
+      return it == offsets.end() ? 0.0 : it->second;
+    };
+    move.centre[0] = x0 + offset(letters[0]);
+    move.centre[1] = y0 + offset(letters[1]);
+    const double r0 = std::hypot(x0 - move.centre[0], y0 - move.centre[1]), r1 = std::hypot(x1 - move.centre[0], y1 - move.centre[1]);
+    if (r0 < 1e-6) reader.fail(key, "the arc's centre is its start point (zero radius)");
+    if (std::abs(r1 - r0) > std::max(0.002, 1e-3 * r0))
+      reader.fail(key, fmt::format("inconsistent arc: the start is {:.4f} mm from the centre, the end {:.4f} mm", r0, r1));
+  }
+  const double a0 = std::atan2(y0 - move.centre[1], x0 - move.centre[0]), a1 = std::atan2(y1 - move.centre[1], x1 - move.centre[0]);
+  double sweep = closed ? kTwoPi : std::fmod((ccw ? a1 - a0 : a0 - a1) + 2.0 * kTwoPi, kTwoPi);
+  sweep += kTwoPi * (turns - 1);
+  move.sweep = ccw ? sweep : -sweep;
+}
+
+}  // namespace
+
+GcodeProgram parseGcodeProgram(std::string_view text, const std::string& file, const Machine& machine, const GcodeReadOptions& options) {
+  const auto axes = static_cast<size_t>(machine.commandedCount());
+  std::array<int, 26> axisOf;  // by address letter; -1 for none
+  axisOf.fill(-1);
+  for (size_t k = 0; k < axes; ++k) {
+    const Axis& a = machine.axes[k];
+    if (a.name.size() == 1 && a.name[0] >= 'A' && a.name[0] <= 'Z') axisOf[static_cast<size_t>(a.name[0] - 'A')] = static_cast<int>(k);
+  }
+  GcodeProgram program;
+  program.file = file;
+  ModalState state;
+  std::vector<double> position = options.start.empty() ? std::vector<double>(axes, 0.0) : options.start;
+  if (position.size() != axes) throw InputError({file, 0, "start"}, fmt::format("the start pose needs {} axis positions", axes));
+  const auto lines = static_cast<size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
+  program.lines.reserve(lines);
+  program.moves.reserve(lines);
+  size_t begin = 0;
+  int number = 0;
+  std::vector<Token> tokens;
+  while (begin <= text.size()) {
+    size_t end = text.find('\n', begin);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view raw = text.substr(begin, end - begin);
+    begin = end + 1;
+    ++number;
+    if (!raw.empty() && raw.back() == '\r') raw.remove_suffix(1);
+    if (end == text.size() && raw.empty()) break;
+    const LineReader reader(file, number);
+    GcodeLine line;
+    line.number = number;
+    const size_t first = raw.find_first_not_of(" \t");
+    if (first != std::string_view::npos && raw[first] == '%') {
+      line.kept.emplace_back(raw.substr(first));
+      program.lines.push_back(line);
+      continue;
+    }
+    if (first != std::string_view::npos && raw[first] == '/') reader.fail("/", "block delete ('/') is not supported: remove the block or its '/'");
+    std::vector<std::string>& kept = line.kept;
+    std::optional<MotionMode> motion;
+    std::optional<int> plane, units, distance;
+    std::optional<Word> toolOffset, lengthWord, turnsWord, feedWord;
+    std::map<char, double> offsets;
+    std::array<std::pair<char, double>, 9> axisWords{};  // X Y Z U V W A B C at most once each
+    int axisCount = 0;
+    std::optional<double> radius;
+    uint32_t seen = 0;  // bit per letter
+    reader.tokens(raw, tokens);
+    for (const auto& t : tokens) {
+      if (t.comment) {
+        kept.emplace_back(t.text);
+        continue;
+      }
+      const Word& w = t.word;
+      const uint32_t bit = 1u << (w.letter - 'A');
+      if (w.letter != 'G' && w.letter != 'M' && (seen & bit) != 0)
+        reader.fail(w.text, fmt::format("{} is given twice on the line", std::string(1, w.letter)));
+      seen |= bit;
+      switch (w.letter) {
+        case 'G': {
+          const double code = w.value;
+          auto group = [&](auto& slot, int value) {
+            if (slot) reader.fail(w.text, "two G codes of the same modal group on one line");
+            slot = value;
+          };
+          if (code == 0 || code == 1 || code == 2 || code == 3) {
+            if (motion) reader.fail(w.text, "two motion G codes on one line");
+            motion = code == 0 ? MotionMode::Rapid : code == 1 ? MotionMode::Linear : code == 2 ? MotionMode::ArcClockwise : MotionMode::ArcCounterClockwise;
+          } else if (code == 17 || code == 18 || code == 19) {
+            group(plane, static_cast<int>(code));
+          } else if (code == 20 || code == 21) {
+            group(units, static_cast<int>(code));
+          } else if (code == 90 || code == 91) {
+            group(distance, static_cast<int>(code));
+          } else if (code == 43 || code == 49) {
+            if (toolOffset) reader.fail(w.text, "two G codes of the same modal group on one line");
+            toolOffset = w;
+            kept.emplace_back(w.text);
+          } else if (code == std::round(code) && kKeptGcodes.count(static_cast<int>(code))) {
+            kept.emplace_back(w.text);
+          } else {
+            reader.fail(w.text, fmt::format("{} is not supported: mtacc reads G0-G3, G4, G17-G21, G40, G43, G49, G54, G61, G64, G80, G90, "
+                                            "G91, G94 (tool-tip programs, canned cycles and other work offsets are refused)",
+                                            w.text));
+          }
+          break;
+        }
+        case 'I': case 'J': case 'K': offsets[static_cast<char>('X' + (w.letter - 'I'))] = w.value; break;
+        case 'R':
+          if (w.value == 0) reader.fail(w.text, "an arc radius cannot be zero");
+          radius = w.value;
+          break;
+        case 'F':
+          if (w.value <= 0) reader.fail(w.text, "the feed must be positive");
+          feedWord = w;
+          break;
+        case 'H': lengthWord = w; kept.emplace_back(w.text); break;
+        case 'P': turnsWord = w; break;
+        case 'N': line.sequence = w.text; break;
+        case 'M': case 'S': case 'T': case 'O': kept.emplace_back(w.text); break;
+        default:
+          if (!isAxisLetter(w.letter)) reader.fail(w.text, fmt::format("the word {} is not supported", std::string(1, w.letter)));
+          if (axisOf[static_cast<size_t>(w.letter - 'A')] < 0) reader.fail(w.text, fmt::format("the machine {} has no axis {}", machine.name, std::string(1, w.letter)));
+          axisWords[static_cast<size_t>(axisCount++)] = {w.letter, w.value};
+      }
+    }
+    // Execution order within a line (RS-274/NGC): feed, tool length, plane, units, distance, motion.
+    if (units) state.inch = *units == 20;
+    if (feedWord) state.feed = feedWord->value * (state.inch ? kInch : 1.0);
+    if (toolOffset) {
+      if (toolOffset->value == 43) {
+        if (!lengthWord) reader.fail(toolOffset->text, "G43 needs H<tool number>");
+        const int tool = wholeNumber(*lengthWord, reader);
+        const auto it = options.toolLengths.find(tool);
+        if (it == options.toolLengths.end())
+          reader.fail(lengthWord->text, fmt::format("the length of tool {} is not given (--tool-length {}=<mm>)", tool, tool));
+        state.toolLength = it->second;
+      } else {
+        if (lengthWord) reader.fail(lengthWord->text, "H goes with G43");
+        state.toolLength = 0.0;
+      }
+    } else if (lengthWord) {
+      reader.fail(lengthWord->text, "H goes with G43");
+    }
+    if (plane) state.plane = *plane;
+    if (distance) state.incremental = *distance == 91;
+    if (motion) state.motion = motion;
+    const bool arcWords = !offsets.empty() || radius;
+    if (turnsWord) {
+      const bool isDwell = std::any_of(tokens.begin(), tokens.end(), [](const Token& t) { return !t.comment && t.word.letter == 'G' && t.word.value == 4; });
+      if (isDwell) {
+        kept.emplace_back(turnsWord->text);
+      } else if (!(arcWords && state.motion && (*state.motion == MotionMode::ArcClockwise || *state.motion == MotionMode::ArcCounterClockwise))) {
+        reader.fail(turnsWord->text, "P goes with G4 (dwell) or an arc (turns)");
+      }
+    }
+    const bool moves = axisCount > 0 || (arcWords && state.motion && *state.motion != MotionMode::Rapid && *state.motion != MotionMode::Linear);
+    const bool arc = state.motion && (*state.motion == MotionMode::ArcClockwise || *state.motion == MotionMode::ArcCounterClockwise);
+    if (arcWords && (!moves || !arc)) reader.fail(offsets.empty() ? "R" : "I/J/K", "arc words without an arc (G2/G3)");
+    if (moves) {
+      if (!state.motion) reader.fail(std::string(1, axisWords[0].first), "axis words with no motion mode (G0, G1, G2, G3) in effect");
+      GcodeMove move;
+      move.line = number;
+      move.mode = *state.motion;
+      move.from = position;
+      move.to = position;
+      move.toolLength = state.toolLength;
+      for (int w = 0; w < axisCount; ++w) {
+        const auto [letter, value] = axisWords[static_cast<size_t>(w)];
+        const auto k = static_cast<size_t>(axisOf[static_cast<size_t>(letter - 'A')]);
+        const double v = machine.axes[k].isRotary() ? value * kDeg : value * (state.inch ? kInch : 1.0);
+        move.to[k] = state.incremental ? position[k] + v : v;
+      }
+      if (const std::string beyond = machine.travelViolation(move.to); !beyond.empty()) reader.fail(std::string(1, axisWords[0].first), beyond);
+      if (move.mode != MotionMode::Rapid) {
+        if (state.feed <= 0) reader.fail("F", "a feed move before any feed (F word)");
+        move.feed = state.feed;
+      }
+      if (move.isArc()) {
+        if (!offsets.empty() && radius) reader.fail("R", "an arc takes either R or I, J, K, not both");
+        if (offsets.empty() && !radius) reader.fail("G2/G3", "an arc needs its centre (I, J, K) or its radius (R)");
+        std::map<char, double> scaled;
+        for (const auto& [axis, offset] : offsets) scaled[axis] = offset * (state.inch ? kInch : 1.0);
+        const std::string_view letters = planeLetters(state.plane);
+        for (const auto& [axis, offset] : scaled)
+          if (axis == letters[2]) reader.fail(std::string(1, static_cast<char>('I' + (axis - 'X'))), fmt::format("no centre offset along {} in G{}", axis, state.plane));
+        const int turns = turnsWord ? wholeNumber(*turnsWord, reader) : 1;
+        if (turns < 1 || turns > 1000) reader.fail(turnsWord->text, "an arc's turns must be 1 to 1000");
+        setArc(move, scaled, radius ? std::optional<double>(*radius * (state.inch ? kInch : 1.0)) : std::nullopt, turns, machine, state.plane,
+               reader, "G" + std::to_string(move.mode == MotionMode::ArcClockwise ? 2 : 3));
+      }
+      if (program.moves.empty() && options.start.empty()) move.from = move.to;
+      position = move.to;
+      line.move = static_cast<int>(program.moves.size());
+      program.moves.push_back(std::move(move));
+    }
+    program.lines.push_back(std::move(line));
+  }
+  return program;
+}
+
+GcodeProgram readGcodeProgram(const std::string& path, const Machine& machine, const GcodeReadOptions& options) {
+  return parseGcodeProgram(readTextFile(path), path, machine, options);
+}
+
+}  // namespace mtacc

@@ -1,0 +1,167 @@
+// Compensated NC programs (issue 17, item 2): the G-code reader, and the ballbar, cone-frustum
+// and cubic-test programs compensated, written, read back and run on the machine with its
+// errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "mtacc/compensation/program_compensation.hpp"
+#include "mtacc/io/gcode_program.hpp"
+#include "mtacc/workflows/machine_setup.hpp"
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/io/cone_program.hpp"
+#include "mtacc/io/cubic_program.hpp"
+#include "mtacc/io/cubic_test_yaml.hpp"
+#include "mtacc/procedures/cone.hpp"
+#include "mtacc/procedures/cubic_test.hpp"
+#include "test_helpers.hpp"
+
+namespace mtacc {
+namespace {
+
+MachineSetup bundledSetup(const std::string& name) { return loadMachineSetup({name, "", "", std::nullopt}); }
+
+// The acceptance of issue 17: the compensated program, written as G-code and read back (its
+// rounding to 5 decimals included), run on the machine with its errors, leaves at most 5 % of
+// the program's own deviation from its nominal path.
+ProgramDeviation compensatedAndReadBack(const MachineSetup& setup, const std::string& text, const std::string& name) {
+  const GcodeProgram program = parseGcodeProgram(text, name, *setup.machine);
+  const CompensatedProgram compensated = compensateProgram(setup.machine, setup.errors, program);
+  EXPECT_EQ(compensated.notConverged, 0) << name;
+  EXPECT_TRUE(compensated.travelViolation.empty()) << compensated.travelViolation;
+  const std::string written = compensatedGcode(*setup.machine, program, compensated, "test");
+  const GcodeProgram readBack = parseGcodeProgram(written, name + " compensated", *setup.machine);
+  EXPECT_EQ(readBack.moves.size() + 1, compensated.points.size()) << name;
+  std::vector<CompensatedPoint> points = compensated.points;
+  for (size_t i = 1; i < points.size() && i - 1 < readBack.moves.size(); ++i) points[i].q = readBack.moves[i - 1].to;
+  const ProgramDeviation d = programDeviation(setup.machine, setup.errors, program, points);
+  std::cout << name << ": " << program.moves.size() << " moves, " << readBack.moves.size() << " written; largest TCP deviation "
+            << d.before.maxPosition * 1e3 << " um as written, " << d.after.maxPosition * 1e3 << " um compensated; direction "
+            << d.before.maxDirection * 1e6 << " -> " << d.after.maxDirection * 1e6 << " urad\n";
+  EXPECT_GT(d.before.maxPosition, 1e-3) << name << ": the errors must matter for the test to say anything";
+  EXPECT_LE(d.after.maxPosition, 0.05 * d.before.maxPosition) << name;
+  return d;
+}
+
+// ISO 230-4 ballbar circles, radius 100 mm, in the three planes and both directions, as G2/G3
+// full circles (I, J, K centre offsets).
+std::string ballbarProgram() {
+  return "(ballbar circles, ISO 230-4, r = 100 mm)\n"
+         "G21 G90 G17\n"
+         "G0 X400 Y200 Z250\n"
+         "G2 X400 Y200 I-100 F1000\n"
+         "G3 X400 Y200 I-100\n"
+         "G18 G0 X300 Y200 Z350\n"
+         "G2 X300 Z350 K-100\n"
+         "G3 X300 Z350 K-100\n"
+         "G19 G0 X300 Y300 Z250\n"
+         "G2 Y300 Z250 J-100\n"
+         "G3 Y300 Z250 J-100\n"
+         "M30\n";
+}
+
+TEST(ProgramCompensation, BallbarCirclesInThreePlanesOnTheThreeAxisMachine) {
+  const auto d = compensatedAndReadBack(bundledSetup("three-axis-vertical"), ballbarProgram(), "ballbar circles");
+  EXPECT_EQ(d.after.samples, d.before.samples);
+}
+
+TEST(ProgramCompensation, BallbarCircleOnTheMahoWithItsTablesAndStiffness) {
+  auto setup = bundledSetup("maho");
+  const std::string circle = "G21 G90 G17\nG0 X350 Y250 Z300 B0 C0\nG2 X350 Y250 I-100 F1000\nM30\n";
+  compensatedAndReadBack(setup, circle, "Maho ballbar circle");
+}
+
+TEST(ProgramCompensation, ConeFrustumProgramOnTheTiltingTable) {
+  const auto setup = bundledSetup("tilting-table");
+  const ConeSpec spec;
+  const ConePath path = conePath(spec, 720);
+  const auto motion = coneMotion(setup.nominal(), spec, path);
+  compensatedAndReadBack(setup, coneNcProgram(*setup.machine, spec, motion.q, 500.0), "cone frustum");
+}
+
+TEST(ProgramCompensation, CubicMachiningTestProgramOnTheTiltingTable) {
+  const auto setup = bundledSetup("tilting-table");
+  const auto spec = loadCubicTest("seed001-cubic");
+  compensatedAndReadBack(setup, cubicNcProgram(*setup.machine, spec, cubicToolPath(setup.nominal(), spec)), "cubic test");
+}
+
+TEST(GcodeReader, ArcByRadiusEqualsArcByCentre) {
+  const auto machine = test::bundled("three-axis-vertical");
+  const auto byCentre = parseGcodeProgram("G0 X100 Y100 Z50\nG2 X200 Y100 I50 F500\n", "a.nc", *machine);
+  const auto byRadius = parseGcodeProgram("G0 X100 Y100 Z50\nG2 X200 Y100 R50 F500\n", "b.nc", *machine);
+  const auto larger = parseGcodeProgram("G0 X100 Y100 Z50\nG2 X200 Y100 R-60 F500\n", "c.nc", *machine);
+  const GcodeMove &c = byCentre.moves[1], &r = byRadius.moves[1];
+  EXPECT_NEAR(r.centre[0], 150.0, 1e-12);
+  EXPECT_NEAR(r.centre[1], 100.0, 1e-12);
+  EXPECT_NEAR(c.sweep, -std::numbers::pi, 1e-12);  // clockwise half circle through Y = 150
+  EXPECT_NEAR(c.at(0.5)[1], 150.0, 1e-12);
+  EXPECT_NEAR(r.at(0.5)[1], 150.0, 1e-12);
+  EXPECT_LT(larger.moves[1].sweep, -std::numbers::pi);  // R < 0: the arc longer than half a circle
+}
+
+TEST(GcodeReader, IncrementalInchAndHelix) {
+  const auto machine = test::bundled("three-axis-vertical");
+  const auto p = parseGcodeProgram("G20 G91\nG0 X1 Y1 Z1\nG1 X1 F10\nG3 X0 Y0 Z0.5 I0 J1\nG21 G90 G1 X10\n", "inch.nc", *machine);
+  ASSERT_EQ(p.moves.size(), 4u);
+  EXPECT_NEAR(p.moves[1].to[0], 2 * 25.4, 1e-12);
+  EXPECT_NEAR(p.moves[1].feed, 254.0, 1e-12);
+  EXPECT_NEAR(p.moves[2].sweep, 2 * std::numbers::pi, 1e-12);  // full circle, rising 0.5 in
+  EXPECT_NEAR(p.moves[2].at(0.5)[2], 1.25 * 25.4, 1e-12);
+  EXPECT_NEAR(p.moves[3].to[0], 10.0, 1e-12);
+}
+
+TEST(GcodeReader, KeptWordsAndCommentsStayInPlace) {
+  const auto setup = bundledSetup("three-axis-vertical");
+  const auto p = parseGcodeProgram("%\nO100 (part 7)\nN10 G0 X10 Y10 Z10 M3 S1000\nN20 G1 X20 F300 M30 ; end\n%\n", "kept.nc", *setup.machine);
+  const std::string out = compensatedGcode(*setup.machine, p, compensateProgram(setup.machine, setup.errors, p), "header");
+  EXPECT_TRUE(out.starts_with("%\n(header)\nG21 G90\nO100 (part 7)\nN10 M3 S1000 G0 X")) << out;
+  EXPECT_NE(out.find("F300 M30 ; end\n"), std::string::npos) << out;  // the stop after the motion, the comment kept
+  EXPECT_TRUE(out.ends_with("\n%\n")) << out;
+}
+
+TEST(GcodeReader, ToolLengthMovesTheCompensatedPoint) {
+  const auto setup = bundledSetup("three-axis-vertical");
+  const std::string text = "G43 H2\nG0 X0 Y10 Z100\nG1 X500 F500\n";
+  EXPECT_NE(test::thrown<InputError>([&] { parseGcodeProgram(text, "t.nc", *setup.machine); })->reason().find("length of tool 2"),
+            std::string::npos);
+  const auto shortTool = parseGcodeProgram(text, "t.nc", *setup.machine, {{}, {{2, 0.0}}});
+  const auto longTool = parseGcodeProgram(text, "t.nc", *setup.machine, {{}, {{2, 100.0}}});
+  EXPECT_EQ(longTool.moves[1].toolLength, 100.0);
+  const auto a = compensateProgram(setup.machine, setup.errors, shortTool), b = compensateProgram(setup.machine, setup.errors, longTool);
+  // A longer tool sees the pitch of X (EBX, 12.5 urad at X = 500) over a 100 mm longer arm: its
+  // X correction differs by 1.25 um.
+  EXPECT_NEAR(std::abs(a.points.back().q[0] - b.points.back().q[0]), 100.0 * 12.5e-6, 1e-6);
+}
+
+// Each bad program: the message names the file and line.
+TEST(GcodeReader, BadProgramsAreLocated) {
+  const auto machine = test::bundled("three-axis-vertical");
+  const std::pair<const char*, const char*> cases[] = {
+      {"G0 X1\nG1 X2 Q5 F100\n", "the word Q is not supported"},
+      {"G0 X0 Y0\nG2 X10 Y0 I4 F100\n", "inconsistent arc"},
+      {"G0 X1\nG1 X2\n", "before any feed"},
+      {"G0 X1\nG0 G1 X2 F100\n", "two motion G codes"},
+      {"G0 X1\nX2 X3\n", "given twice"},
+      {"G0 X1\nG2 X2 F100\n", "centre (I, J, K) or its radius"},
+      {"G0 X1\nG1 X2 I1 F100\n", "arc words without an arc"},
+      {"G0 X1\nG43.4 X2\n", "G43.4 is not supported"},
+      {"G0 X1\nG1 A10 F100\n", "has no axis A"},
+      {"G0 X1\nG1 X1..2 F100\n", "is not a word"},
+      {"G0 X1\nG1 X2 F100 (open\n", "not closed"},
+      {"G0 X1\nG2 X2 R0.1 F100\n", "shorter than half the chord"},
+      {"G0 X1\nG1 X9000 F100\n", "beyond travel"},
+      {"G0 X1\nG1 X2 F-5\n", "feed must be positive"},
+  };
+  for (const auto& [program, why] : cases) {
+    const char* text = program;
+    const auto e = test::thrown<InputError>([&] { parseGcodeProgram(text, "bad.nc", *machine); });
+    ASSERT_TRUE(e) << text;
+    EXPECT_EQ(e->where().file, "bad.nc");
+    EXPECT_EQ(e->where().line, 2) << text;
+    EXPECT_NE(e->reason().find(why), std::string::npos) << text << " -> " << e->reason();
+  }
+}
+
+}  // namespace
+}  // namespace mtacc

@@ -1,0 +1,51 @@
+"""`mtacc compensate` and `Machine.compensate_program`: CLI and API alike, the compensated program
+leaving a small share of the program's deviation on the machine with its errors, G43 tool lengths,
+and bad G-code located."""
+import json
+import subprocess
+
+import pytest
+
+import mtacc
+
+CIRCLE = "G21 G90 G17\nG0 X400 Y200 Z250\nG2 X400 Y200 I-100 F1000\nM30\n"
+
+
+def test_cli_json_equals_api_and_the_written_program(cli, tmp_path):
+    program, out = tmp_path / "circle.nc", tmp_path / "compensated.nc"
+    program.write_text(CIRCLE)
+    run = subprocess.run([cli, "compensate", "three-axis-vertical", "--program", str(program), "--gcode", str(out), "--json"],
+                         capture_output=True, text=True, check=True)
+    api = mtacc.Machine("three-axis-vertical").compensate_program(program)
+    assert out.read_text() == api.pop("gcode")
+    assert json.loads(run.stdout) == api
+
+
+def test_the_compensated_circle_deviates_far_less(tmp_path):
+    program = tmp_path / "circle.nc"
+    program.write_text(CIRCLE)
+    r = mtacc.Machine("three-axis-vertical").compensate_program(program)
+    before, after = r["deviation_before"]["max_position_um"], r["deviation_after"]["max_position_um"]
+    assert before > 5 and after <= 0.05 * before
+    assert r["not_converged"] == 0 and r["written_points"] > 1000  # the circle as chords within 0.1 um
+
+
+def test_tool_lengths_and_tolerances(tmp_path):
+    program = tmp_path / "tool.nc"
+    program.write_text("G43 H2\nG0 X0 Y10 Z100\nG1 X500 F500\n")
+    machine = mtacc.Machine("three-axis-vertical")
+    with pytest.raises(mtacc.InputError, match=r"tool.nc:1: .*length of tool 2"):
+        machine.compensate_program(program)
+    short, long = (machine.compensate_program(program, tool_lengths={2: length}) for length in (0.0, 100.0))
+    # The pitch of X (EBX, 12.5 urad at X = 500) over a 100 mm longer tool: 1.25 um more correction of X.
+    assert abs(long["largest_correction_um_urad"]["X"] - short["largest_correction_um_urad"]["X"]) == pytest.approx(1.25, abs=1e-3)
+    with pytest.raises(mtacc.InputError, match="tolerance"):
+        machine.compensate_program(program, tool_lengths={2: 0.0}, tolerance=float("nan"))
+
+
+def test_bad_gcode_is_located(tmp_path):
+    program = tmp_path / "bad.nc"
+    program.write_text("G0 X0 Y0 Z50\nG2 X10 Y0 I4 F100\n")
+    with pytest.raises(mtacc.InputError, match=r"bad.nc:2: .*inconsistent arc"):
+        mtacc.Machine("three-axis-vertical").compensate_program(program)
+
