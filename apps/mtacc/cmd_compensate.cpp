@@ -1,10 +1,15 @@
 // mtacc compensate MACHINE --program IN.nc --gcode OUT.nc: the axis program compensated for the
 // machine's errors, with what its path deviates from the program before and after.
+// mtacc compensate MACHINE --tables DIR: the correction grid, its one-axis functions and the
+// LinuxCNC files, with the residual each leaves.
 #include <fmt/format.h>
+
+#include <filesystem>
 
 #include "cli_common.hpp"
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
+#include "mtacc/io/pose_text.hpp"
 #include "mtacc/io/text_file.hpp"
 #include "mtacc/workflows/compensation.hpp"
 
@@ -13,11 +18,50 @@ namespace {
 
 struct CompensateOptions : MachineOptions {
   std::string program, gcode, toolLengths;
+  std::string tables, nodes = "21,21,21", pose;
+  int functions = 9, linuxcncType = 1;
   double toleranceUm = ProgramCompensationOptions{}.tolerance * 1e3;
   double directionToleranceUrad = ProgramCompensationOptions{}.directionTolerance * 1e6;
 };
 
+void runTables(const CompensateOptions& o) {
+  const auto setup = loadMachineSetup(o.source);
+  CompensationTablesRequest request;
+  const auto counts = splitList(o.nodes);
+  if (counts.size() != 3) throw InputError({"", 0, "--nodes"}, "give the nodes along X, Y, Z, e.g. 21,21,21");
+  for (size_t a = 0; a < 3; ++a) request.grid.counts[a] = parseCount(counts[a], "--nodes", 2, 1000);
+  if (!o.pose.empty()) request.grid.pose = parsePose(*setup.machine, o.pose, "--pose", true);
+  request.oneAxisFunctions = o.functions;
+  request.linuxcncType = o.linuxcncType;
+  const auto r = compensationTables(setup, request);
+  std::error_code error;
+  std::filesystem::create_directories(o.tables, error);
+  if (error) throw InputError({"", 0, "--tables"}, fmt::format("{}: cannot create the folder: {}", o.tables, error.message()));
+  for (const auto& [name, content] : r.files) writeFileAtomically((std::filesystem::path(o.tables) / name).string(), content, "--tables");
+  const auto j = toJson(r);
+  std::string human = fmt::format("Correction tables for {}: {} x {} x {} nodes over the travel of X, Y, Z at {}; written to {}/\n", r.setup.machine->name,
+                                  r.grid.counts[0], r.grid.counts[1], r.grid.counts[2], r.setup.machine->describePose(r.grid.pose), o.tables);
+  human += fmt::format("TCP position error left over {} points (nodes and midpoints), um:  largest (rms)\n", r.gridResidual.samples);
+  human += fmt::format("  {:<34} {:9.3f} ({:.3f})\n", "uncorrected", r.gridResidual.beforeMax * 1e3, r.gridResidual.beforeRms * 1e3);
+  std::string csv = "format,after_max_um,after_rms_um,before_max_um,before_rms_um\n";
+  for (const auto& t : j["tables"]) {
+    const auto& res = t["residual"];
+    const std::string label = t["format"].get<std::string>() == "grid" ? "3-D grid, trilinear"
+                              : t["format"].get<std::string>() == "one-axis"
+                                  ? fmt::format("{} one-axis functions", t["functions"].size())
+                                  : "LinuxCNC COMP_FILE per joint";
+    human += fmt::format("  {:<34} {:9.3f} ({:.3f})   carries {}\n", label, res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
+                         t["carries"].get<std::string>());
+    csv += fmt::format("{},{},{},{},{}\n", t["format"].get<std::string>(), res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
+                       res["before_max_um"].get<double>(), res["before_rms_um"].get<double>());
+  }
+  emit(o, j, human, csv);
+}
+
 void run(const CompensateOptions& o) {
+  if (o.program.empty() == o.tables.empty())
+    throw InputError({"", 0, "--program/--tables"}, "give --program IN.nc (a compensated program) or --tables DIR (controller tables)");
+  if (!o.tables.empty()) return runTables(o);
   if (o.gcode.empty()) throw InputError({"", 0, "--gcode"}, "give the file to write the compensated program to (--gcode OUT.nc)");
   ProgramCompensationRequest request;
   request.programFile = o.program;
@@ -58,7 +102,7 @@ void addCompensateCommand(CLI::App& app) {
   auto o = std::make_shared<CompensateOptions>();
   auto* cmd = app.add_subcommand("compensate", "compensate an axis program (G-code) for the machine's errors");
   addMachineOptions(*cmd, *o);
-  cmd->add_option("--program", o->program, "the G-code program to compensate (axis positions in mm and deg)")->required();
+  cmd->add_option("--program", o->program, "the G-code program to compensate (axis positions in mm and deg)");
   cmd->add_option("--gcode", o->gcode, "write the compensated program to FILE");
   cmd->add_option("--tool-length", o->toolLengths, "lengths of the tools named by G43 H<n>, e.g. 1=0,2=35.5 (mm beyond the machine's tool)");
   cmd->add_option("--tolerance", o->toleranceUm, "TCP deviation allowed between written points, arc chords included [um]")
@@ -67,6 +111,13 @@ void addCompensateCommand(CLI::App& app) {
   cmd->add_option("--direction-tolerance", o->directionToleranceUrad, "tool direction deviation allowed between written points [urad]")
       ->capture_default_str()
       ->check(CLI::Range(0.01, 10000.0));
+  cmd->add_option("--tables", o->tables, "write the correction grid, its one-axis functions and the LinuxCNC files to DIR");
+  cmd->add_option("--nodes", o->nodes, "tables: nodes along X, Y, Z over their travel")->capture_default_str();
+  cmd->add_option("--pose", o->pose, "tables: the other axes' positions, e.g. B=0,C=0 (mm, deg; default 0)");
+  cmd->add_option("--functions", o->functions, "tables: one-axis functions kept, the largest first")->capture_default_str()->check(CLI::Range(1, 9));
+  cmd->add_option("--linuxcnc-type", o->linuxcncType, "tables: LinuxCNC COMP_FILE_TYPE, 1 (trims) or 0 (positions)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1));
   cmd->callback([o] { run(*o); });
 }
 

@@ -26,6 +26,7 @@
 #include "mtacc/workflows/positioning.hpp"
 #include "mtacc/workflows/report_paths.hpp"
 #include "mtacc/workflows/stiffness.hpp"
+#include "mtacc/io/pose_text.hpp"
 #include "mtacc/workflows/compensation.hpp"
 
 namespace py = pybind11;
@@ -297,6 +298,23 @@ PYBIND11_MODULE(_mtacc, mod) {
         return toPython(toJson(study));
       })
       .def("stiffness", [](const MachineSetup& s, int samples) { return toPython(toJson(summariseStiffness(s, samples))); })
+      .def("compensation_tables",
+           [](const MachineSetup& s, const std::array<int, 3>& nodes, const std::string& pose, int functions, int linuxcncType) {
+             CompensationTablesRequest request;
+             request.grid.counts = nodes;
+             if (!pose.empty()) request.grid.pose = parsePose(*s.machine, pose, "pose", true);
+             request.oneAxisFunctions = functions;
+             request.linuxcncType = linuxcncType;
+             CompensationTablesResult r;
+             {
+               py::gil_scoped_release release;
+               r = compensationTables(s, request);
+             }
+             nlohmann::json j = toJson(r);
+             j["contents"] = nlohmann::json::object();
+             for (const auto& [name, content] : r.files) j["contents"][name] = content;
+             return toPython(j);
+           })
       .def("compensate_program",
            [](const MachineSetup& s, const std::string& path, const std::map<int, double>& toolLengths, std::optional<double> tolerance,
               std::optional<double> directionTolerance) {

@@ -73,7 +73,7 @@ ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& posit
   ErrorIkSolution s;
   s.q = start;
   s.nominalQ = start;
-  s.directionControlled = rotaryCount(*actual.machine) >= 2;
+  s.directionControlled = !o.positionOnly && rotaryCount(*actual.machine) >= 2;
   s.singular = singularStart;
   const auto n = static_cast<Eigen::Index>(s.q.size());
   Eigen::VectorXd scale(n);

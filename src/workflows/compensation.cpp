@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <iterator>
+
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 
@@ -57,6 +59,76 @@ nlohmann::json toJson(const ProgramCompensationResult& r) {
           {"first_problem_line", c.firstProblemLine},
           {"deviation_before", deviation(r.deviation.before)},
           {"deviation_after", deviation(r.deviation.after)}};
+}
+
+namespace {
+
+// The one-axis functions as CSV: which axis's command each corrects, as a function of which.
+std::string oneAxisCsv(const Machine& m, const OneAxisReduction& r, const CorrectionGrid& g) {
+  const char* names[3] = {"X", "Y", "Z"};
+  std::string out = fmt::format(
+      "# mtacc one-axis correction functions for {} (seed 003 §11): add each function of the input axis's command to the output "
+      "axis's command; linear between the positions, the end value beyond\n"
+      "# {} functions; they leave {:.3f} um (largest) of the grid's corrections; pose of the other axes: {}\n"
+      "input_axis,output_axis,position_mm,correction_mm\n",
+      m.name, r.functions.size(), r.residualMax * 1e3, m.describePose(g.pose));
+  auto it = std::back_inserter(out);
+  for (const auto& f : r.functions)
+    for (size_t n = 0; n < f.positions.size(); ++n)
+      fmt::format_to(it, "{},{},{:.6f},{:.7f}\n", names[f.input], names[f.output], f.positions[n], f.values[n]);
+  return out;
+}
+
+nlohmann::json residualJson(const TableResidual& r) {
+  return {{"before_max_um", r.beforeMax * 1e3}, {"before_rms_um", r.beforeRms * 1e3}, {"after_max_um", r.afterMax * 1e3},
+          {"after_rms_um", r.afterRms * 1e3}, {"samples", r.samples}};
+}
+
+}  // namespace
+
+CompensationTablesResult compensationTables(const MachineSetup& setup, const CompensationTablesRequest& request) {
+  if (request.oneAxisFunctions < 1 || request.oneAxisFunctions > 9)
+    throw InputError({"", 0, "functions"}, fmt::format("{} one-axis functions: give 1 to 9", request.oneAxisFunctions));
+  if (request.linuxcncType != 0 && request.linuxcncType != 1)
+    throw InputError({"", 0, "linuxcnc_type"}, "COMP_FILE_TYPE is 0 (positions) or 1 (trims)");
+  CompensationTablesResult r;
+  r.setup = setup;
+  r.grid = correctionGrid(setup.machine, setup.errors, request.grid);
+  r.oneAxis = reduceToOneAxisFunctions(r.grid, request.oneAxisFunctions);
+  r.ownAxes = reduceToOneAxisFunctions(r.grid, 9);
+  std::erase_if(r.ownAxes.functions, [](const AxisFunction& f) { return f.input != f.output; });
+  const auto& m = setup.machine;
+  r.gridResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.grid.interpolate(p); });
+  r.oneAxisResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.oneAxis.correction(p); });
+  r.ownAxesResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.ownAxes.correction(p); });
+  r.files.emplace_back("grid.csv", correctionGridCsv(*m, r.grid));
+  r.files.emplace_back("one-axis.csv", oneAxisCsv(*m, r.oneAxis, r.grid));
+  const char* names[3] = {"X", "Y", "Z"};
+  for (const auto& f : r.ownAxes.functions)
+    r.files.emplace_back(fmt::format("linuxcnc-{}.comp", names[f.input]), linuxcncCompFile(f, request.linuxcncType));
+  return r;
+}
+
+nlohmann::json toJson(const CompensationTablesResult& r) {
+  const char* names[3] = {"X", "Y", "Z"};
+  nlohmann::json functions = nlohmann::json::array();
+  for (const auto& f : r.oneAxis.functions) functions.push_back({{"input", names[f.input]}, {"output", names[f.output]}, {"rms_um", f.rms * 1e3}});
+  nlohmann::json files = nlohmann::json::array();
+  for (const auto& [name, content] : r.files) files.push_back(name);
+  const auto& g = r.grid;
+  return {{"machine", r.setup.machine->name},
+          {"grid", {{"nodes", g.counts}, {"start_mm", g.start}, {"step_mm", g.step}, {"pose", poseJson(*r.setup.machine, g.pose.data())}}},
+          {"tables",
+           {{{"format", "grid"}, {"file", "grid.csv"}, {"carries", "the position error everywhere, trilinear between the nodes"},
+             {"residual", residualJson(r.gridResidual)}},
+            {{"format", "one-axis"}, {"file", "one-axis.csv"}, {"functions", functions},
+             {"reduction_residual_max_um", r.oneAxis.residualMax * 1e3},
+             {"carries", "the sum of one-axis functions; not the interactions (an angular error times another axis's travel)"},
+             {"residual", residualJson(r.oneAxisResidual)}},
+            {{"format", "linuxcnc"}, {"files", "linuxcnc-X.comp, linuxcnc-Y.comp, linuxcnc-Z.comp"},
+             {"carries", "each axis's correction of its own command; not the cross-axis terms (squareness, straightness)"},
+             {"residual", residualJson(r.ownAxesResidual)}}}},
+          {"files", files}};
 }
 
 }  // namespace mtacc

@@ -49,3 +49,27 @@ def test_bad_gcode_is_located(tmp_path):
     with pytest.raises(mtacc.InputError, match=r"bad.nc:2: .*inconsistent arc"):
         mtacc.Machine("three-axis-vertical").compensate_program(program)
 
+
+
+def test_tables_cli_equals_api_and_the_files_are_written(cli, tmp_path):
+    run = subprocess.run([cli, "compensate", "maho", "--tables", str(tmp_path), "--nodes", "6,5,5", "--pose", "B=10", "--functions", "4",
+                          "--json"], capture_output=True, text=True, check=True)
+    api = mtacc.Machine("maho").compensation_tables(nodes=(6, 5, 5), pose={"B": 10}, functions=4)
+    contents = api.pop("contents")
+    assert json.loads(run.stdout) == api
+    assert sorted(contents) == sorted(api["files"]) == ["grid.csv", "linuxcnc-X.comp", "linuxcnc-Y.comp", "linuxcnc-Z.comp", "one-axis.csv"]
+    for name, text in contents.items():
+        assert (tmp_path / name).read_text() == text
+    tables = {t["format"]: t for t in api["tables"]}
+    assert len(tables["one-axis"]["functions"]) == 4
+    # The grid carries the most; each reduction leaves more, and every table leaves less than nothing would.
+    before = tables["grid"]["residual"]["before_max_um"]
+    assert tables["grid"]["residual"]["after_max_um"] < tables["one-axis"]["residual"]["after_max_um"] < before
+    assert tables["linuxcnc"]["residual"]["after_max_um"] < before
+
+
+def test_tables_refuse_a_bad_request():
+    with pytest.raises(mtacc.InputError, match="nodes"):
+        mtacc.Machine("maho").compensation_tables(nodes=(1, 5, 5))
+    with pytest.raises(mtacc.InputError, match="at most 256"):
+        mtacc.Machine("three-axis-vertical").compensation_tables(nodes=(300, 2, 2))

@@ -27,6 +27,9 @@ struct ErrorIkOptions {
   // angle between the tool and the rotary axis that cannot turn it there (1e-2: 0.6 deg, where
   // a direction error of 1e-4 rad would need 0.6 deg of the other rotary axis).
   double singularRatio = 1e-2;
+  // The position alone, by the linear axes, the rotary axes kept (what a table of linear-axis
+  // corrections can do), whatever the machine's rotary axes.
+  bool positionOnly = false;
 };
 
 struct ErrorIkSolution {

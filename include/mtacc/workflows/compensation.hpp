@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mtacc/compensation/correction_tables.hpp"
 #include "mtacc/compensation/program_compensation.hpp"
 #include "mtacc/io/gcode_program.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
@@ -31,5 +32,28 @@ struct ProgramCompensationResult {
 // point beyond travel (nothing is written then).
 ProgramCompensationResult compensateProgramFile(const MachineSetup& setup, const ProgramCompensationRequest& request);
 nlohmann::json toJson(const ProgramCompensationResult& result);
+
+// Workflow `compensate --tables`: the correction grid over X, Y, Z at a pose of the other axes,
+// its one-axis reduction and the LinuxCNC per-joint files, each with the residual a controller
+// applying it leaves over the working volume.
+struct CompensationTablesRequest {
+  CorrectionGridSpec grid;
+  int oneAxisFunctions = 9;  // at most this many one-axis functions (1 to 9)
+  int linuxcncType = 1;      // COMP_FILE_TYPE
+};
+
+struct CompensationTablesResult {
+  MachineSetup setup;
+  CorrectionGrid grid;
+  OneAxisReduction oneAxis;
+  OneAxisReduction ownAxes;  // the functions of each axis's own command (LinuxCNC)
+  TableResidual gridResidual, oneAxisResidual, ownAxesResidual;
+  std::vector<std::pair<std::string, std::string>> files;  // name, content
+};
+
+// Throws InputError for a machine without linear X, Y, Z, or more than 256 nodes on an axis for
+// LinuxCNC.
+CompensationTablesResult compensationTables(const MachineSetup& setup, const CompensationTablesRequest& request);
+nlohmann::json toJson(const CompensationTablesResult& result);
 
 }  // namespace mtacc

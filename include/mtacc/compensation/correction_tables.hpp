@@ -1,0 +1,88 @@
+#pragma once
+// Controller-side compensation (issue 17, item 3): the corrections of the linear axes' commands
+// that put the TCP where the nominal machine puts it, tabulated as a controller holds them, and
+// what a controller applying each table leaves of the error.
+//   * a 3-D grid of correction vectors over X, Y, Z, interpolated trilinearly (the generic form;
+//     Fanuc's 3-D error compensation);
+//   * its reduction to additive one-axis functions (seed 003 §11): the correction of one axis as
+//     a function of one axis's command, chosen by least squares, with the residual they leave;
+//     LinuxCNC's COMP_FILE carries the functions of an axis's own command, Siemens CEC the others.
+// The tables correct the position only (the rotary axes stay at the pose the grid is taken at).
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mtacc/core/parallel.hpp"
+#include "mtacc/errors/error_model.hpp"
+#include "mtacc/machine/machine.hpp"
+
+namespace mtacc {
+
+struct CorrectionGridSpec {
+  std::array<int, 3> counts{21, 21, 21};  // nodes along X, Y, Z, spread over each axis's travel
+  std::vector<double> pose;               // the other commanded axes (mm, rad); empty: all zero
+  int threads = kAllCores;                // Z layers in parallel; the result is the same for any count
+};
+
+struct CorrectionGrid {
+  std::array<int, 3> axes{};            // indices of X, Y, Z among the commanded axes
+  std::array<double, 3> start{}, step{};  // mm
+  std::array<int, 3> counts{};
+  std::vector<double> pose;             // every commanded axis; the grid's own axes are overwritten per node
+  std::vector<Vec3> corrections;        // mm, node (i, j, k) at i + counts[0] * (j + counts[1] * k)
+
+  double node(int axis, int index) const { return start[static_cast<size_t>(axis)] + index * step[static_cast<size_t>(axis)]; }
+  const Vec3& at(int i, int j, int k) const {
+    return corrections[static_cast<size_t>(i + counts[0] * (j + counts[1] * k))];
+  }
+  // Trilinear between the nodes, the end value beyond them.
+  Vec3 interpolate(const Vec3& xyz) const;
+};
+
+// The inverse error model's correction at every node (position only, by the linear axes), nodes
+// in order with the Jacobian kept and the correction extrapolated along X. Throws InputError when
+// the machine has no linear X, Y, Z or an axis has no travel to spread the nodes over.
+CorrectionGrid correctionGrid(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGridSpec& spec);
+
+// A correction added to the command of `output` as a function of the command of `input`
+// (both among X, Y, Z: 0, 1, 2), on the grid's nodes of `input`, linear between them.
+struct AxisFunction {
+  int input = 0, output = 0;
+  std::vector<double> positions;  // mm
+  std::vector<double> values;     // mm
+  double rms = 0.0;               // mm, over the nodes
+  double at(double position) const;
+};
+
+struct OneAxisReduction {
+  std::vector<AxisFunction> functions;  // the largest first
+  double residualMax = 0.0, residualRms = 0.0;  // mm: |grid correction - sum of the functions| over the nodes
+  Vec3 correction(const Vec3& xyz) const;
+};
+
+// The least-squares decomposition of the grid's corrections into additive one-axis functions:
+// on a full grid, the main effects (the mean over the other two axes, less the grand mean, which
+// goes to the output axis's own function); the `maxFunctions` largest by their RMS are kept.
+OneAxisReduction reduceToOneAxisFunctions(const CorrectionGrid& grid, int maxFunctions = 9);
+
+// How far the TCP is from where the nominal machine puts it, with the commands as written
+// (before) and corrected by `correction` as the controller applies it (after), over a lattice
+// of the grid's nodes and the midpoints between them (at most `perAxis` per axis).
+struct TableResidual {
+  double beforeMax = 0.0, beforeRms = 0.0, afterMax = 0.0, afterRms = 0.0;  // mm
+  int samples = 0;
+};
+TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid,
+                            const std::function<Vec3(const Vec3&)>& correction, int perAxis = 41);
+
+// The file forms, each stating its units, grid and what it cannot carry in its header.
+// Generic grid: CSV "x_mm,y_mm,z_mm,dx_mm,dy_mm,dz_mm", '#' comment lines first.
+std::string correctionGridCsv(const Machine& machine, const CorrectionGrid& grid);
+// LinuxCNC [JOINT_n] COMP_FILE: "nominal forward reverse" per line (COMP_FILE_TYPE 1: trims,
+// the correction added to the command; 0: the positions nominal + trim), at most 256 lines.
+// From the function of the axis's own command; throws when it has more than 256 nodes.
+std::string linuxcncCompFile(const AxisFunction& function, int type);
+
+}  // namespace mtacc

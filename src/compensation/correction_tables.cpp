@@ -1,0 +1,225 @@
+#include "mtacc/compensation/correction_tables.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/core/parallel.hpp"
+#include "mtacc/kinematics/forward.hpp"
+#include "mtacc/kinematics/inverse_with_errors.hpp"
+
+namespace mtacc {
+namespace {
+
+constexpr const char* kAxisNames[3] = {"X", "Y", "Z"};
+constexpr int kLinuxcncLines = 256;  // EMCMOT_COMP_SIZE in LinuxCNC's motion.h
+
+// Where x lies between the nodes start + k step: the lower node and the fraction, clamped.
+std::pair<int, double> bracket(double x, double start, double step, int count) {
+  if (count < 2) return {0, 0.0};
+  const double u = std::clamp((x - start) / step, 0.0, static_cast<double>(count - 1));
+  const int k = std::min(static_cast<int>(u), count - 2);
+  return {k, u - k};
+}
+
+}  // namespace
+
+Vec3 CorrectionGrid::interpolate(const Vec3& xyz) const {
+  const std::pair<int, double> bx = bracket(xyz.x(), start[0], step[0], counts[0]), by = bracket(xyz.y(), start[1], step[1], counts[1]),
+                              bz = bracket(xyz.z(), start[2], step[2], counts[2]);
+  const int i = bx.first, j = by.first, k = bz.first;
+  const double u = bx.second, v = by.second, w = bz.second;
+  const int i1 = std::min(i + 1, counts[0] - 1), j1 = std::min(j + 1, counts[1] - 1), k1 = std::min(k + 1, counts[2] - 1);
+  auto along = [&](int jj, int kk) { return Vec3((1 - u) * at(i, jj, kk) + u * at(i1, jj, kk)); };
+  return (1 - w) * ((1 - v) * along(j, k) + v * along(j1, k)) + w * ((1 - v) * along(j, k1) + v * along(j1, k1));
+}
+
+CorrectionGrid correctionGrid(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGridSpec& spec) {
+  CorrectionGrid g;
+  const auto n = static_cast<size_t>(machine->commandedCount());
+  g.pose = spec.pose.empty() ? std::vector<double>(n, 0.0) : spec.pose;
+  if (g.pose.size() != n) throw InputError({"", 0, "pose"}, fmt::format("the pose needs {} axis positions", n));
+  for (int a = 0; a < 3; ++a) {
+    const int index = machine->commandedAxisIndex(kAxisNames[a]);
+    const auto ua = static_cast<size_t>(a);
+    if (index < 0 || machine->axes[static_cast<size_t>(index)].isRotary())
+      throw InputError({machine->sourceFile, 0, "axes"}, fmt::format("a correction grid needs a linear axis {}", kAxisNames[a]));
+    const auto& travel = machine->axes[static_cast<size_t>(index)].travel;
+    if (!travel) throw InputError({machine->sourceFile, 0, kAxisNames[a]}, "a correction grid needs the axis's travel");
+    if (spec.counts[ua] < 2 || spec.counts[ua] > 1000)
+      throw InputError({"", 0, "nodes"}, fmt::format("{} nodes along {}: give 2 to 1000", spec.counts[ua], kAxisNames[a]));
+    g.axes[ua] = index;
+    g.counts[ua] = spec.counts[ua];
+    g.start[ua] = travel->min;
+    g.step[ua] = (travel->max - travel->min) / (spec.counts[ua] - 1);
+  }
+  const KinematicModel actual = compile(machine, errors), nominal = compileNominal(machine);
+  ErrorIkOptions options;
+  options.positionOnly = true;
+  options.positionTolerance = 1e-7;
+  g.corrections.resize(static_cast<size_t>(g.counts[0]) * static_cast<size_t>(g.counts[1]) * static_cast<size_t>(g.counts[2]));
+  const auto x = static_cast<size_t>(g.axes[0]), y = static_cast<size_t>(g.axes[1]), z = static_cast<size_t>(g.axes[2]);
+  // Each Z layer on its own, from scratch: the result does not depend on the threads.
+  parallelFor(g.counts[2], spec.threads, [&](long firstLayer, long endLayer) {
+    ErrorIkJacobian jacobian;
+    std::vector<double> q = g.pose, start(n);
+    for (auto k = static_cast<int>(firstLayer); k < endLayer; ++k) {
+      jacobian.valid = false;
+      Vec3 rowStart = Vec3::Zero();
+      for (int j = 0; j < g.counts[1]; ++j)
+        for (int i = 0; i < g.counts[0]; ++i) {
+          q[x] = g.node(0, i);
+          q[y] = g.node(1, j);
+          q[z] = g.node(2, k);
+          const ToolPoint wanted = toolPoint(nominal, q.data());
+          // Along X the correction is extrapolated from the two nodes before; a row starts from
+          // the previous row's start.
+          const Vec3 guess = i >= 2 ? Vec3(2 * g.at(i - 1, j, k) - g.at(i - 2, j, k)) : i == 1 ? g.at(0, j, k) : rowStart;
+          start = q;
+          start[x] += guess.x();
+          start[y] += guess.y();
+          start[z] += guess.z();
+          const ErrorIkSolution s = refineWithErrors(actual, wanted.position, wanted.direction, start, options, jacobian);
+          Vec3& c = g.corrections[static_cast<size_t>(i + g.counts[0] * (j + g.counts[1] * k))];
+          c = Vec3(s.q[x] - q[x], s.q[y] - q[y], s.q[z] - q[z]);
+          if (i == 0) rowStart = c;
+        }
+    }
+  });
+  return g;
+}
+
+double AxisFunction::at(double position) const {
+  const double step = positions.size() > 1 ? positions[1] - positions[0] : 1.0;
+  const auto [k, u] = bracket(position, positions.front(), step, static_cast<int>(positions.size()));
+  const auto kk = static_cast<size_t>(k);
+  return positions.size() > 1 ? (1 - u) * values[kk] + u * values[kk + 1] : values[0];
+}
+
+Vec3 OneAxisReduction::correction(const Vec3& xyz) const {
+  Vec3 c = Vec3::Zero();
+  for (const auto& f : functions) c[f.output] += f.at(xyz[f.input]);
+  return c;
+}
+
+OneAxisReduction reduceToOneAxisFunctions(const CorrectionGrid& g, int maxFunctions) {
+  const double nodes = static_cast<double>(g.corrections.size());
+  Vec3 grand = Vec3::Zero();
+  for (const auto& c : g.corrections) grand += c;
+  grand /= nodes;
+  std::vector<AxisFunction> all;
+  for (int input = 0; input < 3; ++input) {
+    const int count = g.counts[static_cast<size_t>(input)];
+    std::vector<Vec3> mean(static_cast<size_t>(count), Vec3::Zero());
+    for (int k = 0; k < g.counts[2]; ++k)
+      for (int j = 0; j < g.counts[1]; ++j)
+        for (int i = 0; i < g.counts[0]; ++i) mean[static_cast<size_t>(input == 0 ? i : input == 1 ? j : k)] += g.at(i, j, k);
+    for (auto& m : mean) m *= count / nodes;
+    for (int output = 0; output < 3; ++output) {
+      AxisFunction f;
+      f.input = input;
+      f.output = output;
+      for (int n = 0; n < count; ++n) {
+        f.positions.push_back(g.node(input, n));
+        // The main effect; the grand mean rides on the output axis's own function.
+        f.values.push_back(mean[static_cast<size_t>(n)][output] - (input == output ? 0.0 : grand[output]));
+      }
+      double squares = 0.0;
+      for (double v : f.values) squares += v * v;
+      f.rms = std::sqrt(squares / count);
+      all.push_back(std::move(f));
+    }
+  }
+  std::stable_sort(all.begin(), all.end(), [](const AxisFunction& a, const AxisFunction& b) { return a.rms > b.rms; });
+  OneAxisReduction r;
+  r.functions.assign(all.begin(), all.begin() + std::clamp(maxFunctions, 0, static_cast<int>(all.size())));
+  double squares = 0.0;
+  for (int k = 0; k < g.counts[2]; ++k)
+    for (int j = 0; j < g.counts[1]; ++j)
+      for (int i = 0; i < g.counts[0]; ++i) {
+        const double left = (g.at(i, j, k) - r.correction({g.node(0, i), g.node(1, j), g.node(2, k)})).norm();
+        r.residualMax = std::max(r.residualMax, left);
+        squares += left * left;
+      }
+  r.residualRms = std::sqrt(squares / nodes);
+  return r;
+}
+
+TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& g,
+                            const std::function<Vec3(const Vec3&)>& correction, int perAxis) {
+  const KinematicModel actual = compile(machine, errors), nominal = compileNominal(machine);
+  std::array<std::vector<double>, 3> lattice;
+  for (size_t a = 0; a < 3; ++a) {
+    // The nodes and the midpoints between them, thinned to perAxis.
+    const int points = std::min(2 * g.counts[a] - 1, perAxis);
+    const double span = g.step[a] * (g.counts[a] - 1);
+    for (int p = 0; p < points; ++p) lattice[a].push_back(g.start[a] + span * p / (points - 1));
+  }
+  TableResidual r;
+  double before = 0.0, after = 0.0;
+  std::vector<double> q = g.pose, corrected = g.pose;
+  const auto x = static_cast<size_t>(g.axes[0]), y = static_cast<size_t>(g.axes[1]), z = static_cast<size_t>(g.axes[2]);
+  for (double zz : lattice[2])
+    for (double yy : lattice[1])
+      for (double xx : lattice[0]) {
+        q[x] = xx;
+        q[y] = yy;
+        q[z] = zz;
+        const Vec3 c = correction({xx, yy, zz});
+        corrected = q;
+        corrected[x] += c.x();
+        corrected[y] += c.y();
+        corrected[z] += c.z();
+        const Vec3 wanted = toolPoint(nominal, q.data()).position;
+        const double e0 = (toolPoint(actual, q.data()).position - wanted).norm();
+        const double e1 = (toolPoint(actual, corrected.data()).position - wanted).norm();
+        r.beforeMax = std::max(r.beforeMax, e0);
+        r.afterMax = std::max(r.afterMax, e1);
+        before += e0 * e0;
+        after += e1 * e1;
+        ++r.samples;
+      }
+  r.beforeRms = std::sqrt(before / r.samples);
+  r.afterRms = std::sqrt(after / r.samples);
+  return r;
+}
+
+std::string correctionGridCsv(const Machine& machine, const CorrectionGrid& g) {
+  std::string out = fmt::format(
+      "# mtacc correction grid for {}: add (dx, dy, dz) to the X, Y, Z commands; trilinear between the nodes, the end value beyond\n"
+      "# nodes: {} x {} x {} from ({:g}, {:g}, {:g}) mm, step ({:g}, {:g}, {:g}) mm; x fastest\n"
+      "# pose of the other axes: {}\n"
+      "# carries the position only: the tool direction's error is not corrected\n"
+      "x_mm,y_mm,z_mm,dx_mm,dy_mm,dz_mm\n",
+      machine.name, g.counts[0], g.counts[1], g.counts[2], g.start[0], g.start[1], g.start[2], g.step[0], g.step[1], g.step[2],
+      machine.describePose(g.pose));
+  auto it = std::back_inserter(out);
+  for (int k = 0; k < g.counts[2]; ++k)
+    for (int j = 0; j < g.counts[1]; ++j)
+      for (int i = 0; i < g.counts[0]; ++i) {
+        const Vec3& c = g.at(i, j, k);
+        fmt::format_to(it, "{:.6f},{:.6f},{:.6f},{:.7f},{:.7f},{:.7f}\n", g.node(0, i), g.node(1, j), g.node(2, k), c.x(), c.y(), c.z());
+      }
+  return out;
+}
+
+std::string linuxcncCompFile(const AxisFunction& f, int type) {
+  if (f.input != f.output) throw InputError({"", 0, "table"}, "a LinuxCNC COMP_FILE holds an axis's correction as a function of its own command");
+  if (static_cast<int>(f.positions.size()) > kLinuxcncLines)
+    throw InputError({"", 0, "nodes"}, fmt::format("LinuxCNC takes at most {} lines per joint, not {}", kLinuxcncLines, f.positions.size()));
+  if (type != 0 && type != 1) throw InputError({"", 0, "type"}, "COMP_FILE_TYPE is 0 or 1");
+  // LinuxCNC reads no comments: the file holds the triplets only.
+  std::string out;
+  auto it = std::back_inserter(out);
+  for (size_t n = 0; n < f.positions.size(); ++n) {
+    const double p = f.positions[n], trim = f.values[n];
+    if (type == 1) fmt::format_to(it, "{:.6f} {:.7f} {:.7f}\n", p, trim, trim);
+    else fmt::format_to(it, "{:.6f} {:.7f} {:.7f}\n", p, p + trim, p + trim);
+  }
+  return out;
+}
+
+}  // namespace mtacc
