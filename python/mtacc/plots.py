@@ -669,3 +669,28 @@ def stiffness_changes(result, title=None):
     fig.suptitle(title or f"Changes of the errors under a workpiece load of {result['workpiece_load_kg']:g} kg")
     fig.tight_layout()
     return fig
+
+
+def compensation_residuals(result, title=None):
+    """The TCP position error left by each controller table of `Machine.compensation_tables`, beside the
+    uncorrected error: largest and RMS over the check lattice."""
+    tables = result["tables"]
+    labels = ["uncorrected"] + [{"grid": "3-D grid", "one-axis": f"{len(t.get('functions', []))} one-axis functions",
+                                 "linuxcnc": "LinuxCNC per joint"}[t["format"]] for t in tables]
+    largest = [tables[0]["residual"]["before_max_um"]] + [t["residual"]["after_max_um"] for t in tables]
+    rms = [tables[0]["residual"]["before_rms_um"]] + [t["residual"]["after_rms_um"] for t in tables]
+    fig, ax = plt.subplots(figsize=(7, 3.6))
+    y = np.arange(len(labels))
+    ax.barh(y - 0.2, largest, height=0.4, label="largest", color="C3")
+    ax.barh(y + 0.2, rms, height=0.4, label="RMS", color="C0")
+    for k, (a, b) in enumerate(zip(largest, rms)):
+        ax.text(a, k - 0.2, f" {a:.2f}", va="center", fontsize=8)
+        ax.text(b, k + 0.2, f" {b:.2f}", va="center", fontsize=8)
+    ax.set_yticks(y, labels)
+    ax.invert_yaxis()
+    ax.set_xlabel("TCP position error [µm]")
+    ax.legend(fontsize=8, loc="lower right")
+    ax.set_title(title or "TCP position error left by each table")
+    fig.tight_layout()
+    return fig
+

@@ -319,6 +319,22 @@ def stiffness_section(result):
     return out
 
 
+def compensation_section(result):
+    """Issue 17: what each controller table leaves of the TCP position error when a controller applies it."""
+    g = result["grid"]
+    others = {k: v for k, v in g["pose"].items() if k not in ("X", "Y", "Z")}
+    at = f" (other axes at {html.escape(fmt_pose(others))})" if others else ""
+    out = ("<h2>After compensation</h2><p>The corrections of the X, Y, Z commands that put the TCP where the nominal "
+           f"machine puts it, tabulated on {g['nodes'][0]} × {g['nodes'][1]} × {g['nodes'][2]} nodes over the travel{at}, "
+           "and the error a controller applying each table leaves, over the nodes and the midpoints between them "
+           "(`mtacc compensate --tables` writes the files).</p>")
+    out += figure(plots.compensation_residuals(result), "TCP position error left by each table")
+    out += table(["table", "largest [µm]", "RMS [µm]", "carries"],
+                 [[t["format"], f"{t['residual']['after_max_um']:.3f}", f"{t['residual']['after_rms_um']:.3f}", t["carries"]]
+                  for t in result["tables"]], left=1)
+    return out
+
+
 def positioning_section(results):
     """ISO 230-2 charts and axis values of each positioning-test file."""
     out = ("<h2>Positioning (ISO 230-2)</h2><p>Accuracy A, systematic deviation E and repeatability R of "
@@ -366,6 +382,10 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     stiffness = machine.stiffness(samples) if machine.check()["stiffness_changes"] else None
     if stiffness:
         steps.insert(-1, "finite stiffness")
+    linear_with_travel = {a["name"] for a in machine.axes if a["type"] == "linear" and a["travel"] is not None}
+    compensation = machine.compensation_tables(nodes=(11, 11, 11)) if {"X", "Y", "Z"} <= linear_with_travel else None
+    if compensation:
+        steps.insert(-1, "after compensation")
     budget = machine.budget(samples=samples)
     observability = machine.observability(plan) if plan else None
     if structure:
@@ -457,6 +477,9 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     if stiffness:
         parts.append(stiffness_section(stiffness))
         step("finite stiffness")
+    if compensation:
+        parts.append(compensation_section(compensation))
+        step("after compensation")
     if plates:
         parts.append(plates_section(plate_results))
         step("plates")

@@ -28,6 +28,7 @@ def test_report_is_self_contained(tilting_table_report):
     assert "Cone-frustum test piece (seed 000)" in text and "Monte Carlo:" in text
     assert "Measurement and identification" in text and "Identified parameters" in text
     assert "Structural dynamics" in text and "First mode shape" in text
+    assert "After compensation" in text and "TCP position error left by each table" in text
     assert not re.search(r'(src|href)\s*=\s*["\']?(https?:)?//', text)
     assert "<link" not in text and "@import" not in text and "url(http" not in text
 
