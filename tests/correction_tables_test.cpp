@@ -3,7 +3,9 @@
 // residual it leaves pinned.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <random>
+#include <regex>
 #include <sstream>
 
 #include "mtacc/compensation/correction_tables.hpp"
@@ -143,6 +145,68 @@ TEST(LinuxcncCompFile, TripletsWithinTheLimitAndTheControllerInterpolatesThem) {
   tooLong.positions.resize(257, 0.0);
   tooLong.values.resize(257, 0.0);
   EXPECT_NE(test::thrown<InputError>([&] { linuxcncCompFile(tooLong, 1); })->reason().find("at most 256"), std::string::npos);
+}
+
+// Siemens CEC (840D sl function manual K3): per table $AN_CEC_INPUT_AXIS, _OUTPUT_AXIS, _STEP, _MIN,
+// _MAX, _DIRECTION, _MULT_BY_TABLE, _IS_MODULO and the values $AN_CEC[t, N]; the file
+// %_N_NC_CEC_INI ends with M17. Read back, interpolated as the control does, it is the reduction.
+TEST(SiemensCec, TablesReadBackAndInterpolateToTheReduction) {
+  const auto setup = bundledSetup("maho");
+  const CorrectionGrid grid = correctionGrid(setup.machine, setup.errors, {{8, 6, 7}, {}});
+  const OneAxisReduction r = reduceToOneAxisFunctions(grid, 6);
+  std::istringstream file(siemensCecTables(r));
+  std::string line;
+  std::getline(file, line);
+  EXPECT_EQ(line, "%_N_NC_CEC_INI");
+  struct Table {
+    std::string input, output;
+    double step = 0, min = 0, max = 0;
+    std::vector<double> values;
+  };
+  std::map<int, Table> tables;
+  const std::regex field(R"(\$AN_CEC_(\w+)\[(\d+)\]=\(?([^)]*)\)?)"), value(R"(\$AN_CEC\[(\d+),(\d+)\]=(\S+))");
+  std::string last;
+  while (std::getline(file, line)) {
+    std::smatch m;
+    if (line.starts_with(";")) continue;
+    last = line;
+    if (std::regex_match(line, m, value)) {
+      auto& t = tables[std::stoi(m[1])];
+      ASSERT_EQ(static_cast<size_t>(std::stoi(m[2])), t.values.size());
+      t.values.push_back(std::stod(m[3]));
+    } else if (std::regex_match(line, m, field)) {
+      auto& t = tables[std::stoi(m[2])];
+      const std::string name = m[1], text = m[3];
+      if (name == "INPUT_AXIS") t.input = text;
+      else if (name == "OUTPUT_AXIS") t.output = text;
+      else if (name == "STEP") t.step = std::stod(text);
+      else if (name == "MIN") t.min = std::stod(text);
+      else if (name == "MAX") t.max = std::stod(text);
+      else EXPECT_TRUE(name == "DIRECTION" || name == "MULT_BY_TABLE" || name == "IS_MODULO") << name;
+    } else {
+      EXPECT_EQ(line, "M17");
+    }
+  }
+  EXPECT_EQ(last, "M17");
+  ASSERT_EQ(tables.size(), 6u);
+  const char* names[3] = {"X", "Y", "Z"};
+  auto controller = [&](const Vec3& p) {
+    Vec3 c = Vec3::Zero();
+    for (const auto& [index, t] : tables) {
+      const int in = static_cast<int>(std::find(names, names + 3, t.input) - names), out = static_cast<int>(std::find(names, names + 3, t.output) - names);
+      const double u = std::clamp((p[in] - t.min) / t.step, 0.0, static_cast<double>(t.values.size() - 1));
+      const auto k = std::min(static_cast<size_t>(u), t.values.size() - 2);
+      c[out] += t.values[k] + (u - static_cast<double>(k)) * (t.values[k + 1] - t.values[k]);
+    }
+    return c;
+  };
+  std::mt19937 rng(5);
+  for (int s = 0; s < 100; ++s) {
+    Vec3 p;
+    for (int a = 0; a < 3; ++a) p[a] = std::uniform_real_distribution<double>(grid.start[a], grid.node(a, grid.counts[a] - 1))(rng);
+    EXPECT_LE((controller(p) - r.correction(p)).norm(), 2e-7);  // 7 decimals
+  }
+  for (const auto& [index, t] : tables) EXPECT_NEAR(t.min + t.step * static_cast<double>(t.values.size() - 1), t.max, 1e-5);
 }
 
 }  // namespace

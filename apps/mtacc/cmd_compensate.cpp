@@ -39,18 +39,22 @@ void runTables(const CompensateOptions& o) {
   if (error) throw InputError({"", 0, "--tables"}, fmt::format("{}: cannot create the folder: {}", o.tables, error.message()));
   for (const auto& [name, content] : r.files) writeFileAtomically((std::filesystem::path(o.tables) / name).string(), content, "--tables");
   const auto j = toJson(r);
-  std::string human = fmt::format("Correction tables for {}: {} x {} x {} nodes over the travel of X, Y, Z at {}; written to {}/\n", r.setup.machine->name,
-                                  r.grid.counts[0], r.grid.counts[1], r.grid.counts[2], r.setup.machine->describePose(r.grid.pose), o.tables);
+  std::string others;
+  for (const auto& [axis, value] : j["grid"]["pose"].items())
+    if (axis != "X" && axis != "Y" && axis != "Z") others += fmt::format("{}{}={:g}", others.empty() ? " with " : ", ", axis, value.get<double>());
+  std::string human = fmt::format("Correction tables for {}: {} x {} x {} nodes over the travel of X, Y, Z{}; written to {}/\n", r.setup.machine->name,
+                                  r.grid.counts[0], r.grid.counts[1], r.grid.counts[2], others, o.tables);
   human += fmt::format("TCP position error left over {} points (nodes and midpoints), um:  largest (rms)\n", r.gridResidual.samples);
-  human += fmt::format("  {:<34} {:9.3f} ({:.3f})\n", "uncorrected", r.gridResidual.beforeMax * 1e3, r.gridResidual.beforeRms * 1e3);
+  human += fmt::format("  {:<30} {:9.3f} ({:.3f})\n", "uncorrected", r.gridResidual.beforeMax * 1e3, r.gridResidual.beforeRms * 1e3);
   std::string csv = "format,after_max_um,after_rms_um,before_max_um,before_rms_um\n";
   for (const auto& t : j["tables"]) {
     const auto& res = t["residual"];
-    const std::string label = t["format"].get<std::string>() == "grid" ? "3-D grid, trilinear"
-                              : t["format"].get<std::string>() == "one-axis"
-                                  ? fmt::format("{} one-axis functions", t["functions"].size())
-                                  : "LinuxCNC COMP_FILE per joint";
-    human += fmt::format("  {:<34} {:9.3f} ({:.3f})   carries {}\n", label, res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
+    const std::string format = t["format"];
+    const std::string label = format == "grid"          ? "3-D grid, trilinear"
+                              : format == "one-axis"    ? fmt::format("{} one-axis functions", r.oneAxis.functions.size())
+                              : format == "siemens-cec" ? "Siemens CEC tables"
+                                                        : "LinuxCNC COMP_FILE per joint";
+    human += fmt::format("  {:<30} {:9.3f} ({:.3f})   carries {}\n", label, res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
                          t["carries"].get<std::string>());
     csv += fmt::format("{},{},{},{},{}\n", t["format"].get<std::string>(), res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
                        res["before_max_um"].get<double>(), res["before_rms_um"].get<double>());

@@ -675,8 +675,10 @@ def compensation_residuals(result, title=None):
     """The TCP position error left by each controller table of `Machine.compensation_tables`, beside the
     uncorrected error: largest and RMS over the check lattice."""
     tables = result["tables"]
-    labels = ["uncorrected"] + [{"grid": "3-D grid", "one-axis": f"{len(t.get('functions', []))} one-axis functions",
-                                 "linuxcnc": "LinuxCNC per joint"}[t["format"]] for t in tables]
+    functions = next(len(t["functions"]) for t in tables if t["format"] == "one-axis")
+    names = {"grid": "3-D grid", "one-axis": f"{functions} one-axis functions", "siemens-cec": "Siemens CEC",
+             "linuxcnc": "LinuxCNC per joint"}
+    labels = ["uncorrected"] + [names[t["format"]] for t in tables]
     largest = [tables[0]["residual"]["before_max_um"]] + [t["residual"]["after_max_um"] for t in tables]
     rms = [tables[0]["residual"]["before_rms_um"]] + [t["residual"]["after_rms_um"] for t in tables]
     fig, ax = plt.subplots(figsize=(7, 3.6))

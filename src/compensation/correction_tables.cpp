@@ -222,4 +222,18 @@ std::string linuxcncCompFile(const AxisFunction& f, int type) {
   return out;
 }
 
+std::string siemensCecTables(const OneAxisReduction& r) {
+  std::string out = "%_N_NC_CEC_INI\n; mtacc one-axis correction functions as CEC tables: values in mm, added to the output axis\n";
+  auto it = std::back_inserter(out);
+  for (size_t t = 0; t < r.functions.size(); ++t) {
+    const AxisFunction& f = r.functions[t];
+    const double step = f.positions.size() > 1 ? f.positions[1] - f.positions[0] : 0.0;
+    fmt::format_to(it, "$AN_CEC_INPUT_AXIS[{0}]=({1})\n$AN_CEC_OUTPUT_AXIS[{0}]=({2})\n$AN_CEC_STEP[{0}]={3:.6f}\n$AN_CEC_MIN[{0}]={4:.6f}\n"
+                       "$AN_CEC_MAX[{0}]={5:.6f}\n$AN_CEC_DIRECTION[{0}]=0\n$AN_CEC_MULT_BY_TABLE[{0}]=0\n$AN_CEC_IS_MODULO[{0}]=0\n",
+                   t, kAxisNames[f.input], kAxisNames[f.output], step, f.positions.front(), f.positions.back());
+    for (size_t n = 0; n < f.values.size(); ++n) fmt::format_to(it, "$AN_CEC[{},{}]={:.7f}\n", t, n, f.values[n]);
+  }
+  return out + "M17\n";
+}
+
 }  // namespace mtacc

@@ -103,6 +103,7 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   r.ownAxesResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.ownAxes.correction(p); });
   r.files.emplace_back("grid.csv", correctionGridCsv(*m, r.grid));
   r.files.emplace_back("one-axis.csv", oneAxisCsv(*m, r.oneAxis, r.grid));
+  r.files.emplace_back("siemens-cec.ini", siemensCecTables(r.oneAxis));
   const char* names[3] = {"X", "Y", "Z"};
   for (const auto& f : r.ownAxes.functions)
     r.files.emplace_back(fmt::format("linuxcnc-{}.comp", names[f.input]), linuxcncCompFile(f, request.linuxcncType));
@@ -124,6 +125,9 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
             {{"format", "one-axis"}, {"file", "one-axis.csv"}, {"functions", functions},
              {"reduction_residual_max_um", r.oneAxis.residualMax * 1e3},
              {"carries", "the sum of one-axis functions; not the interactions (an angular error times another axis's travel)"},
+             {"residual", residualJson(r.oneAxisResidual)}},
+            {{"format", "siemens-cec"}, {"file", "siemens-cec.ini"},
+             {"carries", "the one-axis functions above, one CEC table each (input and output axis by the machine file's names)"},
              {"residual", residualJson(r.oneAxisResidual)}},
             {{"format", "linuxcnc"}, {"files", "linuxcnc-X.comp, linuxcnc-Y.comp, linuxcnc-Z.comp"},
              {"carries", "each axis's correction of its own command; not the cross-axis terms (squareness, straightness)"},

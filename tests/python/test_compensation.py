@@ -57,7 +57,8 @@ def test_tables_cli_equals_api_and_the_files_are_written(cli, tmp_path):
     api = mtacc.Machine("maho").compensation_tables(nodes=(6, 5, 5), pose={"B": 10}, functions=4)
     contents = api.pop("contents")
     assert json.loads(run.stdout) == api
-    assert sorted(contents) == sorted(api["files"]) == ["grid.csv", "linuxcnc-X.comp", "linuxcnc-Y.comp", "linuxcnc-Z.comp", "one-axis.csv"]
+    assert sorted(contents) == sorted(api["files"]) == ["grid.csv", "linuxcnc-X.comp", "linuxcnc-Y.comp", "linuxcnc-Z.comp", "one-axis.csv",
+                                                     "siemens-cec.ini"]
     for name, text in contents.items():
         assert (tmp_path / name).read_text() == text
     tables = {t["format"]: t for t in api["tables"]}

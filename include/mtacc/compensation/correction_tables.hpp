@@ -85,4 +85,10 @@ std::string correctionGridCsv(const Machine& machine, const CorrectionGrid& grid
 // From the function of the axis's own command; throws when it has more than 256 nodes.
 std::string linuxcncCompFile(const AxisFunction& function, int type);
 
+// Siemens SINUMERIK CEC (sag and angularity compensation) tables as the INI part program
+// %_N_NC_CEC_INI: one table per one-axis function, $AN_CEC_INPUT_AXIS / _OUTPUT_AXIS named by the
+// machine file's axis names, equidistant $AN_CEC_STEP from $AN_CEC_MIN to $AN_CEC_MAX (mm), the
+// values $AN_CEC[t, N] in mm added to the output axis, both directions, ending with M17.
+std::string siemensCecTables(const OneAxisReduction& reduction);
+
 }  // namespace mtacc
