@@ -10,6 +10,9 @@
 
 #include "mtacc/compensation/correction_tables.hpp"
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/io/cone_program.hpp"
+#include "mtacc/io/gcode_program.hpp"
+#include "mtacc/procedures/cone.hpp"
 #include "mtacc/io/csv.hpp"
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
@@ -64,6 +67,29 @@ TEST(CorrectionGrid, ResidualOfEachTableOnTheThreeAxisMachine) {
   EXPECT_NEAR(all.residualMax * 1e3, 2.254, 0.02 * 2.254);
   EXPECT_NEAR(ownAxes.afterMax * 1e3, 13.94, 0.02 * 13.94);      // squareness and straightness need the cross-axis tables
   EXPECT_EQ(trilinear.samples, 21 * 21 * 21);
+}
+
+// Along a test path: ballbar circles in three planes on the 3-axis machine. A grid fine enough
+// for the path's curvature carries its error as a compensated program does; on the 5-axis
+// cone frustum, whose rotary axes move, the linear-axis grid taken at B = C = 0 cannot.
+TEST(CorrectionGrid, ResidualAlongATestPath) {
+  const auto setup = bundledSetup("three-axis-vertical");
+  const GcodeProgram circles = parseGcodeProgram(
+      "G17 G0 X400 Y200 Z250\nG2 X400 Y200 I-100 F1000\nG18 G0 X300 Y200 Z350\nG2 X300 Z350 K-100\n", "circles.nc", *setup.machine);
+  const CorrectionGrid grid = correctionGrid(setup.machine, setup.errors, {{24, 22, 22}, {}});  // nodes off the circles' quarter points
+  const auto along = tableResidualAlong(setup.machine, setup.errors, circles, grid, [&](const Vec3& p) { return grid.interpolate(p); });
+  std::cout << "circles: " << along.beforeMax * 1e3 << " um -> " << along.afterMax * 1e3 << " um over " << along.samples << " samples\n";
+  EXPECT_EQ(along.samples, 34);  // two feed moves, 17 points each
+  EXPECT_LE(along.afterMax, 0.05 * along.beforeMax);
+
+  const auto table = bundledSetup("tilting-table");
+  const ConeSpec spec;
+  const GcodeProgram cone = parseGcodeProgram(coneNcProgram(*table.machine, spec, coneMotion(table.nominal(), spec, conePath(spec, 72)).q, 500.0),
+                                              "cone.nc", *table.machine);
+  const CorrectionGrid at0 = correctionGrid(table.machine, table.errors, {{11, 11, 11}, {}});
+  const auto onCone = tableResidualAlong(table.machine, table.errors, cone, at0, [&](const Vec3& p) { return at0.interpolate(p); });
+  std::cout << "cone: " << onCone.beforeMax * 1e3 << " um -> " << onCone.afterMax * 1e3 << " um\n";
+  EXPECT_GT(onCone.afterMax, 0.3 * onCone.beforeMax);
 }
 
 TEST(OneAxisReduction, AnAdditiveCorrectionIsReproducedExactly) {

@@ -18,7 +18,7 @@ namespace {
 
 struct CompensateOptions : MachineOptions {
   std::string program, gcode, toolLengths;
-  std::string tables, nodes = "21,21,21", pose;
+  std::string tables, nodes = "21,21,21", pose, checkProgram;
   int functions = 9, linuxcncType = 1;
   double toleranceUm = ProgramCompensationOptions{}.tolerance * 1e3;
   double directionToleranceUrad = ProgramCompensationOptions{}.directionTolerance * 1e6;
@@ -33,6 +33,7 @@ void runTables(const CompensateOptions& o) {
   if (!o.pose.empty()) request.grid.pose = parsePose(*setup.machine, o.pose, "--pose", true);
   request.oneAxisFunctions = o.functions;
   request.linuxcncType = o.linuxcncType;
+  request.checkProgram = o.checkProgram;
   const auto r = compensationTables(setup, request);
   std::error_code error;
   std::filesystem::create_directories(o.tables, error);
@@ -56,6 +57,9 @@ void runTables(const CompensateOptions& o) {
                                                         : "LinuxCNC COMP_FILE per joint";
     human += fmt::format("  {:<30} {:9.3f} ({:.3f})   carries {}\n", label, res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
                          t["carries"].get<std::string>());
+    if (t.contains("along_program"))
+      human += fmt::format("  {:<30} {:9.3f} ({:.3f})   along {} (uncorrected {:.3f})\n", "", t["along_program"]["after_max_um"].get<double>(),
+                           t["along_program"]["after_rms_um"].get<double>(), o.checkProgram, t["along_program"]["before_max_um"].get<double>());
     csv += fmt::format("{},{},{},{},{}\n", t["format"].get<std::string>(), res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
                        res["before_max_um"].get<double>(), res["before_rms_um"].get<double>());
   }
@@ -116,6 +120,7 @@ void addCompensateCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.01, 10000.0));
   cmd->add_option("--tables", o->tables, "write the correction grid, its one-axis functions and the LinuxCNC files to DIR");
+  cmd->add_option("--check-program", o->checkProgram, "tables: also check each table along this program's feed moves (G-code)");
   cmd->add_option("--nodes", o->nodes, "tables: nodes along X, Y, Z over their travel")->capture_default_str();
   cmd->add_option("--pose", o->pose, "tables: the other axes' positions, e.g. B=0,C=0 (mm, deg; default 0)");
   cmd->add_option("--functions", o->functions, "tables: one-axis functions kept, the largest first")->capture_default_str()->check(CLI::Range(1, 9));

@@ -299,8 +299,10 @@ PYBIND11_MODULE(_mtacc, mod) {
       })
       .def("stiffness", [](const MachineSetup& s, int samples) { return toPython(toJson(summariseStiffness(s, samples))); })
       .def("compensation_tables",
-           [](const MachineSetup& s, const std::array<int, 3>& nodes, const std::string& pose, int functions, int linuxcncType) {
+           [](const MachineSetup& s, const std::array<int, 3>& nodes, const std::string& pose, int functions, int linuxcncType,
+              const std::string& checkProgram) {
              CompensationTablesRequest request;
+             request.checkProgram = checkProgram;
              request.grid.counts = nodes;
              if (!pose.empty()) request.grid.pose = parsePose(*s.machine, pose, "pose", true);
              request.oneAxisFunctions = functions;

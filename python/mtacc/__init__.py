@@ -203,14 +203,15 @@ class Machine:
         rad = None if direction_tolerance is None else float(direction_tolerance) * 1e-6
         return self._core.compensate_program(str(path), lengths, mm, rad)
 
-    def compensation_tables(self, nodes=(21, 21, 21), pose=None, functions=9, linuxcnc_type=1):
+    def compensation_tables(self, nodes=(21, 21, 21), pose=None, functions=9, linuxcnc_type=1, check_program=None):
         """Controller tables for this machine, as `mtacc compensate --tables --json`: the correction grid
         over X, Y, Z (`nodes` along each, over its travel) at `pose` of the other axes ({axis: mm or deg},
         default 0), its reduction to at most `functions` one-axis functions and the LinuxCNC COMP_FILE of
-        each axis, each with the TCP error a controller applying it leaves ("residual", um). "contents"
-        holds each file's text by name."""
+        each axis, each with the TCP error a controller applying it leaves ("residual", um), and along
+        `check_program` (G-code, "along_program") when given. "contents" holds each file's text by name."""
         text = ",".join(f"{name}={float(value)!r}" for name, value in (pose or {}).items())
-        return self._core.compensation_tables([int(n) for n in nodes], text, int(functions), int(linuxcnc_type))
+        return self._core.compensation_tables([int(n) for n in nodes], text, int(functions), int(linuxcnc_type),
+                                              "" if check_program is None else str(check_program))
 
     def compare_plate(self, path):
         """A measured hole or ball plate (CSV, docs/file-formats.md) against this machine's error model, as

@@ -25,6 +25,47 @@ std::pair<int, double> bracket(double x, double start, double step, int count) {
   return {k, u - k};
 }
 
+// The TCP of the machine with its errors at the commands q, as written and corrected by `c`,
+// against the nominal TCP at q; largest and RMS over the points added.
+class ResidualSum {
+ public:
+  ResidualSum(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& g)
+      : actual_(compile(machine, errors)), nominal_(compileNominal(machine)), axes_(g.axes) {}
+
+  void add(const std::vector<double>& q, const std::function<Vec3(const Vec3&)>& correction) {
+    const auto x = static_cast<size_t>(axes_[0]), y = static_cast<size_t>(axes_[1]), z = static_cast<size_t>(axes_[2]);
+    corrected_ = q;
+    const Vec3 c = correction({q[x], q[y], q[z]});
+    corrected_[x] += c.x();
+    corrected_[y] += c.y();
+    corrected_[z] += c.z();
+    const Vec3 wanted = toolPoint(nominal_, q.data()).position;
+    const double before = (toolPoint(actual_, q.data()).position - wanted).norm();
+    const double after = (toolPoint(actual_, corrected_.data()).position - wanted).norm();
+    r_.beforeMax = std::max(r_.beforeMax, before);
+    r_.afterMax = std::max(r_.afterMax, after);
+    before_ += before * before;
+    after_ += after * after;
+    ++r_.samples;
+  }
+
+  TableResidual result() const {
+    TableResidual r = r_;
+    if (r.samples > 0) {
+      r.beforeRms = std::sqrt(before_ / r.samples);
+      r.afterRms = std::sqrt(after_ / r.samples);
+    }
+    return r;
+  }
+
+ private:
+  KinematicModel actual_, nominal_;
+  std::array<int, 3> axes_;
+  std::vector<double> corrected_;
+  TableResidual r_;
+  double before_ = 0.0, after_ = 0.0;
+};
+
 }  // namespace
 
 Vec3 CorrectionGrid::interpolate(const Vec3& xyz) const {
@@ -150,7 +191,6 @@ OneAxisReduction reduceToOneAxisFunctions(const CorrectionGrid& g, int maxFuncti
 
 TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& g,
                             const std::function<Vec3(const Vec3&)>& correction, int perAxis) {
-  const KinematicModel actual = compile(machine, errors), nominal = compileNominal(machine);
   std::array<std::vector<double>, 3> lattice;
   for (size_t a = 0; a < 3; ++a) {
     // The nodes and the midpoints between them, thinned to perAxis.
@@ -158,9 +198,8 @@ TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const
     const double span = g.step[a] * (g.counts[a] - 1);
     for (int p = 0; p < points; ++p) lattice[a].push_back(g.start[a] + span * p / (points - 1));
   }
-  TableResidual r;
-  double before = 0.0, after = 0.0;
-  std::vector<double> q = g.pose, corrected = g.pose;
+  ResidualSum sum(machine, errors, g);
+  std::vector<double> q = g.pose;
   const auto x = static_cast<size_t>(g.axes[0]), y = static_cast<size_t>(g.axes[1]), z = static_cast<size_t>(g.axes[2]);
   for (double zz : lattice[2])
     for (double yy : lattice[1])
@@ -168,23 +207,18 @@ TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const
         q[x] = xx;
         q[y] = yy;
         q[z] = zz;
-        const Vec3 c = correction({xx, yy, zz});
-        corrected = q;
-        corrected[x] += c.x();
-        corrected[y] += c.y();
-        corrected[z] += c.z();
-        const Vec3 wanted = toolPoint(nominal, q.data()).position;
-        const double e0 = (toolPoint(actual, q.data()).position - wanted).norm();
-        const double e1 = (toolPoint(actual, corrected.data()).position - wanted).norm();
-        r.beforeMax = std::max(r.beforeMax, e0);
-        r.afterMax = std::max(r.afterMax, e1);
-        before += e0 * e0;
-        after += e1 * e1;
-        ++r.samples;
+        sum.add(q, correction);
       }
-  r.beforeRms = std::sqrt(before / r.samples);
-  r.afterRms = std::sqrt(after / r.samples);
-  return r;
+  return sum.result();
+}
+
+TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
+                                 const CorrectionGrid& g, const std::function<Vec3(const Vec3&)>& correction) {
+  ResidualSum sum(machine, errors, g);
+  for (const GcodeMove& move : program.moves)
+    if (move.mode != MotionMode::Rapid)
+      for (int k = 0; k <= 16; ++k) sum.add(move.at(k / 16.0), correction);
+  return sum.result();
 }
 
 std::string correctionGridCsv(const Machine& machine, const CorrectionGrid& g) {

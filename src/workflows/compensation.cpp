@@ -93,6 +93,7 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
     throw InputError({"", 0, "linuxcnc_type"}, "COMP_FILE_TYPE is 0 (positions) or 1 (trims)");
   CompensationTablesResult r;
   r.setup = setup;
+  if (!request.checkProgram.empty()) r.checkProgram = readGcodeProgram(request.checkProgram, *setup.machine);
   r.grid = correctionGrid(setup.machine, setup.errors, request.grid);
   r.oneAxis = reduceToOneAxisFunctions(r.grid, request.oneAxisFunctions);
   r.ownAxes = reduceToOneAxisFunctions(r.grid, 9);
@@ -101,6 +102,11 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   r.gridResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.grid.interpolate(p); });
   r.oneAxisResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.oneAxis.correction(p); });
   r.ownAxesResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.ownAxes.correction(p); });
+  if (r.checkProgram) {
+    r.gridAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.grid.interpolate(p); });
+    r.oneAxisAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.oneAxis.correction(p); });
+    r.ownAxesAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.ownAxes.correction(p); });
+  }
   r.files.emplace_back("grid.csv", correctionGridCsv(*m, r.grid));
   r.files.emplace_back("one-axis.csv", oneAxisCsv(*m, r.oneAxis, r.grid));
   r.files.emplace_back("siemens-cec.ini", siemensCecTables(r.oneAxis));
@@ -117,7 +123,7 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
   nlohmann::json files = nlohmann::json::array();
   for (const auto& [name, content] : r.files) files.push_back(name);
   const auto& g = r.grid;
-  return {{"machine", r.setup.machine->name},
+  nlohmann::json j = {{"machine", r.setup.machine->name},
           {"grid", {{"nodes", g.counts}, {"start_mm", g.start}, {"step_mm", g.step}, {"pose", poseJson(*r.setup.machine, g.pose.data())}}},
           {"tables",
            {{{"format", "grid"}, {"file", "grid.csv"}, {"carries", "the position error everywhere, trilinear between the nodes"},
@@ -133,6 +139,12 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
              {"carries", "each axis's correction of its own command; not the cross-axis terms (squareness, straightness)"},
              {"residual", residualJson(r.ownAxesResidual)}}}},
           {"files", files}};
+  if (r.checkProgram) {
+    j["check_program"] = r.checkProgram->file;
+    const TableResidual* along[] = {&r.gridAlong, &r.oneAxisAlong, &r.oneAxisAlong, &r.ownAxesAlong};  // in the order of "tables"
+    for (size_t t = 0; t < j["tables"].size(); ++t) j["tables"][t]["along_program"] = residualJson(*along[t]);
+  }
+  return j;
 }
 
 }  // namespace mtacc

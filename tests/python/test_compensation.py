@@ -69,6 +69,16 @@ def test_tables_cli_equals_api_and_the_files_are_written(cli, tmp_path):
     assert tables["linuxcnc"]["residual"]["after_max_um"] < before
 
 
+def test_tables_along_a_test_path(tmp_path):
+    program = tmp_path / "circle.nc"
+    program.write_text(CIRCLE)
+    r = mtacc.Machine("three-axis-vertical").compensation_tables(nodes=(24, 22, 22), check_program=program)
+    assert r["check_program"] == str(program)
+    along = {t["format"]: t["along_program"] for t in r["tables"]}
+    assert along["grid"]["after_max_um"] <= 0.05 * along["grid"]["before_max_um"]
+    assert along["one-axis"] == along["siemens-cec"]
+
+
 def test_tables_refuse_a_bad_request():
     with pytest.raises(mtacc.InputError, match="nodes"):
         mtacc.Machine("maho").compensation_tables(nodes=(1, 5, 5))

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "mtacc/compensation/nc_program.hpp"
 #include "mtacc/core/parallel.hpp"
 #include "mtacc/errors/error_model.hpp"
 #include "mtacc/machine/machine.hpp"
@@ -76,6 +77,13 @@ struct TableResidual {
 };
 TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid,
                             const std::function<Vec3(const Vec3&)>& correction, int perAxis = 41);
+
+// The same along a program's feed moves (each sampled at 17 points, ends included), the controller
+// correcting the X, Y, Z commands continuously as it interpolates them; the program's other axes
+// as programmed, the machine file's tool (G43 lengths are not applied: the tables are made for
+// that tool). A test path shows what each table does where the machine works.
+TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
+                                 const CorrectionGrid& grid, const std::function<Vec3(const Vec3&)>& correction);
 
 // The file forms, each stating its units, grid and what it cannot carry in its header.
 // Generic grid: CSV "x_mm,y_mm,z_mm,dx_mm,dy_mm,dz_mm", '#' comment lines first.

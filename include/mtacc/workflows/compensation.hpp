@@ -3,6 +3,7 @@
 // the machine's errors, as G-code text and a summary (corrections, what the tool's path would
 // deviate from the program on the machine with its errors, before and after).
 #include <map>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -40,6 +41,7 @@ struct CompensationTablesRequest {
   CorrectionGridSpec grid;
   int oneAxisFunctions = 9;  // at most this many one-axis functions (1 to 9)
   int linuxcncType = 1;      // COMP_FILE_TYPE
+  std::string checkProgram;  // a test path (G-code) to check each table along, or ""
 };
 
 struct CompensationTablesResult {
@@ -48,6 +50,8 @@ struct CompensationTablesResult {
   OneAxisReduction oneAxis;
   OneAxisReduction ownAxes;  // the functions of each axis's own command (LinuxCNC)
   TableResidual gridResidual, oneAxisResidual, ownAxesResidual;
+  std::optional<GcodeProgram> checkProgram;
+  TableResidual gridAlong, oneAxisAlong, ownAxesAlong;  // along checkProgram
   std::vector<std::pair<std::string, std::string>> files;  // name, content
 };
 
