@@ -101,5 +101,28 @@ TEST(ErrorFunction, PiecewisePeriodicWrapsAroundItsZero) {
   }
 }
 
+// The compiled form a kinematic model evaluates equals the truncated-power sum to rounding, on
+// both sides of every break, on the breaks (the interval on the left), beyond the ends and for a
+// periodic term; a C1 spline fit's form and the discontinuous per-interval form alike.
+TEST(ErrorFunction, CompiledPiecewiseEqualsTheTruncatedPowerSum) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> coefficient(-1e-3, 1e-3);
+  PiecewiseTerm spline = continuousPiecewise({0.0, 50.0, 120.0, 300.0, 450.0, 700.0});
+  for (auto& c : spline.coefficients) c.value = coefficient(rng) * std::pow(1e-2, c.power);
+  const auto intervals = piecewiseFromIntervals({-100.0, 20.0, 50.0, 80.0}, {{{1.0, 0.5, -0.01}, {-3.0, 0.2, 0.002}, {4.0, -0.1, 0.0}}});
+  const auto periodic = piecewiseFromIntervals({0.0, 5.0, 10.0}, {{{0.0, 0.4, -0.04}, {0.0, 0.4, -0.04}}}, 10.0, 3.0);
+  for (const PiecewiseTerm* term : std::initializer_list<const PiecewiseTerm*>{&spline, &intervals, &periodic}) {
+    const CompiledPiecewise compiled(*term);
+    std::vector<double> at = {term->breaks.front() - 50.0, term->breaks.back() + 50.0};
+    for (double b : term->breaks)
+      for (double d : {-1e-9, 0.0, 1e-9, 3.7}) at.push_back(b + d);
+    std::uniform_real_distribution<double> u(term->breaks.front() - 20.0, term->breaks.back() + 20.0);
+    for (int k = 0; k < 200; ++k) at.push_back(u(rng));
+    double scale = 0.0;
+    for (double q : at) scale = std::max(scale, std::abs(term->value(q)));
+    for (double q : at) EXPECT_NEAR(compiled.value(q), term->value(q), 1e-13 * std::max(scale, 1.0)) << q;
+  }
+}
+
 }  // namespace
 }  // namespace mtacc

@@ -75,6 +75,38 @@ double PiecewiseTerm::value(double q) const {
   return sum;
 }
 
+CompiledPiecewise::CompiledPiecewise(PiecewiseTerm piecewise) : term(std::move(piecewise)) {
+  local.assign(term.breaks.size() - 1, {0.0, 0.0, 0.0});
+  for (const auto& c : term.coefficients) {
+    // (u - t)^p about each interval's start s >= t: with d = s - t, 1; v + d; v^2 + 2 d v + d^2.
+    const double t = c.knot == 0 ? 0.0 : term.breaks[static_cast<size_t>(c.knot)];
+    for (size_t k = static_cast<size_t>(c.knot); k < local.size(); ++k) {
+      const double d = term.breaks[k] - t;
+      auto& a = local[k];
+      if (c.power == 0) {
+        a[0] += c.value;
+      } else if (c.power == 1) {
+        a[0] += c.value * d;
+        a[1] += c.value;
+      } else {
+        a[0] += c.value * d * d;
+        a[1] += c.value * 2.0 * d;
+        a[2] += c.value;
+      }
+    }
+  }
+}
+
+double CompiledPiecewise::value(double q) const {
+  const double u = term.position(q);
+  // The intervals' interior breaks below u; on a break, the interval before it.
+  const auto first = term.breaks.begin() + 1, last = term.breaks.end() - 1;
+  const auto k = static_cast<size_t>(std::lower_bound(first, std::max(first, last), u) - first);
+  const auto& a = local[k];
+  const double v = u - term.breaks[k];
+  return a[0] + v * (a[1] + v * a[2]);
+}
+
 std::vector<std::array<double, 3>> PiecewiseTerm::intervals() const {
   std::vector<std::array<double, 3>> out(breaks.size() - 1, {0.0, 0.0, 0.0});
   for (const auto& c : coefficients) {

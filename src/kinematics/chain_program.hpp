@@ -72,7 +72,7 @@ struct ChainOp {
   };
   struct Piecewise {
     int component = 0;
-    PiecewiseTerm term;
+    CompiledPiecewise term;
   };
   std::vector<TableGroup> tableGroups;
   std::vector<HarmonicGroup> harmonicGroups;

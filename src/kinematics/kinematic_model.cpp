@@ -89,7 +89,7 @@ ChainOp motionErrorOp(const Machine& machine, const ErrorModel& errors, const Ch
         continue;
       }
       if (const auto* p = std::get_if<PiecewiseTerm>(&term)) {
-        op.piecewise.push_back({k, *p});
+        op.piecewise.push_back({k, CompiledPiecewise(*p)});
         continue;
       }
       if (const auto* r = std::get_if<ReversalTerm>(&term)) {

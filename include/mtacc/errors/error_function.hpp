@@ -107,6 +107,18 @@ struct PiecewiseTerm {
   // The polynomial of each interval in the absolute position, (c0, c1, c2): c0 + c1 u + c2 u^2.
   std::vector<std::array<double, 3>> intervals() const;
 };
+// A piecewise term made fast to evaluate (for a compiled model, whose terms do not change): each
+// interval's polynomial in (u - the interval's start), found by a search on the breaks, instead of
+// one truncated power per coefficient. Equal to term.value to rounding; a u on a break belongs to
+// the interval before it, as in the truncated-power form.
+struct CompiledPiecewise {
+  explicit CompiledPiecewise(PiecewiseTerm piecewise);
+  double value(double q) const;
+
+  PiecewiseTerm term;
+  std::vector<std::array<double, 3>> local;  // per interval: a0 + a1 v + a2 v^2, v = u - breaks[k]
+};
+
 // The truncated-power form of per-interval polynomials (all three terms at every interior
 // break, so that each interval evaluates to its own polynomial even where the table is not C1).
 PiecewiseTerm piecewiseFromIntervals(std::vector<double> breaks, const std::vector<std::array<double, 3>>& intervals,
