@@ -44,6 +44,15 @@ TEST(CorrectionGrid, NodesHoldTheInverseErrorModelAndTheControllerMatchesIt) {
   EXPECT_EQ(grid.interpolate({1e4, grid.node(1, 5), grid.node(2, 5)}), grid.at(6, 5, 5));
 }
 
+// Each Z layer is solved from scratch, so the threads do not change a single bit of the grid.
+TEST(CorrectionGrid, TheSameOnAnyNumberOfThreads) {
+  const auto setup = bundledSetup("maho");
+  const CorrectionGrid one = correctionGrid(setup.machine, setup.errors, {{9, 7, 8}, {}, 1});
+  const CorrectionGrid three = correctionGrid(setup.machine, setup.errors, {{9, 7, 8}, {}, 3});
+  ASSERT_EQ(one.corrections.size(), three.corrections.size());
+  for (size_t n = 0; n < one.corrections.size(); ++n) EXPECT_EQ(one.corrections[n], three.corrections[n]) << n;
+}
+
 // The residual each table leaves over the working volume of the 3-axis machine with its bundled
 // errors (squareness, scale, straightness as harmonics, pitch and yaw, reversal-free state):
 // pinned to 2 % of the figures printed here (mtacc's own figures, no source prints them: a guard

@@ -111,13 +111,33 @@ TEST(GcodeReader, IncrementalInchAndHelix) {
   EXPECT_NEAR(p.moves[3].to[0], 10.0, 1e-12);
 }
 
+// A clockwise full circle from 3 o'clock: X and Y reverse at its quadrant points, each axis
+// standing at the instant it reverses; a straight move has one direction throughout.
+TEST(GcodeReader, DirectionsOfMotionAndReversalsAlongAnArc) {
+  const auto machine = test::bundled("three-axis-vertical");
+  const auto p = parseGcodeProgram("G0 X200 Y100 Z50\nG2 X200 Y100 I-50 F500\nG1 X100 Y150\n", "circle.nc", *machine);
+  const GcodeMove &circle = p.moves[1], &line = p.moves[2];
+  const std::vector<double> quadrants = circle.reversals();
+  ASSERT_EQ(quadrants.size(), 3u);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(quadrants[static_cast<size_t>(k)], 0.25 * (k + 1), 1e-12);
+  EXPECT_EQ(circle.motion(0.1), (std::vector<int>{-1, -1, 0}));  // going down on the right
+  EXPECT_EQ(circle.motion(0.25), (std::vector<int>{-1, 0, 0}));  // at the bottom: Y stands
+  EXPECT_EQ(circle.motion(0.4), (std::vector<int>{-1, 1, 0}));
+  EXPECT_EQ(circle.motion(0.5), (std::vector<int>{0, 1, 0}));  // at the left: X stands
+  EXPECT_EQ(circle.motion(0.9), (std::vector<int>{1, -1, 0}));
+  EXPECT_TRUE(line.reversals().empty());
+  EXPECT_EQ(line.motion(0.3), (std::vector<int>{-1, 1, 0}));
+}
+
 TEST(GcodeReader, KeptWordsAndCommentsStayInPlace) {
   const auto setup = bundledSetup("three-axis-vertical");
   const auto p = parseGcodeProgram("%\nO100 (part 7)\nN10 G0 X10 Y10 Z10 M3 S1000\nN20 G1 X20 F300 M30 ; end\n%\n", "kept.nc", *setup.machine);
   const std::string out = compensatedGcode(*setup.machine, p, compensateProgram(setup.machine, setup.errors, p), "header");
   EXPECT_TRUE(out.starts_with("%\n(header)\nG21 G90\nO100 (part 7)\nN10 M3 S1000 G0 X")) << out;
-  EXPECT_NE(out.find("F300 M30 ; end\n"), std::string::npos) << out;  // the stop after the motion, the comment kept
-  EXPECT_TRUE(out.ends_with("\n%\n")) << out;
+  // X sets off in +X after standing: the first written point steps by the reversal's half (EXX
+  // reversal 2 um) on N20's line, then the move; the stop after the motion, the comment kept.
+  EXPECT_NE(out.find("\nN20 G1 X10.00130 "), std::string::npos) << out;
+  EXPECT_TRUE(out.ends_with(" M30 ; end\n%\n")) << out;
 }
 
 TEST(GcodeReader, ToolLengthMovesTheCompensatedPoint) {

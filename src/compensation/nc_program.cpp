@@ -1,6 +1,8 @@
 #include "mtacc/compensation/nc_program.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace mtacc {
 
@@ -14,6 +16,40 @@ std::vector<double> GcodeMove::at(double s) const {
   q[a] = centre[0] + r * std::cos(angle);
   q[b] = centre[1] + r * std::sin(angle);
   return q;
+}
+
+std::vector<int> GcodeMove::motion(double s) const {
+  std::vector<double> rate(from.size());
+  for (size_t k = 0; k < rate.size(); ++k) rate[k] = to[k] - from[k];
+  if (isArc()) {
+    const auto a = static_cast<size_t>(planeAxes[0]), b = static_cast<size_t>(planeAxes[1]);
+    // Along the circle (an end radius differing by its tolerance does not move the quadrants).
+    const double angle = std::atan2(from[b] - centre[1], from[a] - centre[0]) + s * sweep;
+    rate[a] = -sweep * std::sin(angle);
+    rate[b] = sweep * std::cos(angle);
+  }
+  double largest = 0.0;
+  for (double v : rate) largest = std::max(largest, std::abs(v));
+  std::vector<int> d(rate.size(), 0);
+  // Rounding leaves a standing axis (an arc's quadrant point) a rate of about 1e-16 of the others.
+  for (size_t k = 0; k < d.size(); ++k)
+    if (std::abs(rate[k]) > 1e-12 * largest) d[k] = rate[k] > 0 ? 1 : -1;
+  return d;
+}
+
+std::vector<double> GcodeMove::reversals() const {
+  std::vector<double> at;
+  if (!isArc()) return at;
+  const double start = std::atan2(from[static_cast<size_t>(planeAxes[1])] - centre[1], from[static_cast<size_t>(planeAxes[0])] - centre[0]);
+  const double quarter = std::numbers::pi / 2.0, end = start + sweep;
+  // Every multiple of a quarter turn strictly between the start and end angles.
+  const double low = std::min(start, end), high = std::max(start, end);
+  for (double m = std::floor(low / quarter) + 1.0; m * quarter < high; m += 1.0) {
+    const double s = (m * quarter - start) / sweep;
+    if (s > 1e-12 && s < 1.0 - 1e-12) at.push_back(s);
+  }
+  std::sort(at.begin(), at.end());
+  return at;
 }
 
 double GcodeMove::radius() const {

@@ -14,6 +14,9 @@
 namespace mtacc {
 namespace {
 
+// How far along a move (in s) its direction of motion is taken just before or after a point.
+constexpr double kSide = 1e-9;
+
 struct Models {
   KinematicModel actual, nominal;
 };
@@ -58,7 +61,8 @@ class Compensator {
   CompensatedProgram run() {
     if (program_.moves.empty()) return out_;
     const GcodeMove& first = program_.moves.front();
-    out_.points.push_back(solve(0, first, 0.0, false));
+    lastMotion_ = first.motion(0.5);
+    out_.points.push_back(solve(0, first, 0.0, lastMotion_, false));
     for (size_t m = 0; m < program_.moves.size(); ++m) compensate(static_cast<int>(m));
     return std::move(out_);
   }
@@ -66,7 +70,7 @@ class Compensator {
  private:
   // `counted`: the point is written (the start, before the first move, is not: where the
   // machine stands then is the controller's business).
-  CompensatedPoint solve(int index, const GcodeMove& move, double s, bool counted = true) {
+  CompensatedPoint solve(int index, const GcodeMove& move, double s, const std::vector<int>& motion, bool counted = true) {
     const Models& models = models_(move.toolLength);
     const std::vector<double> q = move.at(s);
     const ToolPoint wanted = toolPoint(models.nominal, q.data());
@@ -76,7 +80,7 @@ class Compensator {
     for (size_t k = 0; k < q.size(); ++k) start[k] += 2.0 * correction_[k] - previousCorrection_[k];
     if (&models != lastModels_) jacobian_.valid = false;
     lastModels_ = &models;
-    const ErrorIkSolution solution = refineWithErrors(models.actual, wanted.position, wanted.direction, start, o_.ik, jacobian_);
+    const ErrorIkSolution solution = refineWithErrors(models.actual, wanted.position, wanted.direction, start, o_.ik, jacobian_, false, motion.data());
     previousCorrection_ = correction_;
     for (size_t k = 0; k < q.size(); ++k) correction_[k] = solution.q[k] - q[k];
     const CompensatedPoint point{index, s, solution.q, solution.positionResidual, solution.directionResidual};
@@ -102,7 +106,8 @@ class Compensator {
     const Models& models = models_(move.toolLength);
     const double s = 0.5 * (a.s + b.s);
     const std::vector<double> written = lerp(a.q, b.q, 0.5), programmed = move.at(s);
-    const ToolPoint reached = toolPoint(models.actual, written.data()), wanted = toolPoint(models.nominal, programmed.data());
+    const std::vector<int> motion = move.motion(s);
+    const ToolPoint reached = toolPoint(models.actual, written.data(), motion.data()), wanted = toolPoint(models.nominal, programmed.data());
     // What the ends themselves cannot correct (the direction at a singular pose, on a machine
     // without two rotary axes) is not the interpolation's fault.
     const double position = o_.tolerance + std::max(a.positionResidual, b.positionResidual);
@@ -112,7 +117,7 @@ class Compensator {
       out_.points.push_back(std::move(b));
       return;
     }
-    CompensatedPoint middle = solve(index, move, s);
+    CompensatedPoint middle = solve(index, move, s, motion);
     refine(index, move, a, middle, depth + 1);
     refine(index, move, out_.points.back(), std::move(b), depth + 1);
   }
@@ -120,24 +125,43 @@ class Compensator {
   void compensate(int index) {
     const GcodeMove& move = program_.moves[static_cast<size_t>(index)];
     if (move.mode == MotionMode::Rapid) {
-      out_.points.push_back(solve(index, move, 1.0));
+      lastMotion_ = move.motion(0.5);
+      out_.points.push_back(solve(index, move, 1.0, lastMotion_));
       return;
     }
-    // Arcs start as chords within the tolerance (sagitta r (1 - cos(angle / 2))), then halve.
-    int pieces = 1;
-    if (move.isArc()) {
-      const double r = move.radius();
-      const double chordAngle = r > o_.tolerance ? 2.0 * std::acos(1.0 - o_.tolerance / r) : std::abs(move.sweep);
-      pieces = std::max(2, static_cast<int>(std::ceil(std::abs(move.sweep) / chordAngle)));
-    }
-    for (int i = 1; i <= pieces; ++i) {
-      CompensatedPoint end = solve(index, move, static_cast<double>(i) / pieces);
-      CompensatedPoint start = out_.points.back();
-      if (start.move != index) {
-        start.move = index;
-        start.s = 0.0;
-      }  // the previous move's end is this one's start
-      refine(index, move, start, std::move(end), 0);
+    // Where an axis reverses, the reversal errors step: the program steps with them, a point
+    // solved with the direction before and one with the direction after, at the same place (the
+    // move's start when it sets off the other way, and an arc's quadrant points).
+    std::vector<double> ends = move.reversals();
+    ends.push_back(1.0);
+    double from = 0.0;
+    std::vector<int> after = move.motion(std::min(kSide, 0.5));
+    if (after != lastMotion_) out_.points.push_back(solve(index, move, 0.0, after));
+    for (const double to : ends) {
+      // Arcs start as chords within the tolerance (sagitta r (1 - cos(angle / 2))), then halve.
+      int pieces = 1;
+      if (move.isArc()) {
+        const double r = move.radius(), angle = std::abs(move.sweep) * (to - from);
+        const double chordAngle = r > o_.tolerance ? 2.0 * std::acos(1.0 - o_.tolerance / r) : angle;
+        pieces = std::max(2, static_cast<int>(std::ceil(angle / chordAngle)));
+      }
+      const std::vector<int> before = move.motion(to - std::min(kSide, 0.5 * (to - from)));
+      for (int i = 1; i <= pieces; ++i) {
+        CompensatedPoint end = solve(index, move, from + (to - from) * i / pieces, before);
+        CompensatedPoint start = out_.points.back();
+        if (start.move != index) {  // the previous move's end is this one's start
+          start.move = index;
+          start.s = 0.0;
+        }
+        refine(index, move, start, std::move(end), 0);
+      }
+      lastMotion_ = before;
+      if (to < 1.0) {
+        after = move.motion(to + std::min(kSide, 0.5 * (1.0 - to)));
+        out_.points.push_back(solve(index, move, to, after));
+        lastMotion_ = after;
+      }
+      from = to;
     }
   }
 
@@ -146,6 +170,7 @@ class Compensator {
   const ProgramCompensationOptions& o_;
   CompensatedProgram out_;
   std::vector<double> correction_, previousCorrection_;
+  std::vector<int> lastMotion_;  // the direction of motion the last point was solved for
   const Models* lastModels_ = nullptr;
   ErrorIkJacobian jacobian_;
 };
@@ -190,11 +215,16 @@ ProgramDeviation programDeviation(const std::shared_ptr<const Machine>& machine,
     if (move.mode == MotionMode::Rapid) continue;
     const Models& m = models(move.toolLength);
     const double from = a.move == b.move ? a.s : 0.0;
+    if (b.s == from) continue;  // a step at a reversal: the machine takes up its reversal there, standing
+    // A written segment lies between reversals: its direction of motion is that of its middle
+    // (at its ends an axis may be at its reversal point, standing for an instant).
+    const std::vector<int> motion = move.motion(0.5 * (from + b.s));
     for (int k = 1; k <= 4; ++k) {
       const double t = k / 4.0, s = from + t * (b.s - from);
       const std::vector<double> programmed = move.at(s), written = lerp(a.q, b.q, t);
       const ToolPoint wanted = toolPoint(m.nominal, programmed.data());
-      const ToolPoint uncompensated = toolPoint(m.actual, programmed.data()), compensated = toolPoint(m.actual, written.data());
+      const ToolPoint uncompensated = toolPoint(m.actual, programmed.data(), motion.data()),
+                      compensated = toolPoint(m.actual, written.data(), motion.data());
       const double eBefore = (uncompensated.position - wanted.position).norm(), eAfter = (compensated.position - wanted.position).norm();
       d.before.maxPosition = std::max(d.before.maxPosition, eBefore);
       d.after.maxPosition = std::max(d.after.maxPosition, eAfter);

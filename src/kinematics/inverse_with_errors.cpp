@@ -16,14 +16,20 @@ constexpr double kDirectionWeight = 1000.0;  // mm per rad
 // Position, then the weighted direction when controlled: at most six rows, on the stack.
 using Residual = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
 
+// The wanted pose on the model, and the axes' directions of motion there (or null).
+struct Target {
+  const KinematicModel& model;
+  Vec3 position, direction;
+  const int* motion;
+};
+
 // The residual of the pose at q: position (mm), then, when controlled, the direction's
 // difference times the weight; `reached` the tool there.
-Residual residual(const KinematicModel& m, const std::vector<double>& q, const Vec3& position, const Vec3& direction, bool withDirection,
-                  ToolPoint& reached) {
-  reached = toolPoint(m, q.data());
+Residual residual(const Target& t, const std::vector<double>& q, bool withDirection, ToolPoint& reached) {
+  reached = toolPoint(t.model, q.data(), t.motion);
   Residual r(withDirection ? 6 : 3);
-  r.head<3>() = reached.position - position;
-  if (withDirection) r.tail<3>() = kDirectionWeight * (reached.direction - direction);
+  r.head<3>() = reached.position - t.position;
+  if (withDirection) r.tail<3>() = kDirectionWeight * (reached.direction - t.direction);
   return r;
 }
 
@@ -37,25 +43,24 @@ int rotaryCount(const Machine& machine) {
 // over it, and rounding stays far below the step's effect), columns scaled, factorised. For the
 // position alone, a machine with three linear axes moves only those: the rotary axes keep their
 // commands rather than turn the tool to reach a few micrometres.
-void factorise(ErrorIkJacobian& jacobian, const KinematicModel& m, const std::vector<double>& q, const Vec3& position,
-               const Vec3& direction, bool withDirection, const Eigen::VectorXd& scale, double singularRatio) {
+void factorise(ErrorIkJacobian& jacobian, const Target& t, const std::vector<double>& q, bool withDirection, const Eigen::VectorXd& scale,
+               double singularRatio) {
   const auto n = static_cast<Eigen::Index>(q.size());
-  const bool positionByLinearAxes = n - rotaryCount(*m.machine) >= 3;
+  const Machine& machine = *t.model.machine;
+  const bool positionByLinearAxes = n - rotaryCount(machine) >= 3;
   Eigen::MatrixXd j(withDirection ? 6 : 3, n);
   std::vector<double> plus = q, minus = q;
   ToolPoint reached;
   for (Eigen::Index k = 0; k < n; ++k) {
     const auto kk = static_cast<size_t>(k);
-    if (!withDirection && positionByLinearAxes && m.machine->axes[kk].isRotary()) {
+    if (!withDirection && positionByLinearAxes && machine.axes[kk].isRotary()) {
       j.col(k).setZero();
       continue;
     }
     const double h = 1e-4;
     plus[kk] += h;
     minus[kk] -= h;
-    j.col(k) = scale[k] *
-               (residual(m, plus, position, direction, withDirection, reached) - residual(m, minus, position, direction, withDirection, reached)) /
-               (2.0 * h);
+    j.col(k) = scale[k] * (residual(t, plus, withDirection, reached) - residual(t, minus, withDirection, reached)) / (2.0 * h);
     plus[kk] = minus[kk] = q[kk];
   }
   jacobian.svd.compute(j, Eigen::ComputeThinU | Eigen::ComputeThinV);
@@ -68,8 +73,9 @@ void factorise(ErrorIkJacobian& jacobian, const KinematicModel& m, const std::ve
 
 ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& position, const Vec3& toolDirection,
                                  const std::vector<double>& start, const ErrorIkOptions& o, ErrorIkJacobian& jacobian,
-                                 bool singularStart) {
+                                 bool singularStart, const int* motion) {
   const Vec3 direction = toolDirection.normalized();
+  const Target target{actual, position, direction, motion};
   ErrorIkSolution s;
   s.q = start;
   s.nominalQ = start;
@@ -81,13 +87,13 @@ ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& posit
   // At a singular pose the direction is given up and the position alone is reached.
   bool withDirection = s.directionControlled && !singularStart;
   ToolPoint reached;
-  Residual r = residual(actual, s.q, position, direction, withDirection, reached);
+  Residual r = residual(target, s.q, withDirection, reached);
   auto within = [&](const Residual& res) {
     return res.head<3>().norm() <= o.positionTolerance && (!withDirection || res.tail<3>().norm() / kDirectionWeight <= o.directionTolerance);
   };
   while (!within(r) && s.iterations < o.maxIterations) {
     const bool fresh = !jacobian.valid || jacobian.withDirection != withDirection;
-    if (fresh) factorise(jacobian, actual, s.q, position, direction, withDirection, scale, o.singularRatio);
+    if (fresh) factorise(jacobian, target, s.q, withDirection, scale, o.singularRatio);
     if (jacobian.svd.rank() < std::min<Eigen::Index>(n, withDirection ? 5 : 3)) {
       if (!fresh) {  // a kept Jacobian from a pose that was singular: take it here
         jacobian.valid = false;
@@ -96,13 +102,13 @@ ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& posit
       s.singular = true;
       if (withDirection) {
         withDirection = false;
-        r = residual(actual, s.q, position, direction, false, reached);
+        r = residual(target, s.q, false, reached);
         continue;
       }
     }
     const Eigen::VectorXd step = scale.cwiseProduct(jacobian.svd.solve(-r));
     for (Eigen::Index k = 0; k < n; ++k) s.q[static_cast<size_t>(k)] += step[k];
-    const Residual next = residual(actual, s.q, position, direction, withDirection, reached);
+    const Residual next = residual(target, s.q, withDirection, reached);
     ++s.iterations;
     const auto reachable = jacobian.svd.matrixU().leftCols(jacobian.svd.rank());
     const double contraction = (reachable.transpose() * next).norm() / std::max((reachable.transpose() * r).norm(), 1e-300);

@@ -26,6 +26,11 @@ struct GcodeMove {
   // The commands at s in [0, 1] along the move as the controller interpolates it: linearly in
   // every axis, or along the arc (angle proportional to s).
   std::vector<double> at(double s) const;
+  // Each commanded axis's direction of motion at s (+1, -1; 0 where it stands, as at an arc's
+  // quadrant point), for the reversal errors of the machine on its way.
+  std::vector<int> motion(double s) const;
+  // Where along the move (0 < s < 1) an axis reverses: an arc's quadrant points.
+  std::vector<double> reversals() const;
   // Arcs: the radius at the start (mm).
   double radius() const;
 };

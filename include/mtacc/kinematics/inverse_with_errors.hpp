@@ -62,9 +62,10 @@ ErrorIkSolution solveIkWithErrors(const KinematicModel& actual, const KinematicM
 // The same Newton iteration from `start` (the commands of a nearby pose, e.g. the nominal
 // commands plus the previous line's correction in a program), reusing `jacobian` while it
 // serves. nominalQ of the result is `start`. `singularStart`: the direction is known to be
-// uncontrollable at this pose.
+// uncontrollable at this pose. `motion`: each commanded axis's direction of motion there (+1, -1,
+// 0), for the reversal errors of a machine on its way along a path; null: standing still.
 ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& position, const Vec3& toolDirection,
                                  const std::vector<double>& start, const ErrorIkOptions& options, ErrorIkJacobian& jacobian,
-                                 bool singularStart = false);
+                                 bool singularStart = false, const int* motion = nullptr);
 
 }  // namespace mtacc
