@@ -244,5 +244,68 @@ TEST(SiemensCec, TablesReadBackAndInterpolateToTheReduction) {
   for (const auto& [index, t] : tables) EXPECT_NEAR(t.min + t.step * static_cast<double>(t.values.size() - 1), t.max, 1e-5);
 }
 
+// Siemens LEC (840D sl function manual K3, 4.4): per axis $AA_ENC_COMP[e, N, axis] and
+// $AA_ENC_COMP_STEP, _MIN, _MAX, _IS_MODULO [e, axis] in %_N_AX_EEC_INI, ending with M17; a positive
+// value moves the axis negative (808D function manual, LEC), the first and last values hold beyond
+// the table. Read back and applied so, it is each axis's own function.
+TEST(SiemensLec, TablesReadBackAndInterpolateToEachAxisOwnFunction) {
+  const auto setup = bundledSetup("three-axis-vertical");
+  const CorrectionGrid grid = correctionGrid(setup.machine, setup.errors, {{9, 7, 5}, {}});
+  OneAxisReduction own = reduceToOneAxisFunctions(grid, 9);
+  std::erase_if(own.functions, [](const AxisFunction& f) { return f.input != f.output; });
+  ASSERT_EQ(own.functions.size(), 3u);
+  std::istringstream file(siemensLecTables(own.functions));
+  std::string line;
+  std::getline(file, line);
+  EXPECT_EQ(line, "%_N_AX_EEC_INI");
+  struct Table {
+    double step = 0, min = 0, max = 0;
+    std::vector<double> values;
+  };
+  std::map<std::string, Table> tables;
+  const std::regex field(R"(\$AA_ENC_COMP_(\w+)\[0,(\w+)\]=(\S+))"), value(R"(\$AA_ENC_COMP\[0,(\d+),(\w+)\]=(\S+))");
+  std::vector<std::string> others;
+  while (std::getline(file, line)) {
+    std::smatch m;
+    if (line.starts_with(";")) continue;
+    if (std::regex_match(line, m, value)) {
+      auto& t = tables[m[2]];
+      ASSERT_EQ(static_cast<size_t>(std::stoi(m[1])), t.values.size());
+      t.values.push_back(std::stod(m[3]));
+    } else if (std::regex_match(line, m, field)) {
+      auto& t = tables[m[2]];
+      const std::string name = m[1];
+      if (name == "STEP") t.step = std::stod(m[3]);
+      else if (name == "MIN") t.min = std::stod(m[3]);
+      else if (name == "MAX") t.max = std::stod(m[3]);
+      else EXPECT_TRUE(name == "IS_MODULO" && m[3] == "0") << line;
+    } else {
+      others.push_back(line);
+    }
+  }
+  EXPECT_EQ(others, (std::vector<std::string>{"CHANDATA(1)", "M17"}));
+  ASSERT_EQ(tables.size(), 3u);
+  const char* names[3] = {"X", "Y", "Z"};
+  auto controller = [&](const Vec3& p) {
+    Vec3 c;
+    for (int a = 0; a < 3; ++a) {
+      const Table& t = tables.at(names[a]);
+      const double u = std::clamp((p[a] - t.min) / t.step, 0.0, static_cast<double>(t.values.size() - 1));
+      const auto k = std::min(static_cast<size_t>(u), t.values.size() - 2);
+      c[a] = -(t.values[k] + (u - static_cast<double>(k)) * (t.values[k + 1] - t.values[k]));
+    }
+    return c;
+  };
+  std::mt19937 rng(7);
+  for (int s = 0; s < 100; ++s) {
+    Vec3 p;
+    for (int a = 0; a < 3; ++a) p[a] = std::uniform_real_distribution<double>(grid.start[a] - 10.0, grid.node(a, grid.counts[a] - 1) + 10.0)(rng);
+    EXPECT_LE((controller(p) - own.correction(p)).norm(), 2e-7);  // 7 decimals
+  }
+  for (const auto& [axis, t] : tables) EXPECT_NEAR(t.min + t.step * static_cast<double>(t.values.size() - 1), t.max, 1e-5) << axis;
+  EXPECT_NE(test::thrown<InputError>([&] { siemensLecTables({AxisFunction{0, 1, {0.0, 1.0}, {0.0, 0.0}}}); })->reason().find("own command"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace mtacc

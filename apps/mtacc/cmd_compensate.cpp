@@ -54,6 +54,7 @@ void runTables(const CompensateOptions& o) {
     const std::string label = format == "grid"          ? "3-D grid, trilinear"
                               : format == "one-axis"    ? fmt::format("{} one-axis functions", r.oneAxis.functions.size())
                               : format == "siemens-cec" ? "Siemens CEC tables"
+                              : format == "siemens-lec" ? "Siemens LEC tables per axis"
                                                         : "LinuxCNC COMP_FILE per joint";
     human += fmt::format("  {:<30} {:9.3f} ({:.3f})   carries {}\n", label, res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
                          t["carries"].get<std::string>());

@@ -270,4 +270,21 @@ std::string siemensCecTables(const OneAxisReduction& r) {
   return out + "M17\n";
 }
 
+std::string siemensLecTables(const std::vector<AxisFunction>& ownAxes) {
+  std::string out = "%_N_AX_EEC_INI\n; mtacc: each axis's correction of its own command as LEC tables on measuring system 1; values in mm, "
+                    "the error (the correction negated: a positive value moves the axis negative)\nCHANDATA(1)\n";
+  auto it = std::back_inserter(out);
+  for (const AxisFunction& f : ownAxes) {
+    if (f.input != f.output) throw InputError({"", 0, "table"}, "an LEC table holds an axis's correction as a function of its own command");
+    const char* axis = kAxisNames[f.input];
+    fmt::format_to(it, "; {}: {} points: needs MD38000 $MA_MM_ENC_COMP_MAX_POINTS >= {} and MD32700 ENC_COMP_ENABLE[0] = 1\n", axis,
+                   f.values.size(), f.values.size());
+    for (size_t n = 0; n < f.values.size(); ++n) fmt::format_to(it, "$AA_ENC_COMP[0,{},{}]={:.7f}\n", n, axis, -f.values[n]);
+    const double step = f.positions.size() > 1 ? f.positions[1] - f.positions[0] : 0.0;
+    fmt::format_to(it, "$AA_ENC_COMP_STEP[0,{0}]={1:.6f}\n$AA_ENC_COMP_MIN[0,{0}]={2:.6f}\n$AA_ENC_COMP_MAX[0,{0}]={3:.6f}\n$AA_ENC_COMP_IS_MODULO[0,{0}]=0\n",
+                   axis, step, f.positions.front(), f.positions.back());
+  }
+  return out + "M17\n";
+}
+
 }  // namespace mtacc

@@ -110,6 +110,7 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   r.files.emplace_back("grid.csv", correctionGridCsv(*m, r.grid));
   r.files.emplace_back("one-axis.csv", oneAxisCsv(*m, r.oneAxis, r.grid));
   r.files.emplace_back("siemens-cec.ini", siemensCecTables(r.oneAxis));
+  r.files.emplace_back("siemens-lec.ini", siemensLecTables(r.ownAxes.functions));
   const char* names[3] = {"X", "Y", "Z"};
   for (const auto& f : r.ownAxes.functions)
     r.files.emplace_back(fmt::format("linuxcnc-{}.comp", names[f.input]), linuxcncCompFile(f, request.linuxcncType));
@@ -135,13 +136,16 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
             {{"format", "siemens-cec"}, {"file", "siemens-cec.ini"},
              {"carries", "the one-axis functions above, one CEC table each (input and output axis by the machine file's names)"},
              {"residual", residualJson(r.oneAxisResidual)}},
+            {{"format", "siemens-lec"}, {"file", "siemens-lec.ini"},
+             {"carries", "each axis's correction of its own command (as LinuxCNC's); not the cross-axis terms"},
+             {"residual", residualJson(r.ownAxesResidual)}},
             {{"format", "linuxcnc"}, {"files", "linuxcnc-X.comp, linuxcnc-Y.comp, linuxcnc-Z.comp"},
              {"carries", "each axis's correction of its own command; not the cross-axis terms (squareness, straightness)"},
              {"residual", residualJson(r.ownAxesResidual)}}}},
           {"files", files}};
   if (r.checkProgram) {
     j["check_program"] = r.checkProgram->file;
-    const TableResidual* along[] = {&r.gridAlong, &r.oneAxisAlong, &r.oneAxisAlong, &r.ownAxesAlong};  // in the order of "tables"
+    const TableResidual* along[] = {&r.gridAlong, &r.oneAxisAlong, &r.oneAxisAlong, &r.ownAxesAlong, &r.ownAxesAlong};  // in the order of "tables"
     for (size_t t = 0; t < j["tables"].size(); ++t) j["tables"][t]["along_program"] = residualJson(*along[t]);
   }
   return j;

@@ -58,7 +58,7 @@ def test_tables_cli_equals_api_and_the_files_are_written(cli, tmp_path):
     contents = api.pop("contents")
     assert json.loads(run.stdout) == api
     assert sorted(contents) == sorted(api["files"]) == ["grid.csv", "linuxcnc-X.comp", "linuxcnc-Y.comp", "linuxcnc-Z.comp", "one-axis.csv",
-                                                     "siemens-cec.ini"]
+                                                     "siemens-cec.ini", "siemens-lec.ini"]
     for name, text in contents.items():
         assert (tmp_path / name).read_text() == text
     tables = {t["format"]: t for t in api["tables"]}
@@ -77,6 +77,7 @@ def test_tables_along_a_test_path(tmp_path):
     along = {t["format"]: t["along_program"] for t in r["tables"]}
     assert along["grid"]["after_max_um"] <= 0.05 * along["grid"]["before_max_um"]
     assert along["one-axis"] == along["siemens-cec"]
+    assert along["linuxcnc"] == along["siemens-lec"]
 
 
 def test_tables_refuse_a_bad_request():

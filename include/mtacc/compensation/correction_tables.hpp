@@ -6,7 +6,8 @@
 //     Fanuc's 3-D error compensation);
 //   * its reduction to additive one-axis functions (seed 003 §11): the correction of one axis as
 //     a function of one axis's command, chosen by least squares, with the residual they leave;
-//     LinuxCNC's COMP_FILE carries the functions of an axis's own command, Siemens CEC the others.
+//     LinuxCNC's COMP_FILE and Siemens LEC carry the functions of an axis's own command, Siemens
+//     CEC any of them.
 // The tables correct the position only (the rotary axes stay at the pose the grid is taken at).
 #include <array>
 #include <functional>
@@ -98,5 +99,12 @@ std::string linuxcncCompFile(const AxisFunction& function, int type);
 // machine file's axis names, equidistant $AN_CEC_STEP from $AN_CEC_MIN to $AN_CEC_MAX (mm), the
 // values $AN_CEC[t, N] in mm added to the output axis, both directions, ending with M17.
 std::string siemensCecTables(const OneAxisReduction& reduction);
+
+// Siemens SINUMERIK LEC (leadscrew and measuring-system error compensation) as the INI part
+// program %_N_AX_EEC_INI: per axis, from the function of its own command, $AA_ENC_COMP[0, N, axis]
+// on the first measuring system, equidistant from $AA_ENC_COMP_MIN to _MAX by _STEP (mm). The
+// values are the error, the correction negated: a positive value moves the axis negative (808D
+// function manual, LEC). Throws for a function of another axis's command.
+std::string siemensLecTables(const std::vector<AxisFunction>& ownAxes);
 
 }  // namespace mtacc
