@@ -64,6 +64,17 @@ void runTables(const CompensateOptions& o) {
     csv += fmt::format("{},{},{},{},{}\n", t["format"].get<std::string>(), res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
                        res["before_max_um"].get<double>(), res["before_rms_um"].get<double>());
   }
+  if (r.trt) {
+    const auto& t = r.trt->actual;
+    const auto& res = r.trt->residual;
+    human += fmt::format("LinuxCNC {} parameters in linuxcnc-trt.hal, over {} poses of the table, um:  largest (rms)\n", t.kinsName(), res.samples);
+    human += fmt::format("  {:<30} {:9.3f} ({:.3f})\n", "nominal parameters", res.beforeMax * 1e3, res.beforeRms * 1e3);
+    human += fmt::format("  {:<30} {:9.3f} ({:.3f})   carries {}\n", "fitted parameters", res.afterMax * 1e3, res.afterRms * 1e3,
+                         j["linuxcnc_trt"]["carries"].get<std::string>());
+    csv += fmt::format("linuxcnc-trt,{},{},{},{}\n", res.afterMax * 1e3, res.afterRms * 1e3, res.beforeMax * 1e3, res.beforeRms * 1e3);
+  } else {
+    human += fmt::format("LinuxCNC trt kinematics parameters: none, {}\n", r.trtNotApplicable);
+  }
   emit(o, j, human, csv);
 }
 

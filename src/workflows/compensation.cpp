@@ -84,6 +84,20 @@ nlohmann::json residualJson(const TableResidual& r) {
           {"after_rms_um", r.afterRms * 1e3}, {"samples", r.samples}};
 }
 
+nlohmann::json trtJson(const LinuxcncTrtFit& fit) {
+  const auto params = [](const LinuxcncTrt& t) {
+    return nlohmann::json{{"x_rot_point", t.xRotPoint}, {"y_rot_point", t.yRotPoint},
+                          {"x_offset", t.xOffset}, {"y_offset", t.yOffset}, {"z_offset", t.zOffset}};
+  };
+  return {{"applicable", true}, {"kins", fit.actual.kinsName()}, {"file", "linuxcnc-trt.hal"},
+          {"parameters_mm", params(fit.actual)}, {"nominal_parameters_mm", params(fit.nominal)},
+          {"sign", {{"tilt", fit.sign[0]}, {"c", fit.sign[1]}}},
+          {"world_origin_mm", {fit.worldOrigin.x(), fit.worldOrigin.y(), fit.worldOrigin.z()}},
+          {"work_offset_um", {fit.workOffset.x() * 1e3, fit.workOffset.y() * 1e3, fit.workOffset.z() * 1e3}},
+          {"carries", "the rotary axis lines' positions; not their orientations or zero offsets, the linear axes' or component errors"},
+          {"residual", residualJson(fit.residual)}};
+}
+
 }  // namespace
 
 CompensationTablesResult compensationTables(const MachineSetup& setup, const CompensationTablesRequest& request) {
@@ -114,6 +128,12 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   const char* names[3] = {"X", "Y", "Z"};
   for (const auto& f : r.ownAxes.functions)
     r.files.emplace_back(fmt::format("linuxcnc-{}.comp", names[f.input]), linuxcncCompFile(f, request.linuxcncType));
+  try {
+    r.trt = fitLinuxcncTrt(m, setup.errors);
+    r.files.emplace_back("linuxcnc-trt.hal", linuxcncTrtHal(*m, *r.trt));
+  } catch (const InputError& notTrt) {
+    r.trtNotApplicable = notTrt.reason();
+  }
   return r;
 }
 
@@ -143,6 +163,8 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
              {"carries", "each axis's correction of its own command; not the cross-axis terms (squareness, straightness)"},
              {"residual", residualJson(r.ownAxesResidual)}}}},
           {"files", files}};
+  j["linuxcnc_trt"] = r.trt ? trtJson(*r.trt)
+                            : nlohmann::json{{"applicable", false}, {"reason", r.trtNotApplicable}};
   if (r.checkProgram) {
     j["check_program"] = r.checkProgram->file;
     const TableResidual* along[] = {&r.gridAlong, &r.oneAxisAlong, &r.oneAxisAlong, &r.ownAxesAlong, &r.ownAxesAlong};  // in the order of "tables"

@@ -67,6 +67,20 @@ def test_tables_cli_equals_api_and_the_files_are_written(cli, tmp_path):
     before = tables["grid"]["residual"]["before_max_um"]
     assert tables["grid"]["residual"]["after_max_um"] < tables["one-axis"]["residual"]["after_max_um"] < before
     assert tables["linuxcnc"]["residual"]["after_max_um"] < before
+    assert api["linuxcnc_trt"]["applicable"] is False
+    assert "a table tilting about B that carries the C table" in api["linuxcnc_trt"]["reason"]
+
+
+def test_trt_parameters_on_a_tilting_table(cli, tmp_path):
+    run = subprocess.run([cli, "compensate", "tilting-table", "--tables", str(tmp_path), "--nodes", "3,3,3"], capture_output=True, text=True,
+                         check=True)
+    assert "LinuxCNC xyzbc-trt-kins parameters in linuxcnc-trt.hal" in run.stdout
+    trt = mtacc.Machine("tilting-table").compensation_tables(nodes=(3, 3, 3))["linuxcnc_trt"]
+    assert trt["applicable"] and trt["kins"] == "xyzbc-trt-kins" and trt["file"] == "linuxcnc-trt.hal"
+    setp = [line.split() for line in (tmp_path / "linuxcnc-trt.hal").read_text().splitlines() if not line.startswith("#")]
+    assert {pin.removeprefix("xyzbc-trt-kins."): float(value) for _, pin, value in setp} == pytest.approx(
+        {**{k.replace("_", "-"): v for k, v in trt["parameters_mm"].items()}, "z-rot-point": 0.0}, abs=1e-7)
+    assert trt["residual"]["after_rms_um"] < trt["residual"]["before_rms_um"]
 
 
 def test_tables_along_a_test_path(tmp_path):

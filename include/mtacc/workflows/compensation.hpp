@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mtacc/compensation/correction_tables.hpp"
+#include "mtacc/compensation/linuxcnc_trt.hpp"
 #include "mtacc/compensation/program_compensation.hpp"
 #include "mtacc/io/gcode_program.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
@@ -36,7 +37,8 @@ nlohmann::json toJson(const ProgramCompensationResult& result);
 
 // Workflow `compensate --tables`: the correction grid over X, Y, Z at a pose of the other axes,
 // its one-axis reduction and the LinuxCNC per-joint files, each with the residual a controller
-// applying it leaves over the working volume.
+// applying it leaves over the working volume; on a table-rotary-tilting machine, LinuxCNC's trt
+// kinematics parameters with the residual they leave over the table's poses.
 struct CompensationTablesRequest {
   CorrectionGridSpec grid;
   int oneAxisFunctions = 9;  // at most this many one-axis functions (1 to 9)
@@ -52,6 +54,8 @@ struct CompensationTablesResult {
   TableResidual gridResidual, oneAxisResidual, ownAxesResidual;
   std::optional<GcodeProgram> checkProgram;
   TableResidual gridAlong, oneAxisAlong, ownAxesAlong;  // along checkProgram
+  std::optional<LinuxcncTrtFit> trt;
+  std::string trtNotApplicable;  // why the machine has no trt parameters, when it has none
   std::vector<std::pair<std::string, std::string>> files;  // name, content
 };
 
