@@ -1,7 +1,7 @@
 // mtacc compensate MACHINE --program IN.nc --gcode OUT.nc: the axis program compensated for the
 // machine's errors, with what its path deviates from the program before and after.
 // mtacc compensate MACHINE --tables DIR: the correction grid, its one-axis functions and the
-// LinuxCNC files, with the residual each leaves.
+// controllers' files (Siemens, LinuxCNC, TwinCAT/ISG), with the residual each leaves.
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -55,7 +55,8 @@ void runTables(const CompensateOptions& o) {
                               : format == "one-axis"    ? fmt::format("{} one-axis functions", r.oneAxis.functions.size())
                               : format == "siemens-cec" ? "Siemens CEC tables"
                               : format == "siemens-lec" ? "Siemens LEC tables per axis"
-                                                        : "LinuxCNC COMP_FILE per joint";
+                              : format == "linuxcnc"    ? "LinuxCNC COMP_FILE per joint"
+                                                        : "TwinCAT/ISG volumetric model";
     human += fmt::format("  {:<30} {:9.3f} ({:.3f})   carries {}\n", label, res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
                          t["carries"].get<std::string>());
     if (t.contains("along_program"))
@@ -64,6 +65,7 @@ void runTables(const CompensateOptions& o) {
     csv += fmt::format("{},{},{},{},{}\n", t["format"].get<std::string>(), res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
                        res["before_max_um"].get<double>(), res["before_rms_um"].get<double>());
   }
+  if (!r.isg) human += fmt::format("TwinCAT/ISG volumetric model: none, {}\n", r.isgNotApplicable);
   if (r.trt) {
     const auto& t = r.trt->actual;
     const auto& res = r.trt->residual;
@@ -131,7 +133,7 @@ void addCompensateCommand(CLI::App& app) {
   cmd->add_option("--direction-tolerance", o->directionToleranceUrad, "tool direction deviation allowed between written points [urad]")
       ->capture_default_str()
       ->check(CLI::Range(0.01, 10000.0));
-  cmd->add_option("--tables", o->tables, "write the correction grid, its one-axis functions and the LinuxCNC files to DIR");
+  cmd->add_option("--tables", o->tables, "write the correction grid, its one-axis functions and the controllers' files (Siemens, LinuxCNC, TwinCAT/ISG) to DIR");
   cmd->add_option("--check-program", o->checkProgram, "tables: also check each table along this program's feed moves (G-code)");
   cmd->add_option("--nodes", o->nodes, "tables: nodes along X, Y, Z over their travel")->capture_default_str();
   cmd->add_option("--pose", o->pose, "tables: the other axes' positions, e.g. B=0,C=0 (mm, deg; default 0)");

@@ -32,10 +32,10 @@ class ResidualSum {
   ResidualSum(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& g)
       : actual_(compile(machine, errors)), nominal_(compileNominal(machine)), axes_(g.axes) {}
 
-  void add(const std::vector<double>& q, const std::function<Vec3(const Vec3&)>& correction) {
+  void add(const std::vector<double>& q, const CommandCorrection& correction) {
     const auto x = static_cast<size_t>(axes_[0]), y = static_cast<size_t>(axes_[1]), z = static_cast<size_t>(axes_[2]);
     corrected_ = q;
-    const Vec3 c = correction({q[x], q[y], q[z]});
+    const Vec3 c = correction(q);
     corrected_[x] += c.x();
     corrected_[y] += c.y();
     corrected_[z] += c.z();
@@ -189,8 +189,28 @@ OneAxisReduction reduceToOneAxisFunctions(const CorrectionGrid& g, int maxFuncti
   return r;
 }
 
+namespace {
+
+// The X, Y, Z commands of q, for a table that looks its correction up from them.
+CommandCorrection ofLinearCommands(const CorrectionGrid& g, const std::function<Vec3(const Vec3&)>& correction) {
+  const auto x = static_cast<size_t>(g.axes[0]), y = static_cast<size_t>(g.axes[1]), z = static_cast<size_t>(g.axes[2]);
+  return [=](const std::vector<double>& q) { return correction({q[x], q[y], q[z]}); };
+}
+
+}  // namespace
+
 TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& g,
                             const std::function<Vec3(const Vec3&)>& correction, int perAxis) {
+  return tableResidual(machine, errors, g, ofLinearCommands(g, correction), perAxis);
+}
+
+TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
+                                 const CorrectionGrid& g, const std::function<Vec3(const Vec3&)>& correction) {
+  return tableResidualAlong(machine, errors, program, g, ofLinearCommands(g, correction));
+}
+
+TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& g,
+                            const CommandCorrection& correction, int perAxis) {
   std::array<std::vector<double>, 3> lattice;
   for (size_t a = 0; a < 3; ++a) {
     // The nodes and the midpoints between them, thinned to perAxis.
@@ -213,7 +233,7 @@ TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const
 }
 
 TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
-                                 const CorrectionGrid& g, const std::function<Vec3(const Vec3&)>& correction) {
+                                 const CorrectionGrid& g, const CommandCorrection& correction) {
   ResidualSum sum(machine, errors, g);
   for (const GcodeMove& move : program.moves)
     if (move.mode != MotionMode::Rapid)

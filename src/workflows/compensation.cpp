@@ -121,6 +121,16 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
     r.oneAxisAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.oneAxis.correction(p); });
     r.ownAxesAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.ownAxes.correction(p); });
   }
+  try {
+    r.isg = isgVolumetricModel(*m, setup.errors, request.isgRecords);
+  } catch (const InputError& notIsg) {
+    r.isgNotApplicable = notIsg.reason();
+  }
+  if (r.isg) {
+    const ErrorModel controllerModel = isgControllerModel(*m, *r.isg);
+    r.isgResidual = tableResidual(m, setup.errors, r.grid, isgCorrection(m, controllerModel));
+    if (r.checkProgram) r.isgAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, isgCorrection(m, controllerModel));
+  }
   r.files.emplace_back("grid.csv", correctionGridCsv(*m, r.grid));
   r.files.emplace_back("one-axis.csv", oneAxisCsv(*m, r.oneAxis, r.grid));
   r.files.emplace_back("siemens-cec.ini", siemensCecTables(r.oneAxis));
@@ -128,6 +138,11 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   const char* names[3] = {"X", "Y", "Z"};
   for (const auto& f : r.ownAxes.functions)
     r.files.emplace_back(fmt::format("linuxcnc-{}.comp", names[f.input]), linuxcncCompFile(f, request.linuxcncType));
+  if (r.isg) {
+    r.files.emplace_back("isg-volcomp.csv", isgCsv(*m, *r.isg));
+    r.files.emplace_back("isg-volcomp.lis", isgCompensationList(*m, *r.isg, "isg-volcomp.csv"));
+    r.files.emplace_back("etalon-exchange.txt", etalonExchange(*m, *r.isg));
+  }
   try {
     r.trt = fitLinuxcncTrt(m, setup.errors);
     r.files.emplace_back("linuxcnc-trt.hal", linuxcncTrtHal(*m, *r.trt));
@@ -163,11 +178,19 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
              {"carries", "each axis's correction of its own command; not the cross-axis terms (squareness, straightness)"},
              {"residual", residualJson(r.ownAxesResidual)}}}},
           {"files", files}};
+  if (r.isg) {
+    j["tables"].push_back({{"format", "isg-volumetric"}, {"files", "isg-volcomp.csv, isg-volcomp.lis, etalon-exchange.txt"},
+                           {"chain", r.isg->chain}, {"workpiece_axes", r.isg->workpieceAxes},
+                           {"carries", "the ISO 230-1 model, evaluated by the controller at every pose: the position errors and each "
+                                       "axis's component errors, linear between the records"},
+                           {"not_carried", r.isg->notCarried}, {"residual", residualJson(r.isgResidual)}});
+  }
+  j["isg_volumetric"] = r.isg ? nlohmann::json{{"applicable", true}} : nlohmann::json{{"applicable", false}, {"reason", r.isgNotApplicable}};
   j["linuxcnc_trt"] = r.trt ? trtJson(*r.trt)
                             : nlohmann::json{{"applicable", false}, {"reason", r.trtNotApplicable}};
   if (r.checkProgram) {
     j["check_program"] = r.checkProgram->file;
-    const TableResidual* along[] = {&r.gridAlong, &r.oneAxisAlong, &r.oneAxisAlong, &r.ownAxesAlong, &r.ownAxesAlong};  // in the order of "tables"
+    const TableResidual* along[] = {&r.gridAlong, &r.oneAxisAlong, &r.oneAxisAlong, &r.ownAxesAlong, &r.ownAxesAlong, &r.isgAlong};  // in the order of "tables"
     for (size_t t = 0; t < j["tables"].size(); ++t) j["tables"][t]["along_program"] = residualJson(*along[t]);
   }
   return j;

@@ -57,8 +57,8 @@ def test_tables_cli_equals_api_and_the_files_are_written(cli, tmp_path):
     api = mtacc.Machine("maho").compensation_tables(nodes=(6, 5, 5), pose={"B": 10}, functions=4)
     contents = api.pop("contents")
     assert json.loads(run.stdout) == api
-    assert sorted(contents) == sorted(api["files"]) == ["grid.csv", "linuxcnc-X.comp", "linuxcnc-Y.comp", "linuxcnc-Z.comp", "one-axis.csv",
-                                                     "siemens-cec.ini", "siemens-lec.ini"]
+    assert sorted(contents) == sorted(api["files"]) == ["etalon-exchange.txt", "grid.csv", "isg-volcomp.csv", "isg-volcomp.lis", "linuxcnc-X.comp",
+                                                     "linuxcnc-Y.comp", "linuxcnc-Z.comp", "one-axis.csv", "siemens-cec.ini", "siemens-lec.ini"]
     for name, text in contents.items():
         assert (tmp_path / name).read_text() == text
     tables = {t["format"]: t for t in api["tables"]}
@@ -67,6 +67,9 @@ def test_tables_cli_equals_api_and_the_files_are_written(cli, tmp_path):
     before = tables["grid"]["residual"]["before_max_um"]
     assert tables["grid"]["residual"]["after_max_um"] < tables["one-axis"]["residual"]["after_max_um"] < before
     assert tables["linuxcnc"]["residual"]["after_max_um"] < before
+    # The controller holding the model leaves only the interpolation between its records.
+    assert tables["isg-volumetric"]["residual"]["after_max_um"] < tables["grid"]["residual"]["after_max_um"]
+    assert tables["isg-volumetric"]["chain"] == "BXYZC" and api["isg_volumetric"] == {"applicable": True}
     assert api["linuxcnc_trt"]["applicable"] is False
     assert "a table tilting about B that carries the C table" in api["linuxcnc_trt"]["reason"]
 

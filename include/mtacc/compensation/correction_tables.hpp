@@ -78,6 +78,10 @@ struct TableResidual {
 };
 TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid,
                             const std::function<Vec3(const Vec3&)>& correction, int perAxis = 41);
+// A correction that depends on every command (a controller holding the error model itself).
+using CommandCorrection = std::function<Vec3(const std::vector<double>& q)>;
+TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid,
+                            const CommandCorrection& correction, int perAxis = 41);
 
 // The same along a program's feed moves (each sampled at 17 points, ends included), the controller
 // correcting the X, Y, Z commands continuously as it interpolates them; the program's other axes
@@ -85,6 +89,8 @@ TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const
 // that tool). A test path shows what each table does where the machine works.
 TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
                                  const CorrectionGrid& grid, const std::function<Vec3(const Vec3&)>& correction);
+TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
+                                 const CorrectionGrid& grid, const CommandCorrection& correction);
 
 // The file forms, each stating its units, grid and what it cannot carry in its header.
 // Generic grid: CSV "x_mm,y_mm,z_mm,dx_mm,dy_mm,dz_mm", '#' comment lines first.

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mtacc/compensation/correction_tables.hpp"
+#include "mtacc/compensation/isg_volumetric.hpp"
 #include "mtacc/compensation/linuxcnc_trt.hpp"
 #include "mtacc/compensation/program_compensation.hpp"
 #include "mtacc/io/gcode_program.hpp"
@@ -36,13 +37,15 @@ ProgramCompensationResult compensateProgramFile(const MachineSetup& setup, const
 nlohmann::json toJson(const ProgramCompensationResult& result);
 
 // Workflow `compensate --tables`: the correction grid over X, Y, Z at a pose of the other axes,
-// its one-axis reduction and the LinuxCNC per-joint files, each with the residual a controller
-// applying it leaves over the working volume; on a table-rotary-tilting machine, LinuxCNC's trt
-// kinematics parameters with the residual they leave over the table's poses.
+// its one-axis reduction, the Siemens and LinuxCNC per-axis files and the TwinCAT/ISG (and Etalon)
+// volumetric model, each with the residual a controller applying it leaves over the working
+// volume; on a table-rotary-tilting machine, LinuxCNC's trt kinematics parameters with the
+// residual they leave over the table's poses.
 struct CompensationTablesRequest {
   CorrectionGridSpec grid;
   int oneAxisFunctions = 9;  // at most this many one-axis functions (1 to 9)
   int linuxcncType = 1;      // COMP_FILE_TYPE
+  int isgRecords = 200;      // records per component error table (TwinCAT/ISG, Etalon): 199 intervals, between the check's lattice points
   std::string checkProgram;  // a test path (G-code) to check each table along, or ""
 };
 
@@ -54,6 +57,9 @@ struct CompensationTablesResult {
   TableResidual gridResidual, oneAxisResidual, ownAxesResidual;
   std::optional<GcodeProgram> checkProgram;
   TableResidual gridAlong, oneAxisAlong, ownAxesAlong;  // along checkProgram
+  std::optional<IsgVolumetricModel> isg;
+  std::string isgNotApplicable;  // why the machine has no ISG model, when it has none
+  TableResidual isgResidual, isgAlong;
   std::optional<LinuxcncTrtFit> trt;
   std::string trtNotApplicable;  // why the machine has no trt parameters, when it has none
   std::vector<std::pair<std::string, std::string>> files;  // name, content

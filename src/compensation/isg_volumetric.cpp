@@ -1,0 +1,195 @@
+#include "mtacc/compensation/isg_volumetric.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <iterator>
+#include <numbers>
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/kinematics/forward.hpp"
+#include "mtacc/kinematics/inverse_with_errors.hpp"
+
+namespace mtacc {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+constexpr char kComponents[6] = {'X', 'Y', 'Z', 'A', 'B', 'C'};
+
+double argument(const Axis& axis, double q) { return axis.isRotary() ? q / kDegree : q; }
+
+bool anyNonZero(const std::vector<double>& values) {
+  return std::any_of(values.begin(), values.end(), [](double v) { return v != 0.0; });
+}
+
+void checkRoles(const Machine& m) {
+  const InputLocation at{m.sourceFile, 0, "axes"};
+  for (const Axis& axis : m.axes) {
+    if (!axis.commanded()) continue;
+    const std::string letters = axis.isRotary() ? "ABC" : "XYZ";
+    const auto letter = axis.name.size() == 1 ? letters.find(axis.name[0]) : std::string::npos;
+    if (letter == std::string::npos)
+      throw InputError(at, fmt::format("ISG's volumetric model has linear X, Y, Z and rotary A, B, C only, not the axis {}", axis.name));
+    if (axis.isRotary() && std::abs(axis.direction[static_cast<Eigen::Index>(letter)]) < 1.0 - 1e-12)
+      throw InputError(at, fmt::format("ISG's volumetric model turns {} about the machine's {}: the machine file inclines it", axis.name,
+                                       "XYZ"[letter]));
+  }
+  for (const char* name : {"X", "Y", "Z"})
+    if (m.commandedAxisIndex(name) < 0) throw InputError(at, fmt::format("ISG's volumetric model needs a linear axis {}", name));
+}
+
+// The part of the model the files cannot hold, named.
+std::vector<std::string> notCarried(const Machine& m, const ErrorModel& errors) {
+  std::vector<std::string> left{"the tool direction (the controller corrects the position only)"};
+  std::string reversal;
+  for (size_t a = 0; a < m.axes.size(); ++a) {
+    const auto& e = errors.axes[a];
+    bool moves = !e.location.isZero();
+    for (int c = 0; c < 6; ++c) {
+      const auto& f = e.motion[static_cast<size_t>(c)];
+      moves = moves || !f.empty();
+      for (const auto& term : f.terms())
+        if (std::holds_alternative<ReversalTerm>(term) && std::get<ReversalTerm>(term).width != 0.0)
+          reversal += (reversal.empty() ? "" : ", ") + motionErrorName(m, static_cast<int>(a), c);
+    }
+    if (!m.axes[a].commanded() && moves) left.push_back(fmt::format("the errors of the spindle {}", m.axes[a].name));
+  }
+  if (!reversal.empty()) left.push_back("the reversal terms of " + reversal + " (the tables have no direction of motion)");
+  if (!errors.stiffness.empty())
+    left.push_back(fmt::format("{} changes of component errors with another axis or the load (mtacc does not write them as "
+                               "multi-dimensional tables)", errors.stiffness.size()));
+  return left;
+}
+
+}  // namespace
+
+IsgVolumetricModel isgVolumetricModel(const Machine& m, const ErrorModel& errors, int records) {
+  checkRoles(m);
+  if (records < 2 || records > 10000) throw InputError({"", 0, "records"}, fmt::format("{} records per table: give 2 to 10000", records));
+  IsgVolumetricModel model;
+  for (auto it = m.workpieceChain.rbegin(); it != m.workpieceChain.rend(); ++it)
+    if (m.axes[static_cast<size_t>(*it)].commanded()) {
+      model.chain += m.axes[static_cast<size_t>(*it)].name;
+      ++model.workpieceAxes;
+    }
+  for (int index : m.toolChain)
+    if (m.axes[static_cast<size_t>(index)].commanded()) model.chain += m.axes[static_cast<size_t>(index)].name;
+
+  for (const Parameter& p : parameterCatalogue(m, errors))
+    if (p.kind == ParameterKind::Location && m.axes[static_cast<size_t>(p.axis)].commanded())
+      model.positionErrors.emplace_back(p.name, parameterValue(errors, p));
+  for (size_t a = 0; a < m.axes.size(); ++a) {
+    const Axis& axis = m.axes[a];
+    const auto& motion = errors.axes[a].motion;
+    if (!axis.commanded() || std::all_of(motion.begin(), motion.end(), [](const ErrorFunction& f) { return f.empty(); })) continue;
+    const double low = axis.travel ? axis.travel->min : 0.0, high = axis.travel ? axis.travel->max : 2.0 * std::numbers::pi;
+    IsgVolumetricModel::ComponentTable table;
+    table.axis = static_cast<int>(a);
+    for (int r = 0; r < records; ++r) {
+      const double q = low + (high - low) * r / (records - 1);
+      table.arguments.push_back(argument(axis, q));
+      for (size_t c = 0; c < 6; ++c) table.values[c].push_back(motion[c].value(q, 0));
+    }
+    model.components.push_back(std::move(table));
+  }
+  model.notCarried = notCarried(m, errors);
+  return model;
+}
+
+ErrorModel isgControllerModel(const Machine& m, const IsgVolumetricModel& model) {
+  ErrorModel e = ErrorModel::zero(m);
+  for (const auto& [name, value] : model.positionErrors) setParameterValue(e, findParameter(m, e, name), value);
+  for (const auto& table : model.components) {
+    const Axis& axis = m.axes[static_cast<size_t>(table.axis)];
+    std::vector<double> positions;
+    for (double argument : table.arguments) positions.push_back(axis.isRotary() ? argument * kDegree : argument);
+    for (size_t c = 0; c < 6; ++c)
+      if (anyNonZero(table.values[c])) e.axes[static_cast<size_t>(table.axis)].motion[c].add(TableTerm(positions, table.values[c], Interpolation::Linear));
+  }
+  return e;
+}
+
+CommandCorrection isgCorrection(const std::shared_ptr<const Machine>& machine, const ErrorModel& controllerModel) {
+  struct State {
+    KinematicModel model, nominal;
+    ErrorIkJacobian jacobian;
+    ErrorIkOptions options;
+    std::array<size_t, 3> xyz;
+  };
+  auto s = std::make_shared<State>(State{compile(machine, controllerModel), compileNominal(machine), {}, {}, {}});
+  s->options.positionOnly = true;
+  s->options.positionTolerance = 1e-7;
+  for (size_t k = 0; k < 3; ++k) s->xyz[k] = static_cast<size_t>(machine->commandedAxisIndex(std::string(1, kComponents[k])));
+  return [s](const std::vector<double>& q) {
+    const ToolPoint wanted = toolPoint(s->nominal, q.data());
+    const ErrorIkSolution solution = refineWithErrors(s->model, wanted.position, wanted.direction, q, s->options, s->jacobian);
+    Vec3 c;
+    for (size_t k = 0; k < 3; ++k) c[static_cast<Eigen::Index>(k)] = solution.q[s->xyz[k]] - q[s->xyz[k]];
+    return c;
+  };
+}
+
+std::string isgCsv(const Machine& m, const IsgVolumetricModel& model) {
+  std::string out = fmt::format("// mtacc: the ISO 230-1 model of {} for TwinCAT/ISG volumetric compensation (TF5280), chain {}, workpiece_axes {}\n"
+                                "// values in mm and rad; arguments in mm (X, Y, Z) and degrees (A, B, C); linear between the records\n",
+                                m.name, model.chain, model.workpieceAxes);
+  for (const auto& left : model.notCarried) out += "// not carried: " + left + "\n";
+  auto it = std::back_inserter(out);
+  std::vector<std::string> names;
+  std::vector<double> values;
+  for (const auto& [name, value] : model.positionErrors) {
+    names.push_back(name);
+    values.push_back(value);
+  }
+  fmt::format_to(it, "{}\n{:.10f}\n", fmt::join(names, " "), fmt::join(values, " "));
+  for (const auto& table : model.components) {
+    const std::string& axis = m.axes[static_cast<size_t>(table.axis)].name;
+    fmt::format_to(it, "#\n{}", axis);
+    for (size_t c = 0; c < 6; ++c)
+      if (anyNonZero(table.values[c])) fmt::format_to(it, " E{}{}", kComponents[c], axis);
+    out += "\n";
+    for (size_t r = 0; r < table.arguments.size(); ++r) {
+      fmt::format_to(it, "{:.6f}", table.arguments[r]);
+      for (size_t c = 0; c < 6; ++c)
+        if (anyNonZero(table.values[c])) fmt::format_to(it, " {:.10f}", table.values[c][r]);
+      out += "\n";
+    }
+  }
+  return out;
+}
+
+std::string etalonExchange(const Machine& m, const IsgVolumetricModel& model) {
+  std::string out = fmt::format("// mtacc: the ISO 230-1 model of {} in Etalon's exchange format (\"Vendor\" variant) for TwinCAT/ISG\n"
+                                "// values in mm and rad; Gridpoints: argument (mm; degrees for A, B, C) and value\n",
+                                m.name);
+  for (const auto& left : model.notCarried) out += "// not carried: " + left + "\n";
+  auto it = std::back_inserter(out);
+  for (const auto& [name, value] : model.positionErrors) fmt::format_to(it, "[{}]\nVALUE = {:.10f}\n", name, value);
+  for (const auto& table : model.components)
+    for (size_t c = 0; c < 6; ++c) {
+      if (!anyNonZero(table.values[c])) continue;
+      const std::string name = fmt::format("E{}{}", kComponents[c], m.axes[static_cast<size_t>(table.axis)].name);
+      fmt::format_to(it, "[{}]\nGridpoints = {{\n", name);
+      for (size_t r = 0; r < table.arguments.size(); ++r) fmt::format_to(it, "{:.6f} {:.10f}\n", table.arguments[r], table.values[c][r]);
+      fmt::format_to(it, "}} // end of {}\n", name);
+    }
+  return out;
+}
+
+std::string isgCompensationList(const Machine& m, const IsgVolumetricModel& model, const std::string& csvFile) {
+  size_t records = 1;
+  for (const auto& table : model.components) records += table.arguments.size();
+  std::string out = fmt::format("# mtacc: TwinCAT/ISG volumetric compensation list for {}\n"
+                                "# the logical axis numbers are the machine file's order: set the control's\n"
+                                "# the start-up list needs vol_comp[0].max_records >= {} and vol_comp[0].file_name naming this list\n",
+                                m.name, records);
+  auto it = std::back_inserter(out);
+  for (int k = 0; k < m.commandedCount(); ++k) fmt::format_to(it, "{} {}\n", static_cast<char>(std::tolower(m.axes[static_cast<size_t>(k)].name[0])), k + 1);
+  fmt::format_to(it, "chain {}\nworkpiece_axes {}\nfile[0] {}\nfile_format[0] ISG_CSV\ninterpolation GRID\n", model.chain, model.workpieceAxes, csvFile);
+  return out;
+}
+
+}  // namespace mtacc
