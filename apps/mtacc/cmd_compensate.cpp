@@ -56,6 +56,7 @@ void runTables(const CompensateOptions& o) {
                               : format == "siemens-cec" ? "Siemens CEC tables"
                               : format == "siemens-lec" ? "Siemens LEC tables per axis"
                               : format == "linuxcnc"    ? "LinuxCNC COMP_FILE per joint"
+                              : format == "heidenhain"  ? "HEIDENHAIN .COM tables"
                                                         : "TwinCAT/ISG volumetric model";
     human += fmt::format("  {:<30} {:9.3f} ({:.3f})   carries {}\n", label, res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
                          t["carries"].get<std::string>());
@@ -133,7 +134,7 @@ void addCompensateCommand(CLI::App& app) {
   cmd->add_option("--direction-tolerance", o->directionToleranceUrad, "tool direction deviation allowed between written points [urad]")
       ->capture_default_str()
       ->check(CLI::Range(0.01, 10000.0));
-  cmd->add_option("--tables", o->tables, "write the correction grid, its one-axis functions and the controllers' files (Siemens, LinuxCNC, TwinCAT/ISG) to DIR");
+  cmd->add_option("--tables", o->tables, "write the correction grid, its one-axis functions and the controllers' files (Siemens, HEIDENHAIN, LinuxCNC, TwinCAT/ISG) to DIR");
   cmd->add_option("--check-program", o->checkProgram, "tables: also check each table along this program's feed moves (G-code)");
   cmd->add_option("--nodes", o->nodes, "tables: nodes along X, Y, Z over their travel")->capture_default_str();
   cmd->add_option("--pose", o->pose, "tables: the other axes' positions, e.g. B=0,C=0 (mm, deg; default 0)");

@@ -677,7 +677,7 @@ def compensation_residuals(result, title=None):
     tables = result["tables"]
     functions = next(len(t["functions"]) for t in tables if t["format"] == "one-axis")
     names = {"grid": "3-D grid", "one-axis": f"{functions} one-axis functions", "siemens-cec": "Siemens CEC",
-             "siemens-lec": "Siemens LEC per axis", "linuxcnc": "LinuxCNC per joint", "isg-volumetric": "TwinCAT/ISG volumetric"}
+             "siemens-lec": "Siemens LEC per axis", "linuxcnc": "LinuxCNC per joint", "heidenhain": "HEIDENHAIN .COM", "isg-volumetric": "TwinCAT/ISG volumetric"}
     labels = ["uncorrected"] + [names[t["format"]] for t in tables]
     largest = [tables[0]["residual"]["before_max_um"]] + [t["residual"]["after_max_um"] for t in tables]
     rms = [tables[0]["residual"]["before_rms_um"]] + [t["residual"]["after_rms_um"] for t in tables]

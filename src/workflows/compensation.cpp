@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/compensation/heidenhain_tables.hpp"
 #include "mtacc/core/units.hpp"
 
 namespace mtacc {
@@ -138,6 +139,7 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   const char* names[3] = {"X", "Y", "Z"};
   for (const auto& f : r.ownAxes.functions)
     r.files.emplace_back(fmt::format("linuxcnc-{}.comp", names[f.input]), linuxcncCompFile(f, request.linuxcncType));
+  for (auto& file : heidenhainTables(r.oneAxis)) r.files.push_back(std::move(file));
   if (r.isg) {
     r.files.emplace_back("isg-volcomp.csv", isgCsv(*m, *r.isg));
     r.files.emplace_back("isg-volcomp.lis", isgCompensationList(*m, *r.isg, "isg-volcomp.csv"));
@@ -157,7 +159,11 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
   nlohmann::json functions = nlohmann::json::array();
   for (const auto& f : r.oneAxis.functions) functions.push_back({{"input", names[f.input]}, {"output", names[f.output]}, {"rms_um", f.rms * 1e3}});
   nlohmann::json files = nlohmann::json::array();
-  for (const auto& [name, content] : r.files) files.push_back(name);
+  std::string heidenhainFiles;
+  for (const auto& [name, content] : r.files) {
+    files.push_back(name);
+    if (name.starts_with("heidenhain")) heidenhainFiles += (heidenhainFiles.empty() ? "" : ", ") + name;
+  }
   const auto& g = r.grid;
   nlohmann::json j = {{"machine", r.setup.machine->name},
           {"grid", {{"nodes", g.counts}, {"start_mm", g.start}, {"step_mm", g.step}, {"pose", poseJson(*r.setup.machine, g.pose.data())}}},
@@ -176,7 +182,10 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
              {"residual", residualJson(r.ownAxesResidual)}},
             {{"format", "linuxcnc"}, {"files", "linuxcnc-X.comp, linuxcnc-Y.comp, linuxcnc-Z.comp"},
              {"carries", "each axis's correction of its own command; not the cross-axis terms (squareness, straightness)"},
-             {"residual", residualJson(r.ownAxesResidual)}}}},
+             {"residual", residualJson(r.ownAxesResidual)}},
+            {{"format", "heidenhain"}, {"files", heidenhainFiles},
+             {"carries", "the one-axis functions above, one compensation-value table per input axis with a column per output axis"},
+             {"residual", residualJson(r.oneAxisResidual)}}}},
           {"files", files}};
   if (r.isg) {
     j["tables"].push_back({{"format", "isg-volumetric"}, {"files", "isg-volcomp.csv, isg-volcomp.lis, etalon-exchange.txt"},
@@ -190,7 +199,7 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
                             : nlohmann::json{{"applicable", false}, {"reason", r.trtNotApplicable}};
   if (r.checkProgram) {
     j["check_program"] = r.checkProgram->file;
-    const TableResidual* along[] = {&r.gridAlong, &r.oneAxisAlong, &r.oneAxisAlong, &r.ownAxesAlong, &r.ownAxesAlong, &r.isgAlong};  // in the order of "tables"
+    const TableResidual* along[] = {&r.gridAlong, &r.oneAxisAlong, &r.oneAxisAlong, &r.ownAxesAlong, &r.ownAxesAlong, &r.oneAxisAlong, &r.isgAlong};  // in the order of "tables"
     for (size_t t = 0; t < j["tables"].size(); ++t) j["tables"][t]["along_program"] = residualJson(*along[t]);
   }
   return j;

@@ -57,8 +57,9 @@ def test_tables_cli_equals_api_and_the_files_are_written(cli, tmp_path):
     api = mtacc.Machine("maho").compensation_tables(nodes=(6, 5, 5), pose={"B": 10}, functions=4)
     contents = api.pop("contents")
     assert json.loads(run.stdout) == api
-    assert sorted(contents) == sorted(api["files"]) == ["etalon-exchange.txt", "grid.csv", "isg-volcomp.csv", "isg-volcomp.lis", "linuxcnc-X.comp",
-                                                     "linuxcnc-Y.comp", "linuxcnc-Z.comp", "one-axis.csv", "siemens-cec.ini", "siemens-lec.ini"]
+    assert sorted(contents) == sorted(api["files"]) == ["etalon-exchange.txt", "grid.csv", "heidenhain-X.com", "heidenhain-Y.com", "heidenhain-Z.com",
+                                                     "heidenhain.cma", "isg-volcomp.csv", "isg-volcomp.lis", "linuxcnc-X.comp", "linuxcnc-Y.comp",
+                                                     "linuxcnc-Z.comp", "one-axis.csv", "siemens-cec.ini", "siemens-lec.ini"]
     for name, text in contents.items():
         assert (tmp_path / name).read_text() == text
     tables = {t["format"]: t for t in api["tables"]}
@@ -95,6 +96,7 @@ def test_tables_along_a_test_path(tmp_path):
     assert along["grid"]["after_max_um"] <= 0.05 * along["grid"]["before_max_um"]
     assert along["one-axis"] == along["siemens-cec"]
     assert along["linuxcnc"] == along["siemens-lec"]
+    assert along["heidenhain"] == along["one-axis"]
 
 
 def test_tables_refuse_a_bad_request():
