@@ -5,13 +5,14 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
 #include "mtacc/io/csv.hpp"
+#include "mtacc/io/pose_text.hpp"
 #include "mtacc/workflows/kinematics_batch.hpp"
 
 namespace mtacc::cli {
 namespace {
 
 struct InverseCliOptions : MachineOptions {
-  std::string tcp, tool = "0,0,1", targetsFile, branch = "auto";
+  std::string tcp, tool = "0,0,1", targetsFile, branch = "auto", near;
   bool all = false, withErrors = false;
 };
 
@@ -22,6 +23,7 @@ void run(const InverseCliOptions& o) {
     throw InputError(InputLocation{"", 0, "--tcp/--targets"}, "give exactly one of --tcp x,y,z or --targets FILE.csv");
   InverseRequest request;
   request.options.branch = parseTiltBranch(o.branch);
+  if (!o.near.empty()) request.options.hint = parsePose(m, o.near, "--near", true);
   request.all = o.all;
   request.withErrors = o.withErrors;
   if (!o.tcp.empty()) {
@@ -75,6 +77,9 @@ void addInverseCommand(CLI::App& app) {
   cmd->add_option("--tool", o->tool, "tool direction i,j,k (TCP towards spindle), default 0,0,1");
   cmd->add_option("--targets", o->targetsFile, "CSV with columns x,y,z,i,j,k: solved as a continuous path");
   cmd->add_option("--branch", o->branch, "tilt branch of the first pose: auto, positive or negative");
+  cmd->add_option("--near", o->near,
+                  "a pose to stay near, e.g. B=30,C=170 (mm, deg; axes not named 0): rotary angles closest to it, a free angle "
+                  "at a singular pose kept at its value");
   cmd->add_flag("--with-errors", o->withErrors,
                 "the commands that reach the pose on the machine with its errors (the inverse error model), with the "
                 "residual");

@@ -146,9 +146,10 @@ PYBIND11_MODULE(_mtacc, mod) {
         return py::make_tuple(toArray(r.error.leftCols<3>(), 1e3), toArray(r.error.rightCols<3>(), 1e6));
       })
       .def("ik", [](const MachineSetup& s, const std::vector<std::vector<double>>& tcps, const std::vector<std::vector<double>>& tools,
-                    const std::string& branch, bool all, bool withErrors) {
+                    const std::string& branch, bool all, bool withErrors, const std::string& near) {
         InverseRequest request;
         request.withErrors = withErrors;
+        if (!near.empty()) request.options.hint = parsePose(*s.machine, near, "near", true);
         for (const auto& p : tcps) request.positions.push_back(vec3(p, "tcp"));
         for (const auto& t : tools) request.directions.push_back(vec3(t, "tool"));
         request.options.branch = parseTiltBranch(branch);

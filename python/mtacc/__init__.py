@@ -42,6 +42,11 @@ def _text(value):
     return "" if value is None else str(value)
 
 
+def _pose_text(pose):
+    """{axis: mm or deg} as the CLI's pose text "B=10.0,C=0.0"."""
+    return ",".join(f"{name}={float(value)!r}" for name, value in (pose or {}).items())
+
+
 class Errors(MutableMapping):
     """The machine's error parameters by ISO 230-1 name (aliases accepted).
 
@@ -116,17 +121,18 @@ class Machine:
         position, orientation = self._core.fk(self._q(q), directions, False, True, threads)
         return np.hstack([position, orientation])
 
-    def ik(self, tcp, tool=(0, 0, 1), branch="auto", all=False, with_errors=False):
+    def ik(self, tcp, tool=(0, 0, 1), branch="auto", all=False, with_errors=False, near=None):
         """Solutions for one TCP [mm] and tool direction, as `mtacc ik --json` lists them; with_errors: the
         commands that reach the pose on the machine with its errors (the inverse error model), with the
-        nominal pose it started from and the residual (um, urad)."""
-        result, _ = self._core.ik([list(map(float, tcp))], [list(map(float, tool))], branch, all, with_errors)
+        nominal pose it started from and the residual (um, urad); near: a pose ({axis: mm or deg}) whose
+        rotary angles the solution stays closest to, a free angle at a singular pose kept at its value."""
+        result, _ = self._core.ik([list(map(float, tcp))], [list(map(float, tool))], branch, all, with_errors, _pose_text(near))
         return result["solutions"]
 
     def ik_path(self, tcps, tools, branch="auto", with_errors=False):
         """Axis positions (n, axes) [mm, deg] along a continuous path; with_errors: on the machine with its
         errors (as `ik`)."""
-        _, q = self._core.ik(np.asarray(tcps, float).tolist(), np.asarray(tools, float).tolist(), branch, False, with_errors)
+        _, q = self._core.ik(np.asarray(tcps, float).tolist(), np.asarray(tools, float).tolist(), branch, False, with_errors, "")
         return q
 
     def jacobian(self, q, params=None):
@@ -209,8 +215,7 @@ class Machine:
         default 0), its reduction to at most `functions` one-axis functions and the LinuxCNC COMP_FILE of
         each axis, each with the TCP error a controller applying it leaves ("residual", um), and along
         `check_program` (G-code, "along_program") when given. "contents" holds each file's text by name."""
-        text = ",".join(f"{name}={float(value)!r}" for name, value in (pose or {}).items())
-        return self._core.compensation_tables([int(n) for n in nodes], text, int(functions), int(linuxcnc_type),
+        return self._core.compensation_tables([int(n) for n in nodes], _pose_text(pose), int(functions), int(linuxcnc_type),
                                               "" if check_program is None else str(check_program))
 
     def compare_plate(self, path):

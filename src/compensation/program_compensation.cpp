@@ -60,6 +60,9 @@ class Compensator {
 
   CompensatedProgram run() {
     if (program_.moves.empty()) return out_;
+    // A point per move and a few more where axes reverse (arcs add their chords as they come):
+    // the vector grows once instead of doubling through a million points.
+    out_.points.reserve(program_.moves.size() + program_.moves.size() / 16 + 1);
     const GcodeMove& first = program_.moves.front();
     lastMotion_ = first.motion(0.5);
     out_.points.push_back(solve(0, first, 0.0, lastMotion_, false));

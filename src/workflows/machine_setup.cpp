@@ -1,5 +1,7 @@
 #include "mtacc/workflows/machine_setup.hpp"
 
+#include <fmt/format.h>
+
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/errors_yaml.hpp"
@@ -37,7 +39,8 @@ nlohmann::json poseJson(const Machine& m, const double* q) {
   nlohmann::json j = nlohmann::json::object();
   for (int i = 0; i < m.commandedCount(); ++i) {
     const Axis& a = m.axes[static_cast<size_t>(i)];
-    j[a.name] = a.isRotary() ? q[i] / kDeg : q[i];
+    // 15 significant digits: no "29.99999999999999" (rounding of a few ulp) for 30 degrees.
+    j[a.name] = std::stod(fmt::format("{:.15g}", a.isRotary() ? q[i] / kDeg : q[i]));
   }
   return j;
 }

@@ -112,3 +112,19 @@ def test_observability(cli):
     machine = mtacc.Machine("tilting-table")
     assert run_json(cli, "observability", "tilting-table", "--plan", "tilting-table-rtest") == \
         machine.observability("tilting-table-rtest")
+
+
+def test_ik_near_a_pose_and_poses_without_rounding_noise(cli):
+    # The double pivot head reaches a tilted tool four ways (B = -30 or 30, C a half turn apart,
+    # and each C a turn further); --near / near= picks the one closest to a pose.
+    args = ["ik", "double-pivot-head", "--tcp", "10,20,30", "--tool", "0,0.5,0.8660254037844386"]
+    machine = mtacc.Machine("double-pivot-head")
+    for near, expected in (({"C": -80}, {"B": -30.0, "C": -90.0}), ({"C": 80, "B": 30}, {"B": 30.0, "C": 90.0}),
+                           ({"C": 260}, {"B": -30.0, "C": 270.0})):
+        text = ",".join(f"{k}={v}" for k, v in near.items())
+        data = run_json(cli, *args, "--near", text)
+        assert data["solutions"] == machine.ik([10, 20, 30], [0, 0.5, 0.8660254037844386], near=near)
+        pose = data["solutions"][0]["pose"]
+        assert {axis: pose[axis] for axis in expected} == expected  # exactly: 30.0, not 29.99999999999999
+    with pytest.raises(mtacc.InputError, match="near"):
+        machine.ik([10, 20, 30], near={"Q": 1})

@@ -39,7 +39,7 @@ MachineSetup loadMachineSetup(const MachineSource& source);
 std::vector<Parameter> findParameters(const MachineSetup& setup, const std::vector<std::string>& names,
                                       const InputLocation& namedAt = {"", 0, "parameters"});
 
-// {"X": 10.0, "B": -15.0}: mm for linear and deg for rotary axes.
+// {"X": 10.0, "B": -15.0}: mm for linear and deg for rotary axes, to 15 significant digits.
 nlohmann::json poseJson(const Machine& machine, const double* q);
 nlohmann::json vectorJson(const Vec3& v);
 
