@@ -20,7 +20,11 @@ std::string travelText(const Axis& a) {
   return fmt::format("{:g} .. {:g} {}", a.travel->min * f, a.travel->max * f, a.isRotary() ? "deg" : "mm");
 }
 
-void run(const MachineOptions& o) {
+struct CheckOptions : MachineOptions {
+  bool parameters = false;
+};
+
+void run(const CheckOptions& o) {
   const auto c = checkMachine(loadMachineSetup(o.source));
   const Machine& m = *c.setup.machine;
   std::string human = fmt::format("Machine    {}\nFile       {}\nStructure  {}  (tool first: {})\n", m.name, m.sourceFile,
@@ -53,6 +57,15 @@ void run(const MachineOptions& o) {
   for (const auto& p : c.nonZero)
     human += fmt::format("  {:<10} {:>10.3f} {}\n", p.name, toDisplay(parameterValue(c.setup.errors, p), p.dimension),
                          displayUnit(p.dimension));
+  if (o.parameters) {
+    human += "Every parameter, by the axis it belongs to (identify, observability and sensitivity take these names):\n";
+    for (size_t axis = 0; axis < m.axes.size(); ++axis) {
+      std::string names;
+      for (const auto& p : c.parameters)
+        if (p.axis == static_cast<int>(axis)) names += " " + p.name;
+      if (!names.empty()) human += fmt::format("  {:<4}{}\n", m.axes[axis].name, names);
+    }
+  }
   if (!c.setup.errors.stiffness.empty())
     human += fmt::format("Stiffness changes: {} at a workpiece load of {:g} kg (mtacc stiffness shows them)\n",
                          c.setup.errors.stiffness.size(), c.setup.errors.workpieceLoad);
@@ -62,9 +75,10 @@ void run(const MachineOptions& o) {
 }  // namespace
 
 void addCheckCommand(CLI::App& app) {
-  auto o = std::make_shared<MachineOptions>();
+  auto o = std::make_shared<CheckOptions>();
   auto* cmd = app.add_subcommand("check", "validate a machine and print its kinematic chain and error parameters");
   addMachineOptions(*cmd, *o);
+  cmd->add_flag("--parameters", o->parameters, "list every error parameter by name (the JSON always holds them)");
   cmd->callback([o] { run(*o); });
 }
 

@@ -108,6 +108,16 @@ def test_check_and_cone(cli):
         machine.cone(preset="swivel-head", single_errors=True)
 
 
+def test_check_lists_every_parameter_on_request(cli):
+    out = subprocess.run([cli, "check", "tilting-table", "--parameters"], check=True, capture_output=True, text=True).stdout
+    listed = {}
+    for line in out.split("Every parameter")[1].splitlines()[1:]:
+        axis, *names = line.split()
+        listed[axis] = names
+    assert sorted(name for names in listed.values() for name in names) == sorted(mtacc.Machine("tilting-table").check()["parameters"])
+    assert listed["C1"] == ["X0C1", "Y0C1", "Z0C1", "A0C1", "B0C1", "C0C1"]  # the spindle's location errors by their own name
+
+
 def test_observability(cli):
     machine = mtacc.Machine("tilting-table")
     assert run_json(cli, "observability", "tilting-table", "--plan", "tilting-table-rtest") == \
