@@ -126,7 +126,7 @@ TEST(Seed001WorkpieceFrame, CubicTestObservabilityReportsTheSeedAmbiguity) {
   const auto findings = tilts.findings();
   ASSERT_EQ(findings.size(), 4u);
   // tan 15 deg = (1 - cos 30) / sin 30: the extraction's null direction (sin 15, -cos 15).
-  EXPECT_EQ(findings[2], "X0B and Z0B act alike: only X0B + 0.2679 Z0B observable");
+  EXPECT_EQ(findings[2], "X0B and Z0B act alike: only X0B + 0.2679 Z0B observable (lengths in mm, angles in rad)");
   ASSERT_EQ(tilts.groups.size(), 2u);
   EXPECT_EQ(tilts.groups[1].names, (std::vector<std::string>{"A0B", "C0B", "A0C"}));
   EXPECT_EQ(tilts.groups[1].observable.size(), 2u);  // K1 and K2

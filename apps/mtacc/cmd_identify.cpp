@@ -1,6 +1,9 @@
 // mtacc identify / observability: which error parameters a test plan (or a set of measured
 // files) determines, and their least-squares estimates with standard uncertainties.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
 
 #include <iostream>
 
@@ -17,7 +20,7 @@ struct IdentifyCliOptions : MachineOptions {
   std::vector<std::string> data;
   std::string plan, params, setup, robustScale = "2 um", noise;
   double uncertaintyFraction = 0.1;
-  bool robust = false, strict = false;
+  bool robust = false, strict = false, fromNominal = false;
   int threads = kAllCores;
 };
 
@@ -29,6 +32,7 @@ IdentificationRequest request(const IdentifyCliOptions& o) {
   r.parameters = splitList(o.params);
   if (!o.setup.empty()) r.setup = splitList(o.setup);
   r.robust = o.robust;
+  r.fromNominal = o.fromNominal;
   r.robustScale = parseQuantityAs(o.robustScale, Dimension::Length, "--robust-scale");
   if (!o.noise.empty()) r.noise = parseQuantityAs(o.noise, Dimension::Length, "--noise");
   r.uncertaintyFraction = o.uncertaintyFraction;
@@ -67,6 +71,8 @@ void addOptions(CLI::App* cmd, IdentifyCliOptions& o) {
   cmd->add_option("--params", o.params, "Parameters to determine, e.g. X0B,Z0B,A0C (ISO names or aliases)");
   cmd->add_option("--setup", o.setup, "Set-up errors to estimate in every run, e.g. xW,yW,zW (overrides the files)");
   cmd->add_option("--threads", o.threads, "Threads (0 = all cores)")->capture_default_str();
+  cmd->add_flag("--from-nominal", o.fromNominal,
+                "Hold the errors not determined at zero (the nominal machine) instead of the machine file's or --errors' values");
 }
 
 }  // namespace
@@ -93,6 +99,12 @@ void emitIdentification(const MachineOptions& o, const IdentificationOutcome& ou
                        r.degreesOfFreedom, r.residualRms * 1e3, r.residualMax * 1e3);
   human += fmt::format("solver: {} after {} iterations{}\n", r.converged ? "converged" : "NOT converged", r.iterations,
                        out.robust ? " (Huber loss)" : "");
+  if (!out.held.empty()) {
+    const size_t shown = std::min<size_t>(out.held.size(), 8);
+    human += fmt::format("held at the machine file's (or --errors') values, not determined: {}{} ({}); --from-nominal holds them at zero\n",
+                         fmt::join(out.held.begin(), out.held.begin() + static_cast<std::ptrdiff_t>(shown), ", "),
+                         shown < out.held.size() ? ", ..." : "", out.held.size());
+  }
   const auto& q = out.quality;
   if (q.pValue)
     human += fmt::format("goodness of fit against the noise of {}: chi-square {:.4g}, {} degrees of freedom, p = {:.3g}\n",

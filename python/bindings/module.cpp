@@ -375,8 +375,8 @@ PYBIND11_MODULE(_mtacc, mod) {
         return toPython(toJson(planObservability(s, {.plan = plan, .parameters = parameters})));
       })
       .def("identify", [](const MachineSetup& s, const std::vector<std::string>& files, const std::vector<std::string>& parameters,
-                          const std::string& plan, bool robust, const std::string& noise, double uncertaintyFraction) {
-        IdentificationRequest request{.plan = plan, .data = files, .parameters = parameters, .robust = robust};
+                          const std::string& plan, bool robust, const std::string& noise, double uncertaintyFraction, bool fromNominal) {
+        IdentificationRequest request{.plan = plan, .data = files, .parameters = parameters, .robust = robust, .fromNominal = fromNominal};
         if (!noise.empty()) request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
         request.uncertaintyFraction = uncertaintyFraction;
         IdentificationOutcome out;

@@ -276,13 +276,16 @@ class Machine:
         """Rank, singular values and findings of a test plan (as `mtacc observability --json`)."""
         return self._core.observability(str(plan), list(parameters or []))
 
-    def identify(self, files, parameters=None, plan=None, robust=False, noise=None, uncertainty_fraction=0.1):
+    def identify(self, files, parameters=None, plan=None, robust=False, noise=None, uncertainty_fraction=0.1,
+                 from_nominal=False):
         """Least-squares estimates with standard uncertainties, covariance and correlation (as
         `mtacc identify --json`); the parameters default to the plan's list; refuses (InputError) a
         set the data cannot determine. `noise` (e.g. "0.5 um", default: the files' '# noise:'
-        lines) feeds the goodness-of-fit test; result["quality"]["warnings"] lists what is doubtful."""
+        lines) feeds the goodness-of-fit test; result["quality"]["warnings"] lists what is doubtful.
+        The errors not determined are held at this machine's values (result["held"] names the
+        non-zero ones); from_nominal=True holds them at zero."""
         return self._core.identify([str(f) for f in files], list(parameters or []), _text(plan), robust, _text(noise),
-                                   uncertainty_fraction)
+                                   uncertainty_fraction, bool(from_nominal))
 
     def xy_circle(self):
         """The report's X-Y circle: radial TCP deviation around mid-travel, or None."""

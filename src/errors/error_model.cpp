@@ -126,10 +126,15 @@ Parameter findParameter(const Machine& machine, const ErrorModel& errors, const 
                                                    " for this machine; its parameters are: " + known);
 }
 
-ErrorModel singleError(const Machine& machine, const ErrorModel& shape, const Parameter& p, double value) {
+ErrorModel withParametersZero(const Machine& machine, const ErrorModel& shape) {
   ErrorModel e = shape;
   e.stiffness.clear();
   for (const auto& q : parameterCatalogue(machine, e)) setParameterValue(e, q, 0.0);
+  return e;
+}
+
+ErrorModel singleError(const Machine& machine, const ErrorModel& shape, const Parameter& p, double value) {
+  ErrorModel e = withParametersZero(machine, shape);
   setParameterValue(e, p, value);
   return e;
 }

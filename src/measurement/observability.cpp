@@ -140,6 +140,7 @@ std::vector<std::string> ObservabilityReport::findings() const {
     for (size_t k = 0; k < g.names.size(); ++k)
       list += (k == 0 ? "" : (k + 1 == g.names.size() ? " and " : ", ")) + g.names[k];
     std::string combos;
+    bool scaled = false;  // a coefficient other than +-1: its meaning depends on the units
     if (g.names.size() <= 4) {
       for (const auto& c : g.observable) {
         std::string term;
@@ -147,6 +148,7 @@ std::vector<std::string> ObservabilityReport::findings() const {
           if (std::abs(c[k]) < 1e-9) continue;
           const double a = std::abs(c[k]);
           const std::string magnitude = std::abs(a - 1.0) < 1e-9 ? "" : fmt::format("{:.4g} ", a);
+          scaled = scaled || !magnitude.empty();
           term += term.empty() ? (c[k] < 0 ? "-" : "") + magnitude + g.names[k]
                                : fmt::format(" {} {}{}", c[k] < 0 ? "-" : "+", magnitude, g.names[k]);
         }
@@ -157,7 +159,8 @@ std::vector<std::string> ObservabilityReport::findings() const {
     }
     const bool alike = g.names.size() == 2 && g.observable.size() == 1;
     out.push_back(list + (alike ? " act alike" : " cannot be separated") +
-                  (combos.empty() ? ": none of them is observable" : ": only " + combos + " observable"));
+                  (combos.empty() ? ": none of them is observable" : ": only " + combos + " observable") +
+                  (scaled ? " (lengths in mm, angles in rad)" : ""));
   }
   return out;
 }

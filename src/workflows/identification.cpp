@@ -1,5 +1,7 @@
 #include "mtacc/workflows/identification.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -24,7 +26,7 @@ Problem buildProblem(const MachineSetup& setup, const IdentificationRequest& req
   const auto nominal = setup.nominal();
   Problem p;
   p.problem.machine = setup.machine;
-  p.problem.start = setup.errors;
+  p.problem.start = request.fromNominal ? withParametersZero(*setup.machine, setup.errors) : setup.errors;
   p.given = request.parameters;
   InputLocation namedAt{"", 0, "parameters"};
   if (!request.plan.empty()) {
@@ -149,7 +151,10 @@ IdentificationOutcome identifyParameters(const MachineSetup& setup, const Identi
   options.robust = request.robust;
   options.robustScale = request.robustScale;
   options.threads = request.threads;
-  IdentificationOutcome out{setup.machine, p.problem.runs.size(), p.given, request.robust, {}, {}};
+  IdentificationOutcome out{setup.machine, p.problem.runs.size(), p.given, {}, request.robust, {}, {}};
+  for (const Parameter& held : nonZeroParameters(*setup.machine, p.problem.start))
+    if (std::none_of(p.problem.parameters.begin(), p.problem.parameters.end(), [&](const Parameter& q) { return q.name == held.name; }))
+      out.held.push_back(held.name);
   try {
     out.result = identify(p.problem, options);
   } catch (const NotIdentifiable& e) {
@@ -174,6 +179,7 @@ nlohmann::json toJson(const IdentificationOutcome& o) {
   j["residual_rms_um"] = r.residualRms * 1e3;
   j["residual_max_um"] = r.residualMax * 1e3;
   j["robust"] = o.robust;
+  j["held"] = o.held;
   j["observability"] = toJson(r.observability);
   const auto& q = o.quality;
   nlohmann::json poorly = nlohmann::json::array();

@@ -62,3 +62,19 @@ def test_ballbar_evaluation(tmp_path):
     cli = json.loads(subprocess.run([CLI, "evaluate", "three-axis-vertical", str(out), "--json"], capture_output=True, text=True,
                                     check=True).stdout)
     assert cli == ev
+
+
+def test_held_errors_are_named_and_from_nominal_holds_them_at_zero(tmp_path):
+    # Data simulated on the machine with its full model; identified with the plan's location
+    # errors only. Against the machine file's values the other errors are already right (and
+    # named as held); against the nominal machine they are missing and the fit says so.
+    m = mtacc.Machine("tilting-table")
+    files = [r["file"] for r in m.simulate("tilting-table-rtest", noise="0.5 um", seed=5, output_dir=tmp_path)["runs"]]
+    held = m.identify(files, plan="tilting-table-rtest")
+    assert "EXX.cyc" in held["held"] and "X0B" not in held["held"]
+    out = subprocess.run([CLI, "identify", "tilting-table", "--plan", "tilting-table-rtest", "--data", *files],
+                         capture_output=True, text=True, check=True).stdout
+    assert f"not determined: {', '.join(held['held'][:8])}, ... ({len(held['held'])}); --from-nominal holds them at zero" in out
+    nominal = m.identify(files, plan="tilting-table-rtest", from_nominal=True)
+    assert nominal["held"] == []
+    assert held["quality"]["p_value"] > 0.001 and nominal["quality"]["p_value"] < 1e-6

@@ -65,6 +65,9 @@ std::vector<Parameter> parameterCatalogue(const Machine& machine, const ErrorMod
 std::vector<Parameter> nonZeroParameters(const Machine& machine, const ErrorModel& errors);
 
 double parameterValue(const ErrorModel& errors, const Parameter& p);
+// `shape` with every parameter zero and no stiffness changes: the nominal machine, with the
+// functions `shape` defines still there to be identified.
+ErrorModel withParametersZero(const Machine& machine, const ErrorModel& shape);
 // `shape` with every parameter zero except p, which is set to value, and no stiffness
 // changes (one error alone).
 ErrorModel singleError(const Machine& machine, const ErrorModel& shape, const Parameter& p, double value);

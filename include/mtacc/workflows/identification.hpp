@@ -19,6 +19,9 @@ struct IdentificationRequest {
   std::vector<std::string> parameters;  // default: the plan's list
   std::optional<std::vector<std::string>> setup{};  // set-up errors to estimate in every run (overrides the files)
   bool robust = false;
+  // The errors not identified are held at zero (the nominal machine) instead of at the values of
+  // the machine file or --errors: a machine that already carries its true errors hides aliasing.
+  bool fromNominal = false;
   double robustScale = 2e-3;        // mm
   int threads = kAllCores;
   // The reading noise (standard deviation, mm) for the goodness-of-fit test; default: each
@@ -61,6 +64,7 @@ struct IdentificationOutcome {
   std::shared_ptr<const Machine> machine;
   size_t runs = 0;
   std::vector<std::string> given;  // the parameter names as the request wrote them
+  std::vector<std::string> held;   // the non-zero parameters not identified, held at their values
   bool robust = false;
   IdentificationResult result;
   IdentificationQuality quality;
