@@ -36,11 +36,7 @@ SimulationOptions simulationOptions(const SimulateCliOptions& o, const Machine& 
   SimulationOptions s;
   s.noise = parseQuantityAs(o.noise, Dimension::Length, "--noise");
   s.seed = o.seed;
-  for (const auto& a : parseAssignments(o.setupErrors, "--setup")) {
-    const auto p = parseSetupParameter(a.name);
-    if (!p) throw InputError(InputLocation{"", 0, "--setup"}, "expected NAME=value with NAME one of xT yT zT xW yW zW aN bN cN dL, got '" + a.name + "'");
-    s.setupErrors[static_cast<size_t>(*p)] = parseQuantityAs(a.value, setupParameterDimension(*p), "--setup " + a.name);
-  }
+  s.setupErrors = parseSetupErrors(o.setupErrors, "--setup");
   s.disturbance.lag = parseAxisTimes(m, o.lag, "--lag");
   s.disturbance.backlash = parseAxisQuantities(m, o.backlash, "--backlash");
   s.disturbance.spikeHeight = parseAxisQuantities(m, o.spike, "--spike");

@@ -359,9 +359,10 @@ PYBIND11_MODULE(_mtacc, mod) {
         simulateComponentFile(s, r);
       })
       .def("simulate", [](const MachineSetup& s, const std::string& plan, const py::object& noise, std::uint64_t seed,
-                          const std::string& outputDir) {
+                          const std::string& outputDir, const std::string& setupErrors) {
         SimulationOptions o;
         o.noise = quantity(noise, Dimension::Length, "noise");
+        o.setupErrors = parseSetupErrors(setupErrors, "setup");
         o.seed = seed;
         o.output = outputDir;
         o.outputIsFolder = true;

@@ -259,10 +259,13 @@ class Machine:
         """The seed 000 §3.6 preset of this machine's family, or None."""
         return self._core.cone_preset_name()
 
-    def simulate(self, plan, noise="0 um", seed=1, output_dir=None):
+    def simulate(self, plan, noise="0 um", seed=1, output_dir=None, setup=None):
         """Every run of a test plan (YAML path or bundled name) simulated on this machine with its errors,
-        as `mtacc simulate plan --json`; with output_dir, also written as measurement CSV files."""
-        return self._core.simulate(str(plan), noise, seed, _text(output_dir))
+        as `mtacc simulate plan --json`; with output_dir, also written as measurement CSV files. `noise`
+        is a length ("0.5 um") or a number in mm; `setup`: set-up errors with units {name: "10 um"}
+        (xT yT zT xW yW zW aN bN cN dL), as `--setup`."""
+        text = ",".join(f"{name}={value}" for name, value in (setup or {}).items())
+        return self._core.simulate(str(plan), noise, seed, _text(output_dir), text)
 
     def read_measurement(self, path):
         """A measurement CSV file (docs/file-formats.md) as one run of `simulate`'s result."""

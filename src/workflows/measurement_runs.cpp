@@ -4,6 +4,7 @@
 #include <random>
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/text_file.hpp"
 #include "mtacc/io/measurement_csv.hpp"
@@ -40,6 +41,16 @@ void requireFolderFor(const std::string& folder, const std::vector<std::string>&
 }
 
 }  // namespace
+
+std::array<std::optional<double>, kSetupParameterCount> parseSetupErrors(const std::string& text, const std::string& key) {
+  std::array<std::optional<double>, kSetupParameterCount> errors{};
+  for (const auto& a : parseAssignments(text, key)) {
+    const auto p = parseSetupParameter(a.name);
+    if (!p) throw InputError(InputLocation{"", 0, key}, "expected NAME=value with NAME one of xT yT zT xW yW zW aN bN cN dL, got '" + a.name + "'");
+    errors[static_cast<size_t>(*p)] = parseQuantityAs(a.value, setupParameterDimension(*p), key + " " + a.name);
+  }
+  return errors;
+}
 
 SimulationResult simulateRuns(const MachineSetup& setup, std::vector<MeasurementRun> runs, const SimulationOptions& o) {
   if (!(o.noise >= 0)) throw InputError(InputLocation{"", 0, "noise"}, "must not be negative");

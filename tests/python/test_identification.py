@@ -78,3 +78,16 @@ def test_held_errors_are_named_and_from_nominal_holds_them_at_zero(tmp_path):
     nominal = m.identify(files, plan="tilting-table-rtest", from_nominal=True)
     assert nominal["held"] == []
     assert held["quality"]["p_value"] > 0.001 and nominal["quality"]["p_value"] < 1e-6
+
+
+def test_simulate_takes_set_up_errors_as_the_cli_does(tmp_path):
+    m = mtacc.Machine("tilting-table")
+    api = m.simulate("tilting-table-rtest", noise="0.5 um", seed=2, setup={"xW": "10 um", "zT": "-5 um"}, output_dir=tmp_path / "api")
+    subprocess.run([CLI, "simulate", "plan", "tilting-table", "--plan", "tilting-table-rtest", "--noise", "0.5um", "--seed", "2",
+                    "--setup", "xW=10um,zT=-5um", "-o", str(tmp_path / "cli")], capture_output=True, text=True, check=True)
+    for run in api["runs"]:
+        assert (tmp_path / "cli" / (run["name"] + ".csv")).read_text() == (tmp_path / "api" / (run["name"] + ".csv")).read_text()
+    plain = m.simulate("tilting-table-rtest", noise="0.5 um", seed=2)
+    assert api["runs"][0]["readings_um"] != plain["runs"][0]["readings_um"]
+    with pytest.raises(mtacc.InputError, match="missing unit"):
+        m.simulate("tilting-table-rtest", setup={"xW": 0.01})

@@ -26,6 +26,10 @@ struct SimulationOptions {
   bool outputIsFolder = false;
 };
 
+// Set-up errors as "xW=10um,zT=-5um" (xT yT zT xW yW zW aN bN cN dL, each with its unit); throws
+// InputError naming `key` for an unknown name or a bad value.
+std::array<std::optional<double>, kSetupParameterCount> parseSetupErrors(const std::string& text, const std::string& key);
+
 struct SimulationResult {
   std::shared_ptr<const Machine> machine;
   double noise = 0;
