@@ -1,5 +1,6 @@
 // The analytic parameter Jacobian against central finite differences of the exact model, for
-// every parameter (location errors and every coefficient of every component error function)
+// every parameter (location errors, the rotary axes' zero offsets and every coefficient of
+// every component error function)
 // at random poses, with non-zero errors present so that the linearisation point matters.
 // Requirement: relative error <= 1e-6 per column and block (position, orientation). The
 // comparison allows, on top, the rounding error of the finite difference itself
@@ -18,7 +19,10 @@ namespace {
 
 void checkJacobian(std::shared_ptr<const Machine> machine, ErrorModel errors, int poses) {
   const auto nominal = compileNominal(machine);
-  const auto params = parameterCatalogue(*machine, errors);
+  auto params = parameterCatalogue(*machine, errors);
+  for (int a = 0; a < static_cast<int>(machine->axes.size()); ++a)  // the zero offsets too: B.zero, C.zero
+    if (machine->axes[static_cast<size_t>(a)].isRotary() && machine->axes[static_cast<size_t>(a)].commanded())
+      params.push_back(zeroOffsetParameter(*machine, a));
   const auto model = compile(machine, errors, params);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);

@@ -66,6 +66,15 @@ void run(const CheckOptions& o) {
       if (!names.empty()) human += fmt::format("  {:<4}{}\n", m.axes[axis].name, names);
     }
   }
+  if (o.parameters && !c.zeroOffsets.empty()) {
+    human += "Zero offsets about each rotary axis's own line (the position it takes when commanded 0):\n";
+    for (const auto& z : c.zeroOffsets) human += "  " + z + "\n";
+  }
+  if (!c.actingAlike.empty()) {
+    human += "Warning: location errors that no measurement on this machine separates (TCP and tool direction at "
+             "poses within travel); identify one of each group and hold the others:\n";
+    for (const auto& f : c.actingAlike) human += "  " + f + "\n";
+  }
   if (!c.setup.errors.stiffness.empty())
     human += fmt::format("Stiffness changes: {} at a workpiece load of {:g} kg (mtacc stiffness shows them)\n",
                          c.setup.errors.stiffness.size(), c.setup.errors.workpieceLoad);

@@ -15,9 +15,11 @@ struct ForwardCliOptions : MachineOptions {
   std::string pose;
   std::string posesFile;
   bool nominal = false;
+  bool withTcp = false;  // errors: the TCP and tool direction columns too, as fk prints them
 };
 
-void runForward(const ForwardCliOptions& o, bool errorsOnly) {
+void runForward(const ForwardCliOptions& o, bool errorsCommand) {
+  const bool errorsOnly = errorsCommand && !o.withTcp;
   const auto setup = loadMachineSetup(o.source);
   const Machine& m = *setup.machine;
   if (o.pose.empty() == o.posesFile.empty())
@@ -67,7 +69,10 @@ void addForwardCommands(CLI::App& app) {
     addMachineOptions(*cmd, *o);
     cmd->add_option("--pose", o->pose, "axis positions, e.g. X=10,Y=0,Z=5,B=-15,C=30 (mm, deg)");
     cmd->add_option("--poses", o->posesFile, "CSV with one column per axis (mm, deg), optional <axis>_dir columns");
-    if (!errorsOnly) cmd->add_flag("--nominal", o->nominal, "ignore the errors (nominal machine)");
+    if (errorsOnly)
+      cmd->add_flag("--with-tcp", o->withTcp, "also the TCP (mm) and tool direction columns, as fk prints them");
+    else
+      cmd->add_flag("--nominal", o->nominal, "ignore the errors (nominal machine)");
     cmd->callback([o, errorsOnly] { runForward(*o, errorsOnly); });
   }
 }

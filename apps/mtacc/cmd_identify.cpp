@@ -95,6 +95,10 @@ void emitIdentification(const MachineOptions& o, const IdentificationOutcome& ou
     for (Eigen::Index b = 0; b < r.values.size(); ++b) csv += fmt::format(",{:.6f}", correlationOf(r, k, b));
     csv += "\n";
   }
+  for (const auto& h : out.harmonics)
+    human += fmt::format("{:<22} amplitude {:.4f} ± {:.4f} {}, phase {:.2f} ± {:.2f} deg (cos(x + phase))\n", h.name,
+                         toDisplay(h.amplitude, h.dimension), toDisplay(h.amplitudeUncertainty, h.dimension),
+                         displayUnit(h.dimension), h.phase / kDeg, h.phaseUncertainty / kDeg);
   human += fmt::format("\nresiduals: sigma {:.3f} um ({} degrees of freedom), RMS {:.3f} um, max {:.3f} um\n", r.sigma * 1e3,
                        r.degreesOfFreedom, r.residualRms * 1e3, r.residualMax * 1e3);
   human += fmt::format("solver: {} after {} iterations{}\n", r.converged ? "converged" : "NOT converged", r.iterations,

@@ -63,6 +63,10 @@ void addCommon(CLI::App* cmd, SimulateCliOptions& o) {
   cmd->add_option("--noise", o.noise, "Standard deviation of Gaussian reading noise, e.g. 0.5um")->capture_default_str();
   cmd->add_option("--seed", o.seed, "Random seed of the noise")->capture_default_str();
   cmd->add_option("--setup", o.setupErrors, "Set-up errors, e.g. xW=10um,zT=-5um (xT yT zT xW yW zW aN bN cN dL)");
+}
+
+// Single runs only: a plan states each run's ball as its `tool_ball`.
+void addToolBall(CLI::App* cmd, SimulateCliOptions& o) {
   cmd->add_option("--tool-ball", o.toolBall, "Ball centre relative to the TCP in the tool frame, mm, e.g. 0,0,-50")
       ->capture_default_str();
 }
@@ -77,6 +81,7 @@ void addSimulateCommand(CLI::App& app) {
   auto* ballbar = sim->add_subcommand("ballbar", "ISO 230-4 ballbar circle, both directions, with optional servo, "
                                                  "backlash and reversal-spike disturbances");
   addCommon(ballbar, *o);
+  addToolBall(ballbar, *o);
   ballbar->add_option("--plane", o->plane, "XY, YZ or ZX")->capture_default_str();
   ballbar->add_option("--centre", o->centre, "Centre ball in the workpiece frame, mm")->capture_default_str();
   ballbar->add_option("--radius", o->radius, "Bar length")->capture_default_str();
@@ -105,6 +110,7 @@ void addSimulateCommand(CLI::App& app) {
 
   auto* rtest = sim->add_subcommand("rtest", "R-test (or touch probe) on a sphere while one rotary axis steps");
   addCommon(rtest, *o);
+  addToolBall(rtest, *o);
   rtest->add_option("--axis", o->axis, "Rotary axis that steps")->capture_default_str();
   rtest->add_option("--from", o->from, "First angle")->capture_default_str();
   rtest->add_option("--to", o->to, "Last angle")->capture_default_str();

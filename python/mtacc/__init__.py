@@ -263,7 +263,8 @@ class Machine:
         """Every run of a test plan (YAML path or bundled name) simulated on this machine with its errors,
         as `mtacc simulate plan --json`; with output_dir, also written as measurement CSV files. `noise`
         is a length ("0.5 um") or a number in mm; `setup`: set-up errors with units {name: "10 um"}
-        (xT yT zT xW yW zW aN bN cN dL), as `--setup`."""
+        (xT yT zT xW yW zW aN bN cN dL), as `--setup`. A tool ball off the TCP is a key of each
+        of the plan's runs (`tool_ball: [0 mm, 0 mm, -50 mm]`), not an argument: runs differ."""
         text = ",".join(f"{name}={value}" for name, value in (setup or {}).items())
         return self._core.simulate(str(plan), noise, seed, _text(output_dir), text)
 

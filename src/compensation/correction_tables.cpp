@@ -14,7 +14,6 @@
 namespace mtacc {
 namespace {
 
-constexpr const char* kAxisNames[3] = {"X", "Y", "Z"};
 constexpr int kLinuxcncLines = 256;  // EMCMOT_COMP_SIZE in LinuxCNC's motion.h
 
 // Where x lies between the nodes start + k step: the lower node and the fraction, clamped.
@@ -78,29 +77,34 @@ Vec3 CorrectionGrid::interpolate(const Vec3& xyz) const {
   return (1 - w) * ((1 - v) * along(j, k) + v * along(j1, k)) + w * ((1 - v) * along(j, k1) + v * along(j1, k1));
 }
 
+ErrorIkOptions positionCorrectionOptions() {
+  ErrorIkOptions options;
+  options.positionOnly = true;
+  options.positionTolerance = 1e-7;
+  return options;
+}
+
 CorrectionGrid correctionGrid(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGridSpec& spec) {
   CorrectionGrid g;
   const auto n = static_cast<size_t>(machine->commandedCount());
   g.pose = spec.pose.empty() ? std::vector<double>(n, 0.0) : spec.pose;
   if (g.pose.size() != n) throw InputError({"", 0, "pose"}, fmt::format("the pose needs {} axis positions", n));
   for (int a = 0; a < 3; ++a) {
-    const int index = machine->commandedAxisIndex(kAxisNames[a]);
+    const int index = machine->commandedAxisIndex(kLinearAxisNames[a]);
     const auto ua = static_cast<size_t>(a);
     if (index < 0 || machine->axes[static_cast<size_t>(index)].isRotary())
-      throw InputError({machine->sourceFile, 0, "axes"}, fmt::format("a correction grid needs a linear axis {}", kAxisNames[a]));
+      throw InputError({machine->sourceFile, 0, "axes"}, fmt::format("a correction grid needs a linear axis {}", kLinearAxisNames[a]));
     const auto& travel = machine->axes[static_cast<size_t>(index)].travel;
-    if (!travel) throw InputError({machine->sourceFile, 0, kAxisNames[a]}, "a correction grid needs the axis's travel");
+    if (!travel) throw InputError({machine->sourceFile, 0, kLinearAxisNames[a]}, "a correction grid needs the axis's travel");
     if (spec.counts[ua] < 2 || spec.counts[ua] > 1000)
-      throw InputError({"", 0, "nodes"}, fmt::format("{} nodes along {}: give 2 to 1000", spec.counts[ua], kAxisNames[a]));
+      throw InputError({"", 0, "nodes"}, fmt::format("{} nodes along {}: give 2 to 1000", spec.counts[ua], kLinearAxisNames[a]));
     g.axes[ua] = index;
     g.counts[ua] = spec.counts[ua];
     g.start[ua] = travel->min;
     g.step[ua] = (travel->max - travel->min) / (spec.counts[ua] - 1);
   }
   const KinematicModel actual = compile(machine, errors), nominal = compileNominal(machine);
-  ErrorIkOptions options;
-  options.positionOnly = true;
-  options.positionTolerance = 1e-7;
+  const ErrorIkOptions options = positionCorrectionOptions();
   g.corrections.resize(static_cast<size_t>(g.counts[0]) * static_cast<size_t>(g.counts[1]) * static_cast<size_t>(g.counts[2]));
   const auto x = static_cast<size_t>(g.axes[0]), y = static_cast<size_t>(g.axes[1]), z = static_cast<size_t>(g.axes[2]);
   // Each Z layer on its own, from scratch: the result does not depend on the threads.
@@ -284,7 +288,7 @@ std::string siemensCecTables(const OneAxisReduction& r) {
     const double step = f.positions.size() > 1 ? f.positions[1] - f.positions[0] : 0.0;
     fmt::format_to(it, "$AN_CEC_INPUT_AXIS[{0}]=({1})\n$AN_CEC_OUTPUT_AXIS[{0}]=({2})\n$AN_CEC_STEP[{0}]={3:.6f}\n$AN_CEC_MIN[{0}]={4:.6f}\n"
                        "$AN_CEC_MAX[{0}]={5:.6f}\n$AN_CEC_DIRECTION[{0}]=0\n$AN_CEC_MULT_BY_TABLE[{0}]=0\n$AN_CEC_IS_MODULO[{0}]=0\n",
-                   t, kAxisNames[f.input], kAxisNames[f.output], step, f.positions.front(), f.positions.back());
+                   t, kLinearAxisNames[f.input], kLinearAxisNames[f.output], step, f.positions.front(), f.positions.back());
     for (size_t n = 0; n < f.values.size(); ++n) fmt::format_to(it, "$AN_CEC[{},{}]={:.7f}\n", t, n, f.values[n]);
   }
   return out + "M17\n";
@@ -296,7 +300,7 @@ std::string siemensLecTables(const std::vector<AxisFunction>& ownAxes) {
   auto it = std::back_inserter(out);
   for (const AxisFunction& f : ownAxes) {
     if (f.input != f.output) throw InputError({"", 0, "table"}, "an LEC table holds an axis's correction as a function of its own command");
-    const char* axis = kAxisNames[f.input];
+    const char* axis = kLinearAxisNames[f.input];
     fmt::format_to(it, "; {}: {} points: needs MD38000 $MA_MM_ENC_COMP_MAX_POINTS >= {} and MD32700 ENC_COMP_ENABLE[0] = 1\n", axis,
                    f.values.size(), f.values.size());
     for (size_t n = 0; n < f.values.size(); ++n) fmt::format_to(it, "$AA_ENC_COMP[0,{},{}]={:.7f}\n", n, axis, -f.values[n]);

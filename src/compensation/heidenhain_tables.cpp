@@ -10,7 +10,6 @@
 namespace mtacc {
 namespace {
 
-constexpr const char* kAxisNames[3] = {"X", "Y", "Z"};
 constexpr size_t kComPoints = 256;  // "Compensation value table (.COM) has more than 256 entries" (TNC 407, module 9095)
 
 // A table in the control's fixed-width form: each column as wide as its widest entry, plus one.
@@ -49,16 +48,16 @@ std::vector<std::pair<std::string, std::string>> heidenhainTables(const OneAxisR
       throw InputError({"", 0, "nodes"}, fmt::format("a HEIDENHAIN compensation-value table holds at most {} points, not {}", kComPoints,
                                                      positions.size()));
     std::vector<std::string> header{"NR", "AXISPOS"};
-    for (const auto* f : outputs) header.emplace_back(kAxisNames[f->output]);
+    for (const auto* f : outputs) header.emplace_back(kLinearAxisNames[f->output]);
     std::vector<std::vector<std::string>> rows;
     for (size_t n = 0; n < positions.size(); ++n) {
       std::vector<std::string> row{std::to_string(n), fmt::format("{:+.4f}", positions[n])};
       for (const auto* f : outputs) row.push_back(fmt::format("{:+.5f}", f->values[n]));
       rows.push_back(std::move(row));
     }
-    const std::string stem = fmt::format("heidenhain-{}", kAxisNames[input]), file = stem + ".com";
+    const std::string stem = fmt::format("heidenhain-{}", kLinearAxisNames[input]), file = stem + ".com";
     files.emplace_back(file, table(stem, "COM", header, rows));
-    cmaHeader.emplace_back(kAxisNames[input]);
+    cmaHeader.emplace_back(kLinearAxisNames[input]);
     cmaRow.push_back(file);
   }
   cmaHeader.emplace_back("ACTIVE");

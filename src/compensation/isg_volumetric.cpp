@@ -7,19 +7,17 @@
 #include <cctype>
 #include <cmath>
 #include <iterator>
-#include <numbers>
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/kinematics/inverse_with_errors.hpp"
 
 namespace mtacc {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180.0;
-constexpr char kComponents[6] = {'X', 'Y', 'Z', 'A', 'B', 'C'};
 
-double argument(const Axis& axis, double q) { return axis.isRotary() ? q / kDegree : q; }
+double argument(const Axis& axis, double q) { return axis.isRotary() ? q / kDeg : q; }
 
 bool anyNonZero(const std::vector<double>& values) {
   return std::any_of(values.begin(), values.end(), [](double v) { return v != 0.0; });
@@ -85,11 +83,11 @@ IsgVolumetricModel isgVolumetricModel(const Machine& m, const ErrorModel& errors
     const Axis& axis = m.axes[a];
     const auto& motion = errors.axes[a].motion;
     if (!axis.commanded() || std::all_of(motion.begin(), motion.end(), [](const ErrorFunction& f) { return f.empty(); })) continue;
-    const double low = axis.travel ? axis.travel->min : 0.0, high = axis.travel ? axis.travel->max : 2.0 * std::numbers::pi;
+    const AxisSpan span = harmonicSpan(axis);  // the travel, or one turn
     IsgVolumetricModel::ComponentTable table;
     table.axis = static_cast<int>(a);
     for (int r = 0; r < records; ++r) {
-      const double q = low + (high - low) * r / (records - 1);
+      const double q = span.min + span.range * r / (records - 1);
       table.arguments.push_back(argument(axis, q));
       for (size_t c = 0; c < 6; ++c) table.values[c].push_back(motion[c].value(q, 0));
     }
@@ -105,7 +103,7 @@ ErrorModel isgControllerModel(const Machine& m, const IsgVolumetricModel& model)
   for (const auto& table : model.components) {
     const Axis& axis = m.axes[static_cast<size_t>(table.axis)];
     std::vector<double> positions;
-    for (double argument : table.arguments) positions.push_back(axis.isRotary() ? argument * kDegree : argument);
+    for (double argument : table.arguments) positions.push_back(axis.isRotary() ? argument * kDeg : argument);
     for (size_t c = 0; c < 6; ++c)
       if (anyNonZero(table.values[c])) e.axes[static_cast<size_t>(table.axis)].motion[c].add(TableTerm(positions, table.values[c], Interpolation::Linear));
   }
@@ -120,9 +118,8 @@ CommandCorrection isgCorrection(const std::shared_ptr<const Machine>& machine, c
     std::array<size_t, 3> xyz;
   };
   auto s = std::make_shared<State>(State{compile(machine, controllerModel), compileNominal(machine), {}, {}, {}});
-  s->options.positionOnly = true;
-  s->options.positionTolerance = 1e-7;
-  for (size_t k = 0; k < 3; ++k) s->xyz[k] = static_cast<size_t>(machine->commandedAxisIndex(std::string(1, kComponents[k])));
+  s->options = positionCorrectionOptions();
+  for (size_t k = 0; k < 3; ++k) s->xyz[k] = static_cast<size_t>(machine->commandedAxisIndex(kLinearAxisNames[k]));
   return [s](const std::vector<double>& q) {
     const ToolPoint wanted = toolPoint(s->nominal, q.data());
     const ErrorIkSolution solution = refineWithErrors(s->model, wanted.position, wanted.direction, q, s->options, s->jacobian);
@@ -149,7 +146,7 @@ std::string isgCsv(const Machine& m, const IsgVolumetricModel& model) {
     const std::string& axis = m.axes[static_cast<size_t>(table.axis)].name;
     fmt::format_to(it, "#\n{}", axis);
     for (size_t c = 0; c < 6; ++c)
-      if (anyNonZero(table.values[c])) fmt::format_to(it, " E{}{}", kComponents[c], axis);
+      if (anyNonZero(table.values[c])) fmt::format_to(it, " {}", motionErrorName(m, table.axis, static_cast<int>(c)));
     out += "\n";
     for (size_t r = 0; r < table.arguments.size(); ++r) {
       fmt::format_to(it, "{:.6f}", table.arguments[r]);
@@ -171,7 +168,7 @@ std::string etalonExchange(const Machine& m, const IsgVolumetricModel& model) {
   for (const auto& table : model.components)
     for (size_t c = 0; c < 6; ++c) {
       if (!anyNonZero(table.values[c])) continue;
-      const std::string name = fmt::format("E{}{}", kComponents[c], m.axes[static_cast<size_t>(table.axis)].name);
+      const std::string name = motionErrorName(m, table.axis, static_cast<int>(c));
       fmt::format_to(it, "[{}]\nGridpoints = {{\n", name);
       for (size_t r = 0; r < table.arguments.size(); ++r) fmt::format_to(it, "{:.6f} {:.10f}\n", table.arguments[r], table.values[c][r]);
       fmt::format_to(it, "}} // end of {}\n", name);

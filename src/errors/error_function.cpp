@@ -233,7 +233,10 @@ std::vector<std::string> ErrorFunction::parameterSuffixes() const {
     std::visit(Overloaded{[&](const PolynomialTerm& p) {
                             for (size_t k = 0; k < p.coefficients.size(); ++k) push(fmt::format("c{}", k));
                           },
-                          [&](const HarmonicTerm& h) { push(h.cyclic ? std::string("cyc") : fmt::format("h{}", h.order)); },
+                          [&](const HarmonicTerm& h) {
+                            const char* part = h.part == HarmonicPart::Cosine ? "c" : h.part == HarmonicPart::Sine ? "s" : "";
+                            push(h.cyclic ? std::string("cyc") : fmt::format("h{}{}", h.order, part));
+                          },
                           [&](const TableTerm& t) {
                             for (size_t k = 0; k < t.values.size(); ++k) push(fmt::format("t{}", k));
                           },

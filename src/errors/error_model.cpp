@@ -1,9 +1,12 @@
 #include "mtacc/errors/error_model.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <regex>
+#include <stdexcept>
 #include <string_view>
 
-#include <cmath>
-#include <stdexcept>
+#include <fmt/format.h>
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/errors/aliases.hpp"
@@ -70,6 +73,54 @@ std::optional<MotionComponent> findMotionComponent(const Machine& machine, const
   return MotionComponent{axis, static_cast<int>(c)};
 }
 
+AxisSpan harmonicSpan(const Axis& a) {
+  if (a.travel) return {a.travel->min, a.travel->max - a.travel->min};
+  return {0.0, 2.0 * kPi};
+}
+
+std::vector<std::string> defineNamedTerms(const Machine& machine, ErrorModel& errors, const std::vector<std::string>& names) {
+  static const std::regex term(R"((c)([0-9])|(h)([1-9][0-9]{0,2})([cs]?))");
+  std::vector<std::string> out;
+  for (const auto& name : names) {
+    const auto dot = name.rfind('.');
+    const auto component = dot == std::string::npos ? std::nullopt : findMotionComponent(machine, name.substr(0, dot));
+    std::smatch m;
+    const std::string suffix = dot == std::string::npos ? "" : name.substr(dot + 1);
+    if (!component || !std::regex_match(suffix, m, term)) {
+      out.push_back(name);
+      continue;
+    }
+    const std::string iso = motionErrorName(machine, component->axis, component->component) + ".";
+    auto defined = [&](const std::string& n) {
+      const auto all = parameterCatalogue(machine, errors);
+      return std::any_of(all.begin(), all.end(), [&](const Parameter& p) { return p.name == iso + n; });
+    };
+    if (defined(suffix)) {
+      out.push_back(name);
+      continue;
+    }
+    const Axis& axis = machine.axes[static_cast<size_t>(component->axis)];
+    ErrorFunction& f = errors.axes[static_cast<size_t>(component->axis)].motion[static_cast<size_t>(component->component)];
+    if (m[1].matched) {
+      const int power = std::stoi(m[2]);
+      const AxisSpan span = axis.travel ? harmonicSpan(axis) : AxisSpan{-kPi, 2.0 * kPi};
+      f.add(PolynomialTerm{span.min + 0.5 * span.range, 0.5 * span.range, std::vector<double>(static_cast<size_t>(power) + 1, 0.0)});
+      out.push_back(iso + suffix);
+      continue;
+    }
+    const int order = std::stoi(m[4]);
+    const AxisSpan span = harmonicSpan(axis);
+    for (const auto part : {HarmonicPart::Cosine, HarmonicPart::Sine}) {
+      const std::string partName = fmt::format("h{}{}", order, part == HarmonicPart::Cosine ? "c" : "s");
+      if (m[5].length() > 0 && m[5] != partName.substr(partName.size() - 1)) continue;
+      if (!defined(partName))
+        f.add(HarmonicTerm{span.range, span.min, order, 0.0, part == HarmonicPart::Sine ? -0.5 * kPi : 0.0, false, part});
+      out.push_back(iso + partName);
+    }
+  }
+  return out;
+}
+
 std::vector<Parameter> parameterCatalogue(const Machine& machine, const ErrorModel& errors) {
   std::vector<Parameter> params;
   for (int a = 0; a < static_cast<int>(machine.axes.size()); ++a)
@@ -94,21 +145,40 @@ std::vector<Parameter> nonZeroParameters(const Machine& machine, const ErrorMode
   return out;
 }
 
+Parameter zeroOffsetParameter(const Machine& machine, int axis) {
+  const Axis& a = machine.axes[static_cast<size_t>(axis)];
+  return {a.name + ".zero", Dimension::Angle, ParameterKind::ZeroOffset, axis, 3, 0,
+          (a.side == Side::Tool ? 1.0 : -1.0) * a.direction};
+}
+
 double parameterValue(const ErrorModel& errors, const Parameter& p) {
   const auto& ax = errors.axes[static_cast<size_t>(p.axis)];
-  if (p.kind == ParameterKind::Location) return ax.location[p.component];
+  switch (p.kind) {
+    case ParameterKind::Location: return ax.location[p.component];
+    case ParameterKind::ZeroOffset: return p.turn.dot(ax.location.tail<3>());
+    case ParameterKind::Motion: break;
+  }
   return ax.motion[static_cast<size_t>(p.component)].parameter(p.index);
 }
 
 void setParameterValue(ErrorModel& errors, const Parameter& p, double value) {
   auto& ax = errors.axes[static_cast<size_t>(p.axis)];
-  if (p.kind == ParameterKind::Location)
-    ax.location[p.component] = value;
-  else
-    ax.motion[static_cast<size_t>(p.component)].setParameter(p.index, value);
+  switch (p.kind) {
+    case ParameterKind::Location: ax.location[p.component] = value; return;
+    case ParameterKind::ZeroOffset: ax.location.tail<3>() += (value - p.turn.dot(ax.location.tail<3>())) * p.turn; return;
+    case ParameterKind::Motion: ax.motion[static_cast<size_t>(p.component)].setParameter(p.index, value); return;
+  }
 }
 
 Parameter findParameter(const Machine& machine, const ErrorModel& errors, const std::string& name) {
+  if (name.size() > 5 && name.ends_with(".zero")) {
+    const int axis = machine.axisIndex(name.substr(0, name.size() - 5));
+    if (axis >= 0 && machine.axes[static_cast<size_t>(axis)].commanded()) {
+      const Axis& a = machine.axes[static_cast<size_t>(axis)];
+      if (a.isRotary()) return zeroOffsetParameter(machine, axis);
+      return findParameter(machine, errors, std::string(1, kComponentLetters[a.ownComponent()]) + "0" + a.name);
+    }
+  }
   std::string iso = name;
   if (const auto alias = findAlias(name)) {
     if (alias->composite())
@@ -121,6 +191,8 @@ Parameter findParameter(const Machine& machine, const ErrorModel& errors, const 
     if (p.name == iso) return p;
   std::string known;
   for (const auto& p : all) known += (known.empty() ? "" : " ") + p.name;
+  for (const auto& a : machine.axes)
+    if (a.isRotary() && a.commanded()) known += " " + a.name + ".zero";
   throw InputError(InputLocation{"", 0, name}, "unknown error parameter '" + name + "'" +
                                                    (iso != name ? " (alias of " + iso + ")" : "") +
                                                    " for this machine; its parameters are: " + known);

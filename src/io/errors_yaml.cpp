@@ -23,12 +23,6 @@ using yamlin::Context;
 
 Dimension axisDimension(const Axis& a) { return a.isRotary() ? Dimension::Angle : Dimension::Length; }
 
-// Default span for harmonics over the travel: the travel, or one turn.
-std::pair<double, double> defaultSpan(const Axis& a) {
-  if (a.travel) return {a.travel->min, a.travel->max - a.travel->min};
-  return {0.0, 2.0 * kPi};
-}
-
 // One `piecewise:` block (seed 003 App. D): breaks and coefficients in `per` units of position,
 // values in `unit`; coefficient j of an interval in unit per per^j.
 PiecewiseTerm readPiecewise(const Context& ctx, const Axis& axis, const YAML::Node& v, const std::string& k,
@@ -194,7 +188,7 @@ void readTerms(const Context& ctx, const Machine& m, const MotionComponent& t, c
       const bool cyclic = type == "cyclic";
       yamlin::rejectUnknownKeys(ctx, v, k, cyclic ? std::initializer_list<const char*>{"pitch", "amplitude", "phase", "zero"}
                                                   : std::initializer_list<const char*>{"period", "zero", "terms"});
-      auto [zero, period] = defaultSpan(axis);
+      auto [zero, period] = harmonicSpan(axis);
       if (v["zero"]) zero = yamlin::quantity(ctx, v["zero"], k + ".zero", posDim);
       const char* periodKey = cyclic ? "pitch" : "period";
       if (v[periodKey]) period = yamlin::size(ctx, v[periodKey], k + "." + periodKey, posDim);
@@ -295,9 +289,9 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
         const auto [it, added] = namedBy.emplace(p.name, name);
         if (!added) ctx.fail(kv.first, key, "the same parameter " + p.name + " as '" + it->second + "'");
       }
-      // Location errors add up: a composite alias and an ISO name may share a term.
-      model.axes[static_cast<size_t>(p.axis)].location[p.component] +=
-          term.sign * yamlin::quantity(ctx, kv.second, key, p.dimension);
+      // Location errors add up: a composite alias and an ISO name may share a term, and a zero
+      // offset (B.zero) turns the axis line on top of its A0B, B0B, C0B.
+      setParameterValue(model, p, parameterValue(model, p) + term.sign * yamlin::quantity(ctx, kv.second, key, p.dimension));
     }
   }
   if (loadDependent() && !loadStated)

@@ -109,8 +109,11 @@ void planJacobian(const KinematicModel& m, ChainPrograms& c) {
         t.parameter = static_cast<int>(k);
         t.chain = chain;
         t.factor = factor;
-        if (marker.hook == Hook::Location && p.kind == ParameterKind::Location) {
-          const Mat4& d = c.locationDerivatives[axis][static_cast<size_t>(p.component)];
+        if (marker.hook == Hook::Location && p.kind != ParameterKind::Motion) {
+          const auto& derivatives = c.locationDerivatives[axis];
+          const Mat4 d = p.kind == ParameterKind::Location
+                             ? derivatives[static_cast<size_t>(p.component)]
+                             : Mat4(p.turn[0] * derivatives[kA] + p.turn[1] * derivatives[kB] + p.turn[2] * derivatives[kC]);
           t.kind = JacobianTerm::Constant;
           t.rotation = d.topLeftCorner<3, 3>();
           t.translation = d.block<3, 1>(0, 3);

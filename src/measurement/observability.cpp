@@ -132,9 +132,9 @@ ObservabilityReport analyseObservability(Eigen::MatrixXd jacobian, const std::ve
   return rep;
 }
 
-std::vector<std::string> ObservabilityReport::findings() const {
+std::vector<std::string> ObservabilityReport::findings(const std::string& scope) const {
   std::vector<std::string> out;
-  for (const auto& n : noEffect) out.push_back(n + " has no effect on this plan");
+  for (const auto& n : noEffect) out.push_back(n + " has no effect on " + scope);
   for (const auto& g : groups) {
     std::string list;
     for (size_t k = 0; k < g.names.size(); ++k)

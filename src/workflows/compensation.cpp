@@ -129,8 +129,9 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   }
   if (r.isg) {
     const ErrorModel controllerModel = isgControllerModel(*m, *r.isg);
-    r.isgResidual = tableResidual(m, setup.errors, r.grid, isgCorrection(m, controllerModel));
-    if (r.checkProgram) r.isgAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, isgCorrection(m, controllerModel));
+    const CommandCorrection controller = isgCorrection(m, controllerModel);
+    r.isgResidual = tableResidual(m, setup.errors, r.grid, controller);
+    if (r.checkProgram) r.isgAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, controller);
   }
   r.files.emplace_back("grid.csv", correctionGridCsv(*m, r.grid));
   r.files.emplace_back("one-axis.csv", oneAxisCsv(*m, r.oneAxis, r.grid));

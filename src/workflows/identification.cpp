@@ -49,7 +49,12 @@ Problem buildProblem(const MachineSetup& setup, const IdentificationRequest& req
   if (p.problem.runs.empty()) throw InputError(InputLocation{"", 0, planRuns ? "plan" : "data"}, "no measurement run given");
   if (p.given.empty())
     throw InputError(InputLocation{"", 0, "parameters"}, "no parameter to determine (name them, or use a plan with 'parameters')");
-  p.problem.parameters = findParameters(setup, p.given, namedAt);
+  p.given = defineNamedTerms(*setup.machine, p.problem.start, p.given);
+  try {
+    p.problem.parameters = findParameters(MachineSetup{setup.machine, p.problem.start}, p.given, namedAt);
+  } catch (const InputError& e) {
+    throw InputError(e.where(), e.reason() + kNamedTermsHint);
+  }
   if (request.setup) {
     for (auto& run : p.problem.runs) run.estimate.clear();
     for (const auto& n : *request.setup) {
@@ -96,6 +101,30 @@ IdentificationQuality assessQuality(const IdentificationRequest& request, const 
     }
   }
   return q;
+}
+
+std::vector<HarmonicEstimate> harmonicEstimates(const IdentificationResult& r) {
+  std::vector<HarmonicEstimate> out;
+  const auto& names = r.columns.names;
+  for (size_t c = 0; c < names.size(); ++c) {
+    if (!names[c].ends_with('c') || names[c].rfind(".h") == std::string::npos) continue;
+    const std::string base = names[c].substr(0, names[c].size() - 1);
+    const auto sine = std::find(names.begin(), names.end(), base + "s");
+    if (sine == names.end()) continue;
+    const auto i = static_cast<Eigen::Index>(c), j = static_cast<Eigen::Index>(sine - names.begin());
+    const double a = r.values[i], b = r.values[j], amplitude = std::hypot(a, b);
+    // Gradients of the amplitude and of the phase atan2(-b, a) in (a, b).
+    Eigen::Vector2d gAmplitude = Eigen::Vector2d::Zero(), gPhase = Eigen::Vector2d::Zero();
+    if (amplitude > 0) {
+      gAmplitude = Eigen::Vector2d(a, b) / amplitude;
+      gPhase = Eigen::Vector2d(b, -a) / (amplitude * amplitude);
+    }
+    Eigen::Matrix2d cov;
+    cov << r.covariance(i, i), r.covariance(i, j), r.covariance(j, i), r.covariance(j, j);
+    out.push_back({base, r.columns.dimensions[c], amplitude, std::sqrt(gAmplitude.dot(cov * gAmplitude)), std::atan2(-b, a),
+                   std::sqrt(gPhase.dot(cov * gPhase))});
+  }
+  return out;
 }
 
 Eigen::Index countReadings(const IdentificationProblem& p) {
@@ -151,7 +180,7 @@ IdentificationOutcome identifyParameters(const MachineSetup& setup, const Identi
   options.robust = request.robust;
   options.robustScale = request.robustScale;
   options.threads = request.threads;
-  IdentificationOutcome out{setup.machine, p.problem.runs.size(), p.given, {}, request.robust, {}, {}};
+  IdentificationOutcome out{setup.machine, p.problem.runs.size(), p.given, {}, request.robust, {}, {}, {}};
   for (const Parameter& held : nonZeroParameters(*setup.machine, p.problem.start))
     if (std::none_of(p.problem.parameters.begin(), p.problem.parameters.end(), [&](const Parameter& q) { return q.name == held.name; }))
       out.held.push_back(held.name);
@@ -163,6 +192,7 @@ IdentificationOutcome identifyParameters(const MachineSetup& setup, const Identi
     throw InputError(InputLocation{"", 0, "data"}, e.what());
   }
   out.quality = assessQuality(request, out.result);
+  out.harmonics = harmonicEstimates(out.result);
   return out;
 }
 
@@ -217,6 +247,14 @@ nlohmann::json toJson(const IdentificationOutcome& o) {
                               {"standard_uncertainty", toDisplay(r.uncertainty[k], d)},
                               {"unit", displayUnit(d)}});
   }
+  j["harmonics"] = nlohmann::json::array();
+  for (const auto& h : o.harmonics)
+    j["harmonics"].push_back({{"term", h.name},
+                              {"amplitude", toDisplay(h.amplitude, h.dimension)},
+                              {"amplitude_uncertainty", toDisplay(h.amplitudeUncertainty, h.dimension)},
+                              {"unit", displayUnit(h.dimension)},
+                              {"phase_deg", h.phase / kDeg},
+                              {"phase_uncertainty_deg", h.phaseUncertainty / kDeg}});
   return j;
 }
 

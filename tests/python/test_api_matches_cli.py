@@ -1,5 +1,6 @@
 """The Python API and the CLI's --json give identical numbers for the same inputs."""
 import json
+import pathlib
 import subprocess
 
 import numpy as np
@@ -112,6 +113,8 @@ def test_check_lists_every_parameter_on_request(cli):
     out = subprocess.run([cli, "check", "tilting-table", "--parameters"], check=True, capture_output=True, text=True).stdout
     listed = {}
     for line in out.split("Every parameter")[1].splitlines()[1:]:
+        if not line.startswith("  "):
+            break
         axis, *names = line.split()
         listed[axis] = names
     assert sorted(name for names in listed.values() for name in names) == sorted(mtacc.Machine("tilting-table").check()["parameters"])
@@ -138,3 +141,27 @@ def test_ik_near_a_pose_and_poses_without_rounding_noise(cli):
         assert {axis: pose[axis] for axis in expected} == expected  # exactly: 30.0, not 29.99999999999999
     with pytest.raises(mtacc.InputError, match="near"):
         machine.ik([10, 20, 30], near={"Q": 1})
+
+
+def test_check_names_zero_offsets_and_location_errors_acting_alike(cli):
+    # docs/examples/inclined-head.yaml: B along (0, 1, 1)/sqrt(2) in the head, C in the table.
+    example = str(pathlib.Path(__file__).parents[2] / "docs" / "examples" / "inclined-head.yaml")
+    data = run_json(cli, "check", example)
+    assert data["zero_offsets"] == ["B.zero = 0.707107 B0B + 0.707107 C0B", "C.zero = -C0C"]
+    alike = data["location_errors_acting_alike"]
+    # A shift of the head's line and the opposite shift of the table's act alike (conventions.md).
+    assert "X0X, X0B and X0C act alike (X0X = X0B = -X0C in effect)" in alike
+    out = subprocess.run([cli, "check", example, "--parameters"], check=True, capture_output=True, text=True).stdout
+    assert "  B.zero = 0.707107 B0B + 0.707107 C0B\n" in out
+    assert "Warning: location errors that no measurement on this machine separates" in out
+    assert mtacc.Machine(example).check()["location_errors_acting_alike"] == alike
+
+
+def test_errors_with_tcp_prints_the_fk_columns(cli, tmp_path):
+    pose = ["--pose", "X=10,Y=20,Z=30,B=-15,C=45"]
+    subprocess.run([cli, "fk", "tilting-table", *pose, "-o", str(tmp_path / "fk.csv")], check=True, capture_output=True)
+    subprocess.run([cli, "errors", "tilting-table", *pose, "--with-tcp", "-o", str(tmp_path / "errors.csv")], check=True,
+                   capture_output=True)
+    subprocess.run([cli, "errors", "tilting-table", *pose, "-o", str(tmp_path / "plain.csv")], check=True, capture_output=True)
+    assert (tmp_path / "errors.csv").read_text() == (tmp_path / "fk.csv").read_text()
+    assert "x,y,z,i,j,k" in (tmp_path / "errors.csv").read_text() and "x,y,z" not in (tmp_path / "plain.csv").read_text()

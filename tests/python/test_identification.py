@@ -1,6 +1,8 @@
 """Identification through the Python module and the CLI: the same files give the same numbers."""
 import json
 import os
+import pathlib
+import re
 import subprocess
 
 import pytest
@@ -91,3 +93,36 @@ def test_simulate_takes_set_up_errors_as_the_cli_does(tmp_path):
     assert api["runs"][0]["readings_um"] != plain["runs"][0]["readings_um"]
     with pytest.raises(mtacc.InputError, match="missing unit"):
         m.simulate("tilting-table-rtest", setup={"xW": 0.01})
+
+
+def test_plan_names_component_terms_the_errors_do_not_define(tmp_path):
+    # The truth has a second harmonic of C's positioning error at 30 deg and a linear X scale
+    # error; the identifying machine defines neither. The plan names them as terms: ECC.h2
+    # (amplitude and phase, as its cosine and sine parts) and EXX.c1 (the slope over half the
+    # X travel). Noise-free data and a model that holds the truth: recovered to the solver's
+    # stopping step (1e-6 of a typical 1 um or 10 urad), checked to 1e-4.
+    truth = tmp_path / "truth.yaml"
+    truth.write_text("errors:\n  X0C: -5 um\n  Y0C: 4 um\n"
+                     "  ECC:\n    harmonics: {terms: [{order: 2, amplitude: 8 urad, phase: 30 deg}]}\n"
+                     "  EXX:\n    linear: {value: 3 um, over: 800 mm}\n")
+    files = [r["file"] for r in mtacc.Machine("tilting-table", errors=truth).simulate("tilting-table-rtest", output_dir=tmp_path)["runs"]]
+    plan = tmp_path / "plan.yaml"
+    rtest = (pathlib.Path(__file__).parents[2] / "data" / "plans" / "tilting-table-rtest.yaml").read_text()
+    plan.write_text(re.sub(r"(?m)^parameters: .*$", "parameters: [X0C, Y0C, ECC.h2, EXX.c1]", rtest))
+    bare = tmp_path / "bare.yaml"  # no component error defined: the plan's terms are new
+    bare.write_text("errors:\n  X0C: 0 um\n")
+    found = mtacc.Machine("tilting-table", errors=bare).identify(files, plan=plan)
+    names = [e["parameter"] for e in found["estimates"]][:5]
+    assert names == ["X0C", "Y0C", "ECC.h2c", "ECC.h2s", "EXX.c1"]
+    value = {e["parameter"]: e["value"] for e in found["estimates"]}
+    assert value["X0C"] == pytest.approx(-5, abs=1e-4) and value["Y0C"] == pytest.approx(4, abs=1e-4)
+    x_travel = mtacc.Machine("tilting-table").axes[0]["travel"]
+    assert value["EXX.c1"] == pytest.approx(3 / 800 * (x_travel[1] - x_travel[0]) / 2, abs=1e-4)  # um at the travel's end
+    (harmonic,) = found["harmonics"]
+    assert harmonic["term"] == "ECC.h2" and harmonic["unit"] == "urad"
+    assert harmonic["amplitude"] == pytest.approx(8, abs=1e-4) and harmonic["phase_deg"] == pytest.approx(30, abs=1e-3)
+    out = subprocess.run([CLI, "identify", "tilting-table", "--errors", str(bare), "--plan", str(plan), "--data", *files],
+                         capture_output=True, text=True, check=True).stdout
+    assert re.search(r"ECC\.h2 +amplitude 8\.0000 ± 0\.0000 urad, phase 30\.00 ± 0\.00 deg", out), out
+    with pytest.raises(mtacc.InputError, match=r"unknown error parameter 'EXX.q1'.*X0B.*E<D><axis>\.c<k>.*ECC\.h1"):
+        mtacc.Machine("tilting-table").identify(files, ["EXX.q1"])

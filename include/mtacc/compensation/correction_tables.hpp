@@ -18,9 +18,17 @@
 #include "mtacc/compensation/nc_program.hpp"
 #include "mtacc/core/parallel.hpp"
 #include "mtacc/errors/error_model.hpp"
+#include "mtacc/kinematics/inverse_with_errors.hpp"
 #include "mtacc/machine/machine.hpp"
 
 namespace mtacc {
+
+// The linear axes the tables correct, by index 0, 1, 2.
+inline constexpr const char* kLinearAxisNames[3] = {"X", "Y", "Z"};
+
+// The inverse error model as a controller's table of linear-axis corrections uses it: the
+// position only (the rotary axes stay), to 0.1 nm.
+ErrorIkOptions positionCorrectionOptions();
 
 struct CorrectionGridSpec {
   std::array<int, 3> counts{21, 21, 21};  // nodes along X, Y, Z, spread over each axis's travel

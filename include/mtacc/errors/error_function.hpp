@@ -24,6 +24,11 @@ struct PolynomialTerm {
   }
 };
 
+// What a harmonic's one parameter is: its amplitude at a stated phase ("h<order>"), or the
+// cosine or sine part of a pair whose two parameters give amplitude and phase ("h<order>c",
+// "h<order>s": the sine part is the term at phase -90 deg).
+enum class HarmonicPart { Amplitude, Cosine, Sine };
+
 // f(q) = amplitude * cos(2 pi * order * (q - zero) / period + phase). Harmonics over the
 // travel and cyclic (pitch) errors are both this.
 struct HarmonicTerm {
@@ -33,6 +38,7 @@ struct HarmonicTerm {
   double amplitude = 0.0;
   double phase = 0.0;
   bool cyclic = false;  // a pitch error (parameter named "cyc") rather than a harmonic of the travel ("h<order>")
+  HarmonicPart part = HarmonicPart::Amplitude;
 };
 
 enum class Interpolation { Linear, CubicSpline };

@@ -34,15 +34,21 @@ struct ErrorModel {
   static ErrorModel zero(const Machine& machine);
 };
 
-enum class ParameterKind { Location, Motion };
+// ZeroOffset: a rotary axis's zero offset about its own line ("B.zero"), the position the
+// axis takes when commanded 0. It is not a slot of its own: on an inclined axis it is a
+// combination of the location rotations A0k B0k C0k, which are about the machine's X, Y, Z.
+enum class ParameterKind { Location, Motion, ZeroOffset };
 
 struct Parameter {
-  std::string name;  // "X0C", "A0B", "EXX.c1", "EZC.t4"
+  std::string name;  // "X0C", "A0B", "EXX.c1", "EZC.t4", "B.zero"
   Dimension dimension;
   ParameterKind kind;
   int axis;       // index into Machine::axes
-  int component;  // 0..5 (X Y Z A B C)
+  int component;  // 0..5 (X Y Z A B C); ZeroOffset: 3
   int index;      // parameter index within the motion function (Motion only)
+  // ZeroOffset: the turn of the axis line (rotation vector of A0k B0k C0k) per unit of the
+  // parameter: the axis direction, negated on the workpiece side (the table turns the other way).
+  Vec3 turn = Vec3::Zero();
 };
 
 // The location-error names that exist on this axis, e.g. {"X0C","Y0C",...}; linear axes
@@ -58,6 +64,24 @@ struct MotionComponent {
 };
 std::optional<MotionComponent> findMotionComponent(const Machine& machine, const std::string& name);
 
+// Where an axis's position-dependent errors run: the minimum and range of its motion.
+struct AxisSpan {
+  double min = 0, range = 1;
+};
+// The span an axis's harmonics default to: its travel, or one turn from 0.
+AxisSpan harmonicSpan(const Axis& axis);
+
+// A test plan may name a component-error term the errors do not define; this adds it at zero
+// to `errors` and returns the names as parameters: "EXX.c<k>" a polynomial's power k in
+// (q - the travel's middle) / half the travel (one turn: q / 180 deg), "ECC.h<k>" the harmonic
+// of order k over the span above as its cosine and sine parts "ECC.h<k>c", "ECC.h<k>s" (which
+// give amplitude and phase), "ECC.h<k>c" or ".h<k>s" one part. Other names pass unchanged.
+std::vector<std::string> defineNamedTerms(const Machine& machine, ErrorModel& errors, const std::vector<std::string>& names);
+// Appended to an unknown-parameter message where defineNamedTerms applies.
+inline constexpr const char* kNamedTermsHint =
+    "; a test plan may also name a component-error term the errors do not define: E<D><axis>.c<k> (power k over the "
+    "travel, e.g. EXX.c1) or E<D><axis>.h<k> (harmonic of order k, amplitude and phase, e.g. ECC.h1)";
+
 // Every location parameter of the machine, then every parameter of the motion functions
 // defined in `errors`.
 std::vector<Parameter> parameterCatalogue(const Machine& machine, const ErrorModel& errors);
@@ -72,8 +96,12 @@ ErrorModel withParametersZero(const Machine& machine, const ErrorModel& shape);
 // changes (one error alone).
 ErrorModel singleError(const Machine& machine, const ErrorModel& shape, const Parameter& p, double value);
 void setParameterValue(ErrorModel& errors, const Parameter& p, double value);
-// Looks a parameter up by ISO name or alias (see aliases.hpp); throws InputError (key: the
-// name) listing the machine's parameters.
+// The zero offset of a rotary axis about its own line, "<axis>.zero" (see ParameterKind).
+// Not in the catalogue, whose A0k B0k C0k already span it.
+Parameter zeroOffsetParameter(const Machine& machine, int axis);
+
+// Looks a parameter up by ISO name, alias (see aliases.hpp) or "<axis>.zero" (a linear axis:
+// its X0X slot); throws InputError (key: the name) listing the machine's parameters.
 Parameter findParameter(const Machine& machine, const ErrorModel& errors, const std::string& name);
 
 }  // namespace mtacc

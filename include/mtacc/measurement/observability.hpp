@@ -27,8 +27,9 @@ struct ObservabilityReport {
   std::vector<ParameterGroup> groups;
 
   bool identifiable() const { return noEffect.empty() && groups.empty(); }
-  // One line per finding, e.g. "A0B and A0C act alike: only A0B + 1.000 A0C is observable".
-  std::vector<std::string> findings() const;
+  // One line per finding, e.g. "A0B and A0C act alike: only A0B + 1.000 A0C is observable";
+  // `scope` names what the Jacobian covers ("X0C has no effect on this plan").
+  std::vector<std::string> findings(const std::string& scope = "this plan") const;
 };
 
 // The default relative tolerance of analyseObservability.

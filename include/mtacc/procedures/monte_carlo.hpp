@@ -30,12 +30,7 @@ struct ErrorLimits {
   std::vector<ErrorLimit> limits;
 };
 
-// Where linear and harmonic errors run: per commanded axis, the minimum and range of its
-// motion (on a test path, or the travel).
-struct AxisSpan {
-  double min = 0, range = 1;
-};
-
+// `spans`: where linear and harmonic errors run, per commanded axis (on a test path, or the travel).
 ErrorModel sampleErrors(const Machine& machine, const ErrorLimits& limits, const std::vector<AxisSpan>& spans,
                         std::mt19937_64& rng);
 

@@ -1,6 +1,8 @@
 #pragma once
 // Workflow `check`: a machine description validated and summarised (chains, axes, tool,
-// workpiece, the error parameters and the non-zero ones with their values).
+// workpiece, the error parameters and the non-zero ones with their values), and the location
+// errors that no measurement on this machine can tell apart.
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -14,6 +16,12 @@ struct MachineCheck {
   std::vector<Parameter> parameters;  // the catalogue: location errors, then component-error coefficients
   std::vector<Parameter> nonZero;
   int locationCount = 0;
+  // Per rotary axis, its zero offset about its own line and what it is in the location
+  // errors: "B.zero = 0.707107 B0B + 0.707107 C0B" on a B axis along (0, 1, 1)/sqrt(2).
+  std::vector<std::string> zeroOffsets;
+  // Location errors that act alike at every pose within travel (TCP and tool direction):
+  // "X0B and X0C act alike: only X0B - X0C is observable ...", and those without effect.
+  std::vector<std::string> actingAlike;
 };
 
 MachineCheck checkMachine(const MachineSetup& setup);

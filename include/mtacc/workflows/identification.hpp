@@ -60,6 +60,17 @@ ObservabilityResult planObservability(const MachineSetup& setup, const Identific
 nlohmann::json toJson(const ObservabilityResult& result);
 nlohmann::json toJson(const ObservabilityReport& report);
 
+// A harmonic identified as its cosine and sine parts (a plan's "ECC.h1"), as amplitude and
+// phase: a cos(x) + b sin(x) = amplitude cos(x + phase), with their standard uncertainties
+// from the covariance (first order; the phase's is meaningless when the amplitude is within
+// its uncertainty of zero).
+struct HarmonicEstimate {
+  std::string name;  // "ECC.h1"
+  Dimension dimension;
+  double amplitude, amplitudeUncertainty;  // mm or rad
+  double phase, phaseUncertainty;          // rad
+};
+
 struct IdentificationOutcome {
   std::shared_ptr<const Machine> machine;
   size_t runs = 0;
@@ -68,6 +79,7 @@ struct IdentificationOutcome {
   bool robust = false;
   IdentificationResult result;
   IdentificationQuality quality;
+  std::vector<HarmonicEstimate> harmonics;
 };
 
 // Identifies from the request's files; refuses (InputError) a set the data cannot determine,
