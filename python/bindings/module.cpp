@@ -98,6 +98,17 @@ double quantity(const py::object& value, Dimension d, const std::string& key) {
 
 }  // namespace
 
+// The module's Machine: a setup whose compiled models are kept between calls, so that a
+// pose at a time costs an evaluation, not a compilation; set_error drops them.
+struct PythonMachine : MachineSetup {
+  mutable std::optional<std::pair<KinematicModel, KinematicModel>> models;  // actual, nominal
+
+  const std::pair<KinematicModel, KinematicModel>& compiled() const {
+    if (!models) models.emplace(actual(), nominal());
+    return *models;
+  }
+};
+
 PYBIND11_MODULE(_mtacc, mod) {
   mod.doc() = "mtacc: geometric accuracy of multi-axis machine tools (C++ core)";
   static py::exception<InputError> inputError(mod, "InputError", PyExc_ValueError);
@@ -113,39 +124,41 @@ PYBIND11_MODULE(_mtacc, mod) {
     }
   });
 
-  py::class_<MachineSetup>(mod, "Machine")
+  py::class_<PythonMachine>(mod, "Machine")
       .def(py::init([](const std::string& machine, const std::string& errors, const std::string& alignment, std::optional<double> load) {
-             return loadMachineSetup({machine, errors, alignment, load});
+             return PythonMachine{{loadMachineSetup({machine, errors, alignment, load})}, {}};
            }),
            py::arg("machine"), py::arg("errors") = "", py::arg("alignment") = "", py::arg("load") = py::none())
-      .def("check", [](const MachineSetup& s) { return toPython(toJson(checkMachine(s))); })
-      .def("error_unit", [](const MachineSetup& s, const std::string& name) {
+      .def("check", [](const PythonMachine& s) { return toPython(toJson(checkMachine(s))); })
+      .def("error_unit", [](const PythonMachine& s, const std::string& name) {
         return findParameter(*s.machine, s.errors, name).dimension == Dimension::Length ? "mm" : "rad";
       })
-      .def("get_error", [](const MachineSetup& s, const std::string& name) {
+      .def("get_error", [](const PythonMachine& s, const std::string& name) {
         return isoSign(name) * parameterValue(s.errors, findParameter(*s.machine, s.errors, name));
       })
-      .def("set_error", [](MachineSetup& s, const std::string& name, const py::object& value) {
+      .def("set_error", [](PythonMachine& s, const std::string& name, const py::object& value) {
         const auto p = findParameter(*s.machine, s.errors, name);
         setParameterValue(s.errors, p, isoSign(name) * quantity(value, p.dimension, name));
+        s.models.reset();
       })
-      .def("nonzero_errors", [](const MachineSetup& s) {
+      .def("nonzero_errors", [](const PythonMachine& s) {
         py::dict d;
         for (const auto& p : nonZeroParameters(*s.machine, s.errors)) d[py::str(p.name)] = parameterValue(s.errors, p);
         return d;
       })
-      .def("fk", [](const MachineSetup& s, const Array& q, const py::object& dirs, bool nominal, bool errors, int threads) {
+      .def("fk", [](const PythonMachine& s, const Array& q, const py::object& dirs, bool nominal, bool errors, int threads) {
         const auto joints_ = joints(*s.machine, q);
         const auto d = directions(dirs, joints_);
+        const auto& [actual, nominalModel] = s.compiled();
         ForwardResult r;
         {
           py::gil_scoped_release release;
-          r = forwardKinematics(s, joints_, d, {nominal, errors, threads});
+          r = forwardKinematics(actual, nominalModel, joints_, d, {nominal, errors, threads});
         }
         if (!errors) return py::make_tuple(toArray(r.tool.positions), toArray(r.tool.directions));
         return py::make_tuple(toArray(r.error.leftCols<3>(), 1e3), toArray(r.error.rightCols<3>(), 1e6));
       })
-      .def("ik", [](const MachineSetup& s, const std::vector<std::vector<double>>& tcps, const std::vector<std::vector<double>>& tools,
+      .def("ik", [](const PythonMachine& s, const std::vector<std::vector<double>>& tcps, const std::vector<std::vector<double>>& tools,
                     const std::string& branch, bool all, bool withErrors, const std::string& near) {
         InverseRequest request;
         request.withErrors = withErrors;
@@ -165,14 +178,14 @@ PYBIND11_MODULE(_mtacc, mod) {
                                                                                                      : (*rows[i])[static_cast<size_t>(k)];
         return py::make_tuple(toPython(toJson(r)), toArray(q));
       })
-      .def("jacobian", [](const MachineSetup& s, const Array& q, const std::vector<std::string>& names) {
+      .def("jacobian", [](const PythonMachine& s, const Array& q, const std::vector<std::string>& names) {
         const auto joints_ = joints(*s.machine, q);
         const auto params = names.empty() ? parameterCatalogue(*s.machine, s.errors) : findParameters(s, names);
         std::vector<std::string> used;
         for (const auto& p : params) used.push_back(p.name);
         return py::make_tuple(used, toArray(parameterJacobian(compile(s.machine, s.errors, params), s.nominal(), joints_.row(0).data())));
       })
-      .def("sensitivity_coefficient", [](const MachineSetup& s, const Array& q, const std::string& name, const py::object& epsilon,
+      .def("sensitivity_coefficient", [](const PythonMachine& s, const Array& q, const std::string& name, const py::object& epsilon,
                                          const std::vector<double>& direction) {
         const auto joints_ = joints(*s.machine, q);
         const auto p = findParameter(*s.machine, s.errors, name);
@@ -180,7 +193,7 @@ PYBIND11_MODULE(_mtacc, mod) {
         if (eps == 0.0) throw InputError(InputLocation{"", 0, "epsilon"}, "must not be zero");
         return sensitivityCoefficient(s.machine, s.errors, {p, eps}, {joints_.row(0).data(), vec3(direction, "direction")});
       })
-      .def("working_volume_grid", [](const MachineSetup& s, int samples) {
+      .def("working_volume_grid", [](const PythonMachine& s, int samples) {
         if (samples < 2 || samples > 50) throw InputError(InputLocation{"", 0, "samples"}, "must be between 2 and 50");
         const auto g = workingVolumeGrid(*s.machine, samples);
         py::array_t<double> out = toArray(g);
@@ -190,7 +203,7 @@ PYBIND11_MODULE(_mtacc, mod) {
             if (s.machine->axes[static_cast<size_t>(k)].isRotary()) w(r, k) /= kDeg;
         return out;
       })
-      .def("budget", [](const MachineSetup& s, int samples, const py::object& length, const py::object& angle) {
+      .def("budget", [](const PythonMachine& s, int samples, const py::object& length, const py::object& angle) {
         BudgetOptions o;
         o.samplesPerAxis = samples;
         if (!length.is_none()) o.length = quantity(length, Dimension::Length, "length");
@@ -202,7 +215,7 @@ PYBIND11_MODULE(_mtacc, mod) {
         }
         return toPython(toJson(r));
       })
-      .def("cone", [](const MachineSetup& s, const std::string& preset, double alpha, double beta, double radius,
+      .def("cone", [](const PythonMachine& s, const std::string& preset, double alpha, double beta, double radius,
                       const std::vector<double>& centre, double gamma, bool face, int points, const std::string& branch, double feed,
                       bool singleErrors, int monteCarlo, const std::string& limits, std::uint64_t seed) {
         ConeStudyOptions o;
@@ -232,7 +245,7 @@ PYBIND11_MODULE(_mtacc, mod) {
         }
         return toPython(toJson(r));
       })
-      .def("cubic", [](const MachineSetup& s, const std::string& test, double grid, double inset, bool sensitivities,
+      .def("cubic", [](const PythonMachine& s, const std::string& test, double grid, double inset, bool sensitivities,
                        const std::vector<std::string>& parameters, double sensitivityGrid, int threads) {
         CubicTestOptions o;
         o.spec = loadCubicTest(test);
@@ -266,7 +279,7 @@ PYBIND11_MODULE(_mtacc, mod) {
         }
         return out;
       })
-      .def("cubic_identify", [](const MachineSetup& s, const std::string& zones, const std::vector<std::string>& parameters,
+      .def("cubic_identify", [](const PythonMachine& s, const std::string& zones, const std::vector<std::string>& parameters,
                                 const std::string& test, const std::string& noise) {
         CubicIdentificationRequest request;
         request.test = test;
@@ -280,8 +293,8 @@ PYBIND11_MODULE(_mtacc, mod) {
         }
         return toPython(toJson(out));
       })
-      .def("cone_preset_name", [](const MachineSetup& s) { return conePresetName(*s.machine); })
-      .def("fit_component", [](const MachineSetup& s, const std::string& file, const std::vector<double>& breaks, int pieces, int degree,
+      .def("cone_preset_name", [](const PythonMachine& s) { return conePresetName(*s.machine); })
+      .def("fit_component", [](const PythonMachine& s, const std::string& file, const std::vector<double>& breaks, int pieces, int degree,
                                double significance, const py::object& period, double periodZero, double threshold, bool removeDisturbed) {
         ComponentFitRequest r{.file = file, .breaks = breaks, .pieces = pieces, .degree = degree, .significance = significance};
         if (!period.is_none()) r.period = period.cast<double>();
@@ -290,7 +303,7 @@ PYBIND11_MODULE(_mtacc, mod) {
         r.removeDisturbed = removeDisturbed;
         return toPython(toJson(fitComponentFile(s, r)));
       })
-      .def("identify_plates", [](const MachineSetup& s, const std::vector<std::string>& files, double piece) {
+      .def("identify_plates", [](const PythonMachine& s, const std::vector<std::string>& files, double piece) {
         PlateIdentificationStudy study;
         {
           py::gil_scoped_release release;
@@ -298,9 +311,9 @@ PYBIND11_MODULE(_mtacc, mod) {
         }
         return toPython(toJson(study));
       })
-      .def("stiffness", [](const MachineSetup& s, int samples) { return toPython(toJson(summariseStiffness(s, samples))); })
+      .def("stiffness", [](const PythonMachine& s, int samples) { return toPython(toJson(summariseStiffness(s, samples))); })
       .def("compensation_tables",
-           [](const MachineSetup& s, const std::array<int, 3>& nodes, const std::string& pose, int functions, int linuxcncType,
+           [](const PythonMachine& s, const std::array<int, 3>& nodes, const std::string& pose, int functions, int linuxcncType,
               const std::string& checkProgram) {
              CompensationTablesRequest request;
              request.checkProgram = checkProgram;
@@ -319,7 +332,7 @@ PYBIND11_MODULE(_mtacc, mod) {
              return toPython(j);
            })
       .def("compensate_program",
-           [](const MachineSetup& s, const std::string& path, const std::map<int, double>& toolLengths, std::optional<double> tolerance,
+           [](const PythonMachine& s, const std::string& path, const std::map<int, double>& toolLengths, std::optional<double> tolerance,
               std::optional<double> directionTolerance) {
              ProgramCompensationRequest request;
              request.programFile = path;
@@ -335,8 +348,8 @@ PYBIND11_MODULE(_mtacc, mod) {
              j["gcode"] = r.gcode;
              return toPython(j);
            })
-      .def("compare_plate", [](const MachineSetup& s, const std::string& path) { return toPython(toJson(comparePlateFile(s, path))); })
-      .def("simulate_plate", [](const MachineSetup& s, const std::string& output, const std::string& header, const std::string& noise,
+      .def("compare_plate", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(comparePlateFile(s, path))); })
+      .def("simulate_plate", [](const PythonMachine& s, const std::string& output, const std::string& header, const std::string& noise,
                                 std::uint64_t seed) {
         PlateSimulationRequest r;
         r.output = output;
@@ -345,7 +358,7 @@ PYBIND11_MODULE(_mtacc, mod) {
         r.seed = seed;
         simulatePlateFile(s, r);
       })
-      .def("simulate_component", [](const MachineSetup& s, const std::string& component, const std::string& output, double step, int runs,
+      .def("simulate_component", [](const PythonMachine& s, const std::string& component, const std::string& output, double step, int runs,
                                     const std::string& noise, const std::vector<double>& abbe, const std::string& disturbance,
                                     double interval, const std::string& settling, double settlingTime, std::uint64_t seed) {
         ComponentSimulationRequest r{.component = component, .output = output, .step = step, .runs = runs, .noise = noise};
@@ -358,7 +371,7 @@ PYBIND11_MODULE(_mtacc, mod) {
         r.seed = seed;
         simulateComponentFile(s, r);
       })
-      .def("simulate", [](const MachineSetup& s, const std::string& plan, const py::object& noise, std::uint64_t seed,
+      .def("simulate", [](const PythonMachine& s, const std::string& plan, const py::object& noise, std::uint64_t seed,
                           const std::string& outputDir, const std::string& setupErrors) {
         SimulationOptions o;
         o.noise = quantity(noise, Dimension::Length, "noise");
@@ -368,14 +381,14 @@ PYBIND11_MODULE(_mtacc, mod) {
         o.outputIsFolder = true;
         return toPython(toJson(simulatePlan(s, plan, o)));
       })
-      .def("read_measurement", [](const MachineSetup& s, const std::string& path) {
+      .def("read_measurement", [](const PythonMachine& s, const std::string& path) {
         return toPython(runJson(*s.machine, readMeasurementCsv(s.nominal(), path)));
       })
-      .def("evaluate_ballbar", [](const MachineSetup& s, const std::string& path) { return toPython(toJson(evaluateBallbarFile(s, path))); })
-      .def("observability", [](const MachineSetup& s, const std::string& plan, const std::vector<std::string>& parameters) {
+      .def("evaluate_ballbar", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(evaluateBallbarFile(s, path))); })
+      .def("observability", [](const PythonMachine& s, const std::string& plan, const std::vector<std::string>& parameters) {
         return toPython(toJson(planObservability(s, {.plan = plan, .parameters = parameters})));
       })
-      .def("identify", [](const MachineSetup& s, const std::vector<std::string>& files, const std::vector<std::string>& parameters,
+      .def("identify", [](const PythonMachine& s, const std::vector<std::string>& files, const std::vector<std::string>& parameters,
                           const std::string& plan, bool robust, const std::string& noise, double uncertaintyFraction, bool fromNominal) {
         IdentificationRequest request{.plan = plan, .data = files, .parameters = parameters, .robust = robust, .fromNominal = fromNominal};
         if (!noise.empty()) request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
@@ -387,11 +400,11 @@ PYBIND11_MODULE(_mtacc, mod) {
         }
         return toPython(toJson(out));
       })
-      .def("xy_circle", [](const MachineSetup& s) {
+      .def("xy_circle", [](const PythonMachine& s) {
         const auto r = xyCircleTest(s);
         return r ? toPython(toJson(*r)) : py::none().cast<py::object>();
       })
-      .def("tilted_circle", [](const MachineSetup& s) {
+      .def("tilted_circle", [](const PythonMachine& s) {
         const auto r = tiltedCircleTest(s);
         return r ? toPython(toJson(*r)) : py::none().cast<py::object>();
       });

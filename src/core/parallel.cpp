@@ -8,7 +8,9 @@
 namespace mtacc {
 
 int threadCount(int threads) {
-  return threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // Asked once: the C library reads /sys each time, which costs more than a small batch.
+  static const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return threads > 0 ? threads : cores;
 }
 
 void parallelFor(long n, int threads, const std::function<void(long, long)>& body) {

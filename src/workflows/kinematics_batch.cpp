@@ -8,7 +8,13 @@ namespace mtacc {
 
 ForwardResult forwardKinematics(const MachineSetup& setup, const JointMatrix& q, const DirectionMatrix& direction,
                                 const ForwardOptions& options, const std::vector<int>& lines, const std::string& file) {
-  const Machine& m = *setup.machine;
+  return forwardKinematics(setup.actual(), setup.nominal(), q, direction, options, lines, file);
+}
+
+ForwardResult forwardKinematics(const KinematicModel& actualModel, const KinematicModel& nominal, const JointMatrix& q,
+                                const DirectionMatrix& direction, const ForwardOptions& options, const std::vector<int>& lines,
+                                const std::string& file) {
+  const Machine& m = *nominal.machine;
   if (options.threads < 0) throw InputError(InputLocation{"", 0, "threads"}, "must be 0 (all cores) or a positive count");
   for (Eigen::Index r = 0; r < q.rows(); ++r) {
     const auto violation = m.travelViolation({q.row(r).data(), static_cast<size_t>(q.cols())});
@@ -17,11 +23,10 @@ ForwardResult forwardKinematics(const MachineSetup& setup, const JointMatrix& q,
     throw InputError(InputLocation{file, 0, q.rows() == 1 ? "pose" : "row " + std::to_string(r)}, "pose " + violation);
   }
   ForwardResult out;
-  out.machine = setup.machine;
+  out.machine = nominal.machine;
   out.nominal = options.nominal;
   out.q = q;
-  const auto nominal = setup.nominal();
-  const auto actual = options.nominal ? nominal : setup.actual();
+  const KinematicModel& actual = options.nominal ? nominal : actualModel;
   toolPoints(actual, {q, direction}, out.tool, options.threads);
   if (!options.errors) return out;
   out.error = toolErrors(actual, nominal, {q, direction}, options.threads);

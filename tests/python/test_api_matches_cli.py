@@ -165,3 +165,15 @@ def test_errors_with_tcp_prints_the_fk_columns(cli, tmp_path):
     subprocess.run([cli, "errors", "tilting-table", *pose, "-o", str(tmp_path / "plain.csv")], check=True, capture_output=True)
     assert (tmp_path / "errors.csv").read_text() == (tmp_path / "fk.csv").read_text()
     assert "x,y,z,i,j,k" in (tmp_path / "errors.csv").read_text() and "x,y,z" not in (tmp_path / "plain.csv").read_text()
+
+
+def test_single_pose_calls_follow_a_changed_error():
+    # fk keeps the compiled model between calls; changing an error must drop it.
+    machine = mtacc.Machine("tilting-table")
+    before = machine.tcp_errors(POSES[0])
+    machine.errors["X0C"] = "30 um"
+    fresh = mtacc.Machine("tilting-table")
+    fresh.errors["X0C"] = "30 um"
+    assert not np.allclose(machine.tcp_errors(POSES[0]), before)
+    assert np.array_equal(machine.tcp_errors(POSES[0]), fresh.tcp_errors(POSES[0]))
+    assert np.array_equal(machine.fk(POSES), fresh.fk(POSES))

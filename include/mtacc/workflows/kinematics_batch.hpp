@@ -34,6 +34,11 @@ struct ForwardResult {
 ForwardResult forwardKinematics(const MachineSetup& setup, const JointMatrix& q, const DirectionMatrix& direction,
                                 const ForwardOptions& options = {}, const std::vector<int>& lines = {},
                                 const std::string& file = "");
+// The same on the setup's models compiled already (`actual` with its errors, `nominal`): a
+// caller evaluating a pose at a time compiles once.
+ForwardResult forwardKinematics(const KinematicModel& actual, const KinematicModel& nominal, const JointMatrix& q,
+                                const DirectionMatrix& direction, const ForwardOptions& options = {},
+                                const std::vector<int>& lines = {}, const std::string& file = "");
 nlohmann::json toJson(const ForwardResult& result);
 
 struct InverseRequest {
