@@ -167,7 +167,8 @@ PYBIND11_MODULE(_mtacc, mod) {
         for (const auto& t : tools) request.directions.push_back(vec3(t, "tool"));
         request.options.branch = parseTiltBranch(branch);
         request.all = all;
-        const auto r = inverseKinematics(s, request);
+        const auto& [actual, nominalModel] = s.compiled();
+        const auto r = inverseKinematics(actual, nominalModel, request);
         std::vector<const std::vector<double>*> rows;
         for (const auto& solution : r.solutions) rows.push_back(&solution.q);
         for (const auto& solution : r.withErrors) rows.push_back(&solution.q);

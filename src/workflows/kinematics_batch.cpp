@@ -56,6 +56,12 @@ nlohmann::json toJson(const ForwardResult& r) {
 }
 
 InverseResult inverseKinematics(const MachineSetup& setup, const InverseRequest& request) {
+  // The actual model only when it is used: compiling it costs more than one solution.
+  const auto nominal = setup.nominal();
+  return inverseKinematics(request.withErrors ? setup.actual() : nominal, nominal, request);
+}
+
+InverseResult inverseKinematics(const KinematicModel& actual, const KinematicModel& nominal, const InverseRequest& request) {
   if (request.positions.empty() || request.positions.size() != request.directions.size())
     throw InputError(InputLocation{"", 0, "targets"}, "expected as many tool directions as TCP positions, at least one");
   auto where = [&](size_t i, const char* singleKey) {
@@ -68,12 +74,10 @@ InverseResult inverseKinematics(const MachineSetup& setup, const InverseRequest&
     if (!(request.directions[i].cwiseAbs().maxCoeff() > 0) || !request.directions[i].allFinite())
       throw InputError(where(i, "tool"), "the tool direction has zero length");
   }
-  const auto nominal = setup.nominal();
-  InverseResult out{setup.machine, {}, {}};
+  InverseResult out{nominal.machine, {}, {}};
   try {
     if (request.withErrors) {
       if (request.all) throw InputError(InputLocation{"", 0, "all"}, "every solution is listed for the nominal machine only, not with its errors");
-      const auto actual = setup.actual();
       ErrorIkOptions o;
       o.ik = request.options;
       for (size_t i = 0; i < request.positions.size(); ++i) {

@@ -63,6 +63,8 @@ struct InverseResult {
 // withErrors, each target's commands on the machine with its errors, started from the nominal
 // solution (the previous target's commands as the hint along a path).
 InverseResult inverseKinematics(const MachineSetup& setup, const InverseRequest& request);
+// The same on the setup's models compiled already (`actual` is used only withErrors).
+InverseResult inverseKinematics(const KinematicModel& actual, const KinematicModel& nominal, const InverseRequest& request);
 nlohmann::json toJson(const InverseResult& result);
 
 }  // namespace mtacc
