@@ -39,7 +39,7 @@ std::vector<std::vector<double>> workspacePoses(const Machine& m) {
 }
 
 // Parameters whose effects are parallel (one is a multiple of the other at every pose) act
-// alike: "X0X, X0C and X0B act alike (X0X = X0C = -X0B in effect)". What remains after keeping
+// alike: "X0X, X0B and X0C act alike (X0X = X0B = -X0C in effect)". What remains after keeping
 // one of each such class goes to the general analysis, for dependencies among several.
 std::vector<std::string> locationErrorsActingAlike(const MachineSetup& setup, const std::vector<Parameter>& catalogue) {
   std::vector<Parameter> location;
