@@ -49,12 +49,7 @@ Problem buildProblem(const MachineSetup& setup, const IdentificationRequest& req
   if (p.problem.runs.empty()) throw InputError(InputLocation{"", 0, planRuns ? "plan" : "data"}, "no measurement run given");
   if (p.given.empty())
     throw InputError(InputLocation{"", 0, "parameters"}, "no parameter to determine (name them, or use a plan with 'parameters')");
-  p.given = defineNamedTerms(*setup.machine, p.problem.start, p.given);
-  try {
-    p.problem.parameters = findParameters(MachineSetup{setup.machine, p.problem.start}, p.given, namedAt);
-  } catch (const InputError& e) {
-    throw InputError(e.where(), e.reason() + kNamedTermsHint);
-  }
+  p.problem.parameters = findPlanParameters(setup.machine, p.problem.start, p.given, namedAt);
   if (request.setup) {
     for (auto& run : p.problem.runs) run.estimate.clear();
     for (const auto& n : *request.setup) {

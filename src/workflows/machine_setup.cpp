@@ -35,6 +35,19 @@ std::vector<Parameter> findParameters(const MachineSetup& setup, const std::vect
   return out;
 }
 
+std::vector<Parameter> findPlanParameters(const std::shared_ptr<const Machine>& machine, ErrorModel& shape,
+                                          std::vector<std::string>& names, const InputLocation& namedAt) {
+  names = defineNamedTerms(*machine, shape, names);
+  try {
+    return findParameters(MachineSetup{machine, shape}, names, namedAt);
+  } catch (const InputError& e) {
+    throw InputError(e.where(), e.reason() +
+                                    "; a test plan may also name a component-error term the errors do not define: "
+                                    "E<D><axis>.c<k> (power k over the travel, e.g. EXX.c1) or E<D><axis>.h<k> (harmonic "
+                                    "of order k, amplitude and phase, e.g. ECC.h1)");
+  }
+}
+
 nlohmann::json poseJson(const Machine& m, const double* q) {
   nlohmann::json j = nlohmann::json::object();
   for (int i = 0; i < m.commandedCount(); ++i) {

@@ -118,11 +118,7 @@ SimulationResult simulateSphereTest(const MachineSetup& setup, const SphereTestS
 SimulationResult simulatePlan(const MachineSetup& setup, const std::string& planFile, const SimulationOptions& options) {
   auto plan = loadTestPlan(setup.nominal(), planFile);
   ErrorModel shape = setup.errors;  // the plan's parameters checked as identify will find them
-  try {
-    findParameters(MachineSetup{setup.machine, shape}, defineNamedTerms(*setup.machine, shape, plan.parameters), plan.parametersAt);
-  } catch (const InputError& e) {
-    throw InputError(e.where(), e.reason() + kNamedTermsHint);
-  }
+  findPlanParameters(setup.machine, shape, plan.parameters, plan.parametersAt);
   return simulateRuns(setup, std::move(plan.runs), options);
 }
 

@@ -77,10 +77,6 @@ AxisSpan harmonicSpan(const Axis& axis);
 // of order k over the span above as its cosine and sine parts "ECC.h<k>c", "ECC.h<k>s" (which
 // give amplitude and phase), "ECC.h<k>c" or ".h<k>s" one part. Other names pass unchanged.
 std::vector<std::string> defineNamedTerms(const Machine& machine, ErrorModel& errors, const std::vector<std::string>& names);
-// Appended to an unknown-parameter message where defineNamedTerms applies.
-inline constexpr const char* kNamedTermsHint =
-    "; a test plan may also name a component-error term the errors do not define: E<D><axis>.c<k> (power k over the "
-    "travel, e.g. EXX.c1) or E<D><axis>.h<k> (harmonic of order k, amplitude and phase, e.g. ECC.h1)";
 
 // Every location parameter of the machine, then every parameter of the motion functions
 // defined in `errors`.

@@ -38,6 +38,11 @@ MachineSetup loadMachineSetup(const MachineSource& source);
 // file, line and key that named them) listing the machine's parameters.
 std::vector<Parameter> findParameters(const MachineSetup& setup, const std::vector<std::string>& names,
                                       const InputLocation& namedAt = {"", 0, "parameters"});
+// A test plan's parameters: the component terms `shape` does not define added to it at zero
+// (defineNamedTerms; `names` becomes the expanded list), then looked up in it; an unknown name's
+// message also gives the term forms a plan may use.
+std::vector<Parameter> findPlanParameters(const std::shared_ptr<const Machine>& machine, ErrorModel& shape,
+                                          std::vector<std::string>& names, const InputLocation& namedAt);
 
 // {"X": 10.0, "B": -15.0}: mm for linear and deg for rotary axes, to 15 significant digits.
 nlohmann::json poseJson(const Machine& machine, const double* q);
