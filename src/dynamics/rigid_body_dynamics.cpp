@@ -277,7 +277,7 @@ std::vector<Eigen::Matrix3d> frfPeaks(const StructureModel& model, const std::ve
       h << peak[0], peak[3], peak[4], peak[3], peak[1], peak[5], peak[4], peak[5], peak[2];
       h = h.cwiseSqrt();
     }
-  });
+  }, 1);
   return out;
 }
 
@@ -350,7 +350,7 @@ DynamicsMap dynamicsMap(const StructureModel& model, const MapGrid& grid, const 
       q[static_cast<size_t>(jb)] = out.b[static_cast<size_t>(k % countB)];
       out.values(k / countB, k % countB) = quantity.evaluate(model, assembleStructure(model, q));
     }
-  });
+  }, 1);
   out.statistics = boxStatistics(std::vector<double>(out.values.data(), out.values.data() + out.values.size()));
   return out;
 }

@@ -174,8 +174,9 @@ inline Vec6 motionComponents(const ChainOp& op, const double* q, const int* dir)
     double cosine = baseCosine, sine = baseSine;
     if (group.multiple == 1) {
       const double theta = group.omega * (qa - group.zero);
-      cosine = baseCosine = std::cos(theta);
-      sine = baseSine = std::sin(theta);
+      harmonicSinCos(theta, sine, cosine);
+      baseCosine = cosine;
+      baseSine = sine;
     } else {
       for (int m = 1; m < group.multiple; ++m) {
         const double next = cosine * baseCosine - sine * baseSine;

@@ -82,7 +82,8 @@ ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& posit
   s.directionControlled = !o.positionOnly && rotaryCount(*actual.machine) >= 2;
   s.singular = singularStart;
   const auto n = static_cast<Eigen::Index>(s.q.size());
-  Eigen::VectorXd scale(n);
+  Eigen::VectorXd& scale = jacobian.scale;
+  scale.resize(n);
   for (Eigen::Index k = 0; k < n; ++k) scale[k] = actual.machine->axes[static_cast<size_t>(k)].isRotary() ? 1.0 / kDirectionWeight : 1.0;
   // At a singular pose the direction is given up and the position alone is reached.
   bool withDirection = s.directionControlled && !singularStart;
@@ -106,8 +107,8 @@ ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& posit
         continue;
       }
     }
-    const Eigen::VectorXd step = scale.cwiseProduct(jacobian.svd.solve(-r));
-    for (Eigen::Index k = 0; k < n; ++k) s.q[static_cast<size_t>(k)] += step[k];
+    jacobian.step = jacobian.svd.solve(-r);
+    for (Eigen::Index k = 0; k < n; ++k) s.q[static_cast<size_t>(k)] += scale[k] * jacobian.step[k];
     const Residual next = residual(target, s.q, withDirection, reached);
     ++s.iterations;
     const auto reachable = jacobian.svd.matrixU().leftCols(jacobian.svd.rank());

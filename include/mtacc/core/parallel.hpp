@@ -12,7 +12,11 @@ constexpr int kAllCores = 0;
 int threadCount(int threads);
 
 // Runs body(begin, end) over [0, n) split into contiguous chunks, one per thread; the calling
-// thread takes the first chunk. An exception of any chunk is rethrown after every thread joined.
-void parallelFor(long n, int threads, const std::function<void(long, long)>& body);
+// thread takes the first chunk. An exception of any chunk (the first in order) is rethrown after
+// every thread joined.
+// A thread is started only for at least `minimumPerThread` items: starting one costs tens of
+// microseconds, more than a few hundred light items (a pose's kinematics); a caller whose items
+// are heavy (a layer of a grid, an eigenproblem) passes 1.
+void parallelFor(long n, int threads, const std::function<void(long, long)>& body, long minimumPerThread = 256);
 
 }  // namespace mtacc

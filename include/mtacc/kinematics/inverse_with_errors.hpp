@@ -52,6 +52,7 @@ struct ErrorIkJacobian {
   Eigen::JacobiSVD<Eigen::MatrixXd> svd;
   bool valid = false;
   bool withDirection = false;
+  Eigen::VectorXd scale, step;  // scratch of the solves, kept so that a solve allocates no more
 };
 
 // `actual` compiled with the errors, `nominal` without; position and direction in the workpiece
