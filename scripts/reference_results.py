@@ -42,7 +42,14 @@ PENDING = {
            "changes are only plotted (Figs 4.17-4.20): the model is built (Stiffness.*) and the bundled "
            "data/stiffness/maho-260kg.yaml holds illustrative values. Its "
            "Appendix A transforms are checked by Seed003AppendixA.*.",
-    "004": "Its printed numbers belong to the decomposition of measured TCP errors (issue 18).",
+    "004": "Its Tables 1-4 are measurements of the authors' machine, not reproducible without "
+           "their signals (extraction §15); what the text allows is checked: the feed ladder below, "
+           "Table 1's row sums and stated shares (Seed004Statistics.R2/R3R4, which show that Table 1 "
+           "used the five-norm denominator, erratum E1), the power laws of Table 4 under reading A "
+           "(Seed004Statistics.R6, the extraction's fits; the paper prints no kappa or N) and its RMS "
+           "against Table 3's maxima (R7). The method's identities V1-V4, V12, V13 are "
+           "Seed004Decomposition.*. Not yet computed (issue 18): the 18 ms delay in samples (R8) and "
+           "the linear-interpolation bound (R9), which belong to the signal pipeline.",
 }
 FIELDS = ["seed", "where", "quantity", "printed", "mtacc", "difference", "unit", "verdict"]
 

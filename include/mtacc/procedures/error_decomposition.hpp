@@ -1,0 +1,74 @@
+#pragma once
+// Seed 004 (Andolfatto, Lavernhe, Mayer): the TCP error of a five-axis machine, measured along
+// one trajectory at several feeds, split into servo contouring, link, motion, thermal drift and
+// dynamic errors (eqs. 6, 10-20), and the statistics of the paper's Tables 1-4 (eqs. 21-23).
+// Every series is on the instrument's clock (the traces aligned and resampled onto it), one
+// sample a row, the tool relative to the workpiece in the workpiece frame, in mm.
+#include <vector>
+
+#include "mtacc/core/transform.hpp"
+
+namespace mtacc {
+
+struct DecompositionTest {
+  double feed = 0.0;            // mm/min as programmed (FGROUP: mm and deg mixed, seed 004 O8)
+  std::vector<double> time;     // s, increasing
+  std::vector<Vec3> measured;   // chi: the instrument's reading, set-up removed
+  std::vector<Vec3> encoder;    // chi_enc: the direct kinematics of the encoder positions
+  std::vector<Vec3> nominal;    // chi_nom: the direct kinematics of the interpolator's commands
+  std::vector<Vec3> link;       // delta_l: the identified link errors along the path (eqs. 13-15)
+};
+
+struct DecompositionOptions {
+  int referenceTest = 0;  // the slow test whose error beyond the link errors is all motion error (eq. 16)
+  int degree = 20;        // of the Legendre fit of the motion errors in normalised time (eq. 17, O5, O6)
+};
+
+struct DecomposedTest {
+  double feed = 0.0;
+  std::vector<Vec3> contouring;  // delta_c = chi_enc - chi_nom (eq. 10)
+  std::vector<Vec3> link;        // delta_l, as given
+  std::vector<Vec3> motion;      // delta_m: the reference test's fit at this test's normalised time
+  Vec3 drift = Vec3::Zero();     // td (eq. 18), the same at every sample (eq. 19); 0 in the reference test
+  std::vector<Vec3> dynamic;     // delta_d = chi - chi_enc - delta_qs (eq. 20); zero mean by construction
+
+  Vec3 quasiStatic(size_t i) const { return link[i] + motion[i] + drift; }  // delta_qs (eq. 12)
+};
+
+// What the method cannot split, by construction: a mean of the true dynamic error is booked as
+// drift (delta_d has zero mean in every test), and link and motion errors trade content with
+// each other (only their sum is fixed by the reference test). Throws std::invalid_argument on
+// series of unequal lengths, fewer than two samples, times not increasing, a reference test of
+// no more samples than the fit has coefficients, or a reference index out of range.
+std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>& tests, const DecompositionOptions& options = {});
+
+// Eq. 21: the mean over the samples of each contribution's norm over the sum of the norms, in %.
+// The printed denominator has three norms (c, qs, d); Table 1 splits qs into l, m, td and its
+// rows sum to 100 %, so it used five norms (erratum E1). Both are given; samples where every
+// contribution is zero are left out.
+struct DecompositionShares {
+  double contouring = 0, quasiStatic = 0, dynamic = 0;                      // over |c| + |qs| + |d|
+  double splitContouring = 0, link = 0, motion = 0, drift = 0, splitDynamic = 0;  // over |c| + |l| + |m| + |td| + |d|
+  double splitOverPrinted = 0;  // the five numerators over the printed denominator: > 100 when l, m, td are not parallel
+};
+DecompositionShares decompositionShares(const DecomposedTest& test);
+
+// Eq. 22 and Table 4: per direction, the largest absolute value and the root mean square.
+struct DirectionStatistics {
+  Vec3 maximum = Vec3::Zero();
+  Vec3 rms = Vec3::Zero();
+};
+DirectionStatistics directionStatistics(const std::vector<Vec3>& series);
+
+// Eq. 23: value = kappa * feed^exponent, least squares on the logarithms. Throws
+// std::invalid_argument for fewer than two feeds, feeds all equal, or a value or feed <= 0.
+struct PowerLaw {
+  double kappa = 0.0, exponent = 0.0;
+  double largestRelativeMisfit = 0.0;  // max |fit / value - 1| over the points
+};
+PowerLaw fitPowerLaw(const std::vector<double>& feeds, const std::vector<double>& values);
+
+// first * ratio^k for k = 0 .. count - 1: the paper's feed ladder is 1000 mm/min times 1.8^k.
+std::vector<double> geometricFeeds(double first, double ratio, int count);
+
+}  // namespace mtacc

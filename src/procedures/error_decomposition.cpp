@@ -1,0 +1,153 @@
+#include "mtacc/procedures/error_decomposition.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace mtacc {
+namespace {
+
+void check(const DecompositionTest& t, size_t index) {
+  const size_t n = t.time.size();
+  if (n < 2) throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): {} samples, at least 2 needed", index, t.feed, n));
+  if (t.measured.size() != n || t.encoder.size() != n || t.nominal.size() != n || t.link.size() != n)
+    throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): its series have different lengths", index, t.feed));
+  for (size_t i = 1; i < n; ++i)
+    if (!(t.time[i] > t.time[i - 1]))
+      throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): time does not increase at sample {}", index, t.feed, i));
+}
+
+// P_0 .. P_degree at x = 2 t_n - 1, t_n the time from the test's first sample to its last
+// scaled to [0, 1] (O5: time, not arclength), by the three-term recurrence.
+Eigen::MatrixXd legendreBasis(const std::vector<double>& time, int degree) {
+  const auto n = static_cast<Eigen::Index>(time.size());
+  Eigen::MatrixXd p(n, degree + 1);
+  const double start = time.front(), span = time.back() - time.front();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double x = 2.0 * (time[static_cast<size_t>(i)] - start) / span - 1.0;
+    p(i, 0) = 1.0;
+    if (degree >= 1) p(i, 1) = x;
+    for (int k = 1; k < degree; ++k) p(i, k + 1) = ((2 * k + 1) * x * p(i, k) - k * p(i, k - 1)) / (k + 1);
+  }
+  return p;
+}
+
+// chi - chi_enc - delta_l per sample (the left side of eq. 16), n x 3.
+Eigen::MatrixXd beyondLink(const DecompositionTest& t) {
+  Eigen::MatrixXd r(static_cast<Eigen::Index>(t.time.size()), 3);
+  for (size_t i = 0; i < t.time.size(); ++i) r.row(static_cast<Eigen::Index>(i)) = (t.measured[i] - t.encoder[i] - t.link[i]).transpose();
+  return r;
+}
+
+}  // namespace
+
+std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>& tests, const DecompositionOptions& o) {
+  if (o.referenceTest < 0 || o.referenceTest >= static_cast<int>(tests.size()))
+    throw std::invalid_argument(fmt::format("reference test {} of {} tests", o.referenceTest, tests.size()));
+  if (o.degree < 0 || o.degree > 60) throw std::invalid_argument(fmt::format("motion-error degree {}: give 0 to 60", o.degree));
+  for (size_t k = 0; k < tests.size(); ++k) check(tests[k], k);
+  const DecompositionTest& reference = tests[static_cast<size_t>(o.referenceTest)];
+  if (reference.time.size() < static_cast<size_t>(o.degree) + 2)
+    throw std::invalid_argument(fmt::format("the reference test has {} samples: a degree-{} fit of the motion errors needs more than {}",
+                                            reference.time.size(), o.degree, o.degree + 1));
+  // Eqs. 16-17: in the reference test everything beyond the link errors is motion error, up to
+  // the dynamic residue the fit leaves; the fit's coefficients carry delta_m to the other tests.
+  const Eigen::MatrixXd coefficients = legendreBasis(reference.time, o.degree).householderQr().solve(beyondLink(reference));
+  std::vector<DecomposedTest> out;
+  out.reserve(tests.size());
+  for (size_t k = 0; k < tests.size(); ++k) {
+    const DecompositionTest& t = tests[k];
+    const size_t n = t.time.size();
+    DecomposedTest d;
+    d.feed = t.feed;
+    d.link = t.link;
+    d.contouring.resize(n);
+    d.motion.resize(n);
+    d.dynamic.resize(n);
+    const Eigen::MatrixXd motion = legendreBasis(t.time, o.degree) * coefficients;
+    const Eigen::MatrixXd rest = beyondLink(t) - motion;
+    // Eq. 18: the drift is the mean of what neither link nor motion errors explain; the reference
+    // test's is zero because its fit has the constant term.
+    d.drift = static_cast<int>(k) == o.referenceTest ? Vec3::Zero() : Vec3(rest.colwise().mean().transpose());
+    for (size_t i = 0; i < n; ++i) {
+      const auto row = static_cast<Eigen::Index>(i);
+      d.contouring[i] = t.encoder[i] - t.nominal[i];
+      d.motion[i] = motion.row(row).transpose();
+      d.dynamic[i] = rest.row(row).transpose() - d.drift;
+    }
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+DecompositionShares decompositionShares(const DecomposedTest& test) {
+  DecompositionShares s;
+  int counted3 = 0, counted5 = 0;
+  for (size_t i = 0; i < test.contouring.size(); ++i) {
+    const double c = test.contouring[i].norm(), qs = test.quasiStatic(i).norm(), d = test.dynamic[i].norm();
+    const double l = test.link[i].norm(), m = test.motion[i].norm(), td = test.drift.norm();
+    const double printed = c + qs + d, split = c + l + m + td + d;
+    if (printed > 0) {
+      s.contouring += c / printed;
+      s.quasiStatic += qs / printed;
+      s.dynamic += d / printed;
+      s.splitOverPrinted += (c + l + m + td + d) / printed;
+      ++counted3;
+    }
+    if (split > 0) {
+      s.splitContouring += c / split;
+      s.link += l / split;
+      s.motion += m / split;
+      s.drift += td / split;
+      s.splitDynamic += d / split;
+      ++counted5;
+    }
+  }
+  const double to3 = counted3 > 0 ? 100.0 / counted3 : 0.0, to5 = counted5 > 0 ? 100.0 / counted5 : 0.0;
+  for (double* v : {&s.contouring, &s.quasiStatic, &s.dynamic, &s.splitOverPrinted}) *v *= to3;
+  for (double* v : {&s.splitContouring, &s.link, &s.motion, &s.drift, &s.splitDynamic}) *v *= to5;
+  return s;
+}
+
+DirectionStatistics directionStatistics(const std::vector<Vec3>& series) {
+  DirectionStatistics s;
+  for (const Vec3& v : series) {
+    s.maximum = s.maximum.cwiseMax(v.cwiseAbs());
+    s.rms += v.cwiseProduct(v);
+  }
+  if (!series.empty()) s.rms = (s.rms / static_cast<double>(series.size())).cwiseSqrt();
+  return s;
+}
+
+PowerLaw fitPowerLaw(const std::vector<double>& feeds, const std::vector<double>& values) {
+  if (feeds.size() != values.size() || feeds.size() < 2)
+    throw std::invalid_argument(fmt::format("a power law needs two or more feeds, each with a value ({} feeds, {} values)", feeds.size(), values.size()));
+  const auto n = static_cast<Eigen::Index>(feeds.size());
+  Eigen::MatrixXd a(n, 2);
+  Eigen::VectorXd b(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double f = feeds[static_cast<size_t>(i)], v = values[static_cast<size_t>(i)];
+    if (!(f > 0) || !(v > 0) || !std::isfinite(f) || !std::isfinite(v))
+      throw std::invalid_argument(fmt::format("a power law needs positive feeds and values (feed {:g}, value {:g})", f, v));
+    a(i, 0) = 1.0;
+    a(i, 1) = std::log(f);
+    b[i] = std::log(v);
+  }
+  if (a.col(1).maxCoeff() == a.col(1).minCoeff()) throw std::invalid_argument("a power law needs at least two different feeds");
+  const Eigen::Vector2d x = a.colPivHouseholderQr().solve(b);
+  PowerLaw p{std::exp(x[0]), x[1], 0.0};
+  for (size_t i = 0; i < feeds.size(); ++i)
+    p.largestRelativeMisfit = std::max(p.largestRelativeMisfit, std::abs(p.kappa * std::pow(feeds[i], p.exponent) / values[i] - 1.0));
+  return p;
+}
+
+std::vector<double> geometricFeeds(double first, double ratio, int count) {
+  std::vector<double> feeds;
+  for (int k = 0; k < count; ++k) feeds.push_back(first * std::pow(ratio, k));
+  return feeds;
+}
+
+}  // namespace mtacc
