@@ -94,7 +94,7 @@ DecompositionShares decompositionShares(const DecomposedTest& test) {
       s.contouring += c / printed;
       s.quasiStatic += qs / printed;
       s.dynamic += d / printed;
-      s.splitOverPrinted += (c + l + m + td + d) / printed;
+      s.splitOverPrinted += split / printed;
       ++counted3;
     }
     if (split > 0) {
