@@ -98,8 +98,12 @@ TEST(Seed004Decomposition, V3NoDriftInTheReferenceTestAndV4ItsDynamicErrorIsOrth
           p0 = p1;
           p1 = p;
         }
-        if (k == 2) EXPECT_NEAR(p, 1.5 * x * x - 0.5, 1e-14);
-        if (k == 3) EXPECT_NEAR(p, 2.5 * x * x * x - 1.5 * x, 1e-14);
+        if (k == 2) {
+          EXPECT_NEAR(p, 1.5 * x * x - 0.5, 1e-14);
+        }
+        if (k == 3) {
+          EXPECT_NEAR(p, 2.5 * x * x * x - 1.5 * x, 1e-14);
+        }
         const double e = decomposed[0].dynamic[i][direction];
         dot += e * p;
         dd += e * e;
