@@ -72,7 +72,7 @@ TEST(Seed004Alignment, V5WithServoLagTheEstimateIsTheOffsetPlusTheEffectiveLag) 
 TEST(Seed004Alignment, LinearInterpolationFindsTheOffsetLessClosely) {
   const ServoGains exact[5] = {{40, 1}, {45, 1}, {50, 1}, {35, 1}, {30, 1}};
   const auto r = record(kOffset, exact);
-  const auto linear = estimateClockOffset(r.command, r.encoder, {.interpolation = Interpolation::linear});
+  const auto linear = estimateClockOffset(r.command, r.encoder, {.interpolation = Interpolation::Linear});
   const auto cubic = estimateClockOffset(r.command, r.encoder);
   EXPECT_NEAR(linear.offset, kOffset, 1e-4);
   EXPECT_GT(linear.rmsMisfit, 10 * cubic.rmsMisfit);

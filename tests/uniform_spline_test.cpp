@@ -58,7 +58,7 @@ TEST(UniformSpline, Seed004R9LinearInterpolationOfA3msTraceErrsByAT2Over8) {
     const double t = period * static_cast<double>(k);
     trace[k] = acceleration * t * t / 2;
   }
-  const UniformSpline linear(0.0, period, trace, Interpolation::linear), cubic(0.0, period, trace);
+  const UniformSpline linear(0.0, period, trace, Interpolation::Linear), cubic(0.0, period, trace);
   double largestLinear = 0.0, largestCubic = 0.0;
   for (int j = 0; j <= 199 * 30; ++j) {  // a 10 kHz clock
     const double t = j * 1e-4;
@@ -76,7 +76,7 @@ TEST(UniformSpline, RejectsTooFewSamplesNonFiniteValuesAndTimesOutsideTheSpan) {
   EXPECT_THROW(UniformSpline(0, 1, withNan), std::invalid_argument);
   EXPECT_THROW(UniformSpline(0, 0, four), std::invalid_argument);
   EXPECT_THROW(UniformSpline(0, INFINITY, four), std::invalid_argument);
-  const UniformSpline spline(0, 1, four, Interpolation::linear);
+  const UniformSpline spline(0, 1, four, Interpolation::Linear);
   EXPECT_DOUBLE_EQ(spline(3.0), 4.0);
   EXPECT_THROW(spline(3.01), std::invalid_argument);
   EXPECT_THROW(spline(-0.01), std::invalid_argument);

@@ -63,5 +63,6 @@ void addCompensateCommand(CLI::App& app);     // compensate (compensated program
 void addIdentifyCommands(CLI::App& app);      // identify, observability
 void addCubicCommands(CLI::App& app);         // cubic, cubic-identify
 void addDynamicsCommand(CLI::App& app);       // dynamics modes | frf | accel | map
+void addDecomposeCommand(CLI::App& app);      // decompose (seed 004 error decomposition)
 
 }  // namespace mtacc::cli

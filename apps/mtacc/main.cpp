@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
   mtacc::cli::addCompensateCommand(app);
   mtacc::cli::addIdentifyCommands(app);
   mtacc::cli::addDynamicsCommand(app);
+  mtacc::cli::addDecomposeCommand(app);
   mtacc::cli::addReportCommand(app);
   try {
     app.parse(argc, argv);

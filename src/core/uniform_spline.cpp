@@ -37,7 +37,7 @@ UniformSpline::UniformSpline(double start, double period, std::span<const double
   if (values_.size() < 4) throw std::invalid_argument("a sampled signal needs at least four samples to be interpolated");
   for (double v : values_)
     if (!std::isfinite(v)) throw std::invalid_argument("a sampled signal holds a value that is not finite");
-  if (kind == Interpolation::cubic) curvature_ = notAKnotCurvature(values_);
+  if (kind == Interpolation::CubicSpline) curvature_ = notAKnotCurvature(values_);
 }
 
 double UniformSpline::operator()(double t) const {
@@ -49,7 +49,7 @@ double UniformSpline::operator()(double t) const {
   const auto i = std::min(static_cast<size_t>(clamped), values_.size() - 2);
   const double u = clamped - static_cast<double>(i), w = 1.0 - u;
   const double straight = w * values_[i] + u * values_[i + 1];
-  if (kind_ == Interpolation::linear) return straight;
+  if (kind_ == Interpolation::Linear) return straight;
   return straight + (w * w * w - w) * curvature_[i] + (u * u * u - u) * curvature_[i + 1];
 }
 

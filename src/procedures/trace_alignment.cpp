@@ -58,12 +58,12 @@ ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace&
   if (command.channels.size() != encoder.channels.size() || encoder.channels.empty())
     throw std::invalid_argument("clock offset: the command and encoder traces need the same channels");
   if (!(search.highest > search.lowest)) throw std::invalid_argument("clock offset: the search window is empty");
-  const auto coarse = normalisedChannels(command, encoder, Interpolation::linear);
+  const auto coarse = normalisedChannels(command, encoder, Interpolation::Linear);
   if (coarse.empty()) throw std::invalid_argument("clock offset: no axis moves in the encoder trace");
   const size_t enough = std::max<size_t>(4, encoder.samples() / 4);
 
   double best = std::numeric_limits<double>::quiet_NaN(), bestCost = std::numeric_limits<double>::infinity();
-  const double step = encoder.period;
+  const double step = std::fmax(encoder.period, (search.highest - search.lowest) / 20000);  // a bounded scan
   const auto steps = static_cast<long>(std::ceil((search.highest - search.lowest) / step));
   for (long i = 0; i <= steps; ++i) {
     const double offset = std::fmin(search.lowest + step * static_cast<double>(i), search.highest);

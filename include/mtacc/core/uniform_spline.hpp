@@ -6,15 +6,15 @@
 #include <span>
 #include <vector>
 
-namespace mtacc {
+#include "mtacc/core/interpolation.hpp"
 
-enum class Interpolation { linear, cubic };
+namespace mtacc {
 
 class UniformSpline {
  public:
   // Samples at start + k * period, k = 0 .. n - 1. Throws std::invalid_argument for fewer than
   // four samples, a period that is not positive and finite, or a value that is not finite.
-  UniformSpline(double start, double period, std::span<const double> values, Interpolation kind = Interpolation::cubic);
+  UniformSpline(double start, double period, std::span<const double> values, Interpolation kind = Interpolation::CubicSpline);
 
   // Throws std::invalid_argument for t outside [first(), last()] beyond a millionth of a period.
   double operator()(double t) const;

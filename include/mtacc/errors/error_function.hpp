@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include "mtacc/core/interpolation.hpp"
+
 namespace mtacc {
 
 // f(q) = sum_k c_k * ((q - zero) / scale)^k. Constant and linear errors are polynomials.
@@ -40,8 +42,6 @@ struct HarmonicTerm {
   bool cyclic = false;  // a pitch error (parameter named "cyc") rather than a harmonic of the travel ("h<order>")
   HarmonicPart part = HarmonicPart::Amplitude;
 };
-
-enum class Interpolation { Linear, CubicSpline };
 
 // Where q falls in a grid of increasing positions: the interval and the offset from its start,
 // clamped to the grid.

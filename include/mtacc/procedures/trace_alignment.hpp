@@ -21,7 +21,7 @@ struct SampledTrace {
 
 struct ClockOffsetSearch {
   double lowest = -0.5, highest = 0.5;  // s: the offsets considered
-  Interpolation interpolation = Interpolation::cubic;
+  Interpolation interpolation = Interpolation::CubicSpline;
 };
 
 // The command sample stamped s belongs at encoder time s + offset. What the least squares find
@@ -36,7 +36,7 @@ struct ClockOffset {
 
 // Every channel is normalised by its encoder spread (standard deviation) so that mm and deg
 // weigh alike; a channel that does not move is left out. The offset is searched over the
-// window at a quarter of the encoder period, then refined by golden section to 1e-9 s. Throws
+// window at the encoder period (at most 20 000 steps), then refined by golden section to 1e-9 s. Throws
 // std::invalid_argument for traces with different channel counts, no moving channel, an empty
 // window, or offsets whose overlap holds fewer than a quarter of the encoder samples.
 ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace& encoder, const ClockOffsetSearch& search = {});
@@ -44,6 +44,6 @@ ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace&
 // Each channel of `trace`, with its clock moved by `offset`, at the given times (s). Throws
 // std::invalid_argument when a time falls outside the moved trace's span.
 std::vector<std::vector<double>> resampleTrace(const SampledTrace& trace, double offset, const std::vector<double>& times,
-                                               Interpolation interpolation = Interpolation::cubic);
+                                               Interpolation interpolation = Interpolation::CubicSpline);
 
 }  // namespace mtacc

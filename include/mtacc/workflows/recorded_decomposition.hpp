@@ -1,0 +1,42 @@
+#pragma once
+// Seed 004 on recorded signals: per test of a decomposition set, the command trace moved onto
+// the encoder clock (the offset given or estimated), both traces resampled at the instrument's
+// samples, the machine's nominal direct kinematics for chi_nom and chi_enc, the link errors of
+// the errors file along the encoder path, then the decomposition of eqs. 6, 10-20 and its
+// statistics (eqs. 21-23) over the feeds.
+#include <array>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "mtacc/io/decomposition_set_yaml.hpp"
+#include "mtacc/procedures/error_decomposition.hpp"
+#include "mtacc/workflows/machine_setup.hpp"
+
+namespace mtacc {
+
+struct TestAlignment {
+  double offset = 0.0;       // s: the command sample stamped s belongs at encoder time s + offset
+  bool estimated = false;
+  double rmsMisfit = 0.0;    // of the estimate, in the axes' spreads (0 when given)
+  size_t instrumentSamples = 0, samplesUsed = 0;  // those outside either moved trace are left out
+};
+
+struct RecordedDecomposition {
+  DecompositionSet set;
+  std::vector<TestAlignment> alignment;   // per test, in the set's order
+  std::vector<DecomposedTest> tests;
+  std::vector<DecompositionShares> shares;
+  std::vector<DirectionStatistics> contouring, quasiStatic, dynamic;
+  // delta_d RMS against feed per direction (eq. 23); absent for fewer than two feeds or a zero RMS
+  std::array<std::optional<PowerLaw>, 3> dynamicLaw;
+};
+
+// The errors file's model is taken as the identified link errors (delta_l = its TCP minus the
+// nominal TCP at the encoder positions); without one, delta_l = 0 and the reference test's fit
+// holds all the quasi-static error. Throws InputError naming the set or signal file.
+RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const DecompositionSet& set);
+// Lengths in um, offsets in ms, shares in %.
+nlohmann::json toJson(const RecordedDecomposition& result);
+
+}  // namespace mtacc
