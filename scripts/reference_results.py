@@ -48,8 +48,12 @@ PENDING = {
            "used the five-norm denominator, erratum E1), the power laws of Table 4 under reading A "
            "(Seed004Statistics.R6, the extraction's fits; the paper prints no kappa or N) and its RMS "
            "against Table 3's maxima (R7). The method's identities V1-V4, V12, V13 are "
-           "Seed004Decomposition.*. Not yet computed (issue 18): the 18 ms delay in samples (R8) and "
-           "the linear-interpolation bound (R9), which belong to the signal pipeline.",
+           "Seed004Decomposition.*; the 18 ms delay in NC cycles and instrument samples (R8) is "
+           "Seed004Alignment.R8*, the linear-interpolation bound a*T^2/8 (R9) UniformSpline.Seed004R9*. "
+           "On the virtual machine (own constants, wcayfxzt-compact structure) the clock offset, "
+           "contouring, quasi-static, drift and dynamic errors are recovered within V5, V6, V8-V11 and "
+           "the misalignment control of V14 (Seed004VirtualMachine.*). Not yet built (issue 18): the "
+           "link identification from static poses (V7).",
 }
 FIELDS = ["seed", "where", "quantity", "printed", "mtacc", "difference", "unit", "verdict"]
 

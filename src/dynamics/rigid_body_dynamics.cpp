@@ -194,6 +194,18 @@ Frf frfDirect(const StructureMatrices& m, const std::vector<double>& frequencies
   return out;
 }
 
+Eigen::VectorXd modalDampingCoefficients(const StructureMatrices& m, const Modes& modes) {
+  // D phi block by block: D couples only bodies joined by an element.
+  const Eigen::Index bodies = m.damping.rows() / 6, r = modes.shapes.cols();
+  Eigen::MatrixXd dampedShapes = Eigen::MatrixXd::Zero(m.damping.rows(), r);
+  for (Eigen::Index i = 0; i < bodies; ++i)
+    for (Eigen::Index j = 0; j < bodies; ++j) {
+      const auto block = m.damping.block<6, 6>(6 * i, 6 * j);
+      if (!block.isZero(0.0)) dampedShapes.middleRows<6>(6 * i).noalias() += block * modes.shapes.middleRows<6>(6 * j);
+    }
+  return modes.shapes.cwiseProduct(dampedShapes).colwise().sum().transpose();
+}
+
 namespace {
 
 // The six distinct entries of the symmetric H at every frequency, by modal superposition:
@@ -204,15 +216,7 @@ struct ModalSums {
 ModalSums modalSums(const StructureMatrices& m, const Modes& modes, const std::vector<double>& frequencies) {
   const Eigen::Index r = modes.frequencies.size();
   const Eigen::Matrix<double, 3, Eigen::Dynamic> participation = m.selection * modes.shapes;  // S phi_r
-  // D phi block by block: D couples only bodies joined by an element.
-  const Eigen::Index bodies = m.damping.rows() / 6;
-  Eigen::MatrixXd dampedShapes = Eigen::MatrixXd::Zero(m.damping.rows(), r);
-  for (Eigen::Index i = 0; i < bodies; ++i)
-    for (Eigen::Index j = 0; j < bodies; ++j) {
-      const auto block = m.damping.block<6, 6>(6 * i, 6 * j);
-      if (!block.isZero(0.0)) dampedShapes.middleRows<6>(6 * i).noalias() += block * modes.shapes.middleRows<6>(6 * j);
-    }
-  const Eigen::VectorXd modalDamping = modes.shapes.cwiseProduct(dampedShapes).colwise().sum().transpose();
+  const Eigen::VectorXd modalDamping = modalDampingCoefficients(m, modes);
   constexpr size_t kLanes = 4;
   using Lanes = Eigen::Array<double, kLanes, 1>;
   // Per mode, contiguous and already in every lane: w_r^2, c_r and the six products of its

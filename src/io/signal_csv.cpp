@@ -57,4 +57,14 @@ RecordedSignal readSignalCsv(const std::string& path, const SignalLayout& layout
   return parseSignalCsv(readTextFile(path), path, layout);
 }
 
+std::string signalCsv(const SampledTrace& trace, const std::vector<std::string>& names, const std::vector<double>& scales) {
+  std::string out = fmt::format("time_s,{}\n", fmt::join(names, ","));
+  for (size_t k = 0; k < trace.samples(); ++k) {
+    out += fmt::format("{:.9f}", trace.start + trace.period * static_cast<double>(k));
+    for (size_t c = 0; c < trace.channels.size(); ++c) out += fmt::format(",{:.10g}", trace.channels[c][k] * scales[c]);
+    out += '\n';
+  }
+  return out;
+}
+
 }  // namespace mtacc

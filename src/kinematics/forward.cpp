@@ -205,6 +205,13 @@ void toolPoints(const KinematicModel& m, const PoseBatch& poses, ToolPointBatch&
   });
 }
 
+PointMatrix toolPositions(const KinematicModel& model, const JointMatrix& q, int threads) {
+  const DirectionMatrix none;
+  ToolPointBatch out;
+  toolPoints(model, {q, none}, out, threads);
+  return out.positions;
+}
+
 PoseErrorMatrix toolErrors(const KinematicModel& actual, const KinematicModel& nominal, const PoseBatch& poses,
                            int threads) {
   PoseErrorMatrix out(poses.q.rows(), 6);

@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "mtacc/io/signal_csv.hpp"
-#include "mtacc/kinematics/forward.hpp"
 
 namespace mtacc {
 
@@ -24,75 +23,25 @@ void degreesToRadians(const Machine& machine, SampledTrace& trace) {
       for (double& v : trace.channels[a]) v *= kDeg;
 }
 
-JointMatrix asPoses(const std::vector<std::vector<double>>& channels) {
-  JointMatrix q(static_cast<long>(channels.front().size()), static_cast<long>(channels.size()));
-  for (size_t a = 0; a < channels.size(); ++a)
-    for (size_t k = 0; k < channels[a].size(); ++k) q(static_cast<long>(k), static_cast<long>(a)) = channels[a][k];
-  return q;
-}
-
-std::vector<Vec3> relativeToBall(const PointMatrix& tcp, const Vec3& ball) {
-  std::vector<Vec3> out(static_cast<size_t>(tcp.rows()));
-  for (long k = 0; k < tcp.rows(); ++k) out[static_cast<size_t>(k)] = tcp.row(k).transpose() - ball;
-  return out;
-}
-
-DecompositionTest alignedTest(const MachineSetup& setup, const DecompositionSet& set, const RecordedTest& recorded, TestAlignment& alignment) {
+AlignedTest alignedTest(const MachineSetup& setup, const DecompositionSet& set, const RecordedTest& recorded) {
   const auto& machine = *setup.machine;
   const auto axes = commandedAxes(machine);
-  auto command = readSignalCsv(recorded.command, {axes, set.ncPeriod}).trace;
-  const auto encoderFile = readSignalCsv(recorded.encoder, {axes, set.ncPeriod > 0 ? set.ncPeriod : command.period});
-  const auto instrumentFile = readSignalCsv(recorded.instrument, {{"dx_um", "dy_um", "dz_um"}, set.instrumentPeriod});
-  auto encoder = encoderFile.trace;
-  const auto& instrument = instrumentFile.trace;
+  const auto commandFile = readSignalCsv(recorded.command, {axes, set.ncPeriod});
+  const auto encoderFile = readSignalCsv(recorded.encoder, {axes, set.ncPeriod > 0 ? set.ncPeriod : commandFile.trace.period});
+  auto instrumentFile = readSignalCsv(recorded.instrument, {{"dx_um", "dy_um", "dz_um"}, set.instrumentPeriod});
+  auto command = commandFile.trace, encoder = encoderFile.trace;
   degreesToRadians(machine, command);
   degreesToRadians(machine, encoder);
-
-  if (set.clockOffset) {
-    alignment.offset = *set.clockOffset;
-  } else {
-    try {
-      const auto found = estimateClockOffset(command, encoder, {set.searchLowest, set.searchHighest, set.interpolation});
-      alignment = {found.offset, true, found.rmsMisfit, 0, 0};
-    } catch (const std::invalid_argument& e) {
-      throw InputError({recorded.encoder, encoderFile.headerLine, "time_s"}, e.what());
-    }
+  for (auto& channel : instrumentFile.trace.channels)
+    for (double& v : channel) v *= kMicro;
+  const SignalProcessing processing{set.clockOffset, {set.searchLowest, set.searchHighest, set.interpolation}, set.ball};
+  try {
+    return alignRecordedTest(setup.nominal(), setup.actual(), {recorded.feed, command, encoder, instrumentFile.trace}, processing);
+  } catch (const std::invalid_argument& e) {
+    const bool offset = std::string_view(e.what()).starts_with("clock offset");
+    throw InputError({offset ? recorded.encoder : recorded.instrument, offset ? encoderFile.headerLine : instrumentFile.headerLine, "time_s"},
+                     e.what());
   }
-  alignment.instrumentSamples = instrument.samples();
-  const double from = std::max(command.start + alignment.offset, encoder.start), to = std::min(command.end() + alignment.offset, encoder.end());
-  DecompositionTest test;
-  test.feed = recorded.feed;
-  std::vector<size_t> used;
-  for (size_t j = 0; j < instrument.samples(); ++j) {
-    const double t = instrument.start + instrument.period * static_cast<double>(j);
-    if (t >= from && t <= to) {
-      test.time.push_back(t);
-      used.push_back(j);
-    }
-  }
-  alignment.samplesUsed = used.size();
-  if (used.size() < 4)
-    throw InputError({recorded.instrument, instrumentFile.headerLine, "time_s"},
-                     fmt::format("{} instrument samples fall inside the command and encoder traces (offset {:.3f} ms)", used.size(),
-                                 alignment.offset * 1e3));
-  const auto nominalQ = asPoses(resampleTrace(command, alignment.offset, test.time, set.interpolation));
-  const auto encoderQ = asPoses(resampleTrace(encoder, 0.0, test.time, set.interpolation));
-  const DirectionMatrix none;
-  ToolPointBatch nominal, atEncoder, actual;
-  const auto nominalModel = setup.nominal(), actualModel = setup.actual();
-  toolPoints(nominalModel, {nominalQ, none}, nominal, 1);
-  toolPoints(nominalModel, {encoderQ, none}, atEncoder, 1);
-  toolPoints(actualModel, {encoderQ, none}, actual, 1);
-  test.nominal = relativeToBall(nominal.positions, set.ball);
-  test.encoder = relativeToBall(atEncoder.positions, set.ball);
-  test.link.resize(used.size());
-  test.measured.resize(used.size());
-  for (size_t i = 0; i < used.size(); ++i) {
-    const auto k = static_cast<long>(i);
-    test.link[i] = (actual.positions.row(k) - atEncoder.positions.row(k)).transpose();
-    test.measured[i] = kMicro * Vec3(instrument.channels[0][used[i]], instrument.channels[1][used[i]], instrument.channels[2][used[i]]);
-  }
-  return test;
 }
 
 }  // namespace
@@ -101,7 +50,11 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
   RecordedDecomposition out;
   out.set = set;
   std::vector<DecompositionTest> tests;
-  for (const auto& recorded : set.tests) tests.push_back(alignedTest(setup, set, recorded, out.alignment.emplace_back()));
+  for (const auto& recorded : set.tests) {
+    auto aligned = alignedTest(setup, set, recorded);
+    tests.push_back(std::move(aligned.test));
+    out.alignment.push_back(aligned.alignment);
+  }
   try {
     out.tests = decomposeErrors(tests, {set.referenceTest, set.degree});
   } catch (const std::invalid_argument& e) {

@@ -3,6 +3,8 @@
 // of Machine::axes, linear axes in mm and rotary axes in rad; points and directions in mm.
 #include <Eigen/Core>
 
+#include <vector>
+
 namespace mtacc {
 
 using JointMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
@@ -10,5 +12,13 @@ using JointMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen:
 using DirectionMatrix = Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 using PointMatrix = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using PoseErrorMatrix = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>;
+
+// Poses from one series per axis (all of one length): row k holds every axis's sample k.
+inline JointMatrix posesFromChannels(const std::vector<std::vector<double>>& channels) {
+  JointMatrix q(channels.empty() ? 0 : static_cast<Eigen::Index>(channels.front().size()), static_cast<Eigen::Index>(channels.size()));
+  for (size_t a = 0; a < channels.size(); ++a)
+    for (size_t k = 0; k < channels[a].size(); ++k) q(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(a)) = channels[a][k];
+  return q;
+}
 
 }  // namespace mtacc

@@ -41,6 +41,10 @@ struct Modes {
 // and the direction of the free motion.
 Modes undampedModes(const StructureModel& model, const StructureMatrices& m);
 
+// phi_r^T D phi_r per mode (1/s): the modal equations q'' + c_r q' + w_r^2 q = phi_r^T f,
+// exact for proportional damping.
+Eigen::VectorXd modalDampingCoefficients(const StructureMatrices& m, const Modes& modes);
+
 struct DampedMode {
   double frequency;     // Hz, |lambda| / 2 pi
   double dampingRatio;  // -Re(lambda) / |lambda|

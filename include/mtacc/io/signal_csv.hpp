@@ -26,4 +26,8 @@ struct RecordedSignal {
 RecordedSignal readSignalCsv(const std::string& path, const SignalLayout& layout);
 RecordedSignal parseSignalCsv(const std::string& text, const std::string& sourceName, const SignalLayout& layout);
 
+// The file's text: `time_s` (to the nanosecond) and each channel times its scale (e.g. 1 / kDeg
+// for a rotary axis, 1000 for readings in um) to ten significant digits.
+std::string signalCsv(const SampledTrace& trace, const std::vector<std::string>& names, const std::vector<double>& scales);
+
 }  // namespace mtacc

@@ -37,6 +37,8 @@ struct ToolPointBatch {
 };
 // Batch evaluation into `out` (its storage reused).
 void toolPoints(const KinematicModel& model, const PoseBatch& poses, ToolPointBatch& out, int threads = kAllCores);
+// TCP positions only (mm, workpiece frame), no direction of motion.
+PointMatrix toolPositions(const KinematicModel& model, const JointMatrix& q, int threads = kAllCores);
 // TCP position and orientation errors (n x 6) of `actual` against `nominal`.
 PoseErrorMatrix toolErrors(const KinematicModel& actual, const KinematicModel& nominal, const PoseBatch& poses,
                            int threads = kAllCores);

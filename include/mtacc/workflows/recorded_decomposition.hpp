@@ -10,17 +10,10 @@
 #include <nlohmann/json.hpp>
 
 #include "mtacc/io/decomposition_set_yaml.hpp"
-#include "mtacc/procedures/error_decomposition.hpp"
+#include "mtacc/procedures/recorded_test.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
 namespace mtacc {
-
-struct TestAlignment {
-  double offset = 0.0;       // s: the command sample stamped s belongs at encoder time s + offset
-  bool estimated = false;
-  double rmsMisfit = 0.0;    // of the estimate, in the axes' spreads (0 when given)
-  size_t instrumentSamples = 0, samplesUsed = 0;  // those outside either moved trace are left out
-};
 
 struct RecordedDecomposition {
   DecompositionSet set;

@@ -1,0 +1,46 @@
+#pragma once
+// Seed 004 eqs. 3-9 and 13-15 on one test's signals: the command trace moved onto the encoder
+// clock (O1), both traces resampled at the instrument's samples (O7), chi_nom and chi_enc by the
+// nominal direct kinematics, and the link errors of the identified model along the encoder path.
+#include <optional>
+
+#include "mtacc/core/parallel.hpp"
+#include "mtacc/kinematics/kinematic_model.hpp"
+#include "mtacc/procedures/error_decomposition.hpp"
+#include "mtacc/procedures/trace_alignment.hpp"
+
+namespace mtacc {
+
+struct TestAlignment {
+  double offset = 0.0;     // s: the command sample stamped s belongs at encoder time s + offset
+  bool estimated = false;
+  double rmsMisfit = 0.0;  // of the estimate, in the axes' spreads (0 when given)
+  size_t instrumentSamples = 0, samplesUsed = 0;  // those outside either moved trace are left out
+};
+
+struct RecordedSignals {
+  double feed = 0.0;              // mm/min as programmed
+  const SampledTrace& command;    // commanded axes (mm, rad) on the NC's clock
+  const SampledTrace& encoder;    // the same axes' encoder positions on the instrument's clock
+  const SampledTrace& instrument; // tool ball minus workpiece ball, workpiece frame, mm
+};
+
+struct SignalProcessing {
+  std::optional<double> clockOffset;  // s; estimated when absent
+  ClockOffsetSearch search;           // its window and the interpolation of every trace
+  Vec3 ball = Vec3::Zero();           // the workpiece ball centre, workpiece frame, mm
+};
+
+struct AlignedTest {
+  DecompositionTest test;
+  TestAlignment alignment;
+};
+
+// `identified`: the machine with its identified link errors (delta_l = its TCP minus the
+// nominal TCP at the encoder positions). Throws std::invalid_argument when the offset cannot be
+// estimated (see estimateClockOffset) or fewer than four instrument samples fall inside both
+// moved traces.
+AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicModel& identified, const RecordedSignals& signals,
+                              const SignalProcessing& processing, int threads = kAllCores);
+
+}  // namespace mtacc

@@ -1,0 +1,127 @@
+#include "mtacc/workflows/virtual_motion.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+
+#include "mtacc/io/gcode_program.hpp"
+#include "mtacc/io/signal_csv.hpp"
+#include "mtacc/io/structure_yaml.hpp"
+#include "mtacc/io/text_file.hpp"
+#include "mtacc/kinematics/forward.hpp"
+
+namespace mtacc {
+
+namespace {
+
+constexpr int kPointsPerArc = 64;
+
+// The program's moves as points: each straight move's end, an arc every 1/64 of its sweep.
+std::vector<std::vector<double>> programPath(const GcodeProgram& program) {
+  std::vector<std::vector<double>> path;
+  for (const auto& move : program.moves) {
+    if (path.empty()) path.push_back(move.from.empty() ? move.to : move.from);
+    if (move.isArc())
+      for (int i = 1; i <= kPointsPerArc; ++i) path.push_back(move.at(static_cast<double>(i) / kPointsPerArc));
+    else
+      path.push_back(move.to);
+  }
+  return path;
+}
+
+Vec3 largestComponents(const std::vector<Vec3>& series) {
+  Vec3 largest = Vec3::Zero();
+  for (const auto& v : series) largest = largest.cwiseMax(v.cwiseAbs());
+  return largest;
+}
+
+}  // namespace
+
+MotionSimulation simulateMotion(const MachineSetup& setup, const MotionSimulationRequest& request) {
+  const auto& machine = *setup.machine;
+  const auto program = readGcodeProgram(request.program, machine);
+  const auto path = programPath(program);
+  if (path.size() < 2) throw InputError({request.program, 0, ""}, "the program has no move");
+  std::vector<bool> rotary;
+  std::vector<std::string> axes;
+  std::vector<double> scales;
+  for (int a = 0; a < machine.commandedCount(); ++a) {
+    const auto& axis = machine.axes[static_cast<size_t>(a)];
+    rotary.push_back(axis.isRotary());
+    axes.push_back(axis.name);
+    scales.push_back(axis.isRotary() ? 1.0 / kDeg : 1.0);
+  }
+  const auto nominal = setup.nominal(), actual = setup.actual();
+  std::unique_ptr<StructureModel> structure;
+  if (!request.structure.empty()) structure = std::make_unique<StructureModel>(loadStructure(request.structure));
+
+  MotionSimulation out;
+  out.ball = request.ball ? *request.ball : toolPoint(nominal, path.front().data()).position;
+  std::filesystem::create_directories(request.folder);
+  std::string set = fmt::format("# written by mtacc simulate motion from {}\nball: [{:.9g} mm, {:.9g} mm, {:.9g} mm]\nnc_rate_hz: {:.9g}\n"
+                                "instrument_rate_hz: {:.9g}\ntests:\n",
+                                request.program, out.ball.x(), out.ball.y(), out.ball.z(), 1.0 / request.ncPeriod, 1.0 / request.instrumentPeriod);
+  for (size_t k = 0; k < request.feeds.size(); ++k) {
+    const double feed = request.feeds[k];
+    VirtualRecordingOptions options;
+    options.servo.assign(axes.size(), request.servo);
+    options.ncPeriod = request.ncPeriod;
+    options.clockOffset = request.clockOffset;
+    options.ball = out.ball;
+    options.drift = static_cast<double>(k) * request.driftStep;
+    options.noise = request.noise;
+    options.seed = request.seed + k;
+    options.structure = structure.get();
+    VirtualRecording recording;
+    try {
+      recording = recordVirtualTest(nominal, actual, interpolateMotion(path, rotary, feed, request.limits, request.instrumentPeriod), options);
+    } catch (const std::invalid_argument& e) {
+      throw InputError({request.program, 0, fmt::format("feed {:g}", feed)}, e.what());
+    }
+    SimulatedFeed simulated{feed, recording.instrument.end() - recording.instrument.start, recording.instrument.samples(),
+                            largestComponents(recording.contouring), largestComponents(recording.geometric),
+                            largestComponents(recording.dynamic), {}};
+    SampledTrace truth{recording.instrument.start, recording.instrument.period, {}};
+    for (const auto* series : {&recording.contouring, &recording.geometric, &recording.dynamic})
+      for (int c = 0; c < 3; ++c) {
+        auto& channel = truth.channels.emplace_back(series->size());
+        for (size_t i = 0; i < series->size(); ++i) channel[i] = (*series)[i][c];
+      }
+    const std::string stem = fmt::format("f{:.0f}", feed);
+    const auto write = [&](const std::string& name, const std::string& text) {
+      const auto file = (std::filesystem::path(request.folder) / (stem + "-" + name + ".csv")).string();
+      writeFileAtomically(file, text);
+      simulated.files.push_back(file);
+    };
+    write("command", signalCsv(recording.command, axes, scales));
+    write("encoder", signalCsv(recording.encoder, axes, scales));
+    write("instrument", signalCsv(recording.instrument, {"dx_um", "dy_um", "dz_um"}, {1e3, 1e3, 1e3}));
+    write("truth", signalCsv(truth,
+                             {"contouring_x_um", "contouring_y_um", "contouring_z_um", "geometric_x_um", "geometric_y_um", "geometric_z_um",
+                              "dynamic_x_um", "dynamic_y_um", "dynamic_z_um"},
+                             std::vector<double>(9, 1e3)));
+    set += fmt::format("  - {{feed: {:.9g}, command: {}-command.csv, encoder: {}-encoder.csv, instrument: {}-instrument.csv}}\n", feed, stem, stem, stem);
+    out.feeds.push_back(std::move(simulated));
+  }
+  out.setFile = (std::filesystem::path(request.folder) / "set.yaml").string();
+  writeFileAtomically(out.setFile, set);
+  return out;
+}
+
+nlohmann::json toJson(const MotionSimulation& s) {
+  const auto um = [](const Vec3& v) { return nlohmann::json::array({v.x() * 1e3, v.y() * 1e3, v.z() * 1e3}); };
+  nlohmann::json j{{"ball_mm", {s.ball.x(), s.ball.y(), s.ball.z()}}, {"set", s.setFile}, {"feeds", nlohmann::json::array()}};
+  for (const auto& f : s.feeds)
+    j["feeds"].push_back({{"feed_mm_min", f.feed},
+                          {"duration_s", f.duration},
+                          {"instrument_samples", f.instrumentSamples},
+                          {"contouring_max_um", um(f.contouringMax)},
+                          {"geometric_max_um", um(f.geometricMax)},
+                          {"dynamic_max_um", um(f.dynamicMax)},
+                          {"files", f.files}});
+  return j;
+}
+
+}  // namespace mtacc
