@@ -36,5 +36,8 @@ echo
 echo "== Benchmark: 3x3 FRF at 500 frequencies at 10,000 positions of a 10-body model, against vectorised NumPy =="
 ./build/bench/bench_dynamics_vs_numpy
 echo
+echo "== Benchmark: seed 004's decomposition of six feeds of 150,000 samples, against NumPy + SciPy =="
+./build/bench/bench_decomposition_vs_numpy
+echo
 echo "== Benchmark: the Python batch API against the C++ call it wraps =="
 ./build/bench/bench_python_batch_fk

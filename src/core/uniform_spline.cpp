@@ -40,17 +40,30 @@ UniformSpline::UniformSpline(double start, double period, std::span<const double
   if (kind == Interpolation::CubicSpline) curvature_ = notAKnotCurvature(values_);
 }
 
-double UniformSpline::operator()(double t) const {
+UniformSpline::Location UniformSpline::locate(double t) const {
   const double position = (t - start_) / period_;
   const auto intervals = static_cast<double>(values_.size() - 1);
   if (!(position >= -1e-6 && position <= intervals + 1e-6))
     throw std::invalid_argument("interpolation outside the sampled span");
   const double clamped = std::fmin(std::fmax(position, 0.0), intervals);
   const auto i = std::min(static_cast<size_t>(clamped), values_.size() - 2);
-  const double u = clamped - static_cast<double>(i), w = 1.0 - u;
+  return {i, clamped - static_cast<double>(i)};
+}
+
+double UniformSpline::at(const Location& where) const {
+  const size_t i = where.interval;
+  const double u = where.fraction, w = 1.0 - u;
   const double straight = w * values_[i] + u * values_[i + 1];
   if (kind_ == Interpolation::Linear) return straight;
   return straight + (w * w * w - w) * curvature_[i] + (u * u * u - u) * curvature_[i + 1];
+}
+
+double UniformSpline::slopeAt(const Location& where) const {
+  const size_t i = where.interval;
+  const double u = where.fraction, w = 1.0 - u;
+  double slope = values_[i + 1] - values_[i];
+  if (kind_ == Interpolation::CubicSpline) slope += (1.0 - 3 * w * w) * curvature_[i] + (3 * u * u - 1.0) * curvature_[i + 1];
+  return slope / period_;
 }
 
 }  // namespace mtacc

@@ -8,23 +8,55 @@ namespace mtacc {
 
 namespace {
 
-struct NormalisedChannel {
-  UniformSpline command;
-  const std::vector<double>* encoder;
-  double inverseSpread;
+// The command's moving channels as splines (one start, period and length: they share each
+// location), each with its encoder samples and the inverse of their spread.
+struct NormalisedChannels {
+  std::vector<UniformSpline> command;
+  std::vector<const std::vector<double>*> encoder;
+  std::vector<double> inverseSpread;
 };
 
-// Mean squared normalised misfit over the encoder samples [first, last) with the command moved by `offset`.
-double meanSquaredMisfit(const std::vector<NormalisedChannel>& channels, const SampledTrace& encoder, double offset,
-                         size_t first, size_t last) {
-  double sum = 0.0;
-  for (const auto& channel : channels)
-    for (size_t k = first; k < last; ++k) {
-      const double t = encoder.start + encoder.period * static_cast<double>(k);
-      const double misfit = ((*channel.encoder)[k] - channel.command(t - offset)) * channel.inverseSpread;
-      sum += misfit * misfit;
+NormalisedChannels normalisedChannels(const SampledTrace& command, const SampledTrace& encoder, Interpolation kind) {
+  NormalisedChannels channels;
+  for (size_t c = 0; c < encoder.channels.size(); ++c) {
+    const auto& values = encoder.channels[c];
+    double mean = 0.0, square = 0.0;
+    for (double v : values) mean += v;
+    mean /= static_cast<double>(values.size());
+    for (double v : values) square += (v - mean) * (v - mean);
+    const double spread = std::sqrt(square / static_cast<double>(values.size()));
+    if (!(spread > 1e-12 * (1.0 + std::fabs(mean)))) continue;
+    channels.command.emplace_back(command.start, command.period, command.channels[c], kind);
+    channels.encoder.push_back(&values);
+    channels.inverseSpread.push_back(1.0 / spread);
+  }
+  return channels;
+}
+
+// Over the encoder samples [first, last) with the command moved by `offset`: the mean squared
+// normalised misfit, and (with `gauss`) the sums of residual * slope and slope^2 of the misfit
+// in the offset, for a Gauss-Newton step.
+struct Misfit {
+  double meanSquare = 0.0, residualSlope = 0.0, slopeSquare = 0.0;
+};
+Misfit misfit(const NormalisedChannels& channels, const SampledTrace& encoder, double offset, size_t first, size_t last, bool gauss) {
+  Misfit m;
+  const auto& reference = channels.command.front();
+  for (size_t k = first; k < last; ++k) {
+    const auto where = reference.locate(encoder.start + encoder.period * static_cast<double>(k) - offset);
+    for (size_t c = 0; c < channels.command.size(); ++c) {
+      const double scale = channels.inverseSpread[c];
+      const double residual = ((*channels.encoder[c])[k] - channels.command[c].at(where)) * scale;
+      m.meanSquare += residual * residual;
+      if (gauss) {
+        const double slope = channels.command[c].slopeAt(where) * scale;  // d residual / d offset
+        m.residualSlope += residual * slope;
+        m.slopeSquare += slope * slope;
+      }
     }
-  return sum / static_cast<double>((last - first) * channels.size());
+  }
+  m.meanSquare /= static_cast<double>((last - first) * channels.command.size());
+  return m;
 }
 
 // The encoder samples whose time minus every offset in [lowest, highest] falls inside the command's span.
@@ -37,21 +69,6 @@ std::pair<size_t, size_t> comparedSamples(const SampledTrace& command, const Sam
   return {static_cast<size_t>(first), static_cast<size_t>(last)};
 }
 
-std::vector<NormalisedChannel> normalisedChannels(const SampledTrace& command, const SampledTrace& encoder, Interpolation kind) {
-  std::vector<NormalisedChannel> channels;
-  for (size_t c = 0; c < encoder.channels.size(); ++c) {
-    const auto& values = encoder.channels[c];
-    double mean = 0.0, square = 0.0;
-    for (double v : values) mean += v;
-    mean /= static_cast<double>(values.size());
-    for (double v : values) square += (v - mean) * (v - mean);
-    const double spread = std::sqrt(square / static_cast<double>(values.size()));
-    if (!(spread > 1e-12 * (1.0 + std::fabs(mean)))) continue;
-    channels.push_back({UniformSpline(command.start, command.period, command.channels[c], kind), &values, 1.0 / spread});
-  }
-  return channels;
-}
-
 }  // namespace
 
 ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace& encoder, const ClockOffsetSearch& search) {
@@ -59,7 +76,7 @@ ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace&
     throw std::invalid_argument("clock offset: the command and encoder traces need the same channels");
   if (!(search.highest > search.lowest)) throw std::invalid_argument("clock offset: the search window is empty");
   const auto coarse = normalisedChannels(command, encoder, Interpolation::Linear);
-  if (coarse.empty()) throw std::invalid_argument("clock offset: no axis moves in the encoder trace");
+  if (coarse.command.empty()) throw std::invalid_argument("clock offset: no axis moves in the encoder trace");
   const size_t enough = std::max<size_t>(4, encoder.samples() / 4);
 
   double best = std::numeric_limits<double>::quiet_NaN(), bestCost = std::numeric_limits<double>::infinity();
@@ -69,43 +86,48 @@ ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace&
     const double offset = std::fmin(search.lowest + step * static_cast<double>(i), search.highest);
     const auto [first, last] = comparedSamples(command, encoder, offset, offset);
     if (last - first < enough) continue;
-    const double cost = meanSquaredMisfit(coarse, encoder, offset, first, last);
+    const double cost = misfit(coarse, encoder, offset, first, last, false).meanSquare;
     if (cost < bestCost) bestCost = cost, best = offset;
   }
   if (std::isnan(best))
     throw std::invalid_argument("clock offset: no offset in the search window overlaps a quarter of the encoder trace");
 
+  // Gauss-Newton on the interpolated traces within one scan step of the best offset, halving a
+  // step that does not lower the misfit; the minimum of a smooth misfit is found to rounding.
   const auto fine = normalisedChannels(command, encoder, search.interpolation);
-  double lo = std::fmax(best - step, search.lowest), hi = std::fmin(best + step, search.highest);
+  const double lo = std::fmax(best - step, search.lowest), hi = std::fmin(best + step, search.highest);
   const auto [first, last] = comparedSamples(command, encoder, lo, hi);
   if (last - first < enough)
     throw std::invalid_argument("clock offset: the best offset leaves less than a quarter of the encoder trace to compare");
-  const double ratio = (std::sqrt(5.0) - 1.0) / 2.0;
-  double a = hi - ratio * (hi - lo), b = lo + ratio * (hi - lo);
-  double costA = meanSquaredMisfit(fine, encoder, a, first, last), costB = meanSquaredMisfit(fine, encoder, b, first, last);
-  while (hi - lo > 1e-9) {
-    if (costA < costB) {
-      hi = b, b = a, costB = costA;
-      a = hi - ratio * (hi - lo);
-      costA = meanSquaredMisfit(fine, encoder, a, first, last);
-    } else {
-      lo = a, a = b, costA = costB;
-      b = lo + ratio * (hi - lo);
-      costB = meanSquaredMisfit(fine, encoder, b, first, last);
+  double offset = best;
+  Misfit current = misfit(fine, encoder, offset, first, last, true);
+  for (int iteration = 0; iteration < 50 && current.slopeSquare > 0; ++iteration) {
+    double change = -current.residualSlope / current.slopeSquare, trial = offset;
+    Misfit next;
+    int halving = 0;
+    for (; halving < 30; ++halving, change /= 2) {
+      trial = std::fmin(std::fmax(offset + change, lo), hi);
+      next = misfit(fine, encoder, trial, first, last, true);
+      if (next.meanSquare <= current.meanSquare) break;
     }
+    if (halving == 30) break;
+    const double moved = std::fabs(trial - offset);
+    offset = trial;
+    current = next;
+    if (moved < 1e-13) break;
   }
-  const double offset = (lo + hi) / 2;
-  return {offset, std::sqrt(meanSquaredMisfit(fine, encoder, offset, first, last)), last - first};
+  return {offset, std::sqrt(current.meanSquare), last - first};
 }
 
 std::vector<std::vector<double>> resampleTrace(const SampledTrace& trace, double offset, const std::vector<double>& times,
                                                Interpolation interpolation) {
-  std::vector<std::vector<double>> out;
-  out.reserve(trace.channels.size());
-  for (const auto& channel : trace.channels) {
-    const UniformSpline spline(trace.start + offset, trace.period, channel, interpolation);
-    auto& values = out.emplace_back(times.size());
-    for (size_t i = 0; i < times.size(); ++i) values[i] = spline(times[i]);
+  std::vector<UniformSpline> splines;
+  for (const auto& channel : trace.channels) splines.emplace_back(trace.start + offset, trace.period, channel, interpolation);
+  std::vector<std::vector<double>> out(trace.channels.size(), std::vector<double>(times.size()));
+  if (splines.empty()) return out;
+  for (size_t i = 0; i < times.size(); ++i) {
+    const auto where = splines.front().locate(times[i]);
+    for (size_t c = 0; c < splines.size(); ++c) out[c][i] = splines[c].at(where);
   }
   return out;
 }

@@ -16,8 +16,18 @@ class UniformSpline {
   // four samples, a period that is not positive and finite, or a value that is not finite.
   UniformSpline(double start, double period, std::span<const double> values, Interpolation kind = Interpolation::CubicSpline);
 
-  // Throws std::invalid_argument for t outside [first(), last()] beyond a millionth of a period.
-  double operator()(double t) const;
+  // Where t falls: the interval and the fraction of it. Throws std::invalid_argument for t
+  // outside [first(), last()] beyond a millionth of a period.
+  struct Location {
+    size_t interval;
+    double fraction;
+  };
+  Location locate(double t) const;
+  // The value and the slope (per s) at a location; splines of one start, period and length
+  // share their locations.
+  double at(const Location& where) const;
+  double slopeAt(const Location& where) const;
+  double operator()(double t) const { return at(locate(t)); }
 
   double first() const { return start_; }
   double last() const { return start_ + period_ * static_cast<double>(values_.size() - 1); }

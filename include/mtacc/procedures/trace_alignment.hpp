@@ -20,7 +20,7 @@ struct SampledTrace {
 };
 
 struct ClockOffsetSearch {
-  double lowest = -0.5, highest = 0.5;  // s: the offsets considered
+  double lowest = -0.1, highest = 0.1;  // s: the offsets considered
   Interpolation interpolation = Interpolation::CubicSpline;
 };
 
@@ -36,7 +36,8 @@ struct ClockOffset {
 
 // Every channel is normalised by its encoder spread (standard deviation) so that mm and deg
 // weigh alike; a channel that does not move is left out. The offset is searched over the
-// window at the encoder period (at most 20 000 steps), then refined by golden section to 1e-9 s. Throws
+// window at the encoder period (at most 20 000 steps), then refined by Gauss-Newton on the
+// interpolated traces to the misfit's minimum. Throws
 // std::invalid_argument for traces with different channel counts, no moving channel, an empty
 // window, or offsets whose overlap holds fewer than a quarter of the encoder samples.
 ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace& encoder, const ClockOffsetSearch& search = {});
