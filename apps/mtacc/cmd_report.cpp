@@ -15,7 +15,7 @@ struct ReportOptions {
   std::string machine;
   std::string errorsFile;
   std::string output = ".";
-  std::string plan, structure, compare, load;
+  std::string plan, structure, compare, load, decomposition;
   std::vector<std::string> positioning, components, plates;
   int samples = 5;
 };
@@ -32,7 +32,8 @@ struct ReportOptions {
     args.push_back(o.errorsFile);
   }
   for (const auto& [flag, value] :
-       {std::pair{"--plan", o.plan}, {"--structure", o.structure}, {"--compare", o.compare}, {"--load", o.load}})
+       {std::pair{"--plan", o.plan}, {"--structure", o.structure}, {"--compare", o.compare}, {"--load", o.load},
+        {"--decomposition", o.decomposition}})
     if (!value.empty()) {
       args.push_back(flag);
       args.push_back(value);
@@ -66,6 +67,7 @@ void addReportCommand(CLI::App& app) {
   cmd->add_option("--positioning", o->positioning, "ISO 230-2 positioning-test files for the positioning section");
   cmd->add_option("--plate", o->plates, "plate measurements (seed 003) to compare with the model, one section each");
   cmd->add_option("--component", o->components, "direct-measurement runs (seed 003) to fit and plot, one section each");
+  cmd->add_option("--decomposition", o->decomposition, "a decomposition set (seed 004 recorded signals) for the error-decomposition section");
   cmd->callback([o] { run(*o); });
 }
 

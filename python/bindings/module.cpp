@@ -28,6 +28,8 @@
 #include "mtacc/workflows/stiffness.hpp"
 #include "mtacc/io/pose_text.hpp"
 #include "mtacc/workflows/compensation.hpp"
+#include "mtacc/workflows/recorded_decomposition.hpp"
+#include "mtacc/workflows/virtual_motion.hpp"
 
 namespace py = pybind11;
 using namespace mtacc;
@@ -303,6 +305,35 @@ PYBIND11_MODULE(_mtacc, mod) {
         r.disturbanceThreshold = threshold;
         r.removeDisturbed = removeDisturbed;
         return toPython(toJson(fitComponentFile(s, r)));
+      })
+      .def("decompose", [](const PythonMachine& s, const std::string& set) {
+        RecordedDecomposition result;
+        {
+          py::gil_scoped_release release;
+          result = decomposeRecordedSet(s, loadDecompositionSet(set));
+        }
+        return toPython(toJson(result));
+      })
+      .def("simulate_motion", [](const PythonMachine& s, const std::string& program, const std::string& folder, const std::vector<double>& feeds,
+                                 const std::string& structure, const std::string& noise, double acceleration, double jerkTimeMs, double kv,
+                                 double feedForward, double clockOffsetMs, std::uint64_t seed) {
+        MotionSimulationRequest request;
+        request.program = program;
+        request.folder = folder;
+        if (!feeds.empty()) request.feeds = feeds;
+        request.structure = structure;
+        request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
+        request.limits.acceleration = acceleration;
+        request.limits.jerkTime = jerkTimeMs * 1e-3;
+        request.servo = {kv, feedForward};
+        request.clockOffset = clockOffsetMs * 1e-3;
+        request.seed = seed;
+        MotionSimulation simulation;
+        {
+          py::gil_scoped_release release;
+          simulation = simulateMotion(s, request);
+        }
+        return toPython(toJson(simulation));
       })
       .def("identify_plates", [](const PythonMachine& s, const std::vector<std::string>& files, double piece) {
         PlateIdentificationStudy study;

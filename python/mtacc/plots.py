@@ -696,3 +696,55 @@ def compensation_residuals(result, title=None):
     fig.tight_layout()
     return fig
 
+
+
+def decomposition_over_feeds(result, title=None):
+    """Seed 004 over the feeds (`mtacc decompose --json`): the five-way mean-norm shares of eq. 21
+    stacked per feed (Table 1 form), the largest contouring, quasi-static and dynamic errors per
+    direction (Tables 2-3 form), and the dynamic RMS per direction on log axes with the power laws
+    of eq. 23 (Fig. 11 form)."""
+    tests = result["tests"]
+    feeds = np.array([t["feed_mm_min"] for t in tests])
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+    ax = axes[0]
+    labels = [("contouring", "contouring c", "#2471a3"), ("link", "link l", "#7d3c98"), ("motion", "motion m", "#229954"),
+              ("drift", "drift td", "#d68910"), ("dynamic", "dynamic d", "#c0392b")]
+    bottom = np.zeros(len(tests))
+    positions = np.arange(len(tests))
+    for key, label, colour in labels:
+        share = np.array([t["split_shares_percent"][key] for t in tests])
+        ax.bar(positions, share, bottom=bottom, color=colour, label=label)
+        bottom += share
+    ax.set_xticks(positions, [f"{f:.0f}" for f in feeds], rotation=45)
+    ax.set_xlabel("feed [mm/min]")
+    ax.set_ylabel("mean-norm share [%] (five norms, Table 1 form)")
+    ax.set_ylim(0, 100)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.25), ncol=3)
+    ax = axes[1]
+    styles = {"contouring_max_um": ("-", "contouring"), "quasi_static_max_um": ("--", "quasi-static"), "dynamic_max_um": (":", "dynamic")}
+    colours = ("#c0392b", "#229954", "#2471a3")
+    for key, (style, name) in styles.items():
+        values = np.array([t[key] for t in tests])
+        for d, colour in enumerate(colours):
+            ax.plot(feeds, values[:, d], style, marker="o", markersize=3, color=colour, label=f"{name} {'xyz'[d]}")
+    ax.set_xscale("log")
+    ax.set_xlabel("feed [mm/min]")
+    ax.set_ylabel("largest |error| along the path [µm]")
+    ax.legend(fontsize=7, ncol=3)
+    ax = axes[2]
+    rms = np.array([t["dynamic_rms_um"] for t in tests])
+    line = np.geomspace(feeds.min(), feeds.max(), 50)
+    for d, colour in enumerate(colours):
+        ax.plot(feeds, rms[:, d], "o", color=colour, label=f"{'xyz'[d]}")
+        law = result["dynamic_rms_power_law"].get("xyz"[d])
+        if law:
+            ax.plot(line, law["kappa_um"] * line ** law["exponent"], "-", color=colour, linewidth=1,
+                    label=f"{law['kappa_um']:.3g}·F^{law['exponent']:.2f}")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("feed [mm/min]")
+    ax.set_ylabel("dynamic error RMS [µm]")
+    ax.legend(fontsize=8)
+    fig.suptitle(title or "Error decomposition over the feeds (seed 004)")
+    fig.tight_layout()
+    return fig

@@ -352,8 +352,29 @@ def positioning_section(results):
     return out
 
 
+def decomposition_section(result):
+    """Seed 004: the recorded TCP errors split over the feeds."""
+    tests = result["tests"]
+    out = ("<h2>Error decomposition (seed 004)</h2><p>The tool relative to the workpiece measured along one trajectory at "
+           f"{len(tests)} feeds, split into servo contouring (c), link (l), motion (m), thermal drift (td) and dynamic (d) "
+           f"errors; motion errors fitted on the {result['reference_feed_mm_min']:g} mm/min test (Legendre degree "
+           f"{result['degree']}), {result['interpolation']} resampling. The mean of the dynamic error is booked as drift, and "
+           "only the sum of link and motion errors is fixed by the reference test.</p>")
+    out += figure(plots.decomposition_over_feeds(result), "Shares, largest errors and dynamic RMS over the feeds")
+    rows = []
+    for t in tests:
+        s, p = t["shares_percent"], t["split_shares_percent"]
+        rows.append([f"{t['feed_mm_min']:.0f}", f"{t['clock_offset_ms']:.3f}" + ("" if t["clock_offset_estimated"] else " (given)"),
+                     f"{s['contouring']:.1f} / {s['quasi_static']:.1f} / {s['dynamic']:.1f}",
+                     " / ".join(f"{p[k]:.1f}" for k in ("contouring", "link", "motion", "drift", "dynamic")),
+                     " ".join(f"{v:.2f}" for v in t["drift_um"]), " ".join(f"{v:.3f}" for v in t["dynamic_rms_um"])])
+    out += table(["feed [mm/min]", "clock offset [ms]", "c / qs / d [%] (eq. 21)", "c / l / m / td / d [%] (Table 1)",
+                  "drift x y z [µm]", "d RMS x y z [µm]"], rows, left=0)
+    return out
+
+
 def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=None, plan=None, structure=None,
-                 compare=None, positioning=(), components=(), plates=(), load=None):
+                 compare=None, positioning=(), components=(), plates=(), load=None, decomposition=None):
     """Writes <output_dir>/<machine>-report.html atomically and returns its path."""
     start = time.perf_counter()
     steps = ["machine", "error budget", "volumetric error maps", "circular test", "5-axis circle", "cone frustum",
@@ -368,6 +389,8 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
         steps.insert(-1, "component errors")
     if plates:
         steps.insert(-1, "plates")
+    if decomposition:
+        steps.insert(-1, "error decomposition")
     done = []
 
     def step(name):
@@ -397,6 +420,7 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     positioning_results = [evaluate_positioning(f) for f in positioning]
     component_results = [machine.fit_component(f) for f in components]
     plate_results = [machine.compare_plate(f) for f in plates]
+    decomposition_result = machine.decompose(decomposition) if decomposition else None
     step("machine")
     parts = [f"<h1>Accuracy report: {html.escape(machine.name)}</h1>",
              f'<p class="meta">{html.escape(machine.file)} · structure {html.escape(machine.structure)} · '
@@ -483,6 +507,9 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     if plates:
         parts.append(plates_section(plate_results))
         step("plates")
+    if decomposition:
+        parts.append(decomposition_section(decomposition_result))
+        step("error decomposition")
     if positioning:
         parts.append(positioning_section(positioning_results))
         step("positioning")
@@ -526,12 +553,13 @@ def main(argv=None):
                         help="hole- or ball-plate measurement (CSV) to compare with the model; may be given several times")
     parser.add_argument("--component", action="append", default=[],
                         help="direct-measurement runs of a component (CSV) to fit and plot; may be given several times")
+    parser.add_argument("--decomposition", help="a decomposition set (YAML, seed 004) of recorded signals to decompose")
     args = parser.parse_args(argv)
     try:
         path = build_report(args.machine, args.output, args.errors, args.samples,
                             progress=lambda s: print(s, file=sys.stderr, flush=True), plan=args.plan,
                             structure=args.structure, compare=args.compare, positioning=args.positioning, components=args.component, plates=args.plate,
-                            load=args.load)
+                            load=args.load, decomposition=args.decomposition)
     except (InputError, UnreachablePose) as e:
         message = str(e)
         first = message.split(":", 1)[0]

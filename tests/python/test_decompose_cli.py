@@ -38,3 +38,22 @@ def test_the_recorded_virtual_machine_decomposes_into_what_was_injected(cli, tmp
         shares = t["split_shares_percent"]
         assert sum(shares[k] for k in ("contouring", "link", "motion", "drift", "dynamic")) == pytest.approx(100, abs=1e-9)
     assert decomposed["dynamic_rms_power_law"]["x"]["exponent"] > 0
+
+
+def test_the_python_module_gives_what_the_commands_give(cli, tmp_path):
+    import mtacc
+    machine = mtacc.Machine("inclined-a-table")
+    simulated = machine.simulate_motion(PROGRAM, tmp_path / "py", feeds=[1000, 5832], structure="wcayfxzt-compact")
+    decomposed = machine.decompose(simulated["set"])
+    assert decomposed == run(cli, "decompose", "inclined-a-table", simulated["set"])
+    assert [t["feed_mm_min"] for t in decomposed["tests"]] == [1000, 5832]
+
+
+def test_the_report_section_shows_every_feed(tmp_path):
+    import mtacc
+    from mtacc import report
+    machine = mtacc.Machine("inclined-a-table")
+    simulated = machine.simulate_motion(PROGRAM, tmp_path, feeds=[1000, 3240, 10498], structure="wcayfxzt-compact")
+    section = report.decomposition_section(machine.decompose(simulated["set"]))
+    assert "<svg" in section and "Error decomposition (seed 004)" in section
+    assert all(f">{feed}</td>" in section for feed in ("1000", "3240", "10498"))
