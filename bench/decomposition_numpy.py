@@ -4,8 +4,8 @@ coarse scan (np.interp, vectorised over samples) refined by scipy's least_square
 analytic Jacobian (the spline's derivative) on the not-a-knot CubicSpline misfit, both traces resampled by CubicSpline at the instrument's
 samples inside the moved traces, the nominal and identified TCP of the inclined-A machine
 (TCP = R_C(C) R_A(A) (X, Y, Z), checked against mtacc's before timing) vectorised over samples,
-then the Legendre degree-20 fit of the reference test (legvander + lstsq), drift, dynamic error,
-shares and per-direction RMS.
+then the Legendre degree-20 fit of the reference test in the normalised path travelled (legvander +
+lstsq), drift, dynamic error, shares and per-direction RMS.
 
 Usage: decomposition_numpy.py DIR -> one JSON line {"seconds", "tests": [{offset, drift, rms, shares}]}
 """
@@ -73,6 +73,16 @@ def clock_offset(cmd_t, cmd, enc_t, enc, lo, hi):
     return found.x[0]
 
 
+def motion_span(cmd_t, cmd):
+    """The command's last sample at its first values and its first sample at its last values."""
+    still = 1e-9 * (cmd.max(axis=0) - cmd.min(axis=0)) + 1e-12
+    moved_from_start = np.any(np.abs(cmd - cmd[0]) > still, axis=1)
+    moved_to_end = np.any(np.abs(cmd - cmd[-1]) > still, axis=1)
+    departure = max(int(np.argmax(moved_from_start)) - 1, 0) if moved_from_start.any() else 0
+    arrival = min(len(cmd_t) - 1 - int(np.argmax(moved_to_end[::-1])) + 1, len(cmd_t) - 1) if moved_to_end.any() else len(cmd_t) - 1
+    return cmd_t[departure], cmd_t[arrival]
+
+
 def decompose(meta, data):
     aligned = []
     lo, hi = meta["search"]
@@ -80,22 +90,25 @@ def decompose(meta, data):
     for k, feed in enumerate(meta["feeds"]):
         cmd_t, cmd, enc_t, enc, inst_t, inst = data[k]
         offset = clock_offset(cmd_t, cmd, enc_t, enc, lo, hi)
-        use = (inst_t >= max(cmd_t[0] + offset, enc_t[0])) & (inst_t <= min(cmd_t[-1] + offset, enc_t[-1]))
+        departure, arrival = motion_span(cmd_t, cmd)
+        use = (inst_t >= max(departure + offset, enc_t[0])) & (inst_t <= min(arrival + offset, enc_t[-1]))
         t = inst_t[use]
         q_nom = CubicSpline(cmd_t + offset, cmd, axis=0)(t)
         q_enc = CubicSpline(enc_t, enc, axis=0)(t)
         chi_nom, chi_enc = tcp(q_nom) - ball, tcp(q_enc) - ball
         link = tcp(q_enc) - (chi_enc + ball)  # the identified machine is the nominal one here
-        aligned.append((offset, t, inst[use], chi_enc, chi_nom, link))
+        fgroup = np.column_stack([q_enc[:, :3], np.degrees(q_enc[:, 3:])])  # FGROUP: mm and deg on one length
+        path = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(fgroup, axis=0), axis=1))])
+        aligned.append((offset, path, inst[use], chi_enc, chi_nom, link))
 
-    def basis(t):
-        return legendre.legvander(2 * (t - t[0]) / (t[-1] - t[0]) - 1, meta["degree"])
+    def basis(path):
+        return legendre.legvander(2 * (path - path[0]) / (path[-1] - path[0]) - 1, meta["degree"])
 
     ref = aligned[0]
     coef = np.linalg.lstsq(basis(ref[1]), ref[2] - ref[3] - ref[5], rcond=None)[0]
     out = []
-    for k, (offset, t, chi, chi_enc, chi_nom, link) in enumerate(aligned):
-        motion = basis(t) @ coef
+    for k, (offset, path, chi, chi_enc, chi_nom, link) in enumerate(aligned):
+        motion = basis(path) @ coef
         rest = chi - chi_enc - link - motion
         drift = np.zeros(3) if k == 0 else rest.mean(axis=0)
         dynamic = rest - drift
@@ -103,7 +116,7 @@ def decompose(meta, data):
         c, qs, d = (np.linalg.norm(v, axis=1) for v in (contouring, link + motion + drift, dynamic))
         total = c + qs + d
         out.append({"offset": offset, "drift": drift.tolist(), "rms": np.sqrt((dynamic ** 2).mean(axis=0)).tolist(),
-                    "shares": [100 * np.mean(v / total) for v in (c, qs, d)], "samples": int(len(t))})
+                    "shares": [100 * np.mean(v / total) for v in (c, qs, d)], "samples": int(len(path))})
     return out
 
 

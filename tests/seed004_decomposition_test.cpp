@@ -24,6 +24,7 @@ struct Synthetic {
   std::vector<std::vector<Vec3>> dynamic;
 };
 constexpr double kNoise = 2e-4;  // mm
+const DecompositionOptions kByTime{0, 20, MotionParameter::Time};  // the paper's parameter (O5)
 constexpr int kSamples = 600;
 
 Synthetic threeFeeds() {
@@ -65,7 +66,7 @@ Vec3 mean(const std::vector<Vec3>& v) {
 
 TEST(Seed004Decomposition, V1ClosesEq6AndV2DynamicErrorHasZeroMean) {
   const auto tests = threeFeeds().tests;
-  const auto decomposed = decomposeErrors(tests);
+  const auto decomposed = decomposeErrors(tests, kByTime);
   ASSERT_EQ(decomposed.size(), tests.size());
   for (size_t k = 0; k < tests.size(); ++k) {
     const DecomposedTest& d = decomposed[k];
@@ -81,7 +82,7 @@ TEST(Seed004Decomposition, V1ClosesEq6AndV2DynamicErrorHasZeroMean) {
 
 TEST(Seed004Decomposition, V3NoDriftInTheReferenceTestAndV4ItsDynamicErrorIsOrthogonalToTheFit) {
   const auto tests = threeFeeds().tests;
-  const auto decomposed = decomposeErrors(tests, {0, 20});
+  const auto decomposed = decomposeErrors(tests, kByTime);
   EXPECT_EQ(decomposed[0].drift, Vec3::Zero());
   EXPECT_GT(decomposed[2].drift.norm(), 1e-3);  // the top feed's injected drift is found, not zeroed
   // <delta_d, P_k> over the samples, P_k by its closed form at low order and by the recurrence
@@ -120,7 +121,7 @@ TEST(Seed004Decomposition, V3NoDriftInTheReferenceTestAndV4ItsDynamicErrorIsOrth
 // The dynamic error is the truth less its mean, to within V10's 1.1 sigma + 0.05 um RMS.
 TEST(Seed004Decomposition, RecoversTheInjectedDriftAndDynamicError) {
   const Synthetic synthetic = threeFeeds();
-  const auto decomposed = decomposeErrors(synthetic.tests);
+  const auto decomposed = decomposeErrors(synthetic.tests, kByTime);
   for (size_t k = 1; k < 3; ++k) {
     const Vec3 expected = synthetic.drift[k] - synthetic.drift[0] + mean(synthetic.dynamic[k]) - mean(synthetic.dynamic[0]);
     EXPECT_LT((decomposed[k].drift - expected).cwiseAbs().maxCoeff(), 0.04e-3) << "test " << k;
@@ -133,7 +134,7 @@ TEST(Seed004Decomposition, RecoversTheInjectedDriftAndDynamicError) {
 }
 
 TEST(Seed004Decomposition, V12SharesSumTo100PercentWithEachDenominator) {
-  const auto decomposed = decomposeErrors(threeFeeds().tests);
+  const auto decomposed = decomposeErrors(threeFeeds().tests, kByTime);
   for (const auto& d : decomposed) {
     const DecompositionShares s = decompositionShares(d);
     EXPECT_NEAR(s.contouring + s.quasiStatic + s.dynamic, 100.0, 1e-9);
@@ -153,17 +154,42 @@ TEST(Seed004Decomposition, DirectionStatisticsAreMaximaOfMagnitudesAndRootMeanSq
 
 TEST(Seed004Decomposition, BadSeriesAreRefused) {
   auto tests = threeFeeds().tests;
-  EXPECT_THROW(decomposeErrors(tests, {3, 20}), std::invalid_argument);
+  EXPECT_THROW(decomposeErrors(tests, {3, 20, MotionParameter::Time}), std::invalid_argument);
   tests[1].time[10] = tests[1].time[9];
-  EXPECT_THROW(decomposeErrors(tests), std::invalid_argument);
+  EXPECT_THROW(decomposeErrors(tests, kByTime), std::invalid_argument);
   tests = threeFeeds().tests;
   tests[2].link.pop_back();
-  EXPECT_THROW(decomposeErrors(tests), std::invalid_argument);
+  EXPECT_THROW(decomposeErrors(tests, kByTime), std::invalid_argument);
   tests = threeFeeds().tests;
   tests[0].time.resize(21);
   for (auto* s : {&tests[0].measured, &tests[0].encoder, &tests[0].nominal, &tests[0].link}) s->resize(21);
-  EXPECT_THROW(decomposeErrors(tests, {0, 20}), std::invalid_argument);  // 21 samples for 21 coefficients
-  EXPECT_NO_THROW(decomposeErrors(tests, {0, 19}));
+  EXPECT_THROW(decomposeErrors(tests, kByTime), std::invalid_argument);  // 21 samples for 21 coefficients
+  EXPECT_NO_THROW(decomposeErrors(tests, {0, 19, MotionParameter::Time}));
+}
+
+// O5: with the path travelled in proportion to time, both parameters give the same split; the
+// path must have a sample for every sample, never decrease and advance.
+TEST(Seed004Decomposition, PathParameterAgreesWithTimeWhenTheSpeedIsConstantAndIsChecked) {
+  auto tests = threeFeeds().tests;
+  for (auto& t : tests)
+    for (double time : t.time) t.path.push_back(3.0 + 40.0 * (time - t.time.front()));
+  const auto byTime = decomposeErrors(tests, kByTime), byPath = decomposeErrors(tests);
+  for (size_t k = 0; k < tests.size(); ++k) {
+    EXPECT_LT((byTime[k].drift - byPath[k].drift).norm(), 1e-12);
+    for (size_t i = 0; i < byTime[k].dynamic.size(); ++i) EXPECT_LT((byTime[k].dynamic[i] - byPath[k].dynamic[i]).norm(), 1e-12);
+  }
+  auto shorter = tests;
+  shorter[1].path.pop_back();
+  EXPECT_THROW(decomposeErrors(shorter), std::invalid_argument);
+  auto backwards = tests;
+  backwards[2].path[7] = backwards[2].path[6] - 1e-3;
+  EXPECT_THROW(decomposeErrors(backwards), std::invalid_argument);
+  auto still = tests;
+  std::fill(still[0].path.begin(), still[0].path.end(), 1.0);
+  EXPECT_THROW(decomposeErrors(still), std::invalid_argument);
+  tests[0].path.clear();
+  EXPECT_THROW(decomposeErrors(tests), std::invalid_argument);
+  EXPECT_NO_THROW(decomposeErrors(tests, kByTime));
 }
 
 TEST(Seed004Statistics, V13ExactPowerLawIsRecovered) {

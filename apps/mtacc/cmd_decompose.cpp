@@ -16,8 +16,9 @@ struct DecomposeCliOptions : MachineOptions {
 void run(const DecomposeCliOptions& o) {
   const auto r = decomposeRecordedSet(loadMachineSetup(o.source), loadDecompositionSet(o.set));
   const auto j = toJson(r);
-  std::string human = fmt::format("{} tests; motion errors fitted at {:g} mm/min (Legendre degree {}), {} interpolation\n\n", r.tests.size(),
-                                  j["reference_feed_mm_min"].get<double>(), r.set.degree, j["interpolation"].get<std::string>());
+  std::string human = fmt::format("{} tests; motion errors fitted at {:g} mm/min (Legendre degree {} in the normalised {}), {} interpolation\n\n",
+                                  r.tests.size(), j["reference_feed_mm_min"].get<double>(), r.set.degree, j["parameter"].get<std::string>(),
+                                  j["interpolation"].get<std::string>());
   human += fmt::format("{:>9} {:>9} | {:>6} {:>6} {:>6} | {:>6} {:>6} {:>6} {:>6} {:>6} | {:>20} | {:>20}\n", "feed", "offset", "c %",
                        "qs %", "d %", "c %", "l %", "m %", "td %", "d %", "drift x y z um", "d RMS x y z um");
   std::string csv =

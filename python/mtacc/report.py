@@ -358,7 +358,7 @@ def decomposition_section(result):
     out = ("<h2>Error decomposition (seed 004)</h2><p>The tool relative to the workpiece measured along one trajectory at "
            f"{len(tests)} feeds, split into servo contouring (c), link (l), motion (m), thermal drift (td) and dynamic (d) "
            f"errors; motion errors fitted on the {result['reference_feed_mm_min']:g} mm/min test (Legendre degree "
-           f"{result['degree']}), {result['interpolation']} resampling. The mean of the dynamic error is booked as drift, and "
+           f"{result['degree']} in the normalised {result['parameter']}), {result['interpolation']} resampling. The mean of the dynamic error is booked as drift, and "
            "only the sum of link and motion errors is fixed by the reference test.</p>")
     out += figure(plots.decomposition_over_feeds(result), "Shares, largest errors and dynamic RMS over the feeds")
     rows = []

@@ -29,7 +29,7 @@ DecompositionSet parseDecompositionSet(const std::string& text, const std::strin
   if (!yamlin::isMap(root)) ctx.fail(root, "", "expected a mapping with tests: [{feed, command, encoder, instrument}, ...]");
   yamlin::rejectUnknownKeys(ctx, root, "",
                             {"description", "ball", "nc_rate_hz", "instrument_rate_hz", "interpolation", "clock_offset_ms", "search_ms",
-                             "reference_feed", "degree", "tests"});
+                             "reference_feed", "degree", "parameter", "tests"});
   DecompositionSet set;
   set.file = source;
   if (root["ball"]) set.ball = yamlin::lengthVector(ctx, root["ball"], "ball");
@@ -53,6 +53,11 @@ DecompositionSet parseDecompositionSet(const std::string& text, const std::strin
     set.searchHighest = hi * 1e-3;
   }
   if (root["degree"]) set.degree = yamlin::wholeNumber(ctx, root["degree"], "degree", 0, 60);
+  if (const auto node = root["parameter"]) {
+    const auto kind = yamlin::scalar(ctx, node, "parameter");
+    if (kind != "path" && kind != "time") ctx.fail(node, "parameter", "expected path or time (the paper's)");
+    set.parameter = kind == "path" ? MotionParameter::Path : MotionParameter::Time;
+  }
 
   const auto tests = root["tests"];
   if (!yamlin::isSequence(tests) || tests.size() == 0)

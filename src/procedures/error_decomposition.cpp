@@ -10,7 +10,7 @@
 namespace mtacc {
 namespace {
 
-void check(const DecompositionTest& t, size_t index) {
+void check(const DecompositionTest& t, size_t index, MotionParameter parameter) {
   const size_t n = t.time.size();
   if (n < 2) throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): {} samples, at least 2 needed", index, t.feed, n));
   if (t.measured.size() != n || t.encoder.size() != n || t.nominal.size() != n || t.link.size() != n)
@@ -18,16 +18,24 @@ void check(const DecompositionTest& t, size_t index) {
   for (size_t i = 1; i < n; ++i)
     if (!(t.time[i] > t.time[i - 1]))
       throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): time does not increase at sample {}", index, t.feed, i));
+  if (parameter != MotionParameter::Path) return;
+  if (t.path.size() != n) throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): its path has another length", index, t.feed));
+  for (size_t i = 1; i < n; ++i)
+    if (!(t.path[i] >= t.path[i - 1]))
+      throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): the path decreases at sample {}", index, t.feed, i));
+  if (!(t.path.back() > t.path.front()))
+    throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): the path does not advance", index, t.feed));
 }
 
-// P_0 .. P_degree at x = 2 t_n - 1, t_n the time from the test's first sample to its last
-// scaled to [0, 1] (O5: time, not arclength), by the three-term recurrence.
-Eigen::MatrixXd legendreBasis(const std::vector<double>& time, int degree) {
-  const auto n = static_cast<Eigen::Index>(time.size());
+// P_0 .. P_degree at x = 2 t_n - 1, t_n the parameter (time or path) from the test's first
+// sample to its last scaled to [0, 1] (O5), by the three-term recurrence.
+Eigen::MatrixXd legendreBasis(const DecompositionTest& t, MotionParameter parameter, int degree) {
+  const auto& along = parameter == MotionParameter::Path ? t.path : t.time;
+  const auto n = static_cast<Eigen::Index>(along.size());
   Eigen::MatrixXd p(n, degree + 1);
-  const double start = time.front(), span = time.back() - time.front();
+  const double start = along.front(), span = along.back() - along.front();
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double x = 2.0 * (time[static_cast<size_t>(i)] - start) / span - 1.0;
+    const double x = 2.0 * (along[static_cast<size_t>(i)] - start) / span - 1.0;
     p(i, 0) = 1.0;
     if (degree >= 1) p(i, 1) = x;
     for (int k = 1; k < degree; ++k) p(i, k + 1) = ((2 * k + 1) * x * p(i, k) - k * p(i, k - 1)) / (k + 1);
@@ -48,14 +56,14 @@ std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>
   if (o.referenceTest < 0 || o.referenceTest >= static_cast<int>(tests.size()))
     throw std::invalid_argument(fmt::format("reference test {} of {} tests", o.referenceTest, tests.size()));
   if (o.degree < 0 || o.degree > 60) throw std::invalid_argument(fmt::format("motion-error degree {}: give 0 to 60", o.degree));
-  for (size_t k = 0; k < tests.size(); ++k) check(tests[k], k);
+  for (size_t k = 0; k < tests.size(); ++k) check(tests[k], k, o.parameter);
   const DecompositionTest& reference = tests[static_cast<size_t>(o.referenceTest)];
   if (reference.time.size() < static_cast<size_t>(o.degree) + 2)
     throw std::invalid_argument(fmt::format("the reference test has {} samples: a degree-{} fit of the motion errors needs more than {}",
                                             reference.time.size(), o.degree, o.degree + 1));
   // Eqs. 16-17: in the reference test everything beyond the link errors is motion error, up to
   // the dynamic residue the fit leaves; the fit's coefficients carry delta_m to the other tests.
-  const Eigen::MatrixXd coefficients = legendreBasis(reference.time, o.degree).householderQr().solve(beyondLink(reference));
+  const Eigen::MatrixXd coefficients = legendreBasis(reference, o.parameter, o.degree).householderQr().solve(beyondLink(reference));
   std::vector<DecomposedTest> out;
   out.reserve(tests.size());
   for (size_t k = 0; k < tests.size(); ++k) {
@@ -67,7 +75,7 @@ std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>
     d.contouring.resize(n);
     d.motion.resize(n);
     d.dynamic.resize(n);
-    const Eigen::MatrixXd motion = legendreBasis(t.time, o.degree) * coefficients;
+    const Eigen::MatrixXd motion = legendreBasis(t, o.parameter, o.degree) * coefficients;
     const Eigen::MatrixXd rest = beyondLink(t) - motion;
     // Eq. 18: the drift is the mean of what neither link nor motion errors explain; the reference
     // test's is zero because its fit has the constant term.

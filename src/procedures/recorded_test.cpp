@@ -2,11 +2,36 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
+#include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/forward.hpp"
 
 namespace mtacc {
+
+namespace {
+
+// The command's last sample at its first values and its first sample at its last values: the
+// motion between them is the test (seed 004 O5: normalised time from the first point to the last).
+std::pair<double, double> motionSpan(const SampledTrace& command) {
+  const size_t n = command.samples();
+  size_t departure = n - 1, arrival = 0;
+  for (const auto& channel : command.channels) {
+    const auto [low, high] = std::minmax_element(channel.begin(), channel.end());
+    const double still = 1e-9 * (*high - *low) + 1e-12;
+    size_t first = 0, last = n - 1;
+    while (first + 1 < n && std::fabs(channel[first + 1] - channel.front()) <= still) ++first;
+    while (last > 0 && std::fabs(channel[last - 1] - channel.back()) <= still) --last;
+    departure = std::min(departure, first);
+    arrival = std::max(arrival, last);
+  }
+  if (arrival <= departure) return {command.start, command.end()};  // nothing moves: the whole trace
+  return {command.start + command.period * static_cast<double>(departure), command.start + command.period * static_cast<double>(arrival)};
+}
+
+}  // namespace
 
 AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicModel& identified, const RecordedSignals& signals,
                               const SignalProcessing& processing, int threads) {
@@ -20,8 +45,9 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
     alignment = {found.offset, true, found.rmsMisfit, 0, 0};
   }
   alignment.instrumentSamples = instrument.samples();
-  const double from = std::max(command.start + alignment.offset, encoder.start);
-  const double to = std::min(command.end() + alignment.offset, encoder.end());
+  const auto [departure, arrival] = motionSpan(command);
+  const double from = std::max(departure + alignment.offset, encoder.start);
+  const double to = std::min(arrival + alignment.offset, encoder.end());
   auto& test = out.test;
   test.feed = feed;
   std::vector<size_t> used;
@@ -34,7 +60,7 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
   }
   alignment.samplesUsed = used.size();
   if (used.size() < 4)
-    throw std::invalid_argument(fmt::format("{} instrument samples fall inside the command and encoder traces (offset {:.3f} ms)",
+    throw std::invalid_argument(fmt::format("{} instrument samples fall inside the command's motion and the encoder trace (offset {:.3f} ms)",
                                             used.size(), alignment.offset * 1e3));
   const auto interpolation = processing.search.interpolation;
   const auto nominalQ = posesFromChannels(resampleTrace(command, alignment.offset, test.time, interpolation));
@@ -42,6 +68,16 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
   const PointMatrix atCommand = toolPositions(nominal, nominalQ, threads), atEncoder = toolPositions(nominal, encoderQ, threads);
   const PointMatrix withErrors = toolPositions(identified, encoderQ, threads);
   const size_t n = used.size();
+  test.path.assign(n, 0.0);
+  for (size_t i = 1; i < n; ++i) {
+    double square = 0.0;
+    for (long a = 0; a < encoderQ.cols(); ++a) {
+      const double scale = nominal.machine->axes[static_cast<size_t>(a)].isRotary() ? 1.0 / kDeg : 1.0;  // FGROUP: deg with mm
+      const double step = (encoderQ(static_cast<long>(i), a) - encoderQ(static_cast<long>(i) - 1, a)) * scale;
+      square += step * step;
+    }
+    test.path[i] = test.path[i - 1] + std::sqrt(square);
+  }
   test.nominal.resize(n);
   test.encoder.resize(n);
   test.link.resize(n);

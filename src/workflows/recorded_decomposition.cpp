@@ -56,7 +56,7 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
     out.alignment.push_back(aligned.alignment);
   }
   try {
-    out.tests = decomposeErrors(tests, {set.referenceTest, set.degree});
+    out.tests = decomposeErrors(tests, {set.referenceTest, set.degree, set.parameter});
   } catch (const std::invalid_argument& e) {
     throw InputError({set.file, set.tests[static_cast<size_t>(set.referenceTest)].line, fmt::format("tests[{}]", set.referenceTest)}, e.what());
   }
@@ -87,6 +87,7 @@ nlohmann::json toJson(const RecordedDecomposition& r) {
   nlohmann::json j;
   j["reference_feed_mm_min"] = r.tests[static_cast<size_t>(r.set.referenceTest)].feed;
   j["degree"] = r.set.degree;
+  j["parameter"] = r.set.parameter == MotionParameter::Path ? "path" : "time";
   j["interpolation"] = r.set.interpolation == Interpolation::CubicSpline ? "cubic" : "linear";
   j["tests"] = nlohmann::json::array();
   for (size_t k = 0; k < r.tests.size(); ++k) {

@@ -1,13 +1,15 @@
 #pragma once
 // A set of recorded tests for the error decomposition of seed 004 (YAML, docs/file-formats.md
 // "Decomposition sets"): per feed the command, encoder and instrument signal files, and the
-// processing choices (interpolation, clock offset or its search window, reference test, degree).
+// processing choices (interpolation, clock offset or its search window, reference test, degree,
+// the parameter of the motion errors).
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "mtacc/core/transform.hpp"
 #include "mtacc/core/uniform_spline.hpp"
+#include "mtacc/procedures/error_decomposition.hpp"
 
 namespace mtacc {
 
@@ -28,6 +30,7 @@ struct DecompositionSet {
   double searchLowest = -0.1, searchHighest = 0.1;  // s
   int referenceTest = 0;                    // index into tests: the given reference feed, else the lowest
   int degree = 20;
+  MotionParameter parameter = MotionParameter::Path;
 };
 
 // Throws InputError naming file, line and key.

@@ -13,22 +13,31 @@ namespace mtacc {
 struct DecompositionTest {
   double feed = 0.0;            // mm/min as programmed (FGROUP: mm and deg mixed, seed 004 O8)
   std::vector<double> time;     // s, increasing
+  std::vector<double> path;     // length travelled along the encoder path (FGROUP units), not decreasing; for MotionParameter::Path
   std::vector<Vec3> measured;   // chi: the instrument's reading, set-up removed
   std::vector<Vec3> encoder;    // chi_enc: the direct kinematics of the encoder positions
   std::vector<Vec3> nominal;    // chi_nom: the direct kinematics of the interpolator's commands
   std::vector<Vec3> link;       // delta_l: the identified link errors along the path (eqs. 13-15)
 };
 
+// What the motion errors are a function of (O5): the time from the test's first sample to its
+// last scaled to [0, 1] (the paper's), or the path travelled, scaled alike. The motion errors
+// are errors of the axis positions, so the path maps the same place of the trajectory at every
+// feed; time does so only while the feeds share one time law (the dwells, the accelerations and
+// the slow-downs at corners take a different share of each test).
+enum class MotionParameter { Time, Path };
+
 struct DecompositionOptions {
   int referenceTest = 0;  // the slow test whose error beyond the link errors is all motion error (eq. 16)
-  int degree = 20;        // of the Legendre fit of the motion errors in normalised time (eq. 17, O5, O6)
+  int degree = 20;        // of the Legendre fit of the motion errors in the normalised parameter (eq. 17, O5, O6)
+  MotionParameter parameter = MotionParameter::Path;
 };
 
 struct DecomposedTest {
   double feed = 0.0;
   std::vector<Vec3> contouring;  // delta_c = chi_enc - chi_nom (eq. 10)
   std::vector<Vec3> link;        // delta_l, as given
-  std::vector<Vec3> motion;      // delta_m: the reference test's fit at this test's normalised time
+  std::vector<Vec3> motion;      // delta_m: the reference test's fit at this test's normalised parameter
   Vec3 drift = Vec3::Zero();     // td (eq. 18), the same at every sample (eq. 19); 0 in the reference test
   std::vector<Vec3> dynamic;     // delta_d = chi - chi_enc - delta_qs (eq. 20); zero mean by construction
 
@@ -38,7 +47,8 @@ struct DecomposedTest {
 // What the method cannot split, by construction: a mean of the true dynamic error is booked as
 // drift (delta_d has zero mean in every test), and link and motion errors trade content with
 // each other (only their sum is fixed by the reference test). Throws std::invalid_argument on
-// series of unequal lengths, fewer than two samples, times not increasing, a reference test of
+// series of unequal lengths (a path of another length, or decreasing, when the path is the
+// parameter), fewer than two samples, times not increasing, a path that does not advance, a reference test of
 // no more samples than the fit has coefficients, or a reference index out of range.
 std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>& tests, const DecompositionOptions& options = {});
 

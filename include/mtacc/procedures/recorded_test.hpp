@@ -15,7 +15,7 @@ struct TestAlignment {
   double offset = 0.0;     // s: the command sample stamped s belongs at encoder time s + offset
   bool estimated = false;
   double rmsMisfit = 0.0;  // of the estimate, in the axes' spreads (0 when given)
-  size_t instrumentSamples = 0, samplesUsed = 0;  // those outside either moved trace are left out
+  size_t instrumentSamples = 0, samplesUsed = 0;  // those outside the command's motion or the encoder trace are left out
 };
 
 struct RecordedSignals {
@@ -36,10 +36,13 @@ struct AlignedTest {
   TestAlignment alignment;
 };
 
-// `identified`: the machine with its identified link errors (delta_l = its TCP minus the
-// nominal TCP at the encoder positions). Throws std::invalid_argument when the offset cannot be
-// estimated (see estimateClockOffset) or fewer than four instrument samples fall inside both
-// moved traces.
+// The test runs from the command's departure (its last sample at rest at the start) to its
+// arrival (its first sample at rest at the end), moved onto the encoder clock: the dwells before
+// and after are left out, so that the normalised time of eq. 17 means the same point of the path
+// at every feed (O5). `identified`: the machine with its identified link errors (delta_l = its
+// TCP minus the nominal TCP at the encoder positions). Throws std::invalid_argument when the offset cannot be
+// estimated (see estimateClockOffset) or fewer than four instrument samples fall inside the
+// moved motion and the encoder trace.
 AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicModel& identified, const RecordedSignals& signals,
                               const SignalProcessing& processing, int threads = kAllCores);
 
