@@ -1,7 +1,7 @@
 // Recorded signals (CSV) for the seed 004 decomposition: a five-axis trace, resampled and
 // aligned against itself as the pipeline does.
 #include "fuzz_input.hpp"
-#include "mtacc/io/signal_csv.hpp"
+#include "mtacc/io/recorded_signal.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace mtacc;

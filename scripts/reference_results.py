@@ -51,9 +51,10 @@ PENDING = {
            "Seed004Decomposition.*; the 18 ms delay in NC cycles and instrument samples (R8) is "
            "Seed004Alignment.R8*, the linear-interpolation bound a*T^2/8 (R9) UniformSpline.Seed004R9*. "
            "On the virtual machine (own constants, wcayfxzt-compact structure) the clock offset, "
-           "contouring, quasi-static, drift and dynamic errors are recovered within V5, V6, V8-V11 and "
-           "the misalignment control of V14 (Seed004VirtualMachine.*). Not yet built (issue 18): the "
-           "link identification from static poses (V7).",
+           "contouring, quasi-static, drift and dynamic errors are recovered within V5, V6, V8-V11 "
+           "(V9 and V10 also with linear resampling, within 0.2 and 0.45 um), the link errors from 56 "
+           "static CapBall poses within V7, and both negative controls of V14 hold "
+           "(Seed004VirtualMachine.*).",
 }
 FIELDS = ["seed", "where", "quantity", "printed", "mtacc", "difference", "unit", "verdict"]
 

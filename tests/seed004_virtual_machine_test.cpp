@@ -166,12 +166,17 @@ TEST(Seed004VirtualMachine, V6ContouringErrorWithTheOracleOffsetAndCubicResampli
   }
 }
 
-// V8-V11: the mean of the true dynamic error goes to the drift (S1); the reference test's own
-// (small) dynamic mean is taken by the motion fit and so leaves every other drift.
-TEST(Seed004VirtualMachine, V8ToV11QuasiStaticDriftAndDynamicErrorsRecovered) {
+// Per feed, against the truth: the worst-direction RMS misfit of delta_qs (V8), the largest drift
+// misfit (V9) and the worst-direction RMS misfit of delta_d (V10).
+struct RecoveryMisfits {
+  std::vector<double> quasiStatic, drift, dynamic;
+  Vec3 referenceDynamicRms;
+};
+
+RecoveryMisfits recoveryMisfits(Interpolation interpolation) {
   const auto& vm = virtualMachine();
   std::vector<AlignedTest> aligned;
-  const auto decomposed = vm.decompose(kClockOffset, Interpolation::CubicSpline, aligned);
+  const auto decomposed = vm.decompose(kClockOffset, interpolation, aligned);
   std::vector<Vec3> dynamicMean;
   for (size_t k = 0; k < decomposed.size(); ++k) {
     const auto& r = vm.feeds[k].recording;
@@ -179,6 +184,7 @@ TEST(Seed004VirtualMachine, V8ToV11QuasiStaticDriftAndDynamicErrorsRecovered) {
     for (double t : aligned[k].test.time) mean += r.dynamic[recordingIndex(r, t)];
     dynamicMean.push_back(mean / static_cast<double>(aligned[k].test.time.size()));
   }
+  RecoveryMisfits misfits;
   for (size_t k = 0; k < decomposed.size(); ++k) {
     const auto& r = vm.feeds[k].recording;
     const Vec3 trueDrift = vm.feeds[k].drift + dynamicMean[k] - dynamicMean[0];
@@ -188,12 +194,36 @@ TEST(Seed004VirtualMachine, V8ToV11QuasiStaticDriftAndDynamicErrorsRecovered) {
       qsMisfit.push_back(decomposed[k].quasiStatic(i) - (r.geometric[j] + trueDrift));
       dynamicMisfit.push_back(decomposed[k].dynamic[i] - (r.dynamic[j] - dynamicMean[k]));
     }
-    EXPECT_LT(rmsOf(qsMisfit).maxCoeff(), 0.1e-3) << kFeeds[k];                         // V8
-    EXPECT_LT((decomposed[k].drift - trueDrift).cwiseAbs().maxCoeff(), 0.05e-3) << kFeeds[k];  // V9 (cubic)
-    EXPECT_LT(rmsOf(dynamicMisfit).maxCoeff(), 1.1 * kNoise + 0.05e-3) << kFeeds[k];   // V10
+    misfits.quasiStatic.push_back(rmsOf(qsMisfit).maxCoeff());
+    misfits.drift.push_back((decomposed[k].drift - trueDrift).cwiseAbs().maxCoeff());
+    misfits.dynamic.push_back(rmsOf(dynamicMisfit).maxCoeff());
   }
-  const Vec3 floor = directionStatistics(decomposed[0].dynamic).rms;
-  for (int d = 0; d < 3; ++d) EXPECT_NEAR(floor[d], kNoise, 0.02e-3) << d;  // V11: the noise floor at the reference feed
+  misfits.referenceDynamicRms = directionStatistics(decomposed[0].dynamic).rms;
+  return misfits;
+}
+
+// V8-V11: the mean of the true dynamic error goes to the drift (S1); the reference test's own
+// (small) dynamic mean is taken by the motion fit and so leaves every other drift.
+TEST(Seed004VirtualMachine, V8ToV11QuasiStaticDriftAndDynamicErrorsRecovered) {
+  const auto misfits = recoveryMisfits(Interpolation::CubicSpline);
+  for (size_t k = 0; k < kFeeds.size(); ++k) {
+    EXPECT_LT(misfits.quasiStatic[k], 0.1e-3) << kFeeds[k];           // V8
+    EXPECT_LT(misfits.drift[k], 0.05e-3) << kFeeds[k];                // V9 (cubic)
+    EXPECT_LT(misfits.dynamic[k], 1.1 * kNoise + 0.05e-3) << kFeeds[k];  // V10 (cubic)
+  }
+  for (int d = 0; d < 3; ++d) EXPECT_NEAR(misfits.referenceDynamicRms[d], kNoise, 0.02e-3) << d;  // V11: the noise floor at the reference feed
+}
+
+// V9 and V10 with linear resampling of the command trace: the extraction's looser tolerances
+// (0.2 um and 0.45 um), which the chord error between 3 ms NC samples at the top feed needs.
+TEST(Seed004VirtualMachine, V9AndV10WithLinearInterpolation) {
+  const auto misfits = recoveryMisfits(Interpolation::Linear);
+  for (size_t k = 0; k < kFeeds.size(); ++k) {
+    EXPECT_LT(misfits.drift[k], 0.2e-3) << kFeeds[k];     // V9 (linear)
+    EXPECT_LT(misfits.dynamic[k], 0.45e-3) << kFeeds[k];  // V10 (linear)
+    RecordProperty(fmt::format("linear_qs_drift_dynamic_misfit_um_at_{:.0f}", kFeeds[k]),
+                   fmt::format("{:.3f} / {:.3f} / {:.3f}", misfits.quasiStatic[k] * 1e3, misfits.drift[k] * 1e3, misfits.dynamic[k] * 1e3));
+  }
 }
 
 TEST(Seed004VirtualMachine, V5AndV6WithTheEstimatedOffset) {

@@ -11,11 +11,12 @@ namespace {
 
 struct DecomposeCliOptions : MachineOptions {
   std::string set;
+  size_t seriesPoints = 0;
 };
 
 void run(const DecomposeCliOptions& o) {
   const auto r = decomposeRecordedSet(loadMachineSetup(o.source), loadDecompositionSet(o.set));
-  const auto j = toJson(r);
+  const auto j = toJson(r, o.seriesPoints);
   std::string human = fmt::format("{} tests; motion errors fitted at {:g} mm/min (Legendre degree {} in the normalised {}), {} interpolation\n\n",
                                   r.tests.size(), j["reference_feed_mm_min"].get<double>(), r.set.degree, j["parameter"].get<std::string>(),
                                   j["interpolation"].get<std::string>());
@@ -60,6 +61,8 @@ void addDecomposeCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("decompose", "recorded TCP errors over feeds split into contouring, link, motion, drift and dynamic errors (seed 004)");
   addMachineOptions(*cmd, *o);
   cmd->add_option("set", o->set, "decomposition set (YAML, docs/file-formats.md \"Decomposition sets\")")->required();
+  cmd->add_option("--series", o->seriesPoints, "with --json: each test's contributions along the normalised path u, at most this many "
+                                               "points (every k-th sample)")->check(CLI::Range(0, 10000000));
   cmd->callback([o] { run(*o); });
 }
 

@@ -34,6 +34,7 @@ struct SimulateCliOptions : MachineOptions {
   // motion
   MotionSimulationRequest motion;
   double clockOffsetMs = 18, jerkTimeMs = 20;
+  std::string signalFormat = "csv";
 };
 
 SimulationOptions simulationOptions(const SimulateCliOptions& o, const Machine& m, bool folder) {
@@ -219,9 +220,11 @@ void addSimulateCommand(CLI::App& app) {
   motion->add_option("--acceleration", o->motion.limits.acceleration, "interpolator's acceleration limit, path units/s^2")->capture_default_str()
       ->check(CLI::Range(1e-3, 1e7));
   motion->add_option("--jerk-time-ms", o->jerkTimeMs, "moving-average filter of the interpolator, ms")->capture_default_str()->check(CLI::Range(0.0, 1e3));
-  motion->add_option("--kv", o->motion.servo.positionGain, "position loop gain of every axis, 1/s")->capture_default_str()->check(CLI::Range(1e-3, 1e4));
-  motion->add_option("--feed-forward", o->motion.servo.feedForward, "velocity feed-forward of every axis, 0..1")->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
+  motion->add_option("--kv", o->motion.positionGains, "position loop gain, 1/s: one for every axis or one per axis, e.g. 40,45,50,35,30")
+      ->delimiter(',')->capture_default_str()->check(CLI::Range(1e-3, 1e4));
+  motion->add_option("--feed-forward", o->motion.feedForwards, "velocity feed-forward, 0..1: one for every axis or one per axis")->delimiter(',')
+      ->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  motion->add_option("--format", o->signalFormat, "signal files: csv or npy (NumPy structured arrays)")->capture_default_str();
   motion->add_option("--clock-offset-ms", o->clockOffsetMs, "offset of the command recording's clock, ms")->capture_default_str()
       ->check(CLI::Range(-1e4, 1e4));
   motion->add_option("-o,--output", o->motion.folder, "Directory to write the signal files and set.yaml into")->required();
@@ -231,6 +234,7 @@ void addSimulateCommand(CLI::App& app) {
     request.seed = o->seed;
     request.limits.jerkTime = o->jerkTimeMs * 1e-3;
     request.clockOffset = o->clockOffsetMs * 1e-3;
+    request.format = signalFormatNamed(o->signalFormat, "--format");
     const auto s = simulateMotion(loadMachineSetup(o->source), request);
     if (o->json) {
       std::cout << toJson(s).dump(2) << "\n";

@@ -306,17 +306,18 @@ PYBIND11_MODULE(_mtacc, mod) {
         r.removeDisturbed = removeDisturbed;
         return toPython(toJson(fitComponentFile(s, r)));
       })
-      .def("decompose", [](const PythonMachine& s, const std::string& set) {
+      .def("decompose", [](const PythonMachine& s, const std::string& set, size_t seriesPoints) {
         RecordedDecomposition result;
         {
           py::gil_scoped_release release;
           result = decomposeRecordedSet(s, loadDecompositionSet(set));
         }
-        return toPython(toJson(result));
+        return toPython(toJson(result, seriesPoints));
       })
       .def("simulate_motion", [](const PythonMachine& s, const std::string& program, const std::string& folder, const std::vector<double>& feeds,
-                                 const std::string& structure, const std::string& noise, double acceleration, double jerkTimeMs, double kv,
-                                 double feedForward, double clockOffsetMs, std::uint64_t seed) {
+                                 const std::string& structure, const std::string& noise, double acceleration, double jerkTimeMs,
+                                 const std::vector<double>& kv, const std::vector<double>& feedForward, double clockOffsetMs, std::uint64_t seed,
+                                 const std::string& format) {
         MotionSimulationRequest request;
         request.program = program;
         request.folder = folder;
@@ -325,7 +326,9 @@ PYBIND11_MODULE(_mtacc, mod) {
         request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
         request.limits.acceleration = acceleration;
         request.limits.jerkTime = jerkTimeMs * 1e-3;
-        request.servo = {kv, feedForward};
+        request.positionGains = kv;
+        request.feedForwards = feedForward;
+        request.format = signalFormatNamed(format, "format");
         request.clockOffset = clockOffsetMs * 1e-3;
         request.seed = seed;
         MotionSimulation simulation;

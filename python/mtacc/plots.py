@@ -698,6 +698,32 @@ def compensation_residuals(result, title=None):
 
 
 
+DECOMPOSITION_COLOURS = (("contouring", "contouring c", "#2471a3"), ("link", "link l", "#7d3c98"), ("motion", "motion m", "#229954"),
+                         ("drift", "drift td", "#d68910"), ("dynamic", "dynamic d", "#c0392b"))
+
+
+def decomposition_along_path(test, title=None):
+    """One test of `mtacc decompose --json --series N` along the normalised path u (Figs 9-10 form):
+    per direction the contouring, link, motion, drift and dynamic errors."""
+    series = test["series"]
+    u = np.array(series["u"])
+    fig, axes = plt.subplots(3, 1, figsize=(11, 7.5), sharex=True)
+    for d, ax in enumerate(axes):
+        direction = "xyz"[d]
+        for key, label, colour in DECOMPOSITION_COLOURS:
+            if key == "drift":
+                ax.plot(u, np.full_like(u, test["drift_um"][d]), color=colour, linewidth=1.2, label=label)
+            else:
+                ax.plot(u, series[f"{key}_um"][direction], color=colour, linewidth=0.8, label=label)
+        ax.axhline(0, color="#999999", linewidth=0.5)
+        ax.set_ylabel(f"{direction} [µm]")
+    axes[0].legend(fontsize=8, ncol=5, loc="lower center", bbox_to_anchor=(0.5, 1.0))
+    axes[-1].set_xlabel(f"normalised path u (one instrument sample in {series['stride']})")
+    fig.suptitle(title or f"Errors along the path at {test['feed_mm_min']:.0f} mm/min (Figs 9-10 form)")
+    fig.tight_layout()
+    return fig
+
+
 def decomposition_over_feeds(result, title=None):
     """Seed 004 over the feeds (`mtacc decompose --json`): the five-way mean-norm shares of eq. 21
     stacked per feed (Table 1 form), the largest contouring, quasi-static and dynamic errors per
@@ -707,11 +733,9 @@ def decomposition_over_feeds(result, title=None):
     feeds = np.array([t["feed_mm_min"] for t in tests])
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
     ax = axes[0]
-    labels = [("contouring", "contouring c", "#2471a3"), ("link", "link l", "#7d3c98"), ("motion", "motion m", "#229954"),
-              ("drift", "drift td", "#d68910"), ("dynamic", "dynamic d", "#c0392b")]
     bottom = np.zeros(len(tests))
     positions = np.arange(len(tests))
-    for key, label, colour in labels:
+    for key, label, colour in DECOMPOSITION_COLOURS:
         share = np.array([t["split_shares_percent"][key] for t in tests])
         ax.bar(positions, share, bottom=bottom, color=colour, label=label)
         bottom += share

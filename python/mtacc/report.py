@@ -39,6 +39,8 @@ CHECK_SCRIPT = """<script>
 })();
 </script>"""
 
+DECOMPOSITION_SERIES_POINTS = 3000  # per test along the path: every k-th of ~10^5 instrument samples
+
 STYLE = """<style>
 body { font-family: system-ui, sans-serif; max-width: 1100px; margin: 2em auto; color: #222; line-height: 1.45; }
 h1 { font-size: 1.6em; margin-bottom: 0.1em; } h2 { border-bottom: 1px solid #ccc; margin-top: 2em; }
@@ -361,6 +363,10 @@ def decomposition_section(result):
            f"{result['degree']} in the normalised {result['parameter']}), {result['interpolation']} resampling. The mean of the dynamic error is booked as drift, and "
            "only the sum of link and motion errors is fixed by the reference test.</p>")
     out += figure(plots.decomposition_over_feeds(result), "Shares, largest errors and dynamic RMS over the feeds")
+    slowest, fastest = min(tests, key=lambda t: t["feed_mm_min"]), max(tests, key=lambda t: t["feed_mm_min"])
+    for t in [slowest] if slowest is fastest else [slowest, fastest]:
+        if "series" in t:
+            out += figure(plots.decomposition_along_path(t), f"The contributions along the path at {t['feed_mm_min']:.0f} mm/min")
     rows = []
     for t in tests:
         s, p = t["shares_percent"], t["split_shares_percent"]
@@ -420,7 +426,7 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     positioning_results = [evaluate_positioning(f) for f in positioning]
     component_results = [machine.fit_component(f) for f in components]
     plate_results = [machine.compare_plate(f) for f in plates]
-    decomposition_result = machine.decompose(decomposition) if decomposition else None
+    decomposition_result = machine.decompose(decomposition, series_points=DECOMPOSITION_SERIES_POINTS) if decomposition else None
     step("machine")
     parts = [f"<h1>Accuracy report: {html.escape(machine.name)}</h1>",
              f'<p class="meta">{html.escape(machine.file)} · structure {html.escape(machine.structure)} · '

@@ -70,9 +70,7 @@ std::vector<int> requireColumns(const CsvTable& t, const std::vector<std::string
 }
 
 PoseTable posesFromCsv(const Machine& m, const CsvTable& t, const std::vector<std::string>& otherColumns) {
-  std::vector<std::string> names;
-  for (const auto& a : m.axes)
-    if (a.commanded()) names.push_back(a.name);
+  const auto names = m.commandedAxisNames();
   const auto cols = requireColumns(t, names);
   for (size_t c = 0; c < t.header.size(); ++c) {
     const auto& h = t.header[c];
@@ -98,7 +96,7 @@ PoseTable posesFromCsv(const Machine& m, const CsvTable& t, const std::vector<st
   for (long r = 0; r < n; ++r) {
     for (size_t a = 0; a < names.size(); ++a) {
       const double v = t.rows[static_cast<size_t>(r)][static_cast<size_t>(cols[a])];
-      p.q(r, static_cast<long>(a)) = m.axes[a].isRotary() ? v * kDeg : v;
+      p.q(r, static_cast<long>(a)) = v * m.axes[a].fileUnit();
       if (dirCols[a] >= 0) {
         const double d = t.rows[static_cast<size_t>(r)][static_cast<size_t>(dirCols[a])];
         if (d != -1 && d != 0 && d != 1)

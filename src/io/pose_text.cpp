@@ -1,5 +1,8 @@
 #include "mtacc/io/pose_text.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
@@ -11,9 +14,7 @@ namespace {
 size_t commandedAxis(const Machine& m, const std::string& name, const std::string& key) {
   const int i = m.commandedAxisIndex(name);
   if (i < 0) {
-    std::string known;
-    for (const auto& a : m.axes)
-      if (a.commanded()) known += (known.empty() ? "" : " ") + a.name;
+    const auto known = fmt::format("{}", fmt::join(m.commandedAxisNames(), " "));
     throw InputError(InputLocation{"", 0, key}, "unknown axis '" + name + "' (commanded axes: " + known + ")");
   }
   return static_cast<size_t>(i);
@@ -42,7 +43,7 @@ AxisValues parsePerAxis(const Machine& m, const std::string& text, const std::st
 std::vector<double> parsePose(const Machine& m, const std::string& text, const std::string& key, bool partial) {
   const auto pose = parsePerAxis(m, text, key, [](const std::string& value, const Axis& axis, const std::string& k) {
     const double v = parseNumber(value, k);
-    return axis.isRotary() ? v * kDeg : v;
+    return v * axis.fileUnit();
   });
   for (size_t i = 0; i < pose.given.size() && !partial; ++i)
     if (!pose.given[i])

@@ -20,6 +20,13 @@ int Machine::commandedCount() const {
   return n;
 }
 
+std::vector<std::string> Machine::commandedAxisNames() const {
+  std::vector<std::string> names;
+  for (const auto& a : axes)
+    if (a.commanded()) names.push_back(a.name);
+  return names;
+}
+
 int Machine::rotaryCount() const {
   int n = 0;
   for (const auto& a : axes) n += a.type == AxisType::Rotary ? 1 : 0;

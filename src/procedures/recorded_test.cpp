@@ -68,12 +68,13 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
   const PointMatrix atCommand = toolPositions(nominal, nominalQ, threads), atEncoder = toolPositions(nominal, encoderQ, threads);
   const PointMatrix withErrors = toolPositions(identified, encoderQ, threads);
   const size_t n = used.size();
+  std::vector<double> fileScale;  // FGROUP: the path in mm and deg
+  for (long a = 0; a < encoderQ.cols(); ++a) fileScale.push_back(1.0 / nominal.machine->axes[static_cast<size_t>(a)].fileUnit());
   test.path.assign(n, 0.0);
   for (size_t i = 1; i < n; ++i) {
     double square = 0.0;
     for (long a = 0; a < encoderQ.cols(); ++a) {
-      const double scale = nominal.machine->axes[static_cast<size_t>(a)].isRotary() ? 1.0 / kDeg : 1.0;  // FGROUP: deg with mm
-      const double step = (encoderQ(static_cast<long>(i), a) - encoderQ(static_cast<long>(i) - 1, a)) * scale;
+      const double step = (encoderQ(static_cast<long>(i), a) - encoderQ(static_cast<long>(i) - 1, a)) * fileScale[static_cast<size_t>(a)];
       square += step * step;
     }
     test.path[i] = test.path[i - 1] + std::sqrt(square);

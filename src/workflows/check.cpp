@@ -129,10 +129,9 @@ nlohmann::json toJson(const MachineCheck& c) {
   j["structure_tool_first"] = m.structure.toolFirst();
   j["tool_chain"] = names(m.toolChain);
   j["workpiece_chain"] = names(m.workpieceChain);
-  j["axis_names"] = nlohmann::json::array();
+  j["axis_names"] = m.commandedAxisNames();
   for (const auto& a : m.axes) {
-    if (a.commanded()) j["axis_names"].push_back(a.name);
-    const double f = a.isRotary() ? 1.0 / kDeg : 1.0;
+    const double f = 1.0 / a.fileUnit();
     j["axes"].push_back({{"name", a.name},
                          {"type", axisTypeName(a.type)},
                          {"side", a.side == Side::Tool ? "tool" : "workpiece"},

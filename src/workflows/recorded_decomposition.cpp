@@ -4,31 +4,23 @@
 
 #include <stdexcept>
 
-#include "mtacc/io/signal_csv.hpp"
+#include "mtacc/io/recorded_signal.hpp"
 
 namespace mtacc {
 
 namespace {
 
-std::vector<std::string> commandedAxes(const Machine& machine) {
-  std::vector<std::string> names;
-  for (const auto& axis : machine.axes)
-    if (axis.commanded()) names.push_back(axis.name);
-  return names;
-}
-
 void degreesToRadians(const Machine& machine, SampledTrace& trace) {
   for (size_t a = 0; a < trace.channels.size(); ++a)
-    if (machine.axes[a].isRotary())
-      for (double& v : trace.channels[a]) v *= kDeg;
+    for (double& v : trace.channels[a]) v *= machine.axes[a].fileUnit();
 }
 
 AlignedTest alignedTest(const MachineSetup& setup, const DecompositionSet& set, const RecordedTest& recorded) {
   const auto& machine = *setup.machine;
-  const auto axes = commandedAxes(machine);
-  const auto commandFile = readSignalCsv(recorded.command, {axes, set.ncPeriod});
-  const auto encoderFile = readSignalCsv(recorded.encoder, {axes, set.ncPeriod > 0 ? set.ncPeriod : commandFile.trace.period});
-  auto instrumentFile = readSignalCsv(recorded.instrument, {{"dx_um", "dy_um", "dz_um"}, set.instrumentPeriod});
+  const auto axes = machine.commandedAxisNames();
+  const auto commandFile = readRecordedSignal(recorded.command, {axes, set.ncPeriod});
+  const auto encoderFile = readRecordedSignal(recorded.encoder, {axes, set.ncPeriod > 0 ? set.ncPeriod : commandFile.trace.period});
+  auto instrumentFile = readRecordedSignal(recorded.instrument, {{"dx_um", "dy_um", "dz_um"}, set.instrumentPeriod});
   auto command = commandFile.trace, encoder = encoderFile.trace;
   degreesToRadians(machine, command);
   degreesToRadians(machine, encoder);
@@ -52,6 +44,9 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
   std::vector<DecompositionTest> tests;
   for (const auto& recorded : set.tests) {
     auto aligned = alignedTest(setup, set, recorded);
+    auto& u = out.pathFraction.emplace_back(aligned.test.path);
+    const double length = u.back() - u.front();
+    for (double& v : u) v = length > 0 ? (v - aligned.test.path.front()) / length : 0.0;
     tests.push_back(std::move(aligned.test));
     out.alignment.push_back(aligned.alignment);
   }
@@ -82,7 +77,26 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
   return out;
 }
 
-nlohmann::json toJson(const RecordedDecomposition& r) {
+namespace {
+
+// Every k-th sample of each contribution along u, in um per direction.
+nlohmann::json seriesJson(const DecomposedTest& test, const std::vector<double>& u, size_t points) {
+  const size_t stride = std::max<size_t>(1, (u.size() + points - 1) / points);
+  nlohmann::json j{{"stride", stride}, {"u", nlohmann::json::array()}};
+  for (size_t i = 0; i < u.size(); i += stride) j["u"].push_back(u[i]);
+  const std::pair<const char*, const std::vector<Vec3>*> contributions[] = {
+      {"contouring_um", &test.contouring}, {"link_um", &test.link}, {"motion_um", &test.motion}, {"dynamic_um", &test.dynamic}};
+  for (const auto& [name, series] : contributions)
+    for (int d = 0; d < 3; ++d) {
+      auto& values = j[name][std::string(1, "xyz"[d])] = nlohmann::json::array();
+      for (size_t i = 0; i < series->size(); i += stride) values.push_back((*series)[i][d] * 1e3);
+    }
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json toJson(const RecordedDecomposition& r, size_t seriesPoints) {
   const auto um = [](const Vec3& v) { return nlohmann::json::array({v.x() * 1e3, v.y() * 1e3, v.z() * 1e3}); };
   nlohmann::json j;
   j["reference_feed_mm_min"] = r.tests[static_cast<size_t>(r.set.referenceTest)].feed;
@@ -111,6 +125,7 @@ nlohmann::json toJson(const RecordedDecomposition& r) {
         {"dynamic_max_um", um(r.dynamic[k].maximum)},
         {"dynamic_rms_um", um(r.dynamic[k].rms)},
     });
+    if (seriesPoints > 0) j["tests"].back()["series"] = seriesJson(r.tests[k], r.pathFraction[k], seriesPoints);
   }
   j["dynamic_rms_power_law"] = nlohmann::json::object();
   for (size_t d = 0; d < 3; ++d)

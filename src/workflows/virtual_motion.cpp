@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "mtacc/io/gcode_program.hpp"
-#include "mtacc/io/signal_csv.hpp"
+#include "mtacc/io/recorded_signal.hpp"
 #include "mtacc/io/structure_yaml.hpp"
 #include "mtacc/io/text_file.hpp"
 #include "mtacc/kinematics/forward.hpp"
@@ -37,6 +37,13 @@ Vec3 largestComponents(const std::vector<Vec3>& series) {
   return largest;
 }
 
+std::vector<double> perAxis(const std::vector<double>& values, const std::vector<std::string>& axes, const std::string& key) {
+  if (values.size() == 1) return std::vector<double>(axes.size(), values[0]);
+  if (values.size() != axes.size())
+    throw InputError({"", 0, key}, fmt::format("{} values; give one for every axis or one per axis ({})", values.size(), fmt::join(axes, ", ")));
+  return values;
+}
+
 }  // namespace
 
 MotionSimulation simulateMotion(const MachineSetup& setup, const MotionSimulationRequest& request) {
@@ -44,15 +51,16 @@ MotionSimulation simulateMotion(const MachineSetup& setup, const MotionSimulatio
   const auto program = readGcodeProgram(request.program, machine);
   const auto path = programPath(program);
   if (path.size() < 2) throw InputError({request.program, 0, ""}, "the program has no move");
+  const auto axes = machine.commandedAxisNames();
   std::vector<bool> rotary;
-  std::vector<std::string> axes;
   std::vector<double> scales;
-  for (int a = 0; a < machine.commandedCount(); ++a) {
-    const auto& axis = machine.axes[static_cast<size_t>(a)];
-    rotary.push_back(axis.isRotary());
-    axes.push_back(axis.name);
-    scales.push_back(axis.isRotary() ? 1.0 / kDeg : 1.0);
+  for (size_t a = 0; a < axes.size(); ++a) {
+    rotary.push_back(machine.axes[a].isRotary());
+    scales.push_back(1.0 / machine.axes[a].fileUnit());
   }
+  const auto gains = perAxis(request.positionGains, axes, "kv"), feedForwards = perAxis(request.feedForwards, axes, "feed_forward");
+  std::vector<ServoGains> servo;
+  for (size_t a = 0; a < axes.size(); ++a) servo.push_back({gains[a], feedForwards[a]});
   const auto nominal = setup.nominal(), actual = setup.actual();
   std::unique_ptr<StructureModel> structure;
   if (!request.structure.empty()) structure = std::make_unique<StructureModel>(loadStructure(request.structure));
@@ -66,7 +74,7 @@ MotionSimulation simulateMotion(const MachineSetup& setup, const MotionSimulatio
   for (size_t k = 0; k < request.feeds.size(); ++k) {
     const double feed = request.feeds[k];
     VirtualRecordingOptions options;
-    options.servo.assign(axes.size(), request.servo);
+    options.servo = servo;
     options.ncPeriod = request.ncPeriod;
     options.clockOffset = request.clockOffset;
     options.ball = out.ball;
@@ -91,18 +99,20 @@ MotionSimulation simulateMotion(const MachineSetup& setup, const MotionSimulatio
       }
     const std::string stem = fmt::format("f{:.0f}", feed);
     const auto write = [&](const std::string& name, const std::string& text) {
-      const auto file = (std::filesystem::path(request.folder) / (stem + "-" + name + ".csv")).string();
+      const auto file = (std::filesystem::path(request.folder) / fmt::format("{}-{}.{}", stem, name, extensionOf(request.format))).string();
       writeFileAtomically(file, text);
       simulated.files.push_back(file);
     };
-    write("command", signalCsv(recording.command, axes, scales));
-    write("encoder", signalCsv(recording.encoder, axes, scales));
-    write("instrument", signalCsv(recording.instrument, {"dx_um", "dy_um", "dz_um"}, {1e3, 1e3, 1e3}));
-    write("truth", signalCsv(truth,
+    write("command", signalFile(request.format, recording.command, axes, scales));
+    write("encoder", signalFile(request.format, recording.encoder, axes, scales));
+    write("instrument", signalFile(request.format, recording.instrument, {"dx_um", "dy_um", "dz_um"}, {1e3, 1e3, 1e3}));
+    write("truth", signalFile(request.format, truth,
                              {"contouring_x_um", "contouring_y_um", "contouring_z_um", "geometric_x_um", "geometric_y_um", "geometric_z_um",
                               "dynamic_x_um", "dynamic_y_um", "dynamic_z_um"},
                              std::vector<double>(9, 1e3)));
-    set += fmt::format("  - {{feed: {:.9g}, command: {}-command.csv, encoder: {}-encoder.csv, instrument: {}-instrument.csv}}\n", feed, stem, stem, stem);
+    const auto ext = extensionOf(request.format);
+    set += fmt::format("  - {{feed: {:.9g}, command: {}-command.{}, encoder: {}-encoder.{}, instrument: {}-instrument.{}}}\n", feed, stem, ext, stem,
+                       ext, stem, ext);
     out.feeds.push_back(std::move(simulated));
   }
   out.setFile = (std::filesystem::path(request.folder) / "set.yaml").string();

@@ -57,3 +57,81 @@ def test_the_report_section_shows_every_feed(tmp_path):
     section = report.decomposition_section(machine.decompose(simulated["set"]))
     assert "<svg" in section and "Error decomposition (seed 004)" in section
     assert all(f">{feed}</td>" in section for feed in ("1000", "3240", "10498"))
+    along = report.decomposition_section(machine.decompose(simulated["set"], series_points=1000))
+    assert along.count("<svg") == section.count("<svg") + 2
+    assert "The contributions along the path at 1000 mm/min" in along and "at 10498 mm/min" in along
+
+
+def test_npy_signals_hold_what_the_csv_signals_hold_and_decompose_alike(cli, tmp_path):
+    import numpy as np
+    common = ["simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", "1000,5832", "--noise", "0.2um"]
+    as_csv = run(cli, *common, "-o", str(tmp_path / "csv"))
+    as_npy = run(cli, *common, "--format", "npy", "-o", str(tmp_path / "npy"))
+    for csv_feed, npy_feed in zip(as_csv["feeds"], as_npy["feeds"]):
+        for csv_file, npy_file in zip(csv_feed["files"], npy_feed["files"]):
+            assert npy_file.endswith(".npy")
+            records = np.load(npy_file)
+            table = np.genfromtxt(csv_file, delimiter=",", names=True)
+            assert records.dtype.names == table.dtype.names
+            for name in records.dtype.names:  # the CSV holds ten significant digits, time to the nanosecond
+                assert np.allclose(records[name], table[name], rtol=1e-9, atol=1e-9), name
+    from_csv = run(cli, "decompose", "inclined-a-table", as_csv["set"])
+    from_npy = run(cli, "decompose", "inclined-a-table", as_npy["set"])
+    for a, b in zip(from_csv["tests"], from_npy["tests"]):
+        assert a["clock_offset_ms"] == pytest.approx(b["clock_offset_ms"], abs=1e-6)
+        assert a["dynamic_rms_um"] == pytest.approx(b["dynamic_rms_um"], abs=1e-4)
+        assert a["drift_um"] == pytest.approx(b["drift_um"], abs=1e-4)
+
+
+def test_a_numpy_file_with_a_bad_value_is_refused_naming_field_and_record(cli, tmp_path):
+    import numpy as np
+    simulated = run(cli, "simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", "1000", "--format", "npy",
+                    "-o", str(tmp_path))
+    encoder = simulated["feeds"][0]["files"][1]
+    records = np.load(encoder)
+    records["A"][7] = np.nan
+    np.save(encoder, records)
+    result = subprocess.run([cli, "decompose", "inclined-a-table", simulated["set"]], capture_output=True, text=True)
+    assert result.returncode != 0 and result.stdout == ""
+    assert result.stderr == f"mtacc: error: {encoder}: A[7]: not a finite number\n"
+
+
+def test_servo_gains_per_axis_change_only_their_axis(cli, tmp_path):
+    import numpy as np
+    common = ["simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", "3240", "--format", "npy"]
+    same = run(cli, *common, "--kv", "40", "-o", str(tmp_path / "one"))
+    each = run(cli, *common, "--kv", "40,40,40,40,40", "-o", str(tmp_path / "each"))
+    faster_y = run(cli, *common, "--kv", "40,80,40,40,40", "-o", str(tmp_path / "y"))
+    encoders = [np.load(s["feeds"][0]["files"][1]) for s in (same, each, faster_y)]
+    assert encoders[0].tobytes() == encoders[1].tobytes()
+    for axis in ("X", "Z", "A", "C"):
+        assert np.array_equal(encoders[0][axis], encoders[2][axis]), axis
+    assert not np.array_equal(encoders[0]["Y"], encoders[2]["Y"])
+    result = subprocess.run([cli, *common, "--kv", "40,45", "-o", str(tmp_path / "bad")], capture_output=True, text=True)
+    assert result.returncode != 0
+    assert result.stderr == "mtacc: error: --kv: 2 values; give one for every axis or one per axis (X, Y, Z, A, C)\n"
+
+
+def test_the_series_along_the_path_are_the_contributions_of_every_kth_sample(cli, tmp_path):
+    import numpy as np
+    simulated = run(cli, "simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", "1000,10498",
+                    "--structure", "wcayfxzt-compact", "--format", "npy", "-o", str(tmp_path))
+    plain = run(cli, "decompose", "inclined-a-table", simulated["set"])
+    sampled = run(cli, "decompose", "inclined-a-table", simulated["set"], "--series", "500")
+    every = run(cli, "decompose", "inclined-a-table", simulated["set"], "--series", "10000000")
+    for t, s, e in zip(plain["tests"], sampled["tests"], every["tests"]):
+        series = s.pop("series")
+        assert s == t
+        u = np.array(series["u"])
+        assert len(u) <= 500 and series["stride"] == -(-t["samples_used"] // 500)
+        assert u[0] == 0 and np.all(np.diff(u) >= 0) and u[-1] <= 1
+        full = e["series"]
+        assert full["stride"] == 1 and len(full["u"]) == t["samples_used"] and full["u"][-1] == pytest.approx(1, abs=1e-15)
+        assert full["u"][::series["stride"]] == series["u"]
+        # Every sample: the stated maxima, RMS and the zero mean of the dynamic error (V2) are those of the series.
+        for d, direction in enumerate("xyz"):
+            assert np.max(np.abs(full["contouring_um"][direction])) == pytest.approx(t["contouring_max_um"][d], rel=1e-12)
+            dynamic = np.array(full["dynamic_um"][direction])
+            assert np.max(np.abs(dynamic)) == pytest.approx(t["dynamic_max_um"][d], rel=1e-12)
+            assert np.sqrt(np.mean(dynamic ** 2)) == pytest.approx(t["dynamic_rms_um"][d], rel=1e-9)
+            assert abs(np.mean(dynamic)) < 1e-9

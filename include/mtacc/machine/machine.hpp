@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mtacc/core/transform.hpp"
+#include "mtacc/core/units.hpp"
 #include "mtacc/machine/structure_code.hpp"
 
 namespace mtacc {
@@ -42,6 +43,9 @@ struct Axis {
   // The machine direction a linear axis is named after: 0, 1, 2 for X (U), Y (V), Z (W).
   int ownComponent() const;
   bool isRotary() const { return type != AxisType::Linear; }
+  // One unit of the axis in files and programs (mm, or deg for a rotary axis) in mtacc's
+  // internal unit (mm, rad).
+  double fileUnit() const { return isRotary() ? kDeg : 1.0; }
 };
 
 struct Machine {
@@ -61,6 +65,8 @@ struct Machine {
   std::vector<double> referencePose;  // commanded axes; used by WorkpieceAlignment::Machine
 
   int commandedCount() const;
+  // The commanded axes' names in joint-vector order.
+  std::vector<std::string> commandedAxisNames() const;
   int rotaryCount() const;
   // Index of an axis (the spindle included) by name, or -1.
   int axisIndex(const std::string& name) const;

@@ -19,6 +19,7 @@ struct RecordedDecomposition {
   DecompositionSet set;
   std::vector<TestAlignment> alignment;   // per test, in the set's order
   std::vector<DecomposedTest> tests;
+  std::vector<std::vector<double>> pathFraction;  // per test and sample: u, the encoder path travelled over its whole (Figs 9-10's abscissa)
   std::vector<DecompositionShares> shares;
   std::vector<DirectionStatistics> contouring, quasiStatic, dynamic;
   // delta_d RMS against feed per direction (eq. 23); absent for fewer than two feeds or a zero RMS
@@ -29,7 +30,8 @@ struct RecordedDecomposition {
 // nominal TCP at the encoder positions); without one, delta_l = 0 and the reference test's fit
 // holds all the quasi-static error. Throws InputError naming the set or signal file.
 RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const DecompositionSet& set);
-// Lengths in um, offsets in ms, shares in %.
-nlohmann::json toJson(const RecordedDecomposition& result);
+// Lengths in um, offsets in ms, shares in %. With seriesPoints > 0, each test also holds its
+// contributions along u ("series"): every k-th sample, k chosen for at most seriesPoints.
+nlohmann::json toJson(const RecordedDecomposition& result, size_t seriesPoints = 0);
 
 }  // namespace mtacc

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "mtacc/io/recorded_signal.hpp"
 #include "mtacc/procedures/motion_interpolator.hpp"
 #include "mtacc/procedures/virtual_recording.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
@@ -19,7 +20,9 @@ struct MotionSimulationRequest {
   std::vector<double> feeds{1000, 1800, 3240, 5832, 10498, 18896};  // mm/min, FGROUP (seed 004 L325)
   std::string structure;              // structure model (file or bundled name) for the dynamic error; empty: none
   InterpolatorLimits limits{.jerkTime = 0.02};
-  ServoGains servo{40.0, 0.99};       // every axis
+  // Servo loops: one value for every axis, or one per commanded axis in the machine's order.
+  std::vector<double> positionGains{40.0};  // Kv, 1/s
+  std::vector<double> feedForwards{0.99};   // 0 .. 1
   double clockOffset = 0.018;         // s
   double ncPeriod = 0.003, instrumentPeriod = 1e-4;  // s
   std::optional<Vec3> ball;           // mm, workpiece frame; default: the nominal TCP at the program's start
@@ -27,6 +30,7 @@ struct MotionSimulationRequest {
   double noise = 2e-4;                // mm
   std::uint64_t seed = 1;
   std::string folder;                 // where the files go (created)
+  SignalFormat format = SignalFormat::Csv;
 };
 
 struct SimulatedFeed {
@@ -43,7 +47,8 @@ struct MotionSimulation {
   std::string setFile;
 };
 
-// Throws InputError naming the program's file and line, the structure file, or the option.
+// Throws InputError naming the program's file and line, the structure file, or the option
+// (kv, feed_forward for lists of the wrong length).
 MotionSimulation simulateMotion(const MachineSetup& setup, const MotionSimulationRequest& request);
 // Lengths in um, durations in s.
 nlohmann::json toJson(const MotionSimulation& simulation);
