@@ -39,5 +39,8 @@ echo
 echo "== Benchmark: seed 004's decomposition of six feeds of 150,000 samples, against NumPy + SciPy =="
 ./build/bench/bench_decomposition_vs_numpy
 echo
+echo "== Benchmark: stepwise choice among 64 temperature sensors on 24 h at 1 Hz, against NumPy =="
+./build/bench/bench_sensor_selection_vs_numpy
+echo
 echo "== Benchmark: the Python batch API against the C++ call it wraps =="
 ./build/bench/bench_python_batch_fk

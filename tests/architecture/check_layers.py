@@ -2,7 +2,7 @@
 """Fails when a folder of the library includes a folder of a higher layer (docs/architecture.md).
 
 Layers, lowest first: core; the domain folders in their own order (machine, errors, kinematics,
-measurement, procedures, compensation; dynamics needs only core); io; workflows; the front ends (apps/,
+measurement, procedures, compensation; dynamics and thermal need only core); io; workflows; the front ends (apps/,
 python/bindings/, fuzz/). A file may include headers of its own folder and of lower layers only, so
 that the layers point one way and no two folders include each other.
 """
@@ -10,7 +10,7 @@ import pathlib
 import re
 import sys
 
-RANK = {"core": 0, "machine": 1, "dynamics": 1, "errors": 2, "kinematics": 3, "measurement": 4, "procedures": 5,
+RANK = {"core": 0, "machine": 1, "dynamics": 1, "thermal": 1, "errors": 2, "kinematics": 3, "measurement": 4, "procedures": 5,
         "compensation": 6, "io": 7, "workflows": 8, "frontend": 9}
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
 

@@ -1,0 +1,192 @@
+#include "mtacc/thermal/drift_regression.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace mtacc {
+namespace {
+
+void checkFinite(const ThermalRecord& record) {
+  if (record.temperatures.rows() != record.drift.size())
+    throw std::invalid_argument(fmt::format("{} temperature samples for {} drift samples", record.temperatures.rows(), record.drift.size()));
+  for (long k = 0; k < record.temperatures.rows(); ++k) {
+    if (!std::isfinite(record.drift[k])) throw std::invalid_argument(fmt::format("drift sample {}: not a finite number", k));
+    for (long i = 0; i < record.temperatures.cols(); ++i)
+      if (!std::isfinite(record.temperatures(k, i))) throw std::invalid_argument(fmt::format("sensor {} sample {}: not a finite number", i, k));
+  }
+}
+
+// The design rows [1, T_S - T_S0] of the chosen sensors.
+Eigen::MatrixXd design(const ThermalRecord& record, const std::vector<int>& sensors, const Eigen::VectorXd& reference) {
+  Eigen::MatrixXd z(record.temperatures.rows(), static_cast<long>(sensors.size()) + 1);
+  z.col(0).setOnes();
+  for (size_t j = 0; j < sensors.size(); ++j)
+    z.col(static_cast<long>(j) + 1) = record.temperatures.col(sensors[j]).array() - reference[static_cast<long>(j)];
+  return z;
+}
+
+Eigen::VectorXd designRow(const DriftModel& model, const Eigen::VectorXd& temperatures) {
+  Eigen::VectorXd z(static_cast<long>(model.sensors.size()) + 1);
+  z[0] = 1.0;
+  for (size_t j = 0; j < model.sensors.size(); ++j)
+    z[static_cast<long>(j) + 1] = temperatures[model.sensors[j]] - model.referenceTemperatures[static_cast<long>(j)];
+  return z;
+}
+
+// Per fold, the Gram matrix of [1, T - mean(T)] and its products with the centred drift.
+struct FoldGrams {
+  std::vector<Eigen::MatrixXd> zz;
+  std::vector<Eigen::VectorXd> zy;
+  std::vector<double> yy;
+  Eigen::MatrixXd totalZz;
+  Eigen::VectorXd totalZy;
+};
+
+FoldGrams foldGrams(const ThermalRecord& record, int folds) {
+  const long n = record.temperatures.rows(), p = record.temperatures.cols();
+  Eigen::MatrixXd z(n, p + 1);
+  z.col(0).setOnes();
+  z.rightCols(p) = record.temperatures.rowwise() - record.temperatures.colwise().mean();
+  const Eigen::VectorXd y = record.drift.array() - record.drift.mean();
+  FoldGrams g;
+  g.totalZz = Eigen::MatrixXd::Zero(p + 1, p + 1);
+  g.totalZy = Eigen::VectorXd::Zero(p + 1);
+  for (int f = 0; f < folds; ++f) {
+    const long begin = n * f / folds, rows = n * (f + 1) / folds - begin;
+    const auto block = z.middleRows(begin, rows);
+    const auto yb = y.segment(begin, rows);
+    g.zz.push_back(block.transpose() * block);
+    g.zy.push_back(block.transpose() * yb);
+    g.yy.push_back(yb.squaredNorm());
+    g.totalZz += g.zz.back();
+    g.totalZy += g.zy.back();
+  }
+  return g;
+}
+
+// The cross-validated RMS of the model on the columns `columns` of [1, T] (0: the offset), or
+// infinity when a training fit is singular.
+double crossValidatedRms(const FoldGrams& g, const std::vector<int>& columns, long samples) {
+  const long m = static_cast<long>(columns.size());
+  Eigen::MatrixXd a(m, m), held(m, m);
+  Eigen::VectorXd b(m), heldZy(m);
+  double squares = 0.0;
+  for (size_t f = 0; f < g.zz.size(); ++f) {
+    for (long r = 0; r < m; ++r) {
+      b[r] = g.totalZy[columns[r]] - g.zy[f][columns[r]];
+      heldZy[r] = g.zy[f][columns[r]];
+      for (long c = 0; c < m; ++c) {
+        held(r, c) = g.zz[f](columns[r], columns[c]);
+        a(r, c) = g.totalZz(columns[r], columns[c]) - held(r, c);
+      }
+    }
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(a);
+    if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-13) return std::numeric_limits<double>::infinity();
+    const Eigen::VectorXd beta = ldlt.solve(b);
+    squares += std::max(0.0, g.yy[f] - 2.0 * beta.dot(heldZy) + beta.dot(held * beta));
+  }
+  return std::sqrt(squares / static_cast<double>(samples));
+}
+
+}  // namespace
+
+double DriftModel::predict(const Eigen::VectorXd& temperatures) const {
+  const Eigen::VectorXd z = designRow(*this, temperatures);
+  return offset + z.tail(z.size() - 1).dot(coefficients);
+}
+
+double DriftModel::predictionUncertainty(const Eigen::VectorXd& temperatures) const {
+  const Eigen::VectorXd z = designRow(*this, temperatures);
+  return std::sqrt(residualSigma * residualSigma + z.dot(covariance * z));
+}
+
+DriftModel fitDriftModel(const ThermalRecord& record, const std::vector<int>& sensors) {
+  checkFinite(record);
+  const long n = record.temperatures.rows(), p = static_cast<long>(sensors.size());
+  if (n < p + 2) throw std::invalid_argument(fmt::format("{} samples for {} sensors: at least {} needed", n, p, p + 2));
+  for (size_t j = 0; j < sensors.size(); ++j) {
+    if (sensors[j] < 0 || sensors[j] >= record.temperatures.cols())
+      throw std::invalid_argument(fmt::format("sensor {} out of range (0 .. {})", sensors[j], record.temperatures.cols() - 1));
+    if (std::count(sensors.begin(), sensors.end(), sensors[j]) > 1) throw std::invalid_argument(fmt::format("sensor {} given twice", sensors[j]));
+    const auto column = record.temperatures.col(sensors[j]);
+    if (column.maxCoeff() == column.minCoeff()) throw std::invalid_argument(fmt::format("sensor {} does not change: no slope to fit", sensors[j]));
+  }
+  DriftModel model;
+  model.sensors = sensors;
+  model.referenceTemperatures.resize(p);
+  for (long j = 0; j < p; ++j) model.referenceTemperatures[j] = record.temperatures(0, sensors[static_cast<size_t>(j)]);
+  const Eigen::MatrixXd z = design(record, sensors, model.referenceTemperatures);
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(z);
+  if (qr.rank() < p + 1) throw std::invalid_argument("the chosen sensors' temperatures are linearly dependent: no unique fit");
+  const Eigen::VectorXd beta = qr.solve(record.drift);
+  const Eigen::VectorXd residual = record.drift - z * beta;
+  model.offset = beta[0];
+  model.coefficients = beta.tail(p);
+  model.residualRms = std::sqrt(residual.squaredNorm() / static_cast<double>(n));
+  model.residualSigma = std::sqrt(residual.squaredNorm() / static_cast<double>(n - p - 1));
+  model.covariance = model.residualSigma * model.residualSigma * (z.transpose() * z).inverse();
+  return model;
+}
+
+SensorSelection selectSensors(const ThermalRecord& record, const SensorSelectionOptions& options) {
+  checkFinite(record);
+  const long n = record.temperatures.rows(), p = record.temperatures.cols();
+  if (options.folds < 2) throw std::invalid_argument(fmt::format("{} folds: cross-validation needs at least 2", options.folds));
+  const long perFold = n / options.folds, largest = std::min<long>(options.maximumSensors, p);
+  if (perFold < largest + 2)
+    throw std::invalid_argument(fmt::format("{} samples in {} folds: at least {} per fold needed for up to {} sensors", n, options.folds,
+                                            largest + 2, largest));
+  const FoldGrams grams = foldGrams(record, options.folds);
+  SensorSelection out;
+  std::vector<int> columns{0};
+  out.steps.push_back({-1, true, crossValidatedRms(grams, columns, n)});
+  const double keep = 1.0 - options.minimumImprovement;
+  for (long round = 0; round < 4 * p && static_cast<long>(columns.size()) - 1 < largest; ++round) {
+    int best = -1;
+    double bestRms = std::numeric_limits<double>::infinity();
+    for (long i = 1; i <= p; ++i) {
+      if (std::find(columns.begin(), columns.end(), i) != columns.end()) continue;
+      auto candidate = columns;
+      candidate.push_back(static_cast<int>(i));
+      const double rms = crossValidatedRms(grams, candidate, n);
+      if (rms < bestRms) {
+        bestRms = rms;
+        best = static_cast<int>(i);
+      }
+    }
+    if (columns.size() == 1 && best > 0) {
+      out.bestSingleSensor = best - 1;
+      out.bestSingleSensorRms = bestRms;
+    }
+    if (best < 0 || !(bestRms <= keep * out.steps.back().crossValidatedRms)) break;
+    columns.push_back(best);
+    out.steps.push_back({best - 1, true, bestRms});
+    while (columns.size() > 2) {
+      size_t cheapest = 0;
+      double withoutRms = std::numeric_limits<double>::infinity();
+      for (size_t j = 1; j + 1 < columns.size(); ++j) {
+        auto candidate = columns;
+        candidate.erase(candidate.begin() + static_cast<long>(j));
+        const double rms = crossValidatedRms(grams, candidate, n);
+        if (rms < withoutRms) {
+          withoutRms = rms;
+          cheapest = j;
+        }
+      }
+      if (cheapest == 0 || !(keep * withoutRms <= out.steps.back().crossValidatedRms)) break;
+      out.steps.push_back({columns[cheapest] - 1, false, withoutRms});
+      columns.erase(columns.begin() + static_cast<long>(cheapest));
+    }
+  }
+  std::vector<int> sensors;
+  for (size_t j = 1; j < columns.size(); ++j) sensors.push_back(columns[j] - 1);
+  out.model = fitDriftModel(record, sensors);
+  out.crossValidatedRms = out.steps.back().crossValidatedRms;
+  return out;
+}
+
+}  // namespace mtacc

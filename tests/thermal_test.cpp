@@ -1,0 +1,160 @@
+// Thermal errors (issue 19): the scale expansion of seed 003 §2.7 against hand calculations, and
+// the regression of drift on temperatures with its stepwise sensor choice on a virtual machine
+// run through seed 003's load cycle (5000 rpm for 6 h, 8 h at rest, L971-973).
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "mtacc/thermal/drift_regression.hpp"
+#include "mtacc/thermal/scale_expansion.hpp"
+#include "mtacc/thermal/thermal_machine.hpp"
+#include "test_helpers.hpp"
+
+namespace mtacc {
+namespace {
+
+constexpr double kAlpha = 11.5e-6;  // 1/K
+
+TEST(ScaleExpansion, ALinearProfileGivesTheClosedForm) {
+  // T(u) = 21 + 0.01 u on sensors at 0, 300, 600 mm: Delta = alpha [(21 - 20)(p - p_ref) + 0.005 (p^2 - p_ref^2)].
+  const ScaleSensors scale{{0, 300, 600}, kAlpha, 150, 20};
+  const std::vector<double> t{21, 24, 27};
+  for (double p : {0.0, 75.0, 150.0, 299.0, 450.0, 600.0}) {
+    const double expected = kAlpha * ((p - 150) + 0.005 * (p * p - 150 * 150));
+    EXPECT_NEAR(scaleExpansion(scale, t, p), expected, 1e-12) << p;
+  }
+}
+
+TEST(ScaleExpansion, AKinkedProfileByHand) {
+  // Sensors at 0, 200, 600 mm read 20, 25, 21 degC; T_ref 20, p_ref 100 mm. By hand, K mm:
+  // 100..200: int 5u/200 = 375; 200..500: int 5 - (u - 200)/100 = 1500 - 450 = 1050;
+  // 500..600: 500 - 350 = 150; beyond 600 the end sensor's 1 K: 100 more to 700; below 0 the
+  // first sensor's 0 K: nothing, and 0..100 gives -125.
+  const ScaleSensors scale{{0, 200, 600}, kAlpha, 100, 20};
+  const std::vector<double> t{20, 25, 21};
+  EXPECT_NEAR(scaleExpansion(scale, t, 500), kAlpha * 1425, 1e-12);
+  EXPECT_NEAR(scaleExpansion(scale, t, 700), kAlpha * 1675, 1e-12);
+  EXPECT_NEAR(scaleExpansion(scale, t, -50), kAlpha * -125, 1e-12);
+  EXPECT_NEAR(scaleExpansion(scale, t, 0), kAlpha * -125, 1e-12);
+}
+
+TEST(ScaleExpansion, IsZeroAtTheReferencePositionAtAnyTemperatures) {
+  for (double reference : {-50.0, 0.0, 123.4, 600.0, 800.0}) {
+    const ScaleSensors scale{{0, 250, 600}, kAlpha, reference, 20};
+    EXPECT_EQ(scaleExpansion(scale, std::vector<double>{31, 17, 44}, reference), 0.0) << reference;
+  }
+}
+
+TEST(ScaleExpansion, RefusesAScaleItCannotInterpolate) {
+  const auto message = [](const ScaleSensors& s, const std::vector<double>& t) {
+    const auto e = test::thrown<std::invalid_argument>([&] { scaleExpansion(s, t, 10); });
+    return e ? std::string(e->what()) : std::string();
+  };
+  EXPECT_EQ(message({{0}, kAlpha}, {20}), "a scale needs at least two temperature sensors, not 1");
+  EXPECT_EQ(message({{0, 100}, kAlpha}, {20}), "1 temperatures for 2 sensors on the scale");
+  EXPECT_EQ(message({{0, 100, 100}, kAlpha}, {20, 21, 22}), "scale sensors must be in increasing position (100 mm after 100 mm)");
+  EXPECT_EQ(message({{0, 100}, kAlpha}, {20, std::nan("")}), "scale sensor 1: not a finite number");
+}
+
+// Nodes: 0 the spindle head (fast), 1 the column (slow), 2 the bed (slower), 3 the spindle motor
+// housing (fast, no effect on the drift). Sensors: the room, then one on each node.
+// The drift (Y, mm) is 1.5 um/K of the head and 2.5 um/K of the column.
+VirtualThermalMachine maho(std::uint64_t seed) {
+  VirtualThermalMachine m;
+  m.nodes = {{1800, {25}}, {3 * 3600, {8}}, {6 * 3600, {3}}, {900, {15}}};
+  m.driftPerKelvin = {1.5e-3, 2.5e-3, 0, 0};
+  m.sensedNode = {-1, 0, 1, 2, 3};
+  m.roomSwing = 0.5;
+  m.seed = seed;
+  return m;
+}
+
+// Seed 003's cycle at 1 Hz: the spindle at load 1 for `on` hours, then at rest for `off` hours,
+// repeated.
+Eigen::MatrixXd cycle(const std::vector<std::pair<double, double>>& onOff) {
+  std::vector<double> load;
+  for (const auto& [on, off] : onOff) {
+    load.insert(load.end(), static_cast<size_t>(on * 3600), 1.0);
+    load.insert(load.end(), static_cast<size_t>(off * 3600), 0.0);
+  }
+  return Eigen::Map<const Eigen::VectorXd>(load.data(), static_cast<long>(load.size()));
+}
+
+TEST(ThermalDrift, WarmUpAndCoolDownDifferAtTheSameHeadTemperature) {
+  // The seed's observation (L992-998): 40 or 52 um of Y drift for the same rise of the head,
+  // depending on warm-up or cool-down. Here: the drift when the head passes 15 K of rise.
+  const auto r = recordDriftTest(maho(1), cycle({{6, 8}}), 1.0);
+  double warming = NAN, cooling = NAN;
+  for (long k = 1; k < r.nodes.rows(); ++k) {
+    const double before = r.nodes(k - 1, 0) - 20, now = r.nodes(k, 0) - 20;
+    if (before < 15 && now >= 15 && std::isnan(warming)) warming = r.trueDrift[k];
+    if (before > 15 && now <= 15) cooling = r.trueDrift[k];
+  }
+  EXPECT_GT(cooling - warming, 5e-3) << "the column, slower than the head, holds its heat";
+  RecordProperty("drift_um_at_15K_warming_cooling", fmt::format("{:.1f} / {:.1f}", warming * 1e3, cooling * 1e3));
+}
+
+TEST(ThermalDrift, TheRegressionRecoversTheInjectedCoefficientsWithinTheirUncertainties) {
+  const auto r = recordDriftTest(maho(2), cycle({{6, 8}}), 1.0);
+  const auto model = fitDriftModel(r.record, {1, 2});
+  const Eigen::VectorXd truth = Eigen::Vector2d(1.5e-3, 2.5e-3), se = model.standardErrors();
+  for (long j = 0; j < 2; ++j) {
+    EXPECT_LT(std::fabs(model.coefficients[j] - truth[j]), 3 * se[j]) << j;
+    EXPECT_LT(se[j], 0.01 * truth[j]) << "the cycle determines each coefficient to 1 %";
+  }
+  EXPECT_NEAR(model.residualSigma, 0.3e-3, 0.01e-3);
+  RecordProperty("coefficients_um_per_K", fmt::format("{:.4f} +- {:.4f}, {:.4f} +- {:.4f}", model.coefficients[0] * 1e3, se[0] * 1e3,
+                                                      model.coefficients[1] * 1e3, se[1] * 1e3));
+}
+
+TEST(ThermalDrift, StepwiseSelectionFindsTheInjectedSensorsAndRefusesOneSensor) {
+  const auto r = recordDriftTest(maho(3), cycle({{6, 8}}), 1.0);
+  const auto selection = selectSensors(r.record);
+  auto chosen = selection.model.sensors;
+  std::sort(chosen.begin(), chosen.end());
+  EXPECT_EQ(chosen, (std::vector<int>{1, 2}));
+  // One sensor cannot explain the drift: the best one leaves many times the noise.
+  EXPECT_GT(selection.bestSingleSensorRms, 10 * 0.3e-3);
+  EXPECT_LT(selection.crossValidatedRms, 1.1 * 0.3e-3);
+  RecordProperty("cv_rms_um_best_single_vs_chosen",
+                 fmt::format("{:.2f} (sensor {}) vs {:.3f}", selection.bestSingleSensorRms * 1e3, selection.bestSingleSensor, selection.crossValidatedRms * 1e3));
+}
+
+TEST(ThermalDrift, TheDriftOfAHeldOutCycleIsPredictedWithinItsStatedUncertainty) {
+  const auto fitted = selectSensors(recordDriftTest(maho(4), cycle({{6, 8}}), 1.0).record).model;
+  const auto other = recordDriftTest(maho(5), cycle({{3, 2}, {3, 6}}), 1.0);  // intermittent spindle use
+  double squares = 0.0;
+  long within = 0;
+  const long n = other.record.drift.size();
+  for (long k = 0; k < n; ++k) {
+    const Eigen::VectorXd t = other.record.temperatures.row(k).transpose();
+    const double z = (other.record.drift[k] - fitted.predict(t)) / fitted.predictionUncertainty(t);
+    squares += z * z;
+    within += std::fabs(z) <= 2 ? 1 : 0;
+  }
+  EXPECT_NEAR(std::sqrt(squares / static_cast<double>(n)), 1.0, 0.1);
+  EXPECT_GT(static_cast<double>(within) / static_cast<double>(n), 0.94);
+}
+
+TEST(ThermalDrift, BadRecordsAreRefused) {
+  const auto message = [](const ThermalRecord& r, const std::vector<int>& sensors) {
+    const auto e = test::thrown<std::invalid_argument>([&] { fitDriftModel(r, sensors); });
+    return e ? std::string(e->what()) : std::string();
+  };
+  ThermalRecord r{Eigen::MatrixXd::Random(6, 3), Eigen::VectorXd::Random(6)};
+  r.temperatures.col(2).setConstant(20);
+  EXPECT_EQ(message(r, {0, 1, 0}), "sensor 0 given twice");
+  EXPECT_EQ(message(r, {2}), "sensor 2 does not change: no slope to fit");
+  EXPECT_EQ(message(r, {3}), "sensor 3 out of range (0 .. 2)");
+  EXPECT_EQ(message({r.temperatures.topRows(3), r.drift.head(3)}, {0, 1}), "3 samples for 2 sensors: at least 4 needed");
+  r.temperatures(4, 1) = std::nan("");
+  EXPECT_EQ(message(r, {0}), "sensor 1 sample 4: not a finite number");
+  const auto e = test::thrown<std::invalid_argument>([&] { selectSensors({Eigen::MatrixXd::Random(20, 8), Eigen::VectorXd::Random(20)}); });
+  ASSERT_TRUE(e);
+  EXPECT_STREQ(e->what(), "20 samples in 5 folds: at least 10 per fold needed for up to 8 sensors");
+}
+
+}  // namespace
+}  // namespace mtacc
