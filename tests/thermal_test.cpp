@@ -9,8 +9,8 @@
 
 #include "mtacc/thermal/drift_regression.hpp"
 #include "mtacc/thermal/scale_expansion.hpp"
-#include "mtacc/thermal/thermal_machine.hpp"
 #include "test_helpers.hpp"
+#include "thermal_machines.hpp"
 
 namespace mtacc {
 namespace {
@@ -58,34 +58,10 @@ TEST(ScaleExpansion, RefusesAScaleItCannotInterpolate) {
   EXPECT_EQ(message({{0, 100}, kAlpha}, {20, std::nan("")}), "scale sensor 1: not a finite number");
 }
 
-// Nodes: 0 the spindle head (fast), 1 the column (slow), 2 the bed (slower), 3 the spindle motor
-// housing (fast, no effect on the drift). Sensors: the room, then one on each node.
-// The drift (Y, mm) is 1.5 um/K of the head and 2.5 um/K of the column.
-VirtualThermalMachine maho(std::uint64_t seed) {
-  VirtualThermalMachine m;
-  m.nodes = {{1800, {25}}, {3 * 3600, {8}}, {6 * 3600, {3}}, {900, {15}}};
-  m.driftPerKelvin = {1.5e-3, 2.5e-3, 0, 0};
-  m.sensedNode = {-1, 0, 1, 2, 3};
-  m.roomSwing = 0.5;
-  m.seed = seed;
-  return m;
-}
-
-// Seed 003's cycle at 1 Hz: the spindle at load 1 for `on` hours, then at rest for `off` hours,
-// repeated.
-Eigen::MatrixXd cycle(const std::vector<std::pair<double, double>>& onOff) {
-  std::vector<double> load;
-  for (const auto& [on, off] : onOff) {
-    load.insert(load.end(), static_cast<size_t>(on * 3600), 1.0);
-    load.insert(load.end(), static_cast<size_t>(off * 3600), 0.0);
-  }
-  return Eigen::Map<const Eigen::VectorXd>(load.data(), static_cast<long>(load.size()));
-}
-
 TEST(ThermalDrift, WarmUpAndCoolDownDifferAtTheSameHeadTemperature) {
   // The seed's observation (L992-998): 40 or 52 um of Y drift for the same rise of the head,
   // depending on warm-up or cool-down. Here: the drift when the head passes 15 K of rise.
-  const auto r = recordDriftTest(maho(1), cycle({{6, 8}}), 1.0);
+  const auto r = recordDriftTest(test::maho(1), test::cycle({{6, 8}}), 1.0);
   double warming = NAN, cooling = NAN;
   for (long k = 1; k < r.nodes.rows(); ++k) {
     const double before = r.nodes(k - 1, 0) - 20, now = r.nodes(k, 0) - 20;
@@ -97,7 +73,7 @@ TEST(ThermalDrift, WarmUpAndCoolDownDifferAtTheSameHeadTemperature) {
 }
 
 TEST(ThermalDrift, TheRegressionRecoversTheInjectedCoefficientsWithinTheirUncertainties) {
-  const auto r = recordDriftTest(maho(2), cycle({{6, 8}}), 1.0);
+  const auto r = recordDriftTest(test::maho(2), test::cycle({{6, 8}}), 1.0);
   const auto model = fitDriftModel(r.record, {1, 2});
   const Eigen::VectorXd truth = Eigen::Vector2d(1.5e-3, 2.5e-3), se = model.standardErrors();
   for (long j = 0; j < 2; ++j) {
@@ -110,7 +86,7 @@ TEST(ThermalDrift, TheRegressionRecoversTheInjectedCoefficientsWithinTheirUncert
 }
 
 TEST(ThermalDrift, StepwiseSelectionFindsTheInjectedSensorsAndRefusesOneSensor) {
-  const auto r = recordDriftTest(maho(3), cycle({{6, 8}}), 1.0);
+  const auto r = recordDriftTest(test::maho(3), test::cycle({{6, 8}}), 1.0);
   const auto selection = selectSensors(r.record);
   auto chosen = selection.model.sensors;
   std::sort(chosen.begin(), chosen.end());
@@ -123,8 +99,8 @@ TEST(ThermalDrift, StepwiseSelectionFindsTheInjectedSensorsAndRefusesOneSensor) 
 }
 
 TEST(ThermalDrift, TheDriftOfAHeldOutCycleIsPredictedWithinItsStatedUncertainty) {
-  const auto fitted = selectSensors(recordDriftTest(maho(4), cycle({{6, 8}}), 1.0).record).model;
-  const auto other = recordDriftTest(maho(5), cycle({{3, 2}, {3, 6}}), 1.0);  // intermittent spindle use
+  const auto fitted = selectSensors(recordDriftTest(test::maho(4), test::cycle({{6, 8}}), 1.0).record).model;
+  const auto other = recordDriftTest(test::maho(5), test::cycle({{3, 2}, {3, 6}}), 1.0);  // intermittent spindle use
   double squares = 0.0;
   long within = 0;
   const long n = other.record.drift.size();

@@ -64,5 +64,6 @@ void addIdentifyCommands(CLI::App& app);      // identify, observability
 void addCubicCommands(CLI::App& app);         // cubic, cubic-identify
 void addDynamicsCommand(CLI::App& app);       // dynamics modes | frf | accel | map
 void addDecomposeCommand(CLI::App& app);      // decompose (seed 004 error decomposition)
+void addDriftCommand(CLI::App& app);          // drift (ISO 230-3 spindle drift test, seed 003 thermal)
 
 }  // namespace mtacc::cli

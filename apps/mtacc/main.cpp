@@ -77,6 +77,7 @@ int main(int argc, char** argv) {
   mtacc::cli::addIdentifyCommands(app);
   mtacc::cli::addDynamicsCommand(app);
   mtacc::cli::addDecomposeCommand(app);
+  mtacc::cli::addDriftCommand(app);
   mtacc::cli::addReportCommand(app);
   try {
     app.parse(argc, argv);

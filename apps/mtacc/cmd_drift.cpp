@@ -1,0 +1,70 @@
+// mtacc drift: a spindle drift test (ISO 230-3, seed 003 §2.6) from its probe and temperature
+// readings: the drift per direction, its warm-up / cool-down hysteresis, and the temperatures
+// that predict it (stepwise regression).
+#include <fmt/format.h>
+
+#include "cli_common.hpp"
+#include "mtacc/workflows/thermal_drift.hpp"
+
+namespace mtacc::cli {
+namespace {
+
+struct DriftCliOptions : MachineOptions {
+  DriftTestRequest request;
+};
+
+void run(const DriftCliOptions& o) {
+  const auto r = evaluateDriftTest(o.request);
+  const auto j = toJson(r);
+  std::string human = fmt::format("{}: {} samples over {:.2f} h, {} temperature sensors\n\n", r.test.file, r.test.time.size(),
+                                  j["duration_s"].get<double>() / 3600, r.test.sensors.size());
+  human += fmt::format("{:>3} {:>12} {:>8} {:>10} | {:>24} | {}\n", "", "largest", "at h", "range", "hysteresis (cool - warm)",
+                       "model: sensors (coefficient per K), cross-validated RMS");
+  std::string csv = "direction,unit,largest,largest_at_s,range,hysteresis,hysteresis_at_C,sensors,cross_validated_rms,best_single_sensor_rms\n";
+  for (const auto& d : j["directions"]) {
+    const auto unit = d["unit"].get<std::string>();
+    std::string hysteresis = "-", model = "-", sensors;
+    if (d.contains("hysteresis"))
+      hysteresis = fmt::format("{:.2f} {} at {:.1f} C", d["hysteresis"]["difference"].get<double>(), unit, d["hysteresis"]["at_C"].get<double>());
+    if (d.contains("model")) {
+      const auto& m = d["model"];
+      for (const auto& s : m["sensors"])
+        sensors += fmt::format("{}{} ({:.4g} +- {:.2g})", sensors.empty() ? "" : ", ", s["sensor"].get<std::string>(),
+                               s["coefficient_per_K"].get<double>(), s["standard_error_per_K"].get<double>());
+      model = fmt::format("{}: {:.3f} {} (one sensor, {}: {:.3f})", sensors.empty() ? "offset only" : sensors, m["cross_validated_rms"].get<double>(),
+                          unit, m["best_single_sensor"].get<std::string>(), m["best_single_sensor_rms"].get<double>());
+    }
+    human += fmt::format("{:>3} {:>8.3f} {:<4} {:>7.2f} {:>8.3f} {:<4}| {:>24} | {}\n", d["direction"].get<std::string>(), d["largest"].get<double>(),
+                         unit, d["largest_at_s"].get<double>() / 3600, d["range"].get<double>(), unit, hysteresis, model);
+    csv += fmt::format("{},{},{},{},{},{},{},\"{}\",{},{}\n", d["direction"].get<std::string>(), unit, d["largest"].get<double>(),
+                       d["largest_at_s"].get<double>(), d["range"].get<double>(),
+                       d.contains("hysteresis") ? fmt::format("{}", d["hysteresis"]["difference"].get<double>()) : "",
+                       d.contains("hysteresis") ? fmt::format("{}", d["hysteresis"]["at_C"].get<double>()) : "", sensors,
+                       d.contains("model") ? fmt::format("{}", d["model"]["cross_validated_rms"].get<double>()) : "",
+                       d.contains("model") ? fmt::format("{}", d["model"]["best_single_sensor_rms"].get<double>()) : "");
+  }
+  if (j.contains("hysteresis_sensor"))
+    human += fmt::format("\nhysteresis: the drift on cooling minus on warming at the same temperature of {}, in {} equal bins of the range "
+                         "both cover\n",
+                         j["hysteresis_sensor"].get<std::string>(), 20);
+  human += "model: drift = offset + sum of coefficient x (T - T at the start) over the chosen sensors, chosen stepwise by five-fold\n"
+           "cross-validated RMS in contiguous blocks; a model needing more than one sensor means one sensor cannot explain the drift\n";
+  emit(o, j, human, csv);
+}
+
+}  // namespace
+
+void addDriftCommand(CLI::App& app) {
+  auto o = std::make_shared<DriftCliOptions>();
+  auto* cmd = app.add_subcommand("drift", "spindle drift test (ISO 230-3, seed 003): drift per direction, hysteresis, the temperatures "
+                                          "that predict it");
+  cmd->add_option("test", o->request.file, "drift test (CSV, docs/file-formats.md \"Drift tests\")")->required();
+  cmd->add_option("--sensor", o->request.hysteresisSensor, "temperature for the hysteresis (default: the one that changes most)");
+  cmd->add_option("--folds", o->request.selection.folds, "cross-validation blocks")->capture_default_str()->check(CLI::Range(2, 100));
+  cmd->add_option("--max-sensors", o->request.selection.maximumSensors, "largest sensor set of a model")->capture_default_str()
+      ->check(CLI::Range(0, 64));
+  addOutputOptions(*cmd, *o);
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace mtacc::cli

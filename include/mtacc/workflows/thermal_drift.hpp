@@ -1,0 +1,44 @@
+#pragma once
+// `mtacc drift`: a spindle drift test (ISO 230-3, seed 003 §2.6) evaluated whole: the mandrel's
+// drift per direction with its extremes, the warm-up / cool-down hysteresis against one
+// temperature, and per direction the regression of the drift on the temperatures with the
+// stepwise choice of a minimal sensor set (seed 003 L1026-1050).
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mtacc/io/drift_test_csv.hpp"
+#include "mtacc/thermal/drift_regression.hpp"
+#include "mtacc/thermal/drift_test.hpp"
+
+namespace mtacc {
+
+struct DriftTestRequest {
+  std::string file;
+  std::string hysteresisSensor;  // empty: the sensor whose temperature changes most
+  SensorSelectionOptions selection;
+};
+
+struct DirectionEvaluation {
+  DriftDirection direction = DriftDirection::X;
+  DriftExtremes extremes;
+  std::optional<DriftHysteresis> hysteresis;
+  std::optional<SensorSelection> model;  // absent without temperatures
+};
+
+struct DriftTestEvaluation {
+  DriftTestFile test;
+  MandrelDrift drift;
+  int hysteresisSensor = -1;  // -1 without temperatures
+  std::vector<DirectionEvaluation> directions;  // those the probes give, in X Y Z A B order
+};
+
+// Throws InputError naming the file (and the line and column of a bad reading), `sensor` for a
+// sensor the file does not hold, or the file's header for too few samples for the sensors.
+DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request);
+// Lengths in um, tilts in urad, coefficients per K, times in s.
+nlohmann::json toJson(const DriftTestEvaluation& evaluation);
+
+}  // namespace mtacc

@@ -1,0 +1,112 @@
+#include "mtacc/workflows/thermal_drift.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
+
+namespace mtacc {
+namespace {
+
+bool isTilt(DriftDirection d) { return d == DriftDirection::A || d == DriftDirection::B; }
+
+// um for displacements, urad for tilts.
+double displayed(DriftDirection d, double value) { return value * (isTilt(d) ? 1e6 : 1e3); }
+
+}  // namespace
+
+DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request) {
+  DriftTestEvaluation out;
+  out.test = readDriftTestCsv(request.file);
+  const auto& test = out.test;
+  try {
+    out.drift = mandrelDrift(test.probes);
+  } catch (const std::invalid_argument& e) {
+    throw InputError({test.file, test.headerLine, "probe_z"}, e.what());
+  }
+  const long sensors = test.temperatures.cols();
+  if (!request.hysteresisSensor.empty()) {
+    const auto it = std::find(test.sensors.begin(), test.sensors.end(), request.hysteresisSensor);
+    if (it == test.sensors.end())
+      throw InputError({"", 0, "sensor"}, fmt::format("'{}': the file's temperatures are {}", request.hysteresisSensor,
+                                                        test.sensors.empty() ? "none" : fmt::format("{}", fmt::join(test.sensors, ", "))));
+    out.hysteresisSensor = static_cast<int>(it - test.sensors.begin());
+  } else if (sensors > 0) {
+    const Eigen::VectorXd ranges = test.temperatures.colwise().maxCoeff() - test.temperatures.colwise().minCoeff();
+    ranges.maxCoeff(&out.hysteresisSensor);
+  }
+  auto selection = request.selection;
+  selection.maximumSensors = static_cast<int>(std::min<long>(selection.maximumSensors, sensors));
+  for (const auto direction : kDriftDirections) {
+    const auto& series = out.drift[direction];
+    if (!series) continue;
+    DirectionEvaluation e;
+    e.direction = direction;
+    e.extremes = driftExtremes(*series, test.time);
+    if (out.hysteresisSensor >= 0) e.hysteresis = driftHysteresis(*series, test.temperatures.col(out.hysteresisSensor));
+    if (sensors > 0) {
+      try {
+        e.model = selectSensors({test.temperatures, *series}, selection);
+      } catch (const std::invalid_argument& error) {
+        throw InputError({test.file, test.headerLine, fmt::format("{} drift", nameOf(direction))}, error.what());
+      }
+    }
+    out.directions.push_back(std::move(e));
+  }
+  return out;
+}
+
+nlohmann::json toJson(const DriftTestEvaluation& r) {
+  const auto& test = r.test;
+  nlohmann::json j{{"file", test.file},
+                   {"samples", test.time.size()},
+                   {"duration_s", test.time[test.time.size() - 1] - test.time[0]},
+                   {"sensors", nlohmann::json::array()},
+                   {"directions", nlohmann::json::array()}};
+  for (size_t s = 0; s < test.sensors.size(); ++s) {
+    const auto column = test.temperatures.col(static_cast<long>(s));
+    j["sensors"].push_back({{"name", test.sensors[s]}, {"location", test.sensorLocations[s]}, {"rise_C", column.maxCoeff() - column[0]},
+                            {"range_C", column.maxCoeff() - column.minCoeff()}});
+  }
+  if (r.hysteresisSensor >= 0) j["hysteresis_sensor"] = test.sensors[static_cast<size_t>(r.hysteresisSensor)];
+  for (const auto& e : r.directions) {
+    const auto d = e.direction;
+    const std::string unit = isTilt(d) ? "urad" : "um";
+    nlohmann::json entry{{"direction", nameOf(d)},
+                         {"unit", unit},
+                         {"largest", displayed(d, e.extremes.largest)},
+                         {"largest_at_s", e.extremes.time},
+                         {"range", displayed(d, e.extremes.range)}};
+    if (e.hysteresis)
+      entry["hysteresis"] = {{"difference", displayed(d, e.hysteresis->difference)},
+                             {"at_C", e.hysteresis->temperature},
+                             {"common_range_C", {e.hysteresis->commonLow, e.hysteresis->commonHigh}}};
+    if (e.model) {
+      const auto& m = e.model->model;
+      const Eigen::VectorXd se = m.standardErrors();
+      nlohmann::json chosen = nlohmann::json::array();
+      for (size_t s = 0; s < m.sensors.size(); ++s)
+        chosen.push_back({{"sensor", test.sensors[static_cast<size_t>(m.sensors[s])]},
+                          {"reference_C", m.referenceTemperatures[static_cast<long>(s)]},
+                          {"coefficient_per_K", displayed(d, m.coefficients[static_cast<long>(s)])},
+                          {"standard_error_per_K", displayed(d, se[static_cast<long>(s)])}});
+      nlohmann::json steps = nlohmann::json::array();
+      for (const auto& step : e.model->steps)
+        steps.push_back({{"sensor", step.sensor < 0 ? "(offset)" : test.sensors[static_cast<size_t>(step.sensor)]},
+                         {"added", step.added},
+                         {"cross_validated_rms", displayed(d, step.crossValidatedRms)}});
+      entry["model"] = {{"offset", displayed(d, m.offset)},
+                        {"sensors", chosen},
+                        {"residual_rms", displayed(d, m.residualRms)},
+                        {"cross_validated_rms", displayed(d, e.model->crossValidatedRms)},
+                        {"best_single_sensor", e.model->bestSingleSensor < 0 ? "" : test.sensors[static_cast<size_t>(e.model->bestSingleSensor)]},
+                        {"best_single_sensor_rms", displayed(d, e.model->bestSingleSensorRms)},
+                        {"steps", steps}};
+    }
+    j["directions"].push_back(entry);
+  }
+  return j;
+}
+
+}  // namespace mtacc
