@@ -16,7 +16,7 @@ struct ReportOptions {
   std::string errorsFile;
   std::string output = ".";
   std::string plan, structure, compare, load, decomposition;
-  std::vector<std::string> positioning, components, plates;
+  std::vector<std::string> positioning, components, plates, drift;
   int samples = 5;
 };
 
@@ -38,7 +38,7 @@ struct ReportOptions {
       args.push_back(flag);
       args.push_back(value);
     }
-  for (const auto& [flag, files] : {std::pair{"--positioning", &o.positioning}, {"--component", &o.components}, {"--plate", &o.plates}})
+  for (const auto& [flag, files] : {std::pair{"--positioning", &o.positioning}, {"--component", &o.components}, {"--plate", &o.plates}, {"--drift", &o.drift}})
     for (const auto& file : *files) {
       args.push_back(flag);
       args.push_back(file);
@@ -67,6 +67,7 @@ void addReportCommand(CLI::App& app) {
   cmd->add_option("--positioning", o->positioning, "ISO 230-2 positioning-test files for the positioning section");
   cmd->add_option("--plate", o->plates, "plate measurements (seed 003) to compare with the model, one section each");
   cmd->add_option("--component", o->components, "direct-measurement runs (seed 003) to fit and plot, one section each");
+  cmd->add_option("--drift", o->drift, "spindle drift tests (ISO 230-3, seed 003) to evaluate and plot, one section each");
   cmd->add_option("--decomposition", o->decomposition, "a decomposition set (seed 004 recorded signals) for the error-decomposition section");
   cmd->callback([o] { run(*o); });
 }

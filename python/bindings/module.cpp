@@ -15,6 +15,7 @@
 #include "mtacc/workflows/budget.hpp"
 #include "mtacc/workflows/check.hpp"
 #include "mtacc/workflows/component_fit.hpp"
+#include "mtacc/workflows/thermal_drift.hpp"
 #include "mtacc/workflows/cone_study.hpp"
 #include "mtacc/workflows/cubic_identification.hpp"
 #include "mtacc/io/cubic_test_yaml.hpp"
@@ -116,6 +117,14 @@ PYBIND11_MODULE(_mtacc, mod) {
   static py::exception<InputError> inputError(mod, "InputError", PyExc_ValueError);
   static py::exception<UnreachablePose> unreachable(mod, "UnreachablePose", PyExc_ValueError);
   mod.def("positioning", [](const std::string& path) { return toPython(toJson(evaluatePositioningFile(path))); }, py::arg("path"));
+  mod.def("drift_test", [](const std::string& path, const std::string& sensor, int folds, int maximumSensors, size_t seriesPoints) {
+    DriftTestEvaluation evaluation;
+    {
+      py::gil_scoped_release release;
+      evaluation = evaluateDriftTest({path, sensor, {.folds = folds, .maximumSensors = maximumSensors}});
+    }
+    return toPython(toJson(evaluation, seriesPoints));
+  });
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

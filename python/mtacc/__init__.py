@@ -26,9 +26,10 @@ if os.path.isdir(_DATA):  # the installed package carries its own copy of the bu
 from ._mtacc import InputError, UnreachablePose  # noqa: E402
 from ._mtacc import Machine as _CoreMachine  # noqa: E402
 from ._mtacc import Structure as _CoreStructure  # noqa: E402
+from ._mtacc import drift_test as _drift_test  # noqa: E402
 from ._mtacc import positioning as _positioning  # noqa: E402
 
-__all__ = ["Machine", "Errors", "Structure", "InputError", "UnreachablePose", "positioning"]
+__all__ = ["Machine", "Errors", "Structure", "InputError", "UnreachablePose", "positioning", "drift_test"]
 
 
 def positioning(path):
@@ -36,6 +37,15 @@ def positioning(path):
     as `mtacc positioning --json`: per-target means, reversal, s and R, the axis values A, B, E, M,
     R (keys "A_forward", "A", ... in "axis_values") and the deviations, in um or arcsec ("unit")."""
     return _positioning(str(path))
+
+
+def drift_test(path, sensor="", folds=5, max_sensors=8, series_points=0):
+    """A spindle drift test (ISO 230-3, seed 003; docs/file-formats.md "Drift tests"), as
+    `mtacc drift --json`: per direction (X Y Z in um, A B in urad) the largest drift and its range,
+    the warm-up / cool-down hysteresis against `sensor` (default: the temperature that changes most),
+    and the stepwise regression on the temperatures. With series_points > 0 also the curves
+    ("series": time and temperatures; per direction its drift and the model's prediction)."""
+    return _drift_test(str(path), str(sensor), int(folds), int(max_sensors), int(series_points))
 
 
 def _text(value):

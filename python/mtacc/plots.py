@@ -772,3 +772,53 @@ def decomposition_over_feeds(result, title=None):
     fig.suptitle(title or "Error decomposition over the feeds (seed 004)")
     fig.tight_layout()
     return fig
+
+
+def drift_test_curves(result, title=None):
+    """A spindle drift test (`mtacc drift --json` with series): the drift of X, Y, Z and the tilts
+    A, B over time with each model's prediction dashed, and the temperatures below."""
+    series = result["series"]
+    hours = np.array(series["time_s"]) / 3600
+    fig, axes = plt.subplots(3, 1, figsize=(11, 9), sharex=True)
+    colours = {"X": "#c0392b", "Y": "#229954", "Z": "#2471a3", "A": "#7d3c98", "B": "#d68910"}
+    for d in result["directions"]:
+        ax = axes[0] if d["unit"] == "um" else axes[1]
+        ax.plot(hours, d["series"], color=colours[d["direction"]], linewidth=1, label=d["direction"])
+        if "predicted" in d:
+            sensors = ", ".join(s["sensor"] for s in d["model"]["sensors"]) or "offset"
+            ax.plot(hours, d["predicted"], "--", color=colours[d["direction"]], linewidth=1, label=f"{d['direction']} from {sensors}")
+    axes[0].set_ylabel("drift [µm]")
+    axes[1].set_ylabel("tilt [µrad]")
+    for name, values in series["temperatures_C"].items():
+        axes[2].plot(hours, values, linewidth=1, label=name)
+    axes[2].set_ylabel("temperature [°C]")
+    axes[2].set_xlabel("time [h]")
+    for ax in axes:
+        if ax.lines:
+            ax.legend(fontsize=7, ncol=2)
+    fig.suptitle(title or "Spindle drift test: drift, its prediction from the temperatures, and the temperatures")
+    fig.tight_layout()
+    return fig
+
+
+def drift_hysteresis(result, title=None):
+    """Each displacement's drift against the hysteresis sensor's temperature: the warm-up and the
+    cool-down branches (seed 003: 40 or 52 um of Y drift for the same rise)."""
+    series = result["series"]
+    sensor = result["hysteresis_sensor"]
+    temperature = np.array(series["temperatures_C"][sensor])
+    peak = int(np.argmax(temperature))
+    fig, ax = plt.subplots(figsize=(7, 5))
+    colours = {"X": "#c0392b", "Y": "#229954", "Z": "#2471a3"}
+    for d in result["directions"]:
+        if d["unit"] != "um":
+            continue
+        drift = np.array(d["series"])
+        ax.plot(temperature[:peak + 1], drift[:peak + 1], "-", color=colours[d["direction"]], linewidth=1, label=f"{d['direction']} warming")
+        ax.plot(temperature[peak:], drift[peak:], ":", color=colours[d["direction"]], linewidth=1.2, label=f"{d['direction']} cooling")
+    ax.set_xlabel(f"{sensor} temperature [°C]")
+    ax.set_ylabel("drift [µm]")
+    ax.legend(fontsize=8)
+    ax.set_title(title or f"Drift against the {sensor} temperature: warm-up and cool-down")
+    fig.tight_layout()
+    return fig

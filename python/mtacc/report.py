@@ -40,6 +40,7 @@ CHECK_SCRIPT = """<script>
 </script>"""
 
 DECOMPOSITION_SERIES_POINTS = 3000  # per test along the path: every k-th of ~10^5 instrument samples
+DRIFT_SERIES_POINTS = 3000  # per drift test: every k-th sample
 
 STYLE = """<style>
 body { font-family: system-ui, sans-serif; max-width: 1100px; margin: 2em auto; color: #222; line-height: 1.45; }
@@ -379,8 +380,34 @@ def decomposition_section(result):
     return out
 
 
+def drift_section(result):
+    """A spindle drift test (ISO 230-3, seed 003): curves, hysteresis and the regression on the temperatures."""
+    name = html.escape(os.path.basename(result["file"]))
+    out = (f"<h2>Spindle drift test: {name}</h2><p>{result['samples']} samples over {result['duration_s'] / 3600:.1f} h, "
+           f"{len(result['sensors'])} temperature sensors. The drift is taken from the first sample; each direction is "
+           "regressed on the temperatures, the sensors chosen stepwise by five-fold cross-validated RMS in contiguous blocks. "
+           "A model that needs more sensors than the best single one explains is one that a single sensor cannot "
+           "(seed 003's conclusion).</p>")
+    out += figure(plots.drift_test_curves(result), "Drift and tilts over time with each model's prediction; the temperatures")
+    if "hysteresis_sensor" in result:
+        out += figure(plots.drift_hysteresis(result), "Warm-up and cool-down against the temperature that changes most")
+    rows = []
+    for d in result["directions"]:
+        unit = d["unit"].replace("u", "µ")
+        h = d.get("hysteresis")
+        m = d.get("model")
+        rows.append([d["direction"], f"{d['largest']:.2f} {unit} at {d['largest_at_s'] / 3600:.2f} h", f"{d['range']:.2f}",
+                     f"{h['difference']:.2f} at {h['at_C']:.1f} °C" if h else "-",
+                     ", ".join(f"{s['sensor']} ({s['coefficient_per_K']:.3g} ± {s['standard_error_per_K']:.2g})" for s in m["sensors"]) if m else "-",
+                     f"{m['cross_validated_rms']:.3f}" if m else "-",
+                     f"{m['best_single_sensor']}: {m['best_single_sensor_rms']:.3f}" if m else "-"])
+    out += table(["direction", "largest drift", "range", "hysteresis (cool − warm)", "sensors (per K ± 1 s.e.)", "cross-validated RMS",
+                  "best single sensor"], rows)
+    return out
+
+
 def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=None, plan=None, structure=None,
-                 compare=None, positioning=(), components=(), plates=(), load=None, decomposition=None):
+                 compare=None, positioning=(), components=(), plates=(), load=None, decomposition=None, drift=()):
     """Writes <output_dir>/<machine>-report.html atomically and returns its path."""
     start = time.perf_counter()
     steps = ["machine", "error budget", "volumetric error maps", "circular test", "5-axis circle", "cone frustum",
@@ -397,6 +424,8 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
         steps.insert(-1, "plates")
     if decomposition:
         steps.insert(-1, "error decomposition")
+    if drift:
+        steps.insert(-1, "drift tests")
     done = []
 
     def step(name):
@@ -424,6 +453,8 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
             Structure(compare)
     from . import positioning as evaluate_positioning
     positioning_results = [evaluate_positioning(f) for f in positioning]
+    from . import drift_test
+    drift_results = [drift_test(f, series_points=DRIFT_SERIES_POINTS) for f in drift]
     component_results = [machine.fit_component(f) for f in components]
     plate_results = [machine.compare_plate(f) for f in plates]
     decomposition_result = machine.decompose(decomposition, series_points=DECOMPOSITION_SERIES_POINTS) if decomposition else None
@@ -519,6 +550,9 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     if positioning:
         parts.append(positioning_section(positioning_results))
         step("positioning")
+    if drift:
+        parts.extend(drift_section(r) for r in drift_results)
+        step("drift tests")
 
     elapsed = time.perf_counter() - start
     parts.append(f'<p class="meta">Built in {elapsed:.1f} s.</p>')
@@ -560,12 +594,14 @@ def main(argv=None):
     parser.add_argument("--component", action="append", default=[],
                         help="direct-measurement runs of a component (CSV) to fit and plot; may be given several times")
     parser.add_argument("--decomposition", help="a decomposition set (YAML, seed 004) of recorded signals to decompose")
+    parser.add_argument("--drift", action="append", default=[],
+                        help="spindle drift test (CSV, ISO 230-3) to evaluate and plot; may be given several times")
     args = parser.parse_args(argv)
     try:
         path = build_report(args.machine, args.output, args.errors, args.samples,
                             progress=lambda s: print(s, file=sys.stderr, flush=True), plan=args.plan,
                             structure=args.structure, compare=args.compare, positioning=args.positioning, components=args.component, plates=args.plate,
-                            load=args.load, decomposition=args.decomposition)
+                            load=args.load, decomposition=args.decomposition, drift=args.drift)
     except (InputError, UnreachablePose) as e:
         message = str(e)
         first = message.split(":", 1)[0]

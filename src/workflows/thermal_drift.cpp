@@ -57,7 +57,7 @@ DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request) {
   return out;
 }
 
-nlohmann::json toJson(const DriftTestEvaluation& r) {
+nlohmann::json toJson(const DriftTestEvaluation& r, size_t seriesPoints) {
   const auto& test = r.test;
   nlohmann::json j{{"file", test.file},
                    {"samples", test.time.size()},
@@ -105,6 +105,25 @@ nlohmann::json toJson(const DriftTestEvaluation& r) {
                         {"steps", steps}};
     }
     j["directions"].push_back(entry);
+  }
+  if (seriesPoints == 0) return j;
+  const long n = test.time.size();
+  const long stride = std::max<long>(1, (n + static_cast<long>(seriesPoints) - 1) / static_cast<long>(seriesPoints));
+  auto& series = j["series"] = {{"stride", stride}, {"time_s", nlohmann::json::array()}, {"temperatures_C", nlohmann::json::object()}};
+  for (long k = 0; k < n; k += stride) series["time_s"].push_back(test.time[k]);
+  for (size_t s = 0; s < test.sensors.size(); ++s) {
+    auto& values = series["temperatures_C"][test.sensors[s]] = nlohmann::json::array();
+    for (long k = 0; k < n; k += stride) values.push_back(test.temperatures(k, static_cast<long>(s)));
+  }
+  for (size_t e = 0; e < r.directions.size(); ++e) {
+    const auto d = r.directions[e].direction;
+    auto& entry = j["directions"][e];
+    entry["series"] = nlohmann::json::array();
+    if (r.directions[e].model) entry["predicted"] = nlohmann::json::array();
+    for (long k = 0; k < n; k += stride) {
+      entry["series"].push_back(displayed(d, (*r.drift[d])[k]));
+      if (r.directions[e].model) entry["predicted"].push_back(displayed(d, r.directions[e].model->model.predict(test.temperatures.row(k).transpose())));
+    }
   }
   return j;
 }

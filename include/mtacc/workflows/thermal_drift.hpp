@@ -38,7 +38,9 @@ struct DriftTestEvaluation {
 // Throws InputError naming the file (and the line and column of a bad reading), `sensor` for a
 // sensor the file does not hold, or the file's header for too few samples for the sensors.
 DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request);
-// Lengths in um, tilts in urad, coefficients per K, times in s.
-nlohmann::json toJson(const DriftTestEvaluation& evaluation);
+// Lengths in um, tilts in urad, coefficients per K, times in s. With seriesPoints > 0 also the
+// curves ("series"): time, temperatures, and per direction the drift and the model's prediction,
+// every k-th sample, k chosen for at most seriesPoints.
+nlohmann::json toJson(const DriftTestEvaluation& evaluation, size_t seriesPoints = 0);
 
 }  // namespace mtacc
