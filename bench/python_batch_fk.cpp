@@ -34,7 +34,7 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int main() {
-  const MachineSetup setup = loadMachineSetup({"tilting-table", "", "", std::nullopt});
+  const MachineSetup setup = loadMachineSetup({"tilting-table", "", "", std::nullopt, ""});
   const Machine& machine = *setup.machine;
   JointMatrix q(kPoses, machine.commandedCount());
   std::mt19937 rng(11);

@@ -21,7 +21,7 @@
 namespace mtacc {
 namespace {
 
-MachineSetup bundledSetup(const std::string& name) { return loadMachineSetup({name, "", "", std::nullopt}); }
+MachineSetup bundledSetup(const std::string& name) { return loadMachineSetup({name, "", "", std::nullopt, ""}); }
 
 TEST(CorrectionGrid, NodesHoldTheInverseErrorModelAndTheControllerMatchesIt) {
   const auto setup = bundledSetup("three-axis-vertical");

@@ -60,7 +60,7 @@ double interpolate(const std::vector<double>& at, const std::vector<double>& val
 }
 
 TEST(HeidenhainTables, ReadBackAndInterpolateToTheOneAxisFunctions) {
-  const auto setup = loadMachineSetup({"three-axis-vertical", "", "", std::nullopt});
+  const auto setup = loadMachineSetup({"three-axis-vertical", "", "", std::nullopt, ""});
   const CorrectionGrid grid = correctionGrid(setup.machine, setup.errors, {{11, 9, 7}, {}});
   const OneAxisReduction reduction = reduceToOneAxisFunctions(grid, 9);
   const auto files = heidenhainTables(reduction);
@@ -109,7 +109,7 @@ TEST(HeidenhainTables, ReadBackAndInterpolateToTheOneAxisFunctions) {
 }
 
 TEST(HeidenhainTables, AtMost256PointsPerTable) {
-  const auto setup = loadMachineSetup({"three-axis-vertical", "", "", std::nullopt});
+  const auto setup = loadMachineSetup({"three-axis-vertical", "", "", std::nullopt, ""});
   const OneAxisReduction reduction = reduceToOneAxisFunctions(correctionGrid(setup.machine, setup.errors, {{257, 2, 2}, {}}), 9);
   const auto e = test::thrown<InputError>([&] { heidenhainTables(reduction); });
   ASSERT_TRUE(e.has_value());

@@ -21,7 +21,7 @@
 namespace mtacc {
 namespace {
 
-MachineSetup bundledSetup(const std::string& name) { return loadMachineSetup({name, "", "", std::nullopt}); }
+MachineSetup bundledSetup(const std::string& name) { return loadMachineSetup({name, "", "", std::nullopt, ""}); }
 
 std::vector<std::string> words(const std::string& line) {
   std::istringstream in(line);

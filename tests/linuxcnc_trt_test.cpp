@@ -72,7 +72,7 @@ TEST(LinuxcncTrt, TheExampleTrunnionIsXyzacTrtKins) {
 // Y0C, Z0C); LinuxCNC's q = R_B (R_C (w - t - r) - d) + r + d with the work offset t equals it for
 // t = (-r_x, -r_y, -d_z), d_x = -X0C, r_x = X0B + X0C, r_y = Y0B + Y0C, d_z = Z0B (Z0C = 0 here).
 TEST(LinuxcncTrt, TheTiltingTableCarriesItsRotaryAxesPositions) {
-  const auto setup = loadMachineSetup({"tilting-table", "", "", std::nullopt});
+  const auto setup = loadMachineSetup({"tilting-table", "", "", std::nullopt, ""});
   const ErrorModel positions = parseErrors(*setup.machine, "errors: {X0B: 6 um, Z0B: -4 um, X0C: -5 um, Y0C: 4 um}\n", "positions.yaml");
   const LinuxcncTrtFit f = fitLinuxcncTrt(setup.machine, positions);
   EXPECT_EQ(f.nominal.kinsName(), "xyzbc-trt-kins");
@@ -90,7 +90,7 @@ TEST(LinuxcncTrt, TheTiltingTableCarriesItsRotaryAxesPositions) {
 // residual is pinned to 2 % of the figures printed here (mtacc's own, no source prints them: a
 // guard against regressions).
 TEST(LinuxcncTrt, ResidualOnTheTiltingTableWithItsFullErrorModel) {
-  const auto setup = loadMachineSetup({"tilting-table", "", "", std::nullopt});
+  const auto setup = loadMachineSetup({"tilting-table", "", "", std::nullopt, ""});
   const LinuxcncTrtFit f = fitLinuxcncTrt(setup.machine, setup.errors);
   std::cout << "tilting table, full model: " << f.residual.beforeMax * 1e3 << " um (rms " << f.residual.beforeRms * 1e3 << ") -> "
             << f.residual.afterMax * 1e3 << " um (rms " << f.residual.afterRms * 1e3 << ") over " << f.residual.samples << " poses\n";
@@ -100,7 +100,7 @@ TEST(LinuxcncTrt, ResidualOnTheTiltingTableWithItsFullErrorModel) {
 }
 
 TEST(LinuxcncTrt, HalFileReadsBackToTheParameters) {
-  const auto setup = loadMachineSetup({"tilting-table", "", "", std::nullopt});
+  const auto setup = loadMachineSetup({"tilting-table", "", "", std::nullopt, ""});
   const LinuxcncTrtFit f = fitLinuxcncTrt(setup.machine, setup.errors);
   std::istringstream file(linuxcncTrtHal(*setup.machine, f));
   std::map<std::string, double> pins;
@@ -123,7 +123,7 @@ TEST(LinuxcncTrt, HalFileReadsBackToTheParameters) {
 
 TEST(LinuxcncTrt, OtherMachinesAreRefusedWithTheReason) {
   auto reason = [](const std::string& name) {
-    const auto setup = loadMachineSetup({name, "", "", std::nullopt});
+    const auto setup = loadMachineSetup({name, "", "", std::nullopt, ""});
     return test::thrown<InputError>([&] { fitLinuxcncTrt(setup.machine, setup.errors); })->reason();
   };
   EXPECT_NE(reason("three-axis-vertical").find("need the commanded axes X, Y, Z, A or B, and C"), std::string::npos);

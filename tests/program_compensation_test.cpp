@@ -20,7 +20,7 @@
 namespace mtacc {
 namespace {
 
-MachineSetup bundledSetup(const std::string& name) { return loadMachineSetup({name, "", "", std::nullopt}); }
+MachineSetup bundledSetup(const std::string& name) { return loadMachineSetup({name, "", "", std::nullopt, ""}); }
 
 // The acceptance of issue 17: the compensated program, written as G-code and read back (its
 // rounding to 5 decimals included), run on the machine with its errors, leaves at most 5 % of

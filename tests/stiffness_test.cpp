@@ -114,7 +114,7 @@ TEST(Stiffness, OneErrorAloneCarriesNoStiffnessChange) {
 // The summary's three largest errors from their definitions: geometric (no changes), the
 // changes alone (no geometric errors), and what the changes add.
 TEST(Stiffness, SummaryComparesTheChangesWithTheGeometricErrors) {
-  MachineSource source{"maho", kLoadFile, "", std::nullopt};
+  MachineSource source{"maho", kLoadFile, "", std::nullopt, ""};
   const auto loaded = summariseStiffness(loadMachineSetup(source), 3);
   source.load = 0.0;
   const auto unloaded = summariseStiffness(loadMachineSetup(source), 3);

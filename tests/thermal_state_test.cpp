@@ -6,7 +6,9 @@
 #include <fmt/format.h>
 
 #include "mtacc/compensation/correction_tables.hpp"
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/errors/thermal_state.hpp"
+#include "mtacc/io/thermal_state_yaml.hpp"
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 #include "test_helpers.hpp"
@@ -71,7 +73,7 @@ TEST(ThermalState, TheWarmMachineGoesTheExpansionBeyondItsCommand) {
 // 2 nm here); each applied at its own state leaves what the grid leaves cold, the cold table on
 // the warm machine leaves the expansion.
 TEST(ThermalState, TablesWrittenAtTwoThermalStatesDifferByThePrediction) {
-  const auto setup = loadMachineSetup({"three-axis-vertical", "", "", std::nullopt});
+  const auto setup = loadMachineSetup({"three-axis-vertical", "", "", std::nullopt, ""});
   const auto scale = warmX(*setup.machine, {21.5, 26.0, 22.0});
   const auto warmErrors = atThermalState(*setup.machine, setup.errors, {scale});
   const CorrectionGridSpec spec{{11, 5, 5}, {}};
@@ -95,6 +97,39 @@ TEST(ThermalState, TablesWrittenAtTwoThermalStatesDifferByThePrediction) {
   RecordProperty("residual_um_cold_on_cold_warm_on_warm_cold_on_warm",
                  fmt::format("{:.3f} / {:.3f} / {:.3f} (largest expansion {:.3f})", coldOnCold.afterMax * 1e3, warmOnWarm.afterMax * 1e3,
                              coldOnWarm.afterMax * 1e3, largest * 1e3));
+}
+
+}  // namespace
+}  // namespace mtacc
+
+namespace mtacc {
+namespace {
+
+TEST(ThermalStateFile, ReadsTheScalesAndNamesItsErrors) {
+  const auto machine = test::bundled("three-axis-vertical");
+  const auto scales = parseThermalState(*machine,
+                                        "scales:\n"
+                                        "  X: {sensors: [0 mm, 337 mm, 600 mm], temperatures: [21.5, 26.0, 22.0], reference: 100 mm}\n"
+                                        "  Z: {sensors: [0 mm, 0.5 m], temperatures: [22, 21], reference: 500 mm, expansion: 8e-6, reference_temperature: 20.5}\n",
+                                        "t.yaml");
+  ASSERT_EQ(scales.size(), 2u);
+  EXPECT_EQ(scales[0].axis, machine->axisIndex("X"));
+  EXPECT_EQ(scales[0].sensors.positions, (std::vector<double>{0, 337, 600}));
+  EXPECT_EQ(scales[0].sensors.expansion, 11.5e-6);
+  EXPECT_EQ(scales[1].sensors.positions, (std::vector<double>{0, 500}));
+  EXPECT_EQ(scales[1].sensors.referenceTemperature, 20.5);
+  const auto message = [&](const std::string& text) {
+    const auto e = test::thrown<InputError>([&] { parseThermalState(*machine, text, "t.yaml"); });
+    return e ? std::to_string(e->where().line) + " " + e->where().key + ": " + e->reason() : std::string();
+  };
+  EXPECT_EQ(message("scales:\n  C: {sensors: [0 mm, 1 mm], temperatures: [20, 20], reference: 0 mm}\n"), "2 scales.C: not a linear axis with a travel of this machine");
+  EXPECT_EQ(message("scales:\n  X: {sensors: [0 mm, 0 mm], temperatures: [20, 20], reference: 0 mm}\n"), "2 scales.X.sensors: positions must increase");
+  EXPECT_EQ(message("scales:\n  X: {sensors: [0 mm, 600 mm], temperatures: [20], reference: 0 mm}\n"),
+            "2 scales.X.temperatures: expected 2 temperatures in degC, one per sensor");
+  EXPECT_EQ(message("scales:\n  X: {sensors: [0 mm, 600 mm], temperatures: [20, .nan], reference: 0 mm}\n"), "2 scales.X.temperatures: expected a plain number, got '.nan'");
+  EXPECT_EQ(message("scales:\n  X: {sensors: [0 mm, 600 mm], temperatures: [20, 20]}\n"),
+            "2 scales.X.reference: missing (the position where the scale reads true, e.g. where the drift was measured)");
+  EXPECT_EQ(message("scale:\n  X: {}\n"), "1 scale: unknown key (expected one of: description, scales)");
 }
 
 }  // namespace

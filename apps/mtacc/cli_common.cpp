@@ -36,6 +36,8 @@ void addMachineOptions(CLI::App& cmd, MachineOptions& o) {
          "workpiece load on the table in kg, scaling the errors' load-dependent stiffness changes; default: the errors' "
          "workpiece_load")
       ->check(loadInKg());
+  cmd.add_option("--thermal", o.source.thermalFile,
+                 "thermal state (YAML: the temperatures along the scales, docs/file-formats.md); default: cold, 20 degC");
   addOutputOptions(cmd, o);
 }
 

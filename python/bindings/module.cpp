@@ -136,10 +136,9 @@ PYBIND11_MODULE(_mtacc, mod) {
   });
 
   py::class_<PythonMachine>(mod, "Machine")
-      .def(py::init([](const std::string& machine, const std::string& errors, const std::string& alignment, std::optional<double> load) {
-             return PythonMachine{{loadMachineSetup({machine, errors, alignment, load})}, {}};
-           }),
-           py::arg("machine"), py::arg("errors") = "", py::arg("alignment") = "", py::arg("load") = py::none())
+      .def(py::init([](const std::string& machine, const std::string& errors, const std::string& alignment, std::optional<double> load,
+                       const std::string& thermal) { return PythonMachine{{loadMachineSetup({machine, errors, alignment, load, thermal})}, {}}; }),
+           py::arg("machine"), py::arg("errors") = "", py::arg("alignment") = "", py::arg("load") = py::none(), py::arg("thermal") = "")
       .def("check", [](const PythonMachine& s) { return toPython(toJson(checkMachine(s))); })
       .def("error_unit", [](const PythonMachine& s, const std::string& name) {
         return findParameter(*s.machine, s.errors, name).dimension == Dimension::Length ? "mm" : "rad";

@@ -95,10 +95,11 @@ class Errors(MutableMapping):
 class Machine:
     """A machine description with its errors (from the machine file, or `errors=FILE`); `load` is the
     workpiece load in kg that scales the errors' load-dependent stiffness changes (default: their
-    file's workpiece_load)."""
+    file's workpiece_load); `thermal` a thermal state (YAML: the temperatures along the scales) whose
+    scale expansion joins the errors (default: cold, 20 degC)."""
 
-    def __init__(self, machine, errors=None, alignment=None, load=None):
-        self._core = _CoreMachine(str(machine), _text(errors), _text(alignment), None if load is None else float(load))
+    def __init__(self, machine, errors=None, alignment=None, load=None, thermal=None):
+        self._core = _CoreMachine(str(machine), _text(errors), _text(alignment), None if load is None else float(load), _text(thermal))
         self._description = self._core.check()
         self.errors = Errors(self._core)
 

@@ -2,10 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <stdexcept>
+
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/io/machine_yaml.hpp"
+#include "mtacc/io/thermal_state_yaml.hpp"
 
 namespace mtacc {
 
@@ -20,6 +23,14 @@ MachineSetup loadMachineSetup(const MachineSource& source) {
     if (!(*source.load >= 0.0 && *source.load <= 1e6))
       throw InputError(InputLocation{"", 0, "load"}, "the workpiece load must lie in 0 to 1e6 kg");
     errors.workpieceLoad = *source.load;
+  }
+  if (!source.thermalFile.empty()) {
+    const auto scales = loadThermalState(*machine, source.thermalFile);
+    try {
+      errors = atThermalState(*machine, std::move(errors), scales);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(InputLocation{source.thermalFile, 0, "scales"}, e.what());
+    }
   }
   return {machine, std::move(errors)};
 }

@@ -1,7 +1,7 @@
 #pragma once
 // What every machine workflow starts from: a machine description and its errors, loaded from
 // the machine file (a path or a bundled name), an optional errors file, an optional
-// workpiece alignment and an optional workpiece load. The JSON helpers write poses and vectors the same way in every result.
+// workpiece alignment, an optional workpiece load and an optional thermal state. The JSON helpers write poses and vectors the same way in every result.
 #include <memory>
 #include <optional>
 #include <string>
@@ -21,6 +21,7 @@ struct MachineSource {
   std::string errorsFile;  // empty: the machine file's own `errors:`
   std::string alignment;   // "table", "machine", or empty for the machine file's choice
   std::optional<double> load;  // workpiece load (kg), in place of the errors' `workpiece_load`
+  std::string thermalFile;     // a thermal state (docs/file-formats.md "Thermal states"); empty: cold (20 degC)
 };
 
 struct MachineSetup {
