@@ -776,10 +776,11 @@ def decomposition_over_feeds(result, title=None):
 
 def drift_test_curves(result, title=None):
     """A spindle drift test (`mtacc drift --json` with series): the drift of X, Y, Z and the tilts
-    A, B over time with each model's prediction dashed, and the temperatures below."""
+    A, B over time with each model's prediction dashed, the displacements' residuals (measured
+    minus predicted), and the temperatures below."""
     series = result["series"]
     hours = np.array(series["time_s"]) / 3600
-    fig, axes = plt.subplots(3, 1, figsize=(11, 9), sharex=True)
+    fig, axes = plt.subplots(4, 1, figsize=(11, 11), sharex=True, gridspec_kw={"height_ratios": [3, 2, 2, 3]})
     colours = {"X": "#c0392b", "Y": "#229954", "Z": "#2471a3", "A": "#7d3c98", "B": "#d68910"}
     for d in result["directions"]:
         ax = axes[0] if d["unit"] == "um" else axes[1]
@@ -787,12 +788,16 @@ def drift_test_curves(result, title=None):
         if "predicted" in d:
             sensors = ", ".join(s["sensor"] for s in d["model"]["sensors"]) or "offset"
             ax.plot(hours, d["predicted"], "--", color=colours[d["direction"]], linewidth=1, label=f"{d['direction']} from {sensors}")
+            if d["unit"] == "um":
+                axes[2].plot(hours, np.subtract(d["series"], d["predicted"]), color=colours[d["direction"]], linewidth=0.7,
+                             label=f"{d['direction']}: cross-validated RMS {d['model']['cross_validated_rms']:.2f} µm")
     axes[0].set_ylabel("drift [µm]")
     axes[1].set_ylabel("tilt [µrad]")
+    axes[2].set_ylabel("measured − predicted [µm]")
     for name, values in series["temperatures_C"].items():
-        axes[2].plot(hours, values, linewidth=1, label=name)
-    axes[2].set_ylabel("temperature [°C]")
-    axes[2].set_xlabel("time [h]")
+        axes[3].plot(hours, values, linewidth=1, label=name)
+    axes[3].set_ylabel("temperature [°C]")
+    axes[3].set_xlabel("time [h]")
     for ax in axes:
         if ax.lines:
             ax.legend(fontsize=7, ncol=2)

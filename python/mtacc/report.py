@@ -388,7 +388,7 @@ def drift_section(result):
            "regressed on the temperatures, the sensors chosen stepwise by five-fold cross-validated RMS in contiguous blocks. "
            "A model that needs more sensors than the best single one explains is one that a single sensor cannot "
            "(seed 003's conclusion).</p>")
-    out += figure(plots.drift_test_curves(result), "Drift and tilts over time with each model's prediction; the temperatures")
+    out += figure(plots.drift_test_curves(result), "Drift and tilts over time with each model's prediction, the residuals, the temperatures")
     if "hysteresis_sensor" in result:
         out += figure(plots.drift_hysteresis(result), "Warm-up and cool-down against the temperature that changes most")
     rows = []
