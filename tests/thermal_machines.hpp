@@ -33,6 +33,14 @@ inline Eigen::MatrixXd cycle(const std::vector<std::pair<double, double>>& onOff
   return Eigen::Map<const Eigen::VectorXd>(load.data(), static_cast<long>(load.size()));
 }
 
+// An axis stopping at each of `stops` (mm) in turn for `dwell` samples, over `samples` samples:
+// the positions at which an axis-motion drift test reads the drift.
+inline Eigen::VectorXd stops(long samples, const std::vector<double>& stops, long dwell) {
+  Eigen::VectorXd p(samples);
+  for (long k = 0; k < samples; ++k) p[k] = stops[static_cast<size_t>(k / dwell) % stops.size()];
+  return p;
+}
+
 // Per probe (x1, y1, x2, y2, z) its drift per K of head, column, bed and motor, mm/K.
 inline const std::vector<std::vector<double>> kProbeDrift{
     {0.3e-3, 0.2e-3, 0, 0}, {1.5e-3, 2.5e-3, 0, 0}, {0.5e-3, 0.1e-3, 0, 0}, {1.9e-3, 2.6e-3, 0, 0}, {-1.2e-3, -0.8e-3, -1.5e-3, 0}};
@@ -52,6 +60,53 @@ inline DriftTestFile mahoDriftTest() {
   }
   test.time = Eigen::VectorXd::LinSpaced(loads.rows(), 0.0, 30.0 * static_cast<double>(loads.rows() - 1));
   test.spindleSpeed = 5000.0 * loads.col(0);
+  test.sensors = {"room", "head", "column", "bed", "motor"};
+  test.sensorLocations = {"1 m from the machine, 1.5 m high", "spindle head, front bearing", "column, top", "bed, centre", "spindle motor housing"};
+  return test;
+}
+
+// ISO 230-3's environmental temperature variation test on the same machine: spindle at rest,
+// the room swinging 1.5 K over the day, 26 h read every 60 s by x1, y1 and z.
+inline DriftTestFile mahoEnvironmentTest() {
+  const long samples = 26 * 60;
+  const Eigen::MatrixXd loads = Eigen::MatrixXd::Zero(samples, 1);
+  DriftTestFile test;
+  Eigen::VectorXd* probes[] = {&test.probes.x1, &test.probes.y1, &test.probes.z};
+  const size_t drifts[] = {0, 1, 4};
+  for (size_t p = 0; p < 3; ++p) {
+    auto machine = maho(40 + p, kProbeDrift[drifts[p]]);
+    machine.roomSwing = 1.5;
+    const auto run = recordDriftTest(machine, loads, 60.0);
+    *probes[p] = run.record.drift;
+    if (p == 1) test.temperatures = run.record.temperatures;
+  }
+  test.time = Eigen::VectorXd::LinSpaced(samples, 0.0, 60.0 * static_cast<double>(samples - 1));
+  test.spindleSpeed = Eigen::VectorXd::Zero(samples);
+  test.sensors = {"room", "head", "column", "bed", "motor"};
+  test.sensorLocations = {"1 m from the machine, 1.5 m high", "spindle head, front bearing", "column, top", "bed, centre", "spindle motor housing"};
+  return test;
+}
+
+// A Z-axis thermal drift test: Z traversing for 6 h (its drive and screw warming the nodes as the
+// spindle did), then 8 h at rest, the mandrel read every 30 s with Z stopped at 0, -200 and
+// -400 mm in turn for 10 min each. The Z probe's drift per K of the head grows by 5 nm/K per mm
+// downwards (the screw's expansion between nut and bearing); y1's does not depend on Z.
+inline DriftTestFile zAxisDriftTest() {
+  const auto loads = cycle({{6, 8}}, 120);
+  const Eigen::VectorXd z = stops(loads.rows(), {0, -200, -400}, 20);
+  DriftTestFile test;
+  Eigen::VectorXd* probes[] = {&test.probes.y1, &test.probes.z};
+  for (size_t p = 0; p < 2; ++p) {
+    auto machine = maho(60 + p, kProbeDrift[p == 0 ? 1 : 4]);
+    if (p == 1) machine.driftGradient = {5e-6, 0, 0, 0};
+    const auto run = recordDriftTest(machine, loads, 30.0, z);
+    *probes[p] = run.record.drift;
+    if (p == 0) test.temperatures = run.record.temperatures;
+  }
+  test.time = Eigen::VectorXd::LinSpaced(loads.rows(), 0.0, 30.0 * static_cast<double>(loads.rows() - 1));
+  test.spindleSpeed = Eigen::VectorXd::Zero(loads.rows());
+  test.axes = {"Z"};
+  test.positions = z;
   test.sensors = {"room", "head", "column", "bed", "motor"};
   test.sensorLocations = {"1 m from the machine, 1.5 m high", "spindle head, front bearing", "column, top", "bed, centre", "spindle motor housing"};
   return test;

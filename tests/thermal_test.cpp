@@ -114,20 +114,65 @@ TEST(ThermalDrift, TheDriftOfAHeldOutCycleIsPredictedWithinItsStatedUncertainty)
   EXPECT_GT(static_cast<double>(within) / static_cast<double>(n), 0.94);
 }
 
+TEST(ThermalDrift, APositionDependentDriftIsRecoveredAndPredictedWhereItWasNotRead) {
+  // The drift read with Z at 0, -200 and -400 mm in turn (10 min each): the head's 1.5 um/K at
+  // Z = 0 grows by 5 nm/K per mm downwards (a lead screw's expansion, extraction §10.3's beta(z)).
+  auto machine = test::maho(6);
+  machine.driftGradient = {-5e-6, 0, 0, 0};
+  const auto loads = test::cycle({{6, 8}});
+  const auto r = recordDriftTest(machine, loads, 1.0, test::stops(loads.rows(), {0, -200, -400}, 600));
+  const auto selection = selectSensors(r.record);
+  const auto& model = selection.model;
+  auto chosen = model.sensors;
+  std::sort(chosen.begin(), chosen.end());
+  ASSERT_EQ(chosen, (std::vector<int>{1, 2}));
+  ASSERT_TRUE(model.positionDependent);
+  const Eigen::VectorXd se = model.standardErrors(), gammaSe = model.positionStandardErrors();
+  for (size_t j = 0; j < 2; ++j) {
+    const bool head = model.sensors[j] == 1;
+    EXPECT_LT(std::fabs(model.coefficients[static_cast<long>(j)] - (head ? 1.5e-3 : 2.5e-3)), 3 * se[static_cast<long>(j)]) << j;
+    EXPECT_LT(std::fabs(model.positionCoefficients[static_cast<long>(j)] - (head ? -5e-6 : 0.0)), 3 * gammaSe[static_cast<long>(j)]) << j;
+  }
+  EXPECT_LT(gammaSe.maxCoeff(), 0.05 * 5e-6) << "the three stops determine the gradient to 5 %";
+  EXPECT_LT(selection.crossValidatedRms, 1.1 * 0.3e-3);
+  auto placeless = r.record;
+  placeless.position.resize(0);
+  EXPECT_GT(selectSensors(placeless).crossValidatedRms, 10 * 0.3e-3) << "the same drift without its positions";
+
+  auto other = test::maho(7);
+  other.driftGradient = machine.driftGradient;
+  const long n = loads.rows();
+  const auto heldOut = recordDriftTest(other, loads, 1.0, Eigen::VectorXd::Constant(n, -300.0));
+  double squares = 0.0;
+  for (long k = 0; k < n; ++k) {
+    const Eigen::VectorXd t = heldOut.record.temperatures.row(k).transpose();
+    const double z = (heldOut.record.drift[k] - model.predict(t, -300.0)) / model.predictionUncertainty(t, -300.0);
+    squares += z * z;
+  }
+  EXPECT_NEAR(std::sqrt(squares / static_cast<double>(n)), 1.0, 0.1) << "Z = -300 mm, where no drift was read";
+  RecordProperty("head_um_per_K_and_nm_per_K_per_mm",
+                 fmt::format("{:.4f} +- {:.4f}, {:.3f} +- {:.3f}", model.coefficients[model.sensors[0] == 1 ? 0 : 1] * 1e3,
+                             se[model.sensors[0] == 1 ? 0 : 1] * 1e3, model.positionCoefficients[model.sensors[0] == 1 ? 0 : 1] * 1e6,
+                             gammaSe[model.sensors[0] == 1 ? 0 : 1] * 1e6));
+}
+
 TEST(ThermalDrift, BadRecordsAreRefused) {
   const auto message = [](const ThermalRecord& r, const std::vector<int>& sensors) {
     const auto e = test::thrown<std::invalid_argument>([&] { fitDriftModel(r, sensors); });
     return e ? std::string(e->what()) : std::string();
   };
-  ThermalRecord r{Eigen::MatrixXd::Random(6, 3), Eigen::VectorXd::Random(6)};
+  ThermalRecord r{Eigen::MatrixXd::Random(6, 3), Eigen::VectorXd::Random(6), {}};
   r.temperatures.col(2).setConstant(20);
   EXPECT_EQ(message(r, {0, 1, 0}), "sensor 0 given twice");
   EXPECT_EQ(message(r, {2}), "sensor 2 does not change: no slope to fit");
   EXPECT_EQ(message(r, {3}), "sensor 3 out of range (0 .. 2)");
-  EXPECT_EQ(message({r.temperatures.topRows(3), r.drift.head(3)}, {0, 1}), "3 samples for 2 sensors: at least 4 needed");
+  EXPECT_EQ(message({r.temperatures.topRows(3), r.drift.head(3), {}}, {0, 1}), "3 samples for 2 sensors: at least 4 needed");
+  EXPECT_EQ(message({r.temperatures, r.drift, Eigen::VectorXd::LinSpaced(6, 0, 1)}, {0, 1}), "6 samples for 2 sensors and the position: at least 7 needed");
+  EXPECT_EQ(message({r.temperatures, r.drift, Eigen::VectorXd::Constant(6, 5)}, {0}), "the position does not change: no position dependence to fit");
+  EXPECT_EQ(message({r.temperatures, r.drift, Eigen::VectorXd::Zero(5)}, {0}), "5 positions for 6 drift samples");
   r.temperatures(4, 1) = std::nan("");
   EXPECT_EQ(message(r, {0}), "sensor 1 sample 4: not a finite number");
-  const auto e = test::thrown<std::invalid_argument>([&] { selectSensors({Eigen::MatrixXd::Random(20, 8), Eigen::VectorXd::Random(20)}); });
+  const auto e = test::thrown<std::invalid_argument>([&] { selectSensors({Eigen::MatrixXd::Random(20, 8), Eigen::VectorXd::Random(20), {}}); });
   ASSERT_TRUE(e);
   EXPECT_STREQ(e->what(), "20 samples in 5 folds: at least 10 per fold needed for up to 8 sensors");
 }

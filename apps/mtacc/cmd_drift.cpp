@@ -1,6 +1,6 @@
-// mtacc drift: a spindle drift test (ISO 230-3, seed 003 §2.6) from its probe and temperature
-// readings: the drift per direction, its warm-up / cool-down hysteresis, and the temperatures
-// that predict it (stepwise regression).
+// mtacc drift: a thermal drift test (ISO 230-3, seed 003 §2.6) from its probe, position and
+// temperature readings: the drift per direction, its warm-up / cool-down hysteresis, and the
+// temperatures that predict it (stepwise regression, linear in an axis's position where it moves).
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
@@ -16,8 +16,10 @@ struct DriftCliOptions : MachineOptions {
 void run(const DriftCliOptions& o) {
   const auto r = evaluateDriftTest(o.request);
   const auto j = toJson(r);
-  std::string human = fmt::format("{}: {} samples over {:.2f} h, {} temperature sensors\n\n", r.test.file, r.test.time.size(),
-                                  j["duration_s"].get<double>() / 3600, r.test.sensors.size());
+  const bool positional = j.contains("position_axis");
+  const std::string axis = positional ? j["position_axis"].get<std::string>() : "";
+  std::string human = fmt::format("{}: {}, {} samples over {:.2f} h, {} temperature sensors\n\n", r.test.file, j["test"].get<std::string>(),
+                                  r.test.time.size(), j["duration_s"].get<double>() / 3600, r.test.sensors.size());
   human += fmt::format("{:>3} {:>12} {:>8} {:>10} | {:>24} | {}\n", "", "largest", "at h", "range", "hysteresis (cool - warm)",
                        "model: sensors (coefficient per K), cross-validated RMS");
   std::string csv = "direction,unit,largest,largest_at_s,range,hysteresis,hysteresis_at_C,sensors,cross_validated_rms,best_single_sensor_rms\n";
@@ -28,9 +30,13 @@ void run(const DriftCliOptions& o) {
       hysteresis = fmt::format("{:.2f} {} at {:.1f} C", d["hysteresis"]["difference"].get<double>(), unit, d["hysteresis"]["at_C"].get<double>());
     if (d.contains("model")) {
       const auto& m = d["model"];
-      for (const auto& s : m["sensors"])
-        sensors += fmt::format("{}{} ({:.4g} +- {:.2g})", sensors.empty() ? "" : ", ", s["sensor"].get<std::string>(),
-                               s["coefficient_per_K"].get<double>(), s["standard_error_per_K"].get<double>());
+      for (const auto& s : m["sensors"]) {
+        const std::string gradient = positional ? fmt::format(" {:+.4g} +- {:.2g} per mm {}", s["coefficient_per_K_per_mm"].get<double>(),
+                                                              s["standard_error_per_K_per_mm"].get<double>(), axis)
+                                                : "";
+        sensors += fmt::format("{}{} ({:.4g} +- {:.2g}{})", sensors.empty() ? "" : ", ", s["sensor"].get<std::string>(),
+                               s["coefficient_per_K"].get<double>(), s["standard_error_per_K"].get<double>(), gradient);
+      }
       model = fmt::format("{}: {:.3f} {} (one sensor, {}: {:.3f})", sensors.empty() ? "offset only" : sensors, m["cross_validated_rms"].get<double>(),
                           unit, m["best_single_sensor"].get<std::string>(), m["best_single_sensor_rms"].get<double>());
     }
@@ -43,12 +49,19 @@ void run(const DriftCliOptions& o) {
                        d.contains("model") ? fmt::format("{}", d["model"]["cross_validated_rms"].get<double>()) : "",
                        d.contains("model") ? fmt::format("{}", d["model"]["best_single_sensor_rms"].get<double>()) : "");
   }
-  if (j.contains("hysteresis_sensor"))
-    human += fmt::format("\nhysteresis: the drift on cooling minus on warming at the same temperature of {}, in {} equal bins of the range "
-                         "both cover\n",
-                         j["hysteresis_sensor"].get<std::string>(), 20);
-  human += "model: drift = offset + sum of coefficient x (T - T at the start) over the chosen sensors, chosen stepwise by five-fold\n"
-           "cross-validated RMS in contiguous blocks; a model needing more than one sensor means one sensor cannot explain the drift\n";
+  if (r.kind == DriftTestKind::EnvironmentalVariation)
+    human += "\nETVE: the range of each direction's drift over the test, the machine at rest\n";
+  for (const auto& d : j["directions"])
+    if (d.contains("hysteresis")) {
+      human += fmt::format("\nhysteresis: the drift on cooling minus on warming at the same temperature of {}, in {} equal bins of the range "
+                           "both cover\n",
+                           j["hysteresis_sensor"].get<std::string>(), d["hysteresis"]["bins"].get<int>());
+      break;
+    }
+  human += fmt::format("model: drift = offset + sum of coefficient x (T - T at the start) over the chosen sensors{}, chosen stepwise by "
+                       "{}-fold\ncross-validated RMS in contiguous blocks; a model needing more than one sensor means one sensor cannot "
+                       "explain the drift\n",
+                       positional ? fmt::format(", each coefficient linear in {} (per mm of its position)", axis) : "", o.request.selection.folds);
   emit(o, j, human, csv);
 }
 
@@ -63,6 +76,8 @@ void addDriftCommand(CLI::App& app) {
   cmd->add_option("--folds", o->request.selection.folds, "cross-validation blocks")->capture_default_str()->check(CLI::Range(2, 100));
   cmd->add_option("--max-sensors", o->request.selection.maximumSensors, "largest sensor set of a model")->capture_default_str()
       ->check(CLI::Range(0, 64));
+  cmd->add_option("--position", o->request.positionAxis,
+                  "axis whose position (column AXIS_mm) the coefficients depend on (default: the one that moves, if one does)");
   addOutputOptions(*cmd, *o);
   cmd->callback([o] { run(*o); });
 }

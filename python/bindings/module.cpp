@@ -117,11 +117,12 @@ PYBIND11_MODULE(_mtacc, mod) {
   static py::exception<InputError> inputError(mod, "InputError", PyExc_ValueError);
   static py::exception<UnreachablePose> unreachable(mod, "UnreachablePose", PyExc_ValueError);
   mod.def("positioning", [](const std::string& path) { return toPython(toJson(evaluatePositioningFile(path))); }, py::arg("path"));
-  mod.def("drift_test", [](const std::string& path, const std::string& sensor, int folds, int maximumSensors, size_t seriesPoints) {
+  mod.def("drift_test", [](const std::string& path, const std::string& sensor, int folds, int maximumSensors, const std::string& position,
+                           size_t seriesPoints) {
     DriftTestEvaluation evaluation;
     {
       py::gil_scoped_release release;
-      evaluation = evaluateDriftTest({path, sensor, {.folds = folds, .maximumSensors = maximumSensors}});
+      evaluation = evaluateDriftTest({path, sensor, {.folds = folds, .maximumSensors = maximumSensors}, position});
     }
     return toPython(toJson(evaluation, seriesPoints));
   });

@@ -39,13 +39,15 @@ def positioning(path):
     return _positioning(str(path))
 
 
-def drift_test(path, sensor="", folds=5, max_sensors=8, series_points=0):
-    """A spindle drift test (ISO 230-3, seed 003; docs/file-formats.md "Drift tests"), as
-    `mtacc drift --json`: per direction (X Y Z in um, A B in urad) the largest drift and its range,
-    the warm-up / cool-down hysteresis against `sensor` (default: the temperature that changes most),
-    and the stepwise regression on the temperatures. With series_points > 0 also the curves
-    ("series": time and temperatures; per direction its drift and the model's prediction)."""
-    return _drift_test(str(path), str(sensor), int(folds), int(max_sensors), int(series_points))
+def drift_test(path, sensor="", folds=5, max_sensors=8, position="", series_points=0):
+    """A thermal drift test (ISO 230-3, seed 003; docs/file-formats.md "Drift tests"), as
+    `mtacc drift --json`: what test it is ("test"), per direction (X Y Z in um, A B in urad) the
+    largest drift and its range, the warm-up / cool-down hysteresis against `sensor` (default: the
+    temperature that changes most), and the stepwise regression on the temperatures, with each
+    coefficient linear in the position of axis `position` (default: the axis that moves, if one
+    does). With series_points > 0 also the curves ("series": time, temperatures and positions; per
+    direction its drift and the model's prediction)."""
+    return _drift_test(str(path), str(sensor), int(folds), int(max_sensors), str(position), int(series_points))
 
 
 def _text(value):

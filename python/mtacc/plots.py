@@ -775,9 +775,10 @@ def decomposition_over_feeds(result, title=None):
 
 
 def drift_test_curves(result, title=None):
-    """A spindle drift test (`mtacc drift --json` with series): the drift of X, Y, Z and the tilts
+    """A thermal drift test (`mtacc drift --json` with series): the drift of X, Y, Z and the tilts
     A, B over time with each model's prediction dashed, the displacements' residuals (measured
-    minus predicted), and the temperatures below."""
+    minus predicted), and the temperatures below (with the axis position where the drift
+    depends on it)."""
     series = result["series"]
     hours = np.array(series["time_s"]) / 3600
     fig, axes = plt.subplots(4, 1, figsize=(11, 11), sharex=True, gridspec_kw={"height_ratios": [3, 2, 2, 3]})
@@ -793,6 +794,9 @@ def drift_test_curves(result, title=None):
                              label=f"{d['direction']}: cross-validated RMS {d['model']['cross_validated_rms']:.2f} µm")
     axes[0].set_ylabel("drift [µm]")
     axes[1].set_ylabel("tilt [µrad]")
+    if not axes[1].lines:
+        axes[1].text(0.5, 0.5, "no tilts: the probes are at one height", ha="center", va="center", transform=axes[1].transAxes)
+        axes[1].set_yticks([])
     axes[2].set_ylabel("measured − predicted [µm]")
     for name, values in series["temperatures_C"].items():
         axes[3].plot(hours, values, linewidth=1, label=name)
@@ -801,7 +805,11 @@ def drift_test_curves(result, title=None):
     for ax in axes:
         if ax.lines:
             ax.legend(fontsize=7, ncol=2)
-    fig.suptitle(title or "Spindle drift test: drift, its prediction from the temperatures, and the temperatures")
+    if "position_mm" in series:
+        position = axes[3].twinx()
+        position.plot(hours, series["position_mm"], color="0.6", linewidth=0.6, drawstyle="steps-post")
+        position.set_ylabel(f"{result['position_axis']} [mm]", color="0.4")
+    fig.suptitle(title or f"{result['test'][0].upper() + result['test'][1:]}: drift, its prediction, and the temperatures")
     fig.tight_layout()
     return fig
 

@@ -381,13 +381,18 @@ def decomposition_section(result):
 
 
 def drift_section(result):
-    """A spindle drift test (ISO 230-3, seed 003): curves, hysteresis and the regression on the temperatures."""
+    """A thermal drift test (ISO 230-3, seed 003): curves, hysteresis and the regression on the temperatures."""
     name = html.escape(os.path.basename(result["file"]))
-    out = (f"<h2>Spindle drift test: {name}</h2><p>{result['samples']} samples over {result['duration_s'] / 3600:.1f} h, "
+    along = result.get("position_axis")
+    out = (f"<h2>Drift test: {name}</h2><p>{html.escape(result['test'][0].upper() + result['test'][1:])}: "
+           f"{result['samples']} samples over {result['duration_s'] / 3600:.1f} h, "
            f"{len(result['sensors'])} temperature sensors. The drift is taken from the first sample; each direction is "
-           "regressed on the temperatures, the sensors chosen stepwise by five-fold cross-validated RMS in contiguous blocks. "
+           "regressed on the temperatures" + (f", each coefficient linear in the position of {along}" if along else "") +
+           ", the sensors chosen stepwise by five-fold cross-validated RMS in contiguous blocks. "
            "A model that needs more sensors than the best single one explains is one that a single sensor cannot "
-           "(seed 003's conclusion).</p>")
+           "(seed 003's conclusion)." +
+           (" The machine at rest, each direction's range is its environmental temperature variation error (ETVE)."
+            if "ETVE" in result["test"] else "") + "</p>")
     out += figure(plots.drift_test_curves(result), "Drift and tilts over time with each model's prediction, the residuals, the temperatures")
     if "hysteresis_sensor" in result:
         out += figure(plots.drift_hysteresis(result), "Warm-up and cool-down against the temperature that changes most")
@@ -398,10 +403,13 @@ def drift_section(result):
         m = d.get("model")
         rows.append([d["direction"], f"{d['largest']:.2f} {unit} at {d['largest_at_s'] / 3600:.2f} h", f"{d['range']:.2f}",
                      f"{h['difference']:.2f} at {h['at_C']:.1f} °C" if h else "-",
-                     ", ".join(f"{s['sensor']} ({s['coefficient_per_K']:.3g} ± {s['standard_error_per_K']:.2g})" for s in m["sensors"]) if m else "-",
+                     ", ".join(f"{s['sensor']} ({s['coefficient_per_K']:.3g} ± {s['standard_error_per_K']:.2g}"
+                               + (f", {s['coefficient_per_K_per_mm']:+.3g} ± {s['standard_error_per_K_per_mm']:.2g} per mm {along}" if along else "")
+                               + ")" for s in m["sensors"]) if m else "-",
                      f"{m['cross_validated_rms']:.3f}" if m else "-",
                      f"{m['best_single_sensor']}: {m['best_single_sensor_rms']:.3f}" if m else "-"])
-    out += table(["direction", "largest drift", "range", "hysteresis (cool − warm)", "sensors (per K ± 1 s.e.)", "cross-validated RMS",
+    out += table(["direction", "largest drift", "range" + (" (ETVE)" if "ETVE" in result["test"] else ""), "hysteresis (cool − warm)",
+                  "sensors (per K ± 1 s.e.)", "cross-validated RMS",
                   "best single sensor"], rows)
     return out
 

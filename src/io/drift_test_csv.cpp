@@ -19,9 +19,14 @@ constexpr const char* kProbeColumns[] = {"x1_um", "y1_um", "x2_um", "y2_um", "z_
 constexpr double kLargestProbeReading = 10.0;  // mm
 constexpr double kFastestSpindle = 2e5;        // rpm
 
+constexpr double kLargestPosition = 1e5;       // mm
+
 bool endsWith(const std::string& s, const std::string& tail) {
   return s.size() > tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
+
+// An axis position column: one capital letter and "_mm", e.g. Z_mm.
+bool isAxisColumn(const std::string& name) { return name.size() == 4 && name[0] >= 'A' && name[0] <= 'Z' && endsWith(name, "_mm"); }
 
 }  // namespace
 
@@ -72,10 +77,14 @@ DriftTestFile parseDriftTestCsv(const std::string& text, const std::string& sour
     const bool probe = std::find(std::begin(kProbeColumns), std::end(kProbeColumns), name) != std::end(kProbeColumns);
     anyProbe = anyProbe || probe;
     if (probe || name == "time_s" || name == "spindle_rpm") continue;
-    if (!endsWith(name, "_C"))
-      headerError(name, "unknown column (expected time_s, x1_um, y1_um, x2_um, y2_um, z_um, spindle_rpm and temperatures NAME_C)");
-    if (std::count(table.header.begin(), table.header.end(), name) > 1) headerError(name, "a column given twice");
-    out.sensors.push_back(name.substr(0, name.size() - 2));
+    if (isAxisColumn(name)) {
+      out.axes.push_back(name.substr(0, 1));
+    } else if (endsWith(name, "_C")) {
+      out.sensors.push_back(name.substr(0, name.size() - 2));
+    } else {
+      headerError(name, "unknown column (expected time_s, x1_um, y1_um, x2_um, y2_um, z_um, spindle_rpm, axis positions such as Z_mm "
+                        "and temperatures NAME_C)");
+    }
   }
   if (!anyProbe) headerError("x1_um", "no probe column (x1_um, y1_um, x2_um, y2_um, z_um)");
   const long samples = static_cast<long>(table.rows.size());
@@ -100,6 +109,9 @@ DriftTestFile parseDriftTestCsv(const std::string& text, const std::string& sour
     if (const int c = column(kProbeColumns[p]); c >= 0)
       *probes[p] = values(c, kMicro, -kLargestProbeReading, kLargestProbeReading, "a probe reading beyond +-10 mm (10000 um)");
   if (const int c = column("spindle_rpm"); c >= 0) out.spindleSpeed = values(c, 1.0, 0.0, kFastestSpindle, "a spindle speed from 0 to 200000 rpm");
+  out.positions.resize(samples, static_cast<long>(out.axes.size()));
+  for (size_t a = 0; a < out.axes.size(); ++a)
+    out.positions.col(static_cast<long>(a)) = values(column(out.axes[a] + "_mm"), 1.0, -kLargestPosition, kLargestPosition, "an axis position beyond +-100 m");
   out.temperatures.resize(samples, static_cast<long>(out.sensors.size()));
   for (size_t s = 0; s < out.sensors.size(); ++s) {
     out.temperatures.col(static_cast<long>(s)) = values(column(out.sensors[s] + "_C"), 1.0, -50.0, 150.0, "a temperature outside -50 .. 150 degC");
@@ -133,6 +145,7 @@ std::string driftTestCsv(const DriftTestFile& test, const std::string& note) {
   for (size_t p = 0; p < 5; ++p)
     if (probes[p]->size()) out += fmt::format(",{}", kProbeColumns[p]);
   if (test.spindleSpeed) out += ",spindle_rpm";
+  for (const auto& a : test.axes) out += "," + a + "_mm";
   for (const auto& s : test.sensors) out += "," + s + "_C";
   out += '\n';
   for (long k = 0; k < test.time.size(); ++k) {
@@ -140,6 +153,7 @@ std::string driftTestCsv(const DriftTestFile& test, const std::string& note) {
     for (const auto* probe : probes)
       if (probe->size()) out += fmt::format(",{:.3f}", (*probe)[k] / kMicro);
     if (test.spindleSpeed) out += fmt::format(",{:g}", (*test.spindleSpeed)[k]);
+    for (long a = 0; a < test.positions.cols(); ++a) out += fmt::format(",{:.4f}", test.positions(k, a));
     for (long s = 0; s < test.temperatures.cols(); ++s) out += fmt::format(",{:.3f}", test.temperatures(k, s));
     out += '\n';
   }

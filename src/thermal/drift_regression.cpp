@@ -10,34 +10,59 @@
 namespace mtacc {
 namespace {
 
-void checkFinite(const ThermalRecord& record) {
+void checkRecord(const ThermalRecord& record) {
   if (record.temperatures.rows() != record.drift.size())
     throw std::invalid_argument(fmt::format("{} temperature samples for {} drift samples", record.temperatures.rows(), record.drift.size()));
+  if (record.position.size() && record.position.size() != record.drift.size())
+    throw std::invalid_argument(fmt::format("{} positions for {} drift samples", record.position.size(), record.drift.size()));
   for (long k = 0; k < record.temperatures.rows(); ++k) {
     if (!std::isfinite(record.drift[k])) throw std::invalid_argument(fmt::format("drift sample {}: not a finite number", k));
+    if (record.position.size() && !std::isfinite(record.position[k]))
+      throw std::invalid_argument(fmt::format("position sample {}: not a finite number", k));
     for (long i = 0; i < record.temperatures.cols(); ++i)
       if (!std::isfinite(record.temperatures(k, i))) throw std::invalid_argument(fmt::format("sensor {} sample {}: not a finite number", i, k));
   }
+  if (record.position.size() && record.position.maxCoeff() == record.position.minCoeff())
+    throw std::invalid_argument("the position does not change: no position dependence to fit");
 }
 
-// The design rows [1, T_S - T_S0] of the chosen sensors.
+// Parameters per sensor (and for the offset): beta, and gamma with positions.
+long perSensor(const ThermalRecord& record) { return record.position.size() ? 2 : 1; }
+
+// The design row [1, dT_S, p, p dT_S] (the last two with positions) of the chosen sensors' temperature rises dT_S.
+template <class Row>
+void fillDesignRow(Row&& row, const Eigen::VectorXd& rises, bool positional, double position) {
+  const long p = rises.size();
+  row[0] = 1.0;
+  for (long j = 0; j < p; ++j) row[j + 1] = rises[j];
+  if (!positional) return;
+  row[p + 1] = position;
+  for (long j = 0; j < p; ++j) row[p + 2 + j] = position * rises[j];
+}
+
 Eigen::MatrixXd design(const ThermalRecord& record, const std::vector<int>& sensors, const Eigen::VectorXd& reference) {
-  Eigen::MatrixXd z(record.temperatures.rows(), static_cast<long>(sensors.size()) + 1);
-  z.col(0).setOnes();
-  for (size_t j = 0; j < sensors.size(); ++j)
-    z.col(static_cast<long>(j) + 1) = record.temperatures.col(sensors[j]).array() - reference[static_cast<long>(j)];
+  const long n = record.temperatures.rows(), p = static_cast<long>(sensors.size());
+  const bool positional = record.position.size() > 0;
+  Eigen::MatrixXd z(n, (p + 1) * perSensor(record));
+  Eigen::VectorXd rises(p);
+  for (long k = 0; k < n; ++k) {
+    for (long j = 0; j < p; ++j) rises[j] = record.temperatures(k, sensors[static_cast<size_t>(j)]) - reference[j];
+    fillDesignRow(z.row(k), rises, positional, positional ? record.position[k] : 0.0);
+  }
   return z;
 }
 
-Eigen::VectorXd designRow(const DriftModel& model, const Eigen::VectorXd& temperatures) {
-  Eigen::VectorXd z(static_cast<long>(model.sensors.size()) + 1);
-  z[0] = 1.0;
-  for (size_t j = 0; j < model.sensors.size(); ++j)
-    z[static_cast<long>(j) + 1] = temperatures[model.sensors[j]] - model.referenceTemperatures[static_cast<long>(j)];
+Eigen::VectorXd designRow(const DriftModel& model, const Eigen::VectorXd& temperatures, double position) {
+  const long p = static_cast<long>(model.sensors.size());
+  Eigen::VectorXd rises(p);
+  for (long j = 0; j < p; ++j) rises[j] = temperatures[model.sensors[static_cast<size_t>(j)]] - model.referenceTemperatures[j];
+  Eigen::VectorXd z((p + 1) * (model.positionDependent ? 2 : 1));
+  fillDesignRow(z, rises, model.positionDependent, position);
   return z;
 }
 
-// Per fold, the Gram matrix of [1, T - mean(T)] and its products with the centred drift.
+// Per fold, the Gram matrix of [1, Tc] (with positions [1, Tc, pc, pc Tc]; Tc and pc centred on
+// their means, which spans what the model's columns span) and its products with the centred drift.
 struct FoldGrams {
   std::vector<Eigen::MatrixXd> zz;
   std::vector<Eigen::VectorXd> zy;
@@ -47,14 +72,18 @@ struct FoldGrams {
 };
 
 FoldGrams foldGrams(const ThermalRecord& record, int folds) {
-  const long n = record.temperatures.rows(), p = record.temperatures.cols();
-  Eigen::MatrixXd z(n, p + 1);
+  const long n = record.temperatures.rows(), p = record.temperatures.cols(), width = (p + 1) * perSensor(record);
+  Eigen::MatrixXd z(n, width);
   z.col(0).setOnes();
-  z.rightCols(p) = record.temperatures.rowwise() - record.temperatures.colwise().mean();
+  z.middleCols(1, p) = record.temperatures.rowwise() - record.temperatures.colwise().mean();
+  if (record.position.size()) {
+    z.col(p + 1) = record.position.array() - record.position.mean();
+    z.rightCols(p) = z.middleCols(1, p).array().colwise() * z.col(p + 1).array();
+  }
   const Eigen::VectorXd y = record.drift.array() - record.drift.mean();
   FoldGrams g;
-  g.totalZz = Eigen::MatrixXd::Zero(p + 1, p + 1);
-  g.totalZy = Eigen::VectorXd::Zero(p + 1);
+  g.totalZz = Eigen::MatrixXd::Zero(width, width);
+  g.totalZy = Eigen::VectorXd::Zero(width);
   for (int f = 0; f < folds; ++f) {
     const long begin = n * f / folds, rows = n * (f + 1) / folds - begin;
     const auto block = z.middleRows(begin, rows);
@@ -68,8 +97,16 @@ FoldGrams foldGrams(const ThermalRecord& record, int folds) {
   return g;
 }
 
-// The cross-validated RMS of the model on the columns `columns` of [1, T] (0: the offset), or
-// infinity when a training fit is singular.
+// The Gram columns of the offset (0) and sensors (i + 1) in `chosen`.
+std::vector<int> gramColumns(const std::vector<int>& chosen, long sensors, bool positional) {
+  std::vector<int> columns = chosen;
+  if (positional)
+    for (const int c : chosen) columns.push_back(c + static_cast<int>(sensors) + 1);
+  return columns;
+}
+
+// The cross-validated RMS of the model on the Gram columns `columns`, or infinity when a
+// training fit is singular.
 double crossValidatedRms(const FoldGrams& g, const std::vector<int>& columns, long samples) {
   const long m = static_cast<long>(columns.size());
   Eigen::MatrixXd a(m, m), held(m, m);
@@ -94,20 +131,31 @@ double crossValidatedRms(const FoldGrams& g, const std::vector<int>& columns, lo
 
 }  // namespace
 
-double DriftModel::predict(const Eigen::VectorXd& temperatures) const {
-  const Eigen::VectorXd z = designRow(*this, temperatures);
-  return offset + z.tail(z.size() - 1).dot(coefficients);
+double DriftModel::predict(const Eigen::VectorXd& temperatures, double position) const {
+  const Eigen::VectorXd z = designRow(*this, temperatures, position);
+  const long p = coefficients.size();
+  double drift = offset + z.segment(1, p).dot(coefficients);
+  if (positionDependent) drift += z[p + 1] * offsetSlope + z.tail(p).dot(positionCoefficients);
+  return drift;
 }
 
-double DriftModel::predictionUncertainty(const Eigen::VectorXd& temperatures) const {
-  const Eigen::VectorXd z = designRow(*this, temperatures);
+double DriftModel::predictionUncertainty(const Eigen::VectorXd& temperatures, double position) const {
+  const Eigen::VectorXd z = designRow(*this, temperatures, position);
   return std::sqrt(residualSigma * residualSigma + z.dot(covariance * z));
 }
 
+Eigen::VectorXd DriftModel::standardErrors() const { return covariance.diagonal().cwiseSqrt().segment(1, coefficients.size()); }
+
+Eigen::VectorXd DriftModel::positionStandardErrors() const {
+  return covariance.diagonal().cwiseSqrt().tail(positionCoefficients.size());
+}
+
 DriftModel fitDriftModel(const ThermalRecord& record, const std::vector<int>& sensors) {
-  checkFinite(record);
-  const long n = record.temperatures.rows(), p = static_cast<long>(sensors.size());
-  if (n < p + 2) throw std::invalid_argument(fmt::format("{} samples for {} sensors: at least {} needed", n, p, p + 2));
+  checkRecord(record);
+  const long n = record.temperatures.rows(), p = static_cast<long>(sensors.size()), parameters = (p + 1) * perSensor(record);
+  if (n < parameters + 1)
+    throw std::invalid_argument(fmt::format("{} samples for {} sensors{}: at least {} needed", n, p, record.position.size() ? " and the position" : "",
+                                            parameters + 1));
   for (size_t j = 0; j < sensors.size(); ++j) {
     if (sensors[j] < 0 || sensors[j] >= record.temperatures.cols())
       throw std::invalid_argument(fmt::format("sensor {} out of range (0 .. {})", sensors[j], record.temperatures.cols() - 1));
@@ -121,29 +169,35 @@ DriftModel fitDriftModel(const ThermalRecord& record, const std::vector<int>& se
   for (long j = 0; j < p; ++j) model.referenceTemperatures[j] = record.temperatures(0, sensors[static_cast<size_t>(j)]);
   const Eigen::MatrixXd z = design(record, sensors, model.referenceTemperatures);
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(z);
-  if (qr.rank() < p + 1) throw std::invalid_argument("the chosen sensors' temperatures are linearly dependent: no unique fit");
+  if (qr.rank() < parameters) throw std::invalid_argument("the chosen sensors' temperatures are linearly dependent: no unique fit");
   const Eigen::VectorXd beta = qr.solve(record.drift);
   const Eigen::VectorXd residual = record.drift - z * beta;
   model.offset = beta[0];
-  model.coefficients = beta.tail(p);
+  model.coefficients = beta.segment(1, p);
+  if (record.position.size()) {
+    model.positionDependent = true;
+    model.offsetSlope = beta[p + 1];
+    model.positionCoefficients = beta.tail(p);
+  }
   model.residualRms = std::sqrt(residual.squaredNorm() / static_cast<double>(n));
-  model.residualSigma = std::sqrt(residual.squaredNorm() / static_cast<double>(n - p - 1));
+  model.residualSigma = std::sqrt(residual.squaredNorm() / static_cast<double>(n - parameters));
   model.covariance = model.residualSigma * model.residualSigma * (z.transpose() * z).inverse();
   return model;
 }
 
 SensorSelection selectSensors(const ThermalRecord& record, const SensorSelectionOptions& options) {
-  checkFinite(record);
+  checkRecord(record);
   const long n = record.temperatures.rows(), p = record.temperatures.cols();
   if (options.folds < 2) throw std::invalid_argument(fmt::format("{} folds: cross-validation needs at least 2", options.folds));
-  const long perFold = n / options.folds, largest = std::min<long>(options.maximumSensors, p);
-  if (perFold < largest + 2)
-    throw std::invalid_argument(fmt::format("{} samples in {} folds: at least {} per fold needed for up to {} sensors", n, options.folds,
-                                            largest + 2, largest));
+  const long perFold = n / options.folds, largest = std::min<long>(options.maximumSensors, p), needed = (largest + 1) * perSensor(record) + 1;
+  if (perFold < needed)
+    throw std::invalid_argument(fmt::format("{} samples in {} folds: at least {} per fold needed for up to {} sensors{}", n, options.folds,
+                                            needed, largest, record.position.size() ? " and the position" : ""));
+  const bool positional = record.position.size() > 0;
   const FoldGrams grams = foldGrams(record, options.folds);
   SensorSelection out;
   std::vector<int> columns{0};
-  out.steps.push_back({-1, true, crossValidatedRms(grams, columns, n)});
+  out.steps.push_back({-1, true, crossValidatedRms(grams, gramColumns(columns, p, positional), n)});
   const double keep = 1.0 - options.minimumImprovement;
   for (long round = 0; round < 4 * p && static_cast<long>(columns.size()) - 1 < largest; ++round) {
     int best = -1;
@@ -152,7 +206,7 @@ SensorSelection selectSensors(const ThermalRecord& record, const SensorSelection
       if (std::find(columns.begin(), columns.end(), i) != columns.end()) continue;
       auto candidate = columns;
       candidate.push_back(static_cast<int>(i));
-      const double rms = crossValidatedRms(grams, candidate, n);
+      const double rms = crossValidatedRms(grams, gramColumns(candidate, p, positional), n);
       if (rms < bestRms) {
         bestRms = rms;
         best = static_cast<int>(i);
@@ -171,7 +225,7 @@ SensorSelection selectSensors(const ThermalRecord& record, const SensorSelection
       for (size_t j = 1; j + 1 < columns.size(); ++j) {
         auto candidate = columns;
         candidate.erase(candidate.begin() + static_cast<long>(j));
-        const double rms = crossValidatedRms(grams, candidate, n);
+        const double rms = crossValidatedRms(grams, gramColumns(candidate, p, positional), n);
         if (rms < withoutRms) {
           withoutRms = rms;
           cheapest = j;

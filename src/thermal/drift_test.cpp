@@ -54,6 +54,7 @@ std::optional<DriftHysteresis> driftHysteresis(const Eigen::VectorXd& drift, con
   if (peak == 0 || peak == n - 1) return std::nullopt;
   const auto warm = temperature.head(peak + 1), cool = temperature.tail(n - peak - 1);
   DriftHysteresis h;
+  h.bins = bins;
   h.commonLow = std::max(warm.minCoeff(), cool.minCoeff());
   h.commonHigh = std::min(warm.maxCoeff(), cool.maxCoeff());
   if (!(h.commonHigh > h.commonLow)) return std::nullopt;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "mtacc/core/input_error.hpp"
@@ -14,7 +15,47 @@ bool isTilt(DriftDirection d) { return d == DriftDirection::A || d == DriftDirec
 // um for displacements, urad for tilts.
 double displayed(DriftDirection d, double value) { return value * (isTilt(d) ? 1e6 : 1e3); }
 
+bool changes(const Eigen::VectorXd& v) { return v.size() && v.maxCoeff() > v.minCoeff(); }
+
+DriftTestKind kindOf(const DriftTestFile& test, int positionAxis) {
+  if (positionAxis >= 0) return DriftTestKind::AxisMotion;
+  if (!test.spindleSpeed) return DriftTestKind::Unstated;
+  return test.spindleSpeed->maxCoeff() > 0 ? DriftTestKind::Spindle : DriftTestKind::EnvironmentalVariation;
+}
+
+int positionAxisOf(const DriftTestFile& test, const std::string& chosen) {
+  const std::string axes = test.axes.empty() ? "none" : fmt::format("{}", fmt::join(test.axes, ", "));
+  if (!chosen.empty()) {
+    const auto it = std::find(test.axes.begin(), test.axes.end(), chosen);
+    if (it == test.axes.end()) throw InputError({"", 0, "position"}, fmt::format("'{}': the file's axis positions are {}", chosen, axes));
+    const int axis = static_cast<int>(it - test.axes.begin());
+    if (!changes(test.positions.col(axis)))
+      throw InputError({test.file, test.headerLine, chosen + "_mm"}, "the axis does not move: no position dependence to fit");
+    return axis;
+  }
+  std::vector<int> moving;
+  std::vector<std::string> names;
+  for (size_t a = 0; a < test.axes.size(); ++a)
+    if (changes(test.positions.col(static_cast<long>(a)))) {
+      moving.push_back(static_cast<int>(a));
+      names.push_back(test.axes[a]);
+    }
+  if (moving.size() > 1)
+    throw InputError({"", 0, "position"}, fmt::format("axes {} move in {}: choose the one the drift depends on", fmt::join(names, ", "), test.file));
+  return moving.empty() ? -1 : moving[0];
+}
+
 }  // namespace
+
+const char* nameOf(DriftTestKind kind) {
+  switch (kind) {
+    case DriftTestKind::Spindle: return "spindle thermal drift (ISO 230-3)";
+    case DriftTestKind::AxisMotion: return "linear axis thermal drift (ISO 230-3)";
+    case DriftTestKind::EnvironmentalVariation: return "environmental temperature variation (ISO 230-3 ETVE), the machine at rest";
+    case DriftTestKind::Unstated: break;
+  }
+  return "thermal drift (no spindle speed recorded)";
+}
 
 DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request) {
   DriftTestEvaluation out;
@@ -26,6 +67,9 @@ DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request) {
     throw InputError({test.file, test.headerLine, "probe_z"}, e.what());
   }
   const long sensors = test.temperatures.cols();
+  out.positionAxis = positionAxisOf(test, request.positionAxis);
+  out.kind = kindOf(test, out.positionAxis);
+  const Eigen::VectorXd position = out.positionAxis < 0 ? Eigen::VectorXd() : Eigen::VectorXd(test.positions.col(out.positionAxis));
   if (!request.hysteresisSensor.empty()) {
     const auto it = std::find(test.sensors.begin(), test.sensors.end(), request.hysteresisSensor);
     if (it == test.sensors.end())
@@ -47,7 +91,7 @@ DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request) {
     if (out.hysteresisSensor >= 0) e.hysteresis = driftHysteresis(*series, test.temperatures.col(out.hysteresisSensor));
     if (sensors > 0) {
       try {
-        e.model = selectSensors({test.temperatures, *series}, selection);
+        e.model = selectSensors({test.temperatures, *series, position}, selection);
       } catch (const std::invalid_argument& error) {
         throw InputError({test.file, test.headerLine, fmt::format("{} drift", nameOf(direction))}, error.what());
       }
@@ -62,6 +106,7 @@ nlohmann::json toJson(const DriftTestEvaluation& r, size_t seriesPoints) {
   nlohmann::json j{{"file", test.file},
                    {"samples", test.time.size()},
                    {"duration_s", test.time[test.time.size() - 1] - test.time[0]},
+                   {"test", nameOf(r.kind)},
                    {"sensors", nlohmann::json::array()},
                    {"directions", nlohmann::json::array()}};
   for (size_t s = 0; s < test.sensors.size(); ++s) {
@@ -70,6 +115,7 @@ nlohmann::json toJson(const DriftTestEvaluation& r, size_t seriesPoints) {
                             {"range_C", column.maxCoeff() - column.minCoeff()}});
   }
   if (r.hysteresisSensor >= 0) j["hysteresis_sensor"] = test.sensors[static_cast<size_t>(r.hysteresisSensor)];
+  if (r.positionAxis >= 0) j["position_axis"] = test.axes[static_cast<size_t>(r.positionAxis)];
   for (const auto& e : r.directions) {
     const auto d = e.direction;
     const std::string unit = isTilt(d) ? "urad" : "um";
@@ -81,16 +127,23 @@ nlohmann::json toJson(const DriftTestEvaluation& r, size_t seriesPoints) {
     if (e.hysteresis)
       entry["hysteresis"] = {{"difference", displayed(d, e.hysteresis->difference)},
                              {"at_C", e.hysteresis->temperature},
+                             {"bins", e.hysteresis->bins},
                              {"common_range_C", {e.hysteresis->commonLow, e.hysteresis->commonHigh}}};
     if (e.model) {
       const auto& m = e.model->model;
-      const Eigen::VectorXd se = m.standardErrors();
+      const Eigen::VectorXd se = m.standardErrors(), positionSe = m.positionStandardErrors();
       nlohmann::json chosen = nlohmann::json::array();
-      for (size_t s = 0; s < m.sensors.size(); ++s)
+      for (size_t s = 0; s < m.sensors.size(); ++s) {
+        const auto i = static_cast<long>(s);
         chosen.push_back({{"sensor", test.sensors[static_cast<size_t>(m.sensors[s])]},
-                          {"reference_C", m.referenceTemperatures[static_cast<long>(s)]},
-                          {"coefficient_per_K", displayed(d, m.coefficients[static_cast<long>(s)])},
-                          {"standard_error_per_K", displayed(d, se[static_cast<long>(s)])}});
+                          {"reference_C", m.referenceTemperatures[i]},
+                          {"coefficient_per_K", displayed(d, m.coefficients[i])},
+                          {"standard_error_per_K", displayed(d, se[i])}});
+        if (m.positionDependent) {
+          chosen.back()["coefficient_per_K_per_mm"] = displayed(d, m.positionCoefficients[i]);
+          chosen.back()["standard_error_per_K_per_mm"] = displayed(d, positionSe[i]);
+        }
+      }
       nlohmann::json steps = nlohmann::json::array();
       for (const auto& step : e.model->steps)
         steps.push_back({{"sensor", step.sensor < 0 ? "(offset)" : test.sensors[static_cast<size_t>(step.sensor)]},
@@ -103,6 +156,7 @@ nlohmann::json toJson(const DriftTestEvaluation& r, size_t seriesPoints) {
                         {"best_single_sensor", e.model->bestSingleSensor < 0 ? "" : test.sensors[static_cast<size_t>(e.model->bestSingleSensor)]},
                         {"best_single_sensor_rms", displayed(d, e.model->bestSingleSensorRms)},
                         {"steps", steps}};
+      if (m.positionDependent) entry["model"]["offset_per_mm"] = displayed(d, m.offsetSlope);
     }
     j["directions"].push_back(entry);
   }
@@ -115,6 +169,10 @@ nlohmann::json toJson(const DriftTestEvaluation& r, size_t seriesPoints) {
     auto& values = series["temperatures_C"][test.sensors[s]] = nlohmann::json::array();
     for (long k = 0; k < n; k += stride) values.push_back(test.temperatures(k, static_cast<long>(s)));
   }
+  if (r.positionAxis >= 0) {
+    auto& values = series["position_mm"] = nlohmann::json::array();
+    for (long k = 0; k < n; k += stride) values.push_back(test.positions(k, r.positionAxis));
+  }
   for (size_t e = 0; e < r.directions.size(); ++e) {
     const auto d = r.directions[e].direction;
     auto& entry = j["directions"][e];
@@ -122,7 +180,9 @@ nlohmann::json toJson(const DriftTestEvaluation& r, size_t seriesPoints) {
     if (r.directions[e].model) entry["predicted"] = nlohmann::json::array();
     for (long k = 0; k < n; k += stride) {
       entry["series"].push_back(displayed(d, (*r.drift[d])[k]));
-      if (r.directions[e].model) entry["predicted"].push_back(displayed(d, r.directions[e].model->model.predict(test.temperatures.row(k).transpose())));
+      if (r.directions[e].model)
+        entry["predicted"].push_back(displayed(
+            d, r.directions[e].model->model.predict(test.temperatures.row(k).transpose(), r.positionAxis < 0 ? 0.0 : test.positions(k, r.positionAxis))));
     }
   }
   return j;

@@ -49,6 +49,7 @@ struct DriftHysteresis {
   double difference = 0.0;   // mm or rad, cool-down minus warm-up at `temperature`
   double temperature = 0.0;  // degC, the bin's centre
   double commonLow = 0.0, commonHigh = 0.0;  // degC: the range both branches cover
+  int bins = 0;
 };
 std::optional<DriftHysteresis> driftHysteresis(const Eigen::VectorXd& drift, const Eigen::VectorXd& temperature, int bins = 20);
 

@@ -17,7 +17,8 @@ struct ThermalNode {
 
 struct VirtualThermalMachine {
   std::vector<ThermalNode> nodes;
-  std::vector<double> driftPerKelvin;  // per node, mm/K: the drift is sum_j d_j (T_j - T_j(0))
+  std::vector<double> driftPerKelvin;  // per node, mm/K: the drift is sum_j (d_j + g_j p) (T_j - T_j(0)) at axis position p
+  std::vector<double> driftGradient;   // per node, g_j in mm/K per mm; empty: the drift does not depend on the position
   std::vector<int> sensedNode;         // per sensor, the node it measures; -1: the room
   double room = 20.0;                  // degC at the start; every node starts at it
   double roomSwing = 0.0;              // K: amplitude of the room's daily sine
@@ -28,14 +29,16 @@ struct VirtualThermalMachine {
 
 // One sample per row of `loads` (samples x heat loads, e.g. the spindle speed over its top
 // speed), `period` s apart, each load held over its period and the nodes following exactly
-// (first order, each also towards the room). Also returns the true drift and node temperatures,
+// (first order, each also towards the room), the drift read where the axis stands (`positions`,
+// mm, one per sample; empty: at 0). Also returns the true drift and node temperatures,
 // noise-free. Throws std::invalid_argument for a machine whose lists do not match, a node of
-// non-positive time constant, or a period that is not positive.
+// non-positive time constant, a period that is not positive, or positions not one per sample.
 struct ThermalRecording {
   ThermalRecord record;       // the sensors and the measured drift (with noise)
   Eigen::MatrixXd nodes;      // samples x nodes, degC, noise-free
   Eigen::VectorXd trueDrift;  // mm, noise-free
 };
-ThermalRecording recordDriftTest(const VirtualThermalMachine& machine, const Eigen::MatrixXd& loads, double period);
+ThermalRecording recordDriftTest(const VirtualThermalMachine& machine, const Eigen::MatrixXd& loads, double period,
+                                 const Eigen::VectorXd& positions = {});
 
 }  // namespace mtacc

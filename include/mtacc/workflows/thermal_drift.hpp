@@ -1,8 +1,11 @@
 #pragma once
-// `mtacc drift`: a spindle drift test (ISO 230-3, seed 003 §2.6) evaluated whole: the mandrel's
+// `mtacc drift`: a thermal drift test (ISO 230-3, seed 003 §2.6) evaluated whole: the mandrel's
 // drift per direction with its extremes, the warm-up / cool-down hysteresis against one
-// temperature, and per direction the regression of the drift on the temperatures with the
-// stepwise choice of a minimal sensor set (seed 003 L1026-1050).
+// temperature, and per direction the regression of the drift on the temperatures (and on an
+// axis's position, where the drift was read at several) with the stepwise choice of a minimal
+// sensor set (seed 003 L1026-1050). The test is named from what the file records: the spindle
+// running, an axis moving, or neither with the spindle at rest (the environmental temperature
+// variation test, whose drift range is its ETVE).
 #include <nlohmann/json.hpp>
 
 #include <optional>
@@ -19,7 +22,11 @@ struct DriftTestRequest {
   std::string file;
   std::string hysteresisSensor;  // empty: the sensor whose temperature changes most
   SensorSelectionOptions selection;
+  std::string positionAxis;      // the axis whose position the drift depends on; empty: the one that moves, if one does
 };
+
+enum class DriftTestKind { Spindle, AxisMotion, EnvironmentalVariation, Unstated };
+const char* nameOf(DriftTestKind kind);
 
 struct DirectionEvaluation {
   DriftDirection direction = DriftDirection::X;
@@ -31,14 +38,17 @@ struct DirectionEvaluation {
 struct DriftTestEvaluation {
   DriftTestFile test;
   MandrelDrift drift;
+  DriftTestKind kind = DriftTestKind::Unstated;
   int hysteresisSensor = -1;  // -1 without temperatures
+  int positionAxis = -1;      // of test.axes; -1: the drift taken as independent of the position
   std::vector<DirectionEvaluation> directions;  // those the probes give, in X Y Z A B order
 };
 
 // Throws InputError naming the file (and the line and column of a bad reading), `sensor` for a
-// sensor the file does not hold, or the file's header for too few samples for the sensors.
+// sensor the file does not hold, `position` for an axis it does not hold or that does not move,
+// or for two moving axes and none chosen, or the file's header for too few samples for the sensors.
 DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request);
-// Lengths in um, tilts in urad, coefficients per K, times in s. With seriesPoints > 0 also the
+// Lengths in um, tilts in urad, coefficients per K (and per K per mm), times in s. With seriesPoints > 0 also the
 // curves ("series"): time, temperatures, and per direction the drift and the model's prediction,
 // every k-th sample, k chosen for at most seriesPoints.
 nlohmann::json toJson(const DriftTestEvaluation& evaluation, size_t seriesPoints = 0);
