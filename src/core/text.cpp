@@ -106,19 +106,25 @@ Vec3 parseVector(const std::string& text, const std::string& key) {
 
 namespace mtacc {
 
-Vec3 parseLengths(const std::string& text, const std::string& key) {
+std::vector<double> parseLengthList(const std::string& text, size_t count, const std::string& key, const std::string& form,
+                                    const std::string& example) {
   const auto parts = splitFields(text);
-  if (parts.size() != 3) throw InputError(InputLocation{"", 0, key}, "expected three values 'x, y, z mm'");
-  const auto unitStart = parts[2].find_first_not_of("+-.0123456789eE");
-  if (unitStart == std::string::npos) throw InputError(InputLocation{"", 0, key}, "missing unit in '" + text + "' (e.g. '0, 0, 50 mm')");
-  const std::string unit = parts[2].substr(unitStart);
-  Vec3 v;
-  for (int k = 0; k < 3; ++k) {
-    std::string p = parts[static_cast<size_t>(k)];
-    if (k < 2 && p.find_first_not_of("+-.0123456789eE") == std::string::npos) p += unit;
-    v[k] = parseQuantityAs(p, Dimension::Length, key);
+  if (parts.size() != count) throw InputError(InputLocation{"", 0, key}, "expected " + form);
+  constexpr const char* kNumberCharacters = "+-.0123456789eE";
+  const auto unitStart = parts.back().find_first_not_of(kNumberCharacters);
+  if (unitStart == std::string::npos) throw InputError(InputLocation{"", 0, key}, "missing unit in '" + text + "' (e.g. '" + example + "')");
+  const std::string unit = parts.back().substr(unitStart);
+  std::vector<double> values;
+  for (auto p : parts) {
+    if (p.find_first_not_of(kNumberCharacters) == std::string::npos) p += unit;
+    values.push_back(parseQuantityAs(p, Dimension::Length, key));
   }
-  return v;
+  return values;
+}
+
+Vec3 parseLengths(const std::string& text, const std::string& key) {
+  const auto v = parseLengthList(text, 3, key, "three values 'x, y, z mm'", "0, 0, 50 mm");
+  return {v[0], v[1], v[2]};
 }
 
 }  // namespace mtacc

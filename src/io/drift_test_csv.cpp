@@ -43,11 +43,9 @@ DriftTestFile parseDriftTestCsv(const std::string& text, const std::string& sour
         const auto fail = [&](const std::string& what) { throw InputError({source, n, key}, what); };
         if (key == "probe_z") {
           if (probeZ) fail(fmt::format("given twice (first on line {})", probeZLine));
-          const auto parts = splitFields(value);
-          if (parts.size() != 2) fail("expected 'z1, z2 mm' (machine z of probe sets 1 and 2)");
           try {
-            const auto unit = parts[1].substr(std::min(parts[1].size(), parts[1].find_first_not_of("+-.0123456789eE")));
-            probeZ = {parseQuantityAs(parts[0] + unit, Dimension::Length, key), parseQuantityAs(parts[1], Dimension::Length, key)};
+            const auto z = parseLengthList(value, 2, key, "'z1, z2 mm' (machine z of probe sets 1 and 2)", "50, 150 mm");
+            probeZ = {z[0], z[1]};
           } catch (const InputError& e) {
             fail(e.reason());
           }

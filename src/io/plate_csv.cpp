@@ -88,12 +88,8 @@ PlateMeasurement parse(const Machine& machine, const std::string& text, const st
             m.temperatures.scaleExpansion = e[0];
             m.temperatures.plateExpansion = e[1];
           } else if (key == "probe") {
-            const auto parts = splitFields(value);
-            if (parts.size() != 2) fail(key, "expected '2S_u, 2S_v um'");
-            const auto unitStart = parts[1].find_first_not_of("+-.0123456789eE");
-            const std::string unit = unitStart == std::string::npos ? "" : parts[1].substr(unitStart);
-            m.probe = Eigen::Vector2d(parseQuantityAs(parts[0] + unit, Dimension::Length, key),
-                                      parseQuantityAs(parts[1], Dimension::Length, key));
+            const auto twoS = parseLengthList(value, 2, key, "'2S_u, 2S_v um'", "0.8, 0.9 um");
+            m.probe = Eigen::Vector2d(twoS[0], twoS[1]);
             if (!(m.probe->minCoeff() > 0.0 && m.probe->maxCoeff() < 1.0)) fail(key, "probe 2S from above 0 to 1 mm");
           } else if (key == "simulation") {
             m.simulation = parseQuantityAs(value, Dimension::Length, key);

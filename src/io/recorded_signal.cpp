@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <utility>
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/io/csv.hpp"
@@ -24,7 +25,8 @@ struct SignalColumns {
   std::function<InputLocation(size_t sample, const std::string& column)> locate;
 };
 
-RecordedSignal checkedSignal(const SignalColumns& file, const SignalLayout& layout, int headerLine) {
+// The chosen channels are moved out of `file`.
+RecordedSignal checkedSignal(SignalColumns file, const SignalLayout& layout, int headerLine) {
   std::vector<std::string> names{"time_s"};
   names.insert(names.end(), layout.channels.begin(), layout.channels.end());
   std::vector<size_t> columns;
@@ -62,7 +64,7 @@ RecordedSignal checkedSignal(const SignalColumns& file, const SignalLayout& layo
                      fmt::format("recorded at {:.6g} Hz where {:.6g} Hz is expected", 1.0 / period, 1.0 / layout.expectedPeriod));
 
   RecordedSignal signal{{time[0], period, {}}, headerLine};
-  for (size_t c = 1; c < columns.size(); ++c) signal.trace.channels.push_back(file.values[columns[c]]);
+  for (size_t c = 1; c < columns.size(); ++c) signal.trace.channels.push_back(std::move(file.values[columns[c]]));
   return signal;
 }
 
@@ -76,7 +78,7 @@ RecordedSignal parseSignalCsv(const std::string& text, const std::string& source
                      }};
   for (size_t k = 0; k < table.rows.size(); ++k)
     for (size_t c = 0; c < table.header.size(); ++c) file.values[c][k] = table.rows[k][c];
-  return checkedSignal(file, layout, table.headerLine);
+  return checkedSignal(std::move(file), layout, table.headerLine);
 }
 
 RecordedSignal parseSignalNpy(const std::string& bytes, const std::string& source, const SignalLayout& layout) {
@@ -84,7 +86,7 @@ RecordedSignal parseSignalNpy(const std::string& bytes, const std::string& sourc
   SignalColumns file{source, std::move(records.names), std::move(records.columns), [&](size_t sample, const std::string& column) {
                        return InputLocation{source, 0, sample == kHeader ? column : fmt::format("{}[{}]", column, sample)};
                      }};
-  return checkedSignal(file, layout, 0);
+  return checkedSignal(std::move(file), layout, 0);
 }
 
 RecordedSignal readRecordedSignal(const std::string& path, const SignalLayout& layout) {

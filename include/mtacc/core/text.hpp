@@ -49,7 +49,11 @@ double parseNumber(const std::string& text, const std::string& key);
 int parseCount(const std::string& text, const std::string& key, int min, int max);
 // "x,y,z": exactly three finite numbers.
 Vec3 parseVector(const std::string& text, const std::string& key);
-// "x, y, z mm" (the unit after the last, or after each): three lengths in mm.
+// "a, b, ... mm" (the unit after the last, or after each): `count` lengths in mm. Errors say
+// "expected FORM" for another count and give `example` for a missing unit.
+std::vector<double> parseLengthList(const std::string& text, size_t count, const std::string& key, const std::string& form,
+                                    const std::string& example);
+// "x, y, z mm": three lengths in mm.
 Vec3 parseLengths(const std::string& text, const std::string& key);
 
 }  // namespace mtacc
