@@ -1,10 +1,17 @@
 // mtacc compensate MACHINE --program IN.nc --gcode OUT.nc: the axis program compensated for the
 // machine's errors, with what its path deviates from the program before and after.
 // mtacc compensate MACHINE --tables DIR: the correction grid, its one-axis functions and the
-// controllers' files (Siemens, LinuxCNC, TwinCAT/ISG), with the residual each leaves.
+// controllers' files (Siemens, LinuxCNC, TwinCAT/ISG), with the residual each leaves; with
+// --thermal STATE --every SECONDS rewritten for the state as it is each period.
+#include <fmt/chrono.h>
 #include <fmt/format.h>
 
+#include <chrono>
+#include <csignal>
+#include <ctime>
 #include <filesystem>
+#include <iostream>
+#include <thread>
 
 #include "cli_common.hpp"
 #include "mtacc/core/input_error.hpp"
@@ -20,11 +27,13 @@ struct CompensateOptions : MachineOptions {
   std::string program, gcode, toolLengths;
   std::string tables, nodes = "21,21,21", pose, checkProgram;
   int functions = 9, linuxcncType = 1;
+  double everySeconds = 0.0;  // tables: 0 once; else rewritten each period
+  int updates = 0;            // with everySeconds: 0 until a stop signal
   double toleranceUm = ProgramCompensationOptions{}.tolerance * 1e3;
   double directionToleranceUrad = ProgramCompensationOptions{}.directionTolerance * 1e6;
 };
 
-void runTables(const CompensateOptions& o) {
+CorrectionGrid runTables(const CompensateOptions& o) {
   const auto setup = loadMachineSetup(o.source);
   CompensationTablesRequest request;
   const auto counts = splitList(o.nodes);
@@ -79,12 +88,45 @@ void runTables(const CompensateOptions& o) {
     human += fmt::format("LinuxCNC trt kinematics parameters: none, {}\n", r.trtNotApplicable);
   }
   emit(o, j, human, csv);
+  return r.grid;
+}
+
+volatile std::sig_atomic_t stopRequested = 0;
+extern "C" void requestStop(int) { stopRequested = 1; }
+
+// The tables kept up with a thermal state that a temperature logger rewrites, as a controller
+// reads its compensation every 60 s (seed 003 §2.7): each period the state is read again and
+// every file replaced whole. A bad state stops with its error, the last tables left in place.
+void runTablesPeriodically(const CompensateOptions& o) {
+  if (o.source.thermalFile.empty()) throw InputError({"", 0, "--every"}, "give --thermal STATE: the temperatures the tables follow");
+  std::signal(SIGINT, requestStop);
+  std::signal(SIGTERM, requestStop);
+  std::optional<CorrectionGrid> previous;
+  for (int update = 1; stopRequested == 0; ++update) {
+    const CorrectionGrid grid = runTables(o);
+    double moved = 0.0;
+    if (previous)
+      for (size_t n = 0; n < grid.corrections.size(); ++n) moved = std::max(moved, (grid.corrections[n] - previous->corrections[n]).norm());
+    std::cerr << fmt::format("mtacc: update {} at {:%H:%M:%S}: tables for {} written to {}/{}\n", update, fmt::localtime(std::time(nullptr)),
+                             o.source.thermalFile, o.tables,
+                             previous ? fmt::format("; the grid moved by up to {:.3f} um since the last", moved * 1e3) : "")
+              << std::flush;
+    previous = grid;
+    if (o.updates > 0 && update >= o.updates) break;
+    const auto next = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.everySeconds);
+    while (stopRequested == 0 && std::chrono::steady_clock::now() < next) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
 }
 
 void run(const CompensateOptions& o) {
   if (o.program.empty() == o.tables.empty())
     throw InputError({"", 0, "--program/--tables"}, "give --program IN.nc (a compensated program) or --tables DIR (controller tables)");
-  if (!o.tables.empty()) return runTables(o);
+  if (o.everySeconds > 0 && o.tables.empty()) throw InputError({"", 0, "--every"}, "rewrites controller tables: give --tables DIR");
+  if (!o.tables.empty()) {
+    if (o.everySeconds > 0) return runTablesPeriodically(o);
+    runTables(o);
+    return;
+  }
   if (o.gcode.empty()) throw InputError({"", 0, "--gcode"}, "give the file to write the compensated program to (--gcode OUT.nc)");
   ProgramCompensationRequest request;
   request.programFile = o.program;
@@ -142,6 +184,11 @@ void addCompensateCommand(CLI::App& app) {
   cmd->add_option("--linuxcnc-type", o->linuxcncType, "tables: LinuxCNC COMP_FILE_TYPE, 1 (trims) or 0 (positions)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1));
+  cmd->add_option("--every", o->everySeconds,
+                  "tables with --thermal: read the thermal state again and rewrite the tables every SECONDS (a controller reads them "
+                  "every 60), until stopped (Ctrl-C, SIGTERM) or --updates")
+      ->check(CLI::Range(0.01, 86400.0));
+  cmd->add_option("--updates", o->updates, "with --every: stop after this many writes (default: when stopped)")->check(CLI::Range(1, 1000000));
   cmd->callback([o] { run(*o); });
 }
 

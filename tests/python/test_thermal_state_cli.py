@@ -56,3 +56,38 @@ def test_the_python_machine_takes_the_same_state(tmp_path):
     cold, warm = mtacc.Machine("three-axis-vertical"), mtacc.Machine("three-axis-vertical", thermal=state)
     moved = warm.fk([600, 0, 0])[0][0] - cold.fk([600, 0, 0])[0][0]
     assert moved == pytest.approx([expansion(600.0), 0, 0], abs=1e-6)
+
+
+def test_every_period_the_tables_follow_the_state_the_logger_wrote_last(cli, tmp_path):
+    """--every: the state is read again each period and the tables rewritten for it; a stop
+    signal ends the loop cleanly with no file left half written."""
+    import os
+    import signal
+    state = tmp_path / "state.yaml"
+    state.write_text("scales:\n  X: {sensors: [0 mm, 600 mm], temperatures: [20, 20], reference: 100 mm}\n")
+    live = tmp_path / "live"
+    job = subprocess.Popen([cli, "compensate", "three-axis-vertical", "--tables", str(live), "--nodes", "11,5,5", "--thermal", str(state),
+                            "--every", "2", "--updates", "3"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    first = job.stderr.readline()
+    assert first.startswith("mtacc: update 1 at ") and str(live) in first
+    warm = tmp_path / "warm.yaml"
+    warm.write_text(STATE)
+    os.replace(warm, state)  # as a logger writes it: whole
+    rest = job.stderr.read()
+    assert job.wait(timeout=60) == 0
+    lines = rest.splitlines()
+    assert [line.split(" at ")[0] for line in lines] == ["mtacc: update 2", "mtacc: update 3"]
+    moved = [float(line.split("up to ")[1].split(" um")[0]) for line in lines]
+    assert moved[0] == pytest.approx(1e3 * abs(expansion(600.0)), rel=0.01) and moved[1] == 0  # the largest change is at X = 600 mm
+    subprocess.run([cli, "compensate", "three-axis-vertical", "--tables", str(tmp_path / "once"), "--nodes", "11,5,5", "--thermal", str(state)],
+                   check=True, capture_output=True)
+    assert sorted(os.listdir(live)) == sorted(os.listdir(tmp_path / "once"))
+    for name in os.listdir(live):
+        assert (live / name).read_bytes() == (tmp_path / "once" / name).read_bytes(), name
+
+    stopped = subprocess.Popen([cli, "compensate", "three-axis-vertical", "--tables", str(tmp_path / "stopped"), "--nodes", "11,5,5",
+                                "--thermal", str(state), "--every", "60"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    assert stopped.stderr.readline().startswith("mtacc: update 1 at ")
+    stopped.send_signal(signal.SIGTERM)
+    assert stopped.wait(timeout=10) == 0
+    assert sorted(os.listdir(tmp_path / "stopped")) == sorted(os.listdir(live))
