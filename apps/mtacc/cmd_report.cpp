@@ -15,7 +15,7 @@ struct ReportOptions {
   std::string machine;
   std::string errorsFile;
   std::string output = ".";
-  std::string plan, structure, compare, load, decomposition;
+  std::string plan, structure, compare, load, decomposition, thermal;
   std::vector<std::string> positioning, components, plates, drift;
   int samples = 5;
 };
@@ -33,7 +33,7 @@ struct ReportOptions {
   }
   for (const auto& [flag, value] :
        {std::pair{"--plan", o.plan}, {"--structure", o.structure}, {"--compare", o.compare}, {"--load", o.load},
-        {"--decomposition", o.decomposition}})
+        {"--decomposition", o.decomposition}, {"--thermal", o.thermal}})
     if (!value.empty()) {
       args.push_back(flag);
       args.push_back(value);
@@ -67,7 +67,8 @@ void addReportCommand(CLI::App& app) {
   cmd->add_option("--positioning", o->positioning, "ISO 230-2 positioning-test files for the positioning section");
   cmd->add_option("--plate", o->plates, "plate measurements (seed 003) to compare with the model, one section each");
   cmd->add_option("--component", o->components, "direct-measurement runs (seed 003) to fit and plot, one section each");
-  cmd->add_option("--drift", o->drift, "spindle drift tests (ISO 230-3, seed 003) to evaluate and plot, one section each");
+  cmd->add_option("--drift", o->drift, "thermal drift tests (ISO 230-3, seed 003) to evaluate and plot, one section each");
+  cmd->add_option("--thermal", o->thermal, "thermal state (YAML: the temperatures along the scales): the whole report is the warm machine's");
   cmd->add_option("--decomposition", o->decomposition, "a decomposition set (seed 004 recorded signals) for the error-decomposition section");
   cmd->callback([o] { run(*o); });
 }

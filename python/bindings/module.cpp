@@ -16,6 +16,7 @@
 #include "mtacc/workflows/check.hpp"
 #include "mtacc/workflows/component_fit.hpp"
 #include "mtacc/workflows/thermal_drift.hpp"
+#include "mtacc/workflows/thermal_state_summary.hpp"
 #include "mtacc/workflows/cone_study.hpp"
 #include "mtacc/workflows/cubic_identification.hpp"
 #include "mtacc/io/cubic_test_yaml.hpp"
@@ -117,6 +118,9 @@ PYBIND11_MODULE(_mtacc, mod) {
   static py::exception<InputError> inputError(mod, "InputError", PyExc_ValueError);
   static py::exception<UnreachablePose> unreachable(mod, "UnreachablePose", PyExc_ValueError);
   mod.def("positioning", [](const std::string& path) { return toPython(toJson(evaluatePositioningFile(path))); }, py::arg("path"));
+  mod.def("thermal_state", [](const std::string& machine, const std::string& thermal, int points) {
+    return toPython(thermalStateSummary({machine, "", "", std::nullopt, thermal}, points));
+  });
   mod.def("drift_test", [](const std::string& path, const std::string& sensor, int folds, int maximumSensors, const std::string& position,
                            size_t seriesPoints) {
     DriftTestEvaluation evaluation;

@@ -27,9 +27,10 @@ from ._mtacc import InputError, UnreachablePose  # noqa: E402
 from ._mtacc import Machine as _CoreMachine  # noqa: E402
 from ._mtacc import Structure as _CoreStructure  # noqa: E402
 from ._mtacc import drift_test as _drift_test  # noqa: E402
+from ._mtacc import thermal_state as _thermal_state  # noqa: E402
 from ._mtacc import positioning as _positioning  # noqa: E402
 
-__all__ = ["Machine", "Errors", "Structure", "InputError", "UnreachablePose", "positioning", "drift_test"]
+__all__ = ["Machine", "Errors", "Structure", "InputError", "UnreachablePose", "positioning", "drift_test", "thermal_state"]
 
 
 def positioning(path):
@@ -37,6 +38,14 @@ def positioning(path):
     as `mtacc positioning --json`: per-target means, reversal, s and R, the axis values A, B, E, M,
     R (keys "A_forward", "A", ... in "axis_values") and the deviations, in um or arcsec ("unit")."""
     return _positioning(str(path))
+
+
+def thermal_state(machine, path, points=101):
+    """A thermal state (docs/file-formats.md "Thermal states") on `machine` (a file or a bundled
+    name): per scale ("scales") the axis, its sensors (mm) and their temperatures (degC), the
+    reference position and temperature, and the expansion (um) at `points` positions over the
+    travel ("position_mm", "expansion_um", "largest_um")."""
+    return _thermal_state(str(machine), str(path), int(points))
 
 
 def drift_test(path, sensor="", folds=5, max_sensors=8, position="", series_points=0):

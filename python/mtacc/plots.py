@@ -835,3 +835,29 @@ def drift_hysteresis(result, title=None):
     ax.set_title(title or f"Drift against the {sensor} temperature: warm-up and cool-down")
     fig.tight_layout()
     return fig
+
+
+def thermal_state_scales(state, title=None):
+    """A thermal state (`mtacc.thermal_state`): per scale the sensors' temperatures along the axis
+    (linear between them, as the model takes them) and the scale's expansion over the travel, zero
+    at the reference position."""
+    scales = state["scales"]
+    fig, axes = plt.subplots(2, len(scales), figsize=(max(7.5, 5.5 * len(scales)), 6.5), squeeze=False, sharex="col")
+    for c, s in enumerate(scales):
+        top, bottom = axes[0][c], axes[1][c]
+        position = np.array(s["position_mm"])
+        top.plot(position, np.interp(position, s["sensors_mm"], s["temperatures_C"]), color="#c0392b", linewidth=1)
+        top.plot(s["sensors_mm"], s["temperatures_C"], "o", color="#c0392b", label="sensors")
+        top.axhline(s["reference_temperature_C"], color="0.5", linewidth=0.8, linestyle=":", label="scale reads true")
+        top.set_ylabel("temperature [°C]")
+        top.set_title(f"{s['axis']} scale")
+        top.legend(fontsize=8)
+        bottom.plot(position, s["expansion_um"], color="#2471a3", linewidth=1.2)
+        bottom.axvline(s["reference_mm"], color="0.5", linewidth=0.8, linestyle=":", label=f"reference {s['reference_mm']:g} mm")
+        bottom.axhline(0, color="0.8", linewidth=0.6)
+        bottom.set_xlabel(f"{s['axis']} [mm]")
+        bottom.set_ylabel("expansion Δ [µm]")
+        bottom.legend(fontsize=8)
+    fig.suptitle(title or "Thermal state: temperatures along the scales, their expansion")
+    fig.tight_layout()
+    return fig

@@ -414,8 +414,22 @@ def drift_section(result):
     return out
 
 
+def thermal_section(state):
+    """The thermal state the report's machine is evaluated at: each scale's temperatures and expansion."""
+    name = html.escape(os.path.basename(state["file"]))
+    out = (f"<h2>Thermal state: {name}</h2><p>Every figure of this report is the warm machine's: each scale's expansion "
+           "(the temperature linear between its sensors, seed 003 §2.7) is added to its axis's positioning error. "
+           "A warm scale reads short, so the axis goes the expansion beyond its command.</p>")
+    out += figure(plots.thermal_state_scales(state), "Temperatures along each scale and the scale's expansion over the travel")
+    out += table(["axis", "sensors [mm]", "temperatures [°C]", "reference", "α [1/K]", "largest expansion [µm]"],
+                 [[s["axis"], ", ".join(f"{p:g}" for p in s["sensors_mm"]), ", ".join(f"{t:.2f}" for t in s["temperatures_C"]),
+                   f"{s['reference_mm']:g} mm, {s['reference_temperature_C']:g} °C", f"{s['expansion_per_K']:.3g}",
+                   f"{s['largest_um']:.2f}"] for s in state["scales"]])
+    return out
+
+
 def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=None, plan=None, structure=None,
-                 compare=None, positioning=(), components=(), plates=(), load=None, decomposition=None, drift=()):
+                 compare=None, positioning=(), components=(), plates=(), load=None, decomposition=None, drift=(), thermal=None):
     """Writes <output_dir>/<machine>-report.html atomically and returns its path."""
     start = time.perf_counter()
     steps = ["machine", "error budget", "volumetric error maps", "circular test", "5-axis circle", "cone frustum",
@@ -444,7 +458,9 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     # Every input is read before the first progress line, so that bad input ends in one line.
     if os.path.exists(output_dir) and not os.path.isdir(output_dir):
         raise InputError(f"output: '{output_dir}' is a file; name a folder for the report")
-    machine = Machine(machine_path, errors, load=load)
+    machine = Machine(machine_path, errors, load=load, thermal=thermal)
+    from . import thermal_state
+    thermal_result = thermal_state(machine_path, thermal) if thermal else None
     stiffness = machine.stiffness(samples) if machine.check()["stiffness_changes"] else None
     if stiffness:
         steps.insert(-1, "finite stiffness")
@@ -469,7 +485,8 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     step("machine")
     parts = [f"<h1>Accuracy report: {html.escape(machine.name)}</h1>",
              f'<p class="meta">{html.escape(machine.file)} · structure {html.escape(machine.structure)} · '
-             f'generated {datetime.datetime.now().strftime("%Y-%m-%d %H:%M")} by mtacc</p>']
+             f'generated {datetime.datetime.now().strftime("%Y-%m-%d %H:%M")} by mtacc'
+             + (f' · at the thermal state {html.escape(os.path.basename(thermal))}' if thermal else "") + "</p>"]
 
     grid = machine.working_volume_grid(samples)
     combined = np.linalg.norm(machine.tcp_errors(grid)[:, :3], axis=1)
@@ -488,6 +505,8 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
         rows.append([a["name"], a["type"], a["side"], "({:.3g}, {:.3g}, {:.3g})".format(*a["direction"]),
                      "({:.4g}, {:.4g}, {:.4g})".format(*a["location_mm"]), travel, a["error_frame"]])
     parts.append(table(["axis", "type", "side", "direction", "location [mm]", "travel", "errors act in"], rows, left=3))
+    if thermal_result:
+        parts.append(thermal_section(thermal_result))
 
     params = machine.errors
     rows = []
@@ -603,13 +622,14 @@ def main(argv=None):
                         help="direct-measurement runs of a component (CSV) to fit and plot; may be given several times")
     parser.add_argument("--decomposition", help="a decomposition set (YAML, seed 004) of recorded signals to decompose")
     parser.add_argument("--drift", action="append", default=[],
-                        help="spindle drift test (CSV, ISO 230-3) to evaluate and plot; may be given several times")
+                        help="thermal drift test (CSV, ISO 230-3) to evaluate and plot; may be given several times")
+    parser.add_argument("--thermal", help="thermal state (YAML: the temperatures along the scales) the machine is evaluated at")
     args = parser.parse_args(argv)
     try:
         path = build_report(args.machine, args.output, args.errors, args.samples,
                             progress=lambda s: print(s, file=sys.stderr, flush=True), plan=args.plan,
                             structure=args.structure, compare=args.compare, positioning=args.positioning, components=args.component, plates=args.plate,
-                            load=args.load, decomposition=args.decomposition, drift=args.drift)
+                            load=args.load, decomposition=args.decomposition, drift=args.drift, thermal=args.thermal)
     except (InputError, UnreachablePose) as e:
         message = str(e)
         first = message.split(":", 1)[0]

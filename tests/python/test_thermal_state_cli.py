@@ -91,3 +91,24 @@ def test_every_period_the_tables_follow_the_state_the_logger_wrote_last(cli, tmp
     stopped.send_signal(signal.SIGTERM)
     assert stopped.wait(timeout=10) == 0
     assert sorted(os.listdir(tmp_path / "stopped")) == sorted(os.listdir(live))
+
+
+def test_the_state_summary_and_its_report_section(cli, tmp_path):
+    import mtacc
+    from mtacc import report
+    state = tmp_path / "state.yaml"
+    state.write_text(STATE)
+    summary = mtacc.thermal_state("three-axis-vertical", state, points=7)
+    x = summary["scales"][0]
+    assert x["axis"] == "X" and x["sensors_mm"] == [0, 337, 600] and x["temperatures_C"] == [21.5, 26.0, 22.0]
+    assert x["position_mm"] == pytest.approx(np.linspace(0, 600, 7), abs=1e-12)
+    assert x["expansion_um"] == pytest.approx([1e3 * expansion(p) for p in x["position_mm"]], abs=1e-6)
+    assert x["largest_um"] == pytest.approx(1e3 * expansion(600.0), abs=1e-6)
+    section = report.thermal_section(summary)
+    assert section.count("<svg") == 1 and "Thermal state: state.yaml" in section and f"{x['largest_um']:.2f}" in section
+    with pytest.raises(mtacc.InputError, match="points: give 2 to 10001"):
+        mtacc.thermal_state("three-axis-vertical", state, points=1)
+    out = tmp_path / "report"
+    subprocess.run([cli, "report", "three-axis-vertical", "--thermal", str(state), "-o", str(out)], check=True, capture_output=True)
+    page = (out / "three-axis-vertical-report.html").read_text()
+    assert "at the thermal state state.yaml" in page and "Thermal state: state.yaml" in page

@@ -1,0 +1,42 @@
+#include "mtacc/workflows/thermal_state_summary.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "mtacc/io/thermal_state_yaml.hpp"
+#include "mtacc/thermal/scale_expansion.hpp"
+
+namespace mtacc {
+
+nlohmann::json thermalStateSummary(const MachineSource& source, int points) {
+  if (source.thermalFile.empty()) throw InputError({"", 0, "thermal"}, "no thermal state given");
+  if (points < 2 || points > 10001) throw InputError({"", 0, "points"}, fmt::format("{} points: give 2 to 10001", points));
+  const MachineSetup setup = loadMachineSetup(source);
+  nlohmann::json j{{"file", source.thermalFile}, {"scales", nlohmann::json::array()}};
+  for (const auto& scale : loadThermalState(*setup.machine, source.thermalFile)) {
+    const auto& axis = setup.machine->axes[static_cast<size_t>(scale.axis)];
+    nlohmann::json entry{{"axis", axis.name},
+                         {"sensors_mm", scale.sensors.positions},
+                         {"temperatures_C", scale.temperatures},
+                         {"reference_mm", scale.sensors.referencePosition},
+                         {"expansion_per_K", scale.sensors.expansion},
+                         {"reference_temperature_C", scale.sensors.referenceTemperature},
+                         {"position_mm", nlohmann::json::array()},
+                         {"expansion_um", nlohmann::json::array()}};
+    double largest = 0.0;
+    for (int k = 0; k < points; ++k) {
+      const double p = axis.travel->min + (axis.travel->max - axis.travel->min) * k / (points - 1);
+      const double delta = scaleExpansion(scale.sensors, scale.temperatures, p) * 1e3;
+      entry["position_mm"].push_back(p);
+      entry["expansion_um"].push_back(delta);
+      if (std::fabs(delta) > std::fabs(largest)) largest = delta;
+    }
+    entry["largest_um"] = largest;
+    j["scales"].push_back(entry);
+  }
+  return j;
+}
+
+}  // namespace mtacc
