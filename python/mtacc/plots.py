@@ -776,8 +776,8 @@ def decomposition_over_feeds(result, title=None):
 
 def drift_test_curves(result, title=None):
     """A thermal drift test (`mtacc drift --json` with series): the drift of X, Y, Z and the tilts
-    A, B over time with each model's prediction dashed, the displacements' residuals (measured
-    minus predicted), and the temperatures below (with the axis position where the drift
+    A, B over time with each model's prediction dashed (shaded ± 2 standard deviations of a new
+    reading), the displacements' residuals (measured minus predicted), and the temperatures below (with the axis position where the drift
     depends on it)."""
     series = result["series"]
     hours = np.array(series["time_s"]) / 3600
@@ -789,6 +789,9 @@ def drift_test_curves(result, title=None):
         if "predicted" in d:
             sensors = ", ".join(s["sensor"] for s in d["model"]["sensors"]) or "offset"
             ax.plot(hours, d["predicted"], "--", color=colours[d["direction"]], linewidth=1, label=f"{d['direction']} from {sensors}")
+            band = 2 * np.array(d["predicted_sigma"])
+            ax.fill_between(hours, np.subtract(d["predicted"], band), np.add(d["predicted"], band), color=colours[d["direction"]],
+                            alpha=0.15, linewidth=0)
             if d["unit"] == "um":
                 axes[2].plot(hours, np.subtract(d["series"], d["predicted"]), color=colours[d["direction"]], linewidth=0.7,
                              label=f"{d['direction']}: cross-validated RMS {d['model']['cross_validated_rms']:.2f} µm")

@@ -152,6 +152,7 @@ nlohmann::json toJson(const DriftTestEvaluation& r, size_t seriesPoints) {
       entry["model"] = {{"offset", displayed(d, m.offset)},
                         {"sensors", chosen},
                         {"residual_rms", displayed(d, m.residualRms)},
+                        {"residual_sigma", displayed(d, m.residualSigma)},
                         {"cross_validated_rms", displayed(d, e.model->crossValidatedRms)},
                         {"best_single_sensor", e.model->bestSingleSensor < 0 ? "" : test.sensors[static_cast<size_t>(e.model->bestSingleSensor)]},
                         {"best_single_sensor_rms", displayed(d, e.model->bestSingleSensorRms)},
@@ -177,12 +178,15 @@ nlohmann::json toJson(const DriftTestEvaluation& r, size_t seriesPoints) {
     const auto d = r.directions[e].direction;
     auto& entry = j["directions"][e];
     entry["series"] = nlohmann::json::array();
-    if (r.directions[e].model) entry["predicted"] = nlohmann::json::array();
+    const auto& model = r.directions[e].model;
+    if (model) entry["predicted"] = entry["predicted_sigma"] = nlohmann::json::array();
     for (long k = 0; k < n; k += stride) {
       entry["series"].push_back(displayed(d, (*r.drift[d])[k]));
-      if (r.directions[e].model)
-        entry["predicted"].push_back(displayed(
-            d, r.directions[e].model->model.predict(test.temperatures.row(k).transpose(), r.positionAxis < 0 ? 0.0 : test.positions(k, r.positionAxis))));
+      if (!model) continue;
+      const Eigen::VectorXd temperatures = test.temperatures.row(k).transpose();
+      const double position = r.positionAxis < 0 ? 0.0 : test.positions(k, r.positionAxis);
+      entry["predicted"].push_back(displayed(d, model->model.predict(temperatures, position)));
+      entry["predicted_sigma"].push_back(displayed(d, model->model.predictionUncertainty(temperatures, position)));
     }
   }
   return j;

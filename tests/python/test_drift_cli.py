@@ -40,6 +40,11 @@ def test_the_series_are_every_kth_sample_and_the_prediction_is_the_model(cli):
                                           for s in model["sensors"])
         assert np.allclose(d["predicted"], predicted, rtol=0, atol=1e-9 * np.max(np.abs(predicted)))
         assert np.sqrt(np.mean((drift - d["predicted"]) ** 2)) == pytest.approx(model["residual_rms"], rel=1e-9)
+        # One standard deviation of a new reading: the residual's and the fit's, the fit's small
+        # beside it over 1680 samples; about 95 % of the readings lie within two.
+        sigma = np.array(d["predicted_sigma"])
+        assert np.all(sigma >= model["residual_sigma"]) and np.all(sigma < 1.2 * model["residual_sigma"])
+        assert 0.93 < np.mean(np.abs(drift - d["predicted"]) <= 2 * sigma) < 0.97
     assert whole["hysteresis_sensor"] == "head" and heads.max() - heads[0] > 20
 
 

@@ -49,8 +49,9 @@ struct DriftTestEvaluation {
 // or for two moving axes and none chosen, or the file's header for too few samples for the sensors.
 DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request);
 // Lengths in um, tilts in urad, coefficients per K (and per K per mm), times in s. With seriesPoints > 0 also the
-// curves ("series"): time, temperatures, and per direction the drift and the model's prediction,
-// every k-th sample, k chosen for at most seriesPoints.
+// curves ("series"): time, temperatures, and per direction the drift, the model's prediction and
+// its uncertainty (one standard deviation of a new reading, "predicted_sigma"), every k-th
+// sample, k chosen for at most seriesPoints.
 nlohmann::json toJson(const DriftTestEvaluation& evaluation, size_t seriesPoints = 0);
 
 }  // namespace mtacc
