@@ -69,8 +69,8 @@ void run(const DriftCliOptions& o) {
 
 void addDriftCommand(CLI::App& app) {
   auto o = std::make_shared<DriftCliOptions>();
-  auto* cmd = app.add_subcommand("drift", "spindle drift test (ISO 230-3, seed 003): drift per direction, hysteresis, the temperatures "
-                                          "that predict it");
+  auto* cmd = app.add_subcommand("drift", "thermal drift test (ISO 230-3, seed 003: spindle, axis or the machine at rest): drift per "
+                                          "direction, hysteresis, the temperatures that predict it");
   cmd->add_option("test", o->request.file, "drift test (CSV, docs/file-formats.md \"Drift tests\")")->required();
   cmd->add_option("--sensor", o->request.hysteresisSensor, "temperature for the hysteresis (default: the one that changes most)");
   cmd->add_option("--folds", o->request.selection.folds, "cross-validation blocks")->capture_default_str()->check(CLI::Range(2, 100));
