@@ -9,8 +9,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace mtacc;
   static const auto machine = fuzz::bundled("three-axis-vertical");
   return fuzz::asTheFrontEndsDo([&] {
-    const auto scales = parseThermalState(*machine, fuzz::text(data, size), "fuzz.yaml");
-    const auto model = compile(machine, atThermalState(*machine, ErrorModel::zero(*machine), scales));
+    const auto state = parseThermalState(*machine, fuzz::text(data, size), "fuzz.yaml");
+    const auto model = compile(machine, atThermalState(*machine, ErrorModel::zero(*machine), state));
     const double q[3] = {300, 200, 250};
     toolPoint(model, q);
   });

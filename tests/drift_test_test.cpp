@@ -97,7 +97,7 @@ TEST(DriftTest, BadFilesNameTheirLineAndColumn) {
 }
 
 TEST(DriftTest, TheWorkflowFindsTheSeedsHysteresisAndTheSensorsThatPredictEachDirection) {
-  const auto r = evaluateDriftTest({kBundled, "", {}, ""});
+  const auto r = evaluateDriftTest({kBundled, "", {}, "", ""});
   ASSERT_EQ(r.directions.size(), 5u);
   EXPECT_EQ(r.test.sensors[static_cast<size_t>(r.hysteresisSensor)], "head");  // it changes most
   const auto sensorsOf = [&](DriftDirection d) {
@@ -127,7 +127,7 @@ TEST(DriftTest, TheWorkflowFindsTheSeedsHysteresisAndTheSensorsThatPredictEachDi
 }
 
 TEST(DriftTest, TheRestingMachinesRangeIsItsEnvironmentalVariationError) {
-  const auto r = evaluateDriftTest({kEnvironment, "", {}, ""});
+  const auto r = evaluateDriftTest({kEnvironment, "", {}, "", ""});
   EXPECT_EQ(r.kind, DriftTestKind::EnvironmentalVariation);
   EXPECT_EQ(r.positionAxis, -1);
   EXPECT_EQ(r.test.sensors[static_cast<size_t>(r.hysteresisSensor)], "room");
@@ -138,11 +138,11 @@ TEST(DriftTest, TheRestingMachinesRangeIsItsEnvironmentalVariationError) {
   EXPECT_LT(y.model->crossValidatedRms, 1.2 * 0.3e-3);
   EXPECT_GT(y.model->bestSingleSensorRms, 2 * y.model->crossValidatedRms);
   EXPECT_EQ(toJson(r)["test"], "environmental temperature variation (ISO 230-3 ETVE), the machine at rest");
-  EXPECT_EQ(evaluateDriftTest({kBundled, "", {}, ""}).kind, DriftTestKind::Spindle);
+  EXPECT_EQ(evaluateDriftTest({kBundled, "", {}, "", ""}).kind, DriftTestKind::Spindle);
 }
 
 TEST(DriftTest, TheAxisDriftIsModelledAlongTheAxis) {
-  const auto r = evaluateDriftTest({kZAxis, "", {}, ""});
+  const auto r = evaluateDriftTest({kZAxis, "", {}, "", ""});
   EXPECT_EQ(r.kind, DriftTestKind::AxisMotion);
   ASSERT_EQ(r.positionAxis, 0);
   const auto& z = r.directions[1];
@@ -160,28 +160,28 @@ TEST(DriftTest, TheAxisDriftIsModelledAlongTheAxis) {
   EXPECT_EQ(j["series"]["position_mm"].size(), j["series"]["time_s"].size());
   EXPECT_TRUE(j["directions"][1]["model"]["sensors"][0].contains("coefficient_per_K_per_mm"));
 
-  const auto unknown = test::thrown<InputError>([&] { evaluateDriftTest({kZAxis, "", {}, "X"}); });
+  const auto unknown = test::thrown<InputError>([&] { evaluateDriftTest({kZAxis, "", {}, "X", ""}); });
   ASSERT_TRUE(unknown);
   EXPECT_EQ(unknown->where().key, "position");
   EXPECT_EQ(unknown->reason(), "'X': the file's axis positions are Z");
   const auto file = testing::TempDir() + "mtacc-two-axes-drift.csv";
   writeFileAtomically(file, "time_s,y1_um,X_mm,Z_mm,Y_mm\n0,0,0,0,5\n1,1,1,-1,5\n2,2,2,-2,5\n");
-  const auto both = test::thrown<InputError>([&] { evaluateDriftTest({file, "", {}, ""}); });
+  const auto both = test::thrown<InputError>([&] { evaluateDriftTest({file, "", {}, "", ""}); });
   ASSERT_TRUE(both);
   EXPECT_EQ(both->reason(), "axes X, Z move in " + file + ": choose the one the drift depends on");
-  const auto still = test::thrown<InputError>([&] { evaluateDriftTest({file, "", {}, "Y"}); });
+  const auto still = test::thrown<InputError>([&] { evaluateDriftTest({file, "", {}, "Y", ""}); });
   ASSERT_TRUE(still);
   EXPECT_EQ(still->what(), file + ":1: Y_mm: the axis does not move: no position dependence to fit");
 }
 
 TEST(DriftTest, AnUnknownHysteresisSensorAndTooShortARecordAreRefused) {
-  const auto e = test::thrown<InputError>([&] { evaluateDriftTest({kBundled, "spindle", {}, ""}); });
+  const auto e = test::thrown<InputError>([&] { evaluateDriftTest({kBundled, "spindle", {}, "", ""}); });
   ASSERT_TRUE(e);
   EXPECT_EQ(e->where().key, "sensor");
   EXPECT_EQ(e->reason(), "'spindle': the file's temperatures are room, head, column, bed, motor");
   const auto file = testing::TempDir() + "mtacc-short-drift.csv";
   writeFileAtomically(file, "time_s,y1_um,a_C,b_C\n0,0,20,20\n1,1,21,20.5\n2,2,22,21\n3,2,22,21.5\n4,2,22,21.7\n5,2,22,21.8\n");
-  const auto shortRecord = test::thrown<InputError>([&] { evaluateDriftTest({file, "", {}, ""}); });
+  const auto shortRecord = test::thrown<InputError>([&] { evaluateDriftTest({file, "", {}, "", ""}); });
   ASSERT_TRUE(shortRecord);
   EXPECT_EQ(shortRecord->what(), file + ":1: Y drift: 6 samples in 5 folds: at least 4 per fold needed for up to 2 sensors");
 }

@@ -43,7 +43,7 @@ TEST(ThermalState, TheWarmMachineGoesTheExpansionBeyondItsCommand) {
   const auto machine = test::bundled("three-axis-vertical");
   const auto cold = ErrorModel::zero(*machine);
   const auto scale = warmX(*machine, {21.5, 26.0, 22.0});
-  const auto warm = atThermalState(*machine, cold, {scale});
+  const auto warm = atThermalState(*machine, cold, {{scale}, std::nullopt});
   const auto coldModel = compile(machine, cold), warmModel = compile(machine, warm);
   for (double x : {0.0, 13.0, 150.0, 337.0, 600.0}) {
     const std::vector<double> q{x, 40.0, -100.0};
@@ -59,13 +59,13 @@ TEST(ThermalState, TheWarmMachineGoesTheExpansionBeyondItsCommand) {
   zScale.sensors.positions = {travel.min, travel.max};
   zScale.sensors.referencePosition = travel.max;
   zScale.temperatures = {24.0, 21.0};
-  const auto warmZ = compile(machine, atThermalState(*machine, cold, {zScale}));
+  const auto warmZ = compile(machine, atThermalState(*machine, cold, {{zScale}, std::nullopt}));
   const std::vector<double> q{100.0, 40.0, travel.min};
   const Vec3 moved = toolPoint(warmZ, q.data()).position - toolPoint(coldModel, q.data()).position;
   const double delta = scaleExpansion(zScale.sensors, zScale.temperatures, travel.min);
   EXPECT_LT((moved - delta * machine->axes[static_cast<size_t>(z)].direction).norm(), 1e-12);
   EXPECT_GT(std::fabs(delta), 1e-3);
-  EXPECT_TRUE(test::thrown<std::invalid_argument>([&] { atThermalState(*machine, cold, {scale, scale}); }));
+  EXPECT_TRUE(test::thrown<std::invalid_argument>([&] { atThermalState(*machine, cold, {{scale, scale}, std::nullopt}); }));
 }
 
 // The compensation table written cold and written warm differ by the expansion the model
@@ -75,7 +75,7 @@ TEST(ThermalState, TheWarmMachineGoesTheExpansionBeyondItsCommand) {
 TEST(ThermalState, TablesWrittenAtTwoThermalStatesDifferByThePrediction) {
   const auto setup = loadMachineSetup({"three-axis-vertical", "", "", std::nullopt, ""});
   const auto scale = warmX(*setup.machine, {21.5, 26.0, 22.0});
-  const auto warmErrors = atThermalState(*setup.machine, setup.errors, {scale});
+  const auto warmErrors = atThermalState(*setup.machine, setup.errors, {{scale}, std::nullopt});
   const CorrectionGridSpec spec{{11, 5, 5}, {}};
   const auto coldGrid = correctionGrid(setup.machine, setup.errors, spec), warmGrid = correctionGrid(setup.machine, warmErrors, spec);
   double largest = 0.0;
@@ -111,7 +111,8 @@ TEST(ThermalStateFile, ReadsTheScalesAndNamesItsErrors) {
                                         "scales:\n"
                                         "  X: {sensors: [0 mm, 337 mm, 600 mm], temperatures: [21.5, 26.0, 22.0], reference: 100 mm}\n"
                                         "  Z: {sensors: [0 mm, 0.5 m], temperatures: [22, 21], reference: 500 mm, expansion: 8e-6, reference_temperature: 20.5}\n",
-                                        "t.yaml");
+                                        "t.yaml")
+                          .scales;
   ASSERT_EQ(scales.size(), 2u);
   EXPECT_EQ(scales[0].axis, machine->axisIndex("X"));
   EXPECT_EQ(scales[0].sensors.positions, (std::vector<double>{0, 337, 600}));
@@ -129,7 +130,7 @@ TEST(ThermalStateFile, ReadsTheScalesAndNamesItsErrors) {
   EXPECT_EQ(message("scales:\n  X: {sensors: [0 mm, 600 mm], temperatures: [20, .nan], reference: 0 mm}\n"), "2 scales.X.temperatures: expected a plain number, got '.nan'");
   EXPECT_EQ(message("scales:\n  X: {sensors: [0 mm, 600 mm], temperatures: [20, 20]}\n"),
             "2 scales.X.reference: missing (the position where the scale reads true, e.g. where the drift was measured)");
-  EXPECT_EQ(message("scale:\n  X: {}\n"), "1 scale: unknown key (expected one of: description, scales)");
+  EXPECT_EQ(message("scale:\n  X: {}\n"), "1 scale: unknown key (expected one of: description, scales, spindle)");
 }
 
 }  // namespace

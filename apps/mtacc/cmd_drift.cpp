@@ -78,6 +78,8 @@ void addDriftCommand(CLI::App& app) {
       ->check(CLI::Range(0, 64));
   cmd->add_option("--position", o->request.positionAxis,
                   "axis whose position (column AXIS_mm) the coefficients depend on (default: the one that moves, if one does)");
+  cmd->add_option("--save-model", o->request.saveModel,
+                  "write the models as the spindle's drift model (YAML) for a thermal state's spindle: (docs/file-formats.md)");
   addOutputOptions(*cmd, *o);
   cmd->callback([o] { run(*o); });
 }

@@ -122,11 +122,11 @@ PYBIND11_MODULE(_mtacc, mod) {
     return toPython(thermalStateSummary({machine, "", "", std::nullopt, thermal}, points));
   });
   mod.def("drift_test", [](const std::string& path, const std::string& sensor, int folds, int maximumSensors, const std::string& position,
-                           size_t seriesPoints) {
+                           size_t seriesPoints, const std::string& saveModel) {
     DriftTestEvaluation evaluation;
     {
       py::gil_scoped_release release;
-      evaluation = evaluateDriftTest({path, sensor, {.folds = folds, .maximumSensors = maximumSensors}, position});
+      evaluation = evaluateDriftTest({path, sensor, {.folds = folds, .maximumSensors = maximumSensors}, position, saveModel});
     }
     return toPython(toJson(evaluation, seriesPoints));
   });

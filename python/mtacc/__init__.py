@@ -44,19 +44,22 @@ def thermal_state(machine, path, points=101):
     """A thermal state (docs/file-formats.md "Thermal states") on `machine` (a file or a bundled
     name): per scale ("scales") the axis, its sensors (mm) and their temperatures (degC), the
     reference position and temperature, and the expansion (um) at `points` positions over the
-    travel ("position_mm", "expansion_um", "largest_um")."""
+    travel ("position_mm", "expansion_um", "largest_um"); with a spindle ("spindle") its sensors'
+    temperatures, per direction the drift they predict and its standard deviation (um, urad), and
+    the drift at the TCP ("at_tcp_um")."""
     return _thermal_state(str(machine), str(path), int(points))
 
 
-def drift_test(path, sensor="", folds=5, max_sensors=8, position="", series_points=0):
+def drift_test(path, sensor="", folds=5, max_sensors=8, position="", series_points=0, save_model=None):
     """A thermal drift test (ISO 230-3, seed 003; docs/file-formats.md "Drift tests"), as
     `mtacc drift --json`: what test it is ("test"), per direction (X Y Z in um, A B in urad) the
     largest drift and its range, the warm-up / cool-down hysteresis against `sensor` (default: the
     temperature that changes most), and the stepwise regression on the temperatures, with each
     coefficient linear in the position of axis `position` (default: the axis that moves, if one
     does). With series_points > 0 also the curves ("series": time, temperatures and positions; per
-    direction its drift and the model's prediction)."""
-    return _drift_test(str(path), str(sensor), int(folds), int(max_sensors), str(position), int(series_points))
+    direction its drift and the model's prediction). With save_model, the models are also written
+    there as a spindle drift model for a thermal state's `spindle:` (docs/file-formats.md)."""
+    return _drift_test(str(path), str(sensor), int(folds), int(max_sensors), str(position), int(series_points), _text(save_model))
 
 
 def _text(value):

@@ -415,16 +415,31 @@ def drift_section(result):
 
 
 def thermal_section(state):
-    """The thermal state the report's machine is evaluated at: each scale's temperatures and expansion."""
+    """The thermal state the report's machine is evaluated at: each scale's temperatures and
+    expansion, and the spindle's drift its temperatures predict."""
     name = html.escape(os.path.basename(state["file"]))
-    out = (f"<h2>Thermal state: {name}</h2><p>Every figure of this report is the warm machine's: each scale's expansion "
-           "(the temperature linear between its sensors, seed 003 §2.7) is added to its axis's positioning error. "
-           "A warm scale reads short, so the axis goes the expansion beyond its command.</p>")
-    out += figure(plots.thermal_state_scales(state), "Temperatures along each scale and the scale's expansion over the travel")
-    out += table(["axis", "sensors [mm]", "temperatures [°C]", "reference", "α [1/K]", "largest expansion [µm]"],
-                 [[s["axis"], ", ".join(f"{p:g}" for p in s["sensors_mm"]), ", ".join(f"{t:.2f}" for t in s["temperatures_C"]),
-                   f"{s['reference_mm']:g} mm, {s['reference_temperature_C']:g} °C", f"{s['expansion_per_K']:.3g}",
-                   f"{s['largest_um']:.2f}"] for s in state["scales"]])
+    out = f"<h2>Thermal state: {name}</h2><p>Every figure of this report is the warm machine's."
+    if state["scales"]:
+        out += (" Each scale's expansion (the temperature linear between its sensors, seed 003 §2.7) is added to its axis's "
+                "positioning error. A warm scale reads short, so the axis goes the expansion beyond its command.")
+    if "spindle" in state:
+        out += (" The spindle's drift, predicted from its temperatures by the model of a spindle drift test (ISO 230-3, "
+                "seed 003 §2.6), moves the spindle: its location errors take the drift at the test's probe set 1 and the tilts.")
+    out += "</p>"
+    if state["scales"]:
+        out += figure(plots.thermal_state_scales(state), "Temperatures along each scale and the scale's expansion over the travel")
+        out += table(["axis", "sensors [mm]", "temperatures [°C]", "reference", "α [1/K]", "largest expansion [µm]"],
+                     [[s["axis"], ", ".join(f"{p:g}" for p in s["sensors_mm"]), ", ".join(f"{t:.2f}" for t in s["temperatures_C"]),
+                       f"{s['reference_mm']:g} mm, {s['reference_temperature_C']:g} °C", f"{s['expansion_per_K']:.3g}",
+                       f"{s['largest_um']:.2f}"] for s in state["scales"]])
+    if "spindle" in state:
+        spindle = state["spindle"]
+        temperatures = ", ".join(f"{html.escape(s['name'])} {s['temperature_C']:.2f} °C" for s in spindle["sensors"])
+        tcp = spindle["at_tcp_um"]
+        out += (f"<p>Spindle at {temperatures}; probe set 1 {spindle['probe_above_tcp_mm']:g} mm above the TCP. At the TCP the tool "
+                f"moves by ({tcp[0]:.2f}, {tcp[1]:.2f}, {tcp[2]:.2f}) µm.</p>")
+        out += table(["direction", "predicted drift", "± 1 σ (a new reading)"],
+                     [[d["direction"], f"{d['drift']:.2f} {d['unit']}", f"{d['sigma']:.2f} {d['unit']}"] for d in spindle["directions"]])
     return out
 
 

@@ -25,7 +25,9 @@ PiecewiseTerm scaleExpansionTerm(const ScaleSensors& sensors, const std::vector<
   return piecewiseFromIntervals(breaks, intervals);
 }
 
-ErrorModel atThermalState(const Machine& machine, ErrorModel errors, const std::vector<ScaleState>& scales) {
+namespace {
+
+void addScales(const Machine& machine, ErrorModel& errors, const std::vector<ScaleState>& scales) {
   std::vector<int> seen;
   for (const auto& scale : scales) {
     if (scale.axis < 0 || scale.axis >= static_cast<int>(machine.axes.size()))
@@ -41,6 +43,33 @@ ErrorModel atThermalState(const Machine& machine, ErrorModel errors, const std::
       for (auto& c : term.coefficients) c.value = -c.value;
     errors.axes[static_cast<size_t>(scale.axis)].motion[static_cast<size_t>(axis.ownComponent())].add(std::move(term));
   }
+}
+
+// The spindle's location error is a rotation R about its location point L and a translation t;
+// it moves a point P of the spindle's frame by t + (R - I)(P - L).
+void addSpindleDrift(const Machine& machine, ErrorModel& errors, const SpindleState& spindle) {
+  const auto found = std::find_if(machine.axes.begin(), machine.axes.end(), [](const Axis& a) { return a.type == AxisType::Spindle; });
+  if (found == machine.axes.end())
+    throw std::invalid_argument("the machine has no spindle for the spindle's drift to move: name it in the structure code, e.g. t-(C)-Z-b-Y-X-w");
+  const Vec6 drift = spindleDrift(spindle.model, spindle.temperatures);
+  Vec6 location = Vec6::Zero();
+  location.head<3>() = spindleDriftAtTcp(machine, spindle) - (rotationXYZ(drift[kA], drift[kB], 0.0) - Mat3::Identity()) * (machine.toolOffset - found->location);
+  location[kA] = drift[kA];
+  location[kB] = drift[kB];
+  errors.axes[static_cast<size_t>(found - machine.axes.begin())].location += location;
+}
+
+}  // namespace
+
+Vec3 spindleDriftAtTcp(const Machine& machine, const SpindleState& spindle) {
+  const Vec6 drift = spindleDrift(spindle.model, spindle.temperatures);
+  const Mat3 turn = rotationXYZ(drift[kA], drift[kB], 0.0);
+  return drift.head<3>() - (turn - Mat3::Identity()) * (spindle.probeAboveTcp * machine.toolDirection);
+}
+
+ErrorModel atThermalState(const Machine& machine, ErrorModel errors, const ThermalState& state) {
+  addScales(machine, errors, state.scales);
+  if (state.spindle) addSpindleDrift(machine, errors, *state.spindle);
   return errors;
 }
 

@@ -1,20 +1,23 @@
 #include "mtacc/io/thermal_state_yaml.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
+#include <filesystem>
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/io/spindle_drift_yaml.hpp"
 #include "mtacc/io/text_file.hpp"
 #include "yaml_input.hpp"
 
 namespace mtacc {
 
-std::vector<ScaleState> parseThermalState(const Machine& machine, const std::string& text, const std::string& source) {
-  const yamlin::Context ctx{source};
-  const auto root = yamlin::loadText(text, source);
-  if (!yamlin::isMap(root)) ctx.fail(root, "", "expected a mapping with scales: {AXIS: {sensors, temperatures, reference}}");
-  yamlin::rejectUnknownKeys(ctx, root, "", {"description", "scales"});
+namespace {
+
+std::vector<ScaleState> parseScales(const yamlin::Context& ctx, const Machine& machine, const YAML::Node& node) {
   std::vector<ScaleState> scales;
-  const auto node = root["scales"];
-  if (!yamlin::isMap(node)) ctx.fail(node ? node : root, "scales", "expected {AXIS: {sensors: [...], temperatures: [...], reference: P}}");
+  if (!yamlin::isMap(node)) ctx.fail(node, "scales", "expected {AXIS: {sensors: [...], temperatures: [...], reference: P}}");
   for (const auto& entry : node) {
     const auto name = yamlin::scalar(ctx, entry.first, "scales");
     const std::string key = "scales." + name;
@@ -60,7 +63,64 @@ std::vector<ScaleState> parseThermalState(const Machine& machine, const std::str
   return scales;
 }
 
-std::vector<ScaleState> loadThermalState(const Machine& machine, const std::string& path) {
+// The model's path is taken relative to the state's folder.
+SpindleState parseSpindle(const yamlin::Context& ctx, const YAML::Node& node, const std::string& source) {
+  if (!yamlin::isMap(node)) ctx.fail(node, "spindle", "expected {model: FILE, temperatures: {SENSOR: degC, ...}, probe_above_tcp: L}");
+  yamlin::rejectUnknownKeys(ctx, node, "spindle", {"model", "temperatures", "probe_above_tcp"});
+  if (!node["model"]) ctx.fail(node, "spindle.model", "missing (a spindle drift model, from mtacc drift TEST --save-model FILE)");
+  const std::filesystem::path named = yamlin::scalar(ctx, node["model"], "spindle.model");
+  const auto path = named.is_absolute() ? named : std::filesystem::path(source).parent_path() / named;
+  SpindleState state;
+  try {
+    state.model = loadSpindleDriftModel(path.string());
+  } catch (const InputError& e) {
+    if (e.where().line == 0) ctx.fail(node["model"], "spindle.model", fmt::format("{}: {}", path.string(), e.reason()));
+    throw;
+  }
+  const auto temperatures = node["temperatures"];
+  if (!yamlin::isMap(temperatures))
+    ctx.fail(temperatures ? temperatures : node, "spindle.temperatures", fmt::format("expected {{SENSOR: degC}} for the model's sensors ({})", fmt::join(state.model.sensors, ", ")));
+  state.temperatures.resize(static_cast<long>(state.model.sensors.size()));
+  for (size_t i = 0; i < state.model.sensors.size(); ++i) {
+    const auto& name = state.model.sensors[i];
+    const std::string key = "spindle.temperatures." + name;
+    const auto t = temperatures[name];
+    if (!t) ctx.fail(temperatures, key, "missing: the model needs " + fmt::format("{}", fmt::join(state.model.sensors, ", ")));
+    const double value = yamlin::number(ctx, t, key);
+    if (!(value >= -50 && value <= 150)) ctx.fail(t, key, "a temperature in -50 .. 150 degC");
+    state.temperatures[static_cast<long>(i)] = value;
+  }
+  const bool tilts = state.model.directions[static_cast<int>(DriftDirection::A)] || state.model.directions[static_cast<int>(DriftDirection::B)];
+  if (const auto h = node["probe_above_tcp"]) {
+    state.probeAboveTcp = yamlin::quantity(ctx, h, "spindle.probe_above_tcp", Dimension::Length);
+    if (!(std::abs(state.probeAboveTcp) < 1e4)) ctx.fail(h, "spindle.probe_above_tcp", "a length within +-10 m");
+  } else if (tilts) {
+    ctx.fail(node, "spindle.probe_above_tcp", "missing: the model tilts the spindle, so say where its X and Y drift was read: probe set 1's "
+                                             "distance from the TCP towards the spindle, e.g. 100 mm");
+  }
+  return state;
+}
+
+}  // namespace
+
+ThermalState parseThermalState(const Machine& machine, const std::string& text, const std::string& source) {
+  const yamlin::Context ctx{source};
+  const auto root = yamlin::loadText(text, source);
+  const char* expected = "expected a mapping with scales: {AXIS: {sensors, temperatures, reference}} and/or spindle: {model, temperatures}";
+  if (!yamlin::isMap(root)) ctx.fail(root, "", expected);
+  yamlin::rejectUnknownKeys(ctx, root, "", {"description", "scales", "spindle"});
+  if (!root["scales"] && !root["spindle"]) ctx.fail(root, "", expected);
+  ThermalState state;
+  if (const auto scales = root["scales"]) state.scales = parseScales(ctx, machine, scales);
+  if (const auto spindle = root["spindle"]) {
+    if (std::none_of(machine.axes.begin(), machine.axes.end(), [](const Axis& a) { return a.type == AxisType::Spindle; }))
+      ctx.fail(spindle, "spindle", "the machine has no spindle for the drift to move: name it in the structure code, e.g. t-(C)-Z-b-Y-X-w");
+    state.spindle = parseSpindle(ctx, spindle, source);
+  }
+  return state;
+}
+
+ThermalState loadThermalState(const Machine& machine, const std::string& path) {
   return parseThermalState(machine, readTextFile(path), path);
 }
 

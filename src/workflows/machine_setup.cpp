@@ -25,11 +25,11 @@ MachineSetup loadMachineSetup(const MachineSource& source) {
     errors.workpieceLoad = *source.load;
   }
   if (!source.thermalFile.empty()) {
-    const auto scales = loadThermalState(*machine, source.thermalFile);
+    const auto state = loadThermalState(*machine, source.thermalFile);
     try {
-      errors = atThermalState(*machine, std::move(errors), scales);
+      errors = atThermalState(*machine, std::move(errors), state);
     } catch (const std::invalid_argument& e) {
-      throw InputError(InputLocation{source.thermalFile, 0, "scales"}, e.what());
+      throw InputError(InputLocation{source.thermalFile, 0, "thermal"}, e.what());
     }
   }
   return {machine, std::move(errors)};

@@ -3,9 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <stdexcept>
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/io/spindle_drift_yaml.hpp"
+#include "mtacc/io/text_file.hpp"
 
 namespace mtacc {
 namespace {
@@ -45,6 +48,14 @@ int positionAxisOf(const DriftTestFile& test, const std::string& chosen) {
   return moving.empty() ? -1 : moving[0];
 }
 
+void refuseSpindleModel(const DriftTestFile& test, int positionAxis) {
+  if (test.sensors.empty()) throw InputError({test.file, test.headerLine, "save-model"}, "no temperatures: the drift cannot be predicted from them");
+  if (positionAxis >= 0)
+    throw InputError({test.file, test.headerLine, "save-model"},
+                     fmt::format("the models depend on the position of {}: a spindle's drift model is of a test at one place",
+                                 test.axes[static_cast<size_t>(positionAxis)]));
+}
+
 }  // namespace
 
 const char* nameOf(DriftTestKind kind) {
@@ -69,6 +80,7 @@ DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request) {
   const long sensors = test.temperatures.cols();
   out.positionAxis = positionAxisOf(test, request.positionAxis);
   out.kind = kindOf(test, out.positionAxis);
+  if (!request.saveModel.empty()) refuseSpindleModel(test, out.positionAxis);
   const Eigen::VectorXd position = out.positionAxis < 0 ? Eigen::VectorXd() : Eigen::VectorXd(test.positions.col(out.positionAxis));
   if (!request.hysteresisSensor.empty()) {
     const auto it = std::find(test.sensors.begin(), test.sensors.end(), request.hysteresisSensor);
@@ -98,7 +110,39 @@ DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request) {
     }
     out.directions.push_back(std::move(e));
   }
+  if (!request.saveModel.empty()) {
+    const auto& z = test.probes;
+    writeFileAtomically(request.saveModel,
+                        spindleDriftModelYaml(spindleDriftModel(out),
+                                              fmt::format("The spindle's thermal drift from its temperatures, by mtacc drift --save-model from\n"
+                                                          "{} ({}, {} samples over {:.2f} h):\n"
+                                                          "drift = offset + sum over the sensors of per_kelvin x (T - reference); X and Y\n"
+                                                          "at probe set 1 (z = {} mm in the test), tilts B = dx/dz and A = -dy/dz ({} mm apart).",
+                                                          std::filesystem::path(test.file).filename().string(), nameOf(out.kind), test.time.size(),
+                                                          (test.time[test.time.size() - 1] - test.time[0]) / 3600, z.z1, z.z2 - z.z1)),
+                        "save-model");
+  }
   return out;
+}
+
+SpindleDriftModel spindleDriftModel(const DriftTestEvaluation& evaluation) {
+  const auto& test = evaluation.test;
+  refuseSpindleModel(test, evaluation.positionAxis);
+  SpindleDriftModel model;
+  std::vector<int> named(test.sensors.size(), -1);  // the test's sensor -> the model's
+  for (const auto& e : evaluation.directions) {
+    DriftModel m = e.model->model;
+    for (auto& s : m.sensors) {
+      auto& index = named[static_cast<size_t>(s)];
+      if (index < 0) {
+        index = static_cast<int>(model.sensors.size());
+        model.sensors.push_back(test.sensors[static_cast<size_t>(s)]);
+      }
+      s = index;
+    }
+    model.directions[static_cast<int>(e.direction)] = std::move(m);
+  }
+  return model;
 }
 
 nlohmann::json toJson(const DriftTestEvaluation& r, size_t seriesPoints) {

@@ -1,11 +1,13 @@
 """`--thermal FILE`: a machine command evaluated at a thermal state (the temperatures along a
-scale), here the forward kinematics and the compensation tables written cold and warm."""
+scale, the spindle's), here the forward kinematics and the compensation tables written cold and warm."""
 import json
+import pathlib
 import subprocess
 
 import numpy as np
 import pytest
 
+THERMAL = pathlib.Path(__file__).resolve().parents[2] / "data" / "thermal"
 STATE = """scales:
   X: {sensors: [0 mm, 337 mm, 600 mm], temperatures: [21.5, 26.0, 22.0], reference: 100 mm}
 """
@@ -112,3 +114,30 @@ def test_the_state_summary_and_its_report_section(cli, tmp_path):
     subprocess.run([cli, "report", "three-axis-vertical", "--thermal", str(state), "-o", str(out)], check=True, capture_output=True)
     page = (out / "three-axis-vertical-report.html").read_text()
     assert "at the thermal state state.yaml" in page and "Thermal state: state.yaml" in page
+
+
+def test_the_spindle_drift_model_of_a_drift_test_moves_the_warm_spindle(cli, tmp_path):
+    """`mtacc drift --save-model` (and drift_test(save_model=)) write the spindle's drift model; a
+    state naming it with the spindle's temperatures moves the TCP by the drift it predicts there."""
+    import mtacc
+    from mtacc import report
+    test = THERMAL / "maho-spindle-drift.csv"
+    subprocess.run([cli, "drift", str(test), "--save-model", str(tmp_path / "model.yaml")], check=True, capture_output=True)
+    mtacc.drift_test(test, save_model=tmp_path / "python-model.yaml")
+    assert (tmp_path / "model.yaml").read_text() == (tmp_path / "python-model.yaml").read_text()
+    state = tmp_path / "state.yaml"
+    state.write_text("spindle:\n  model: model.yaml\n  temperatures: {head: 31.5, column: 24.0, bed: 21.0}\n  probe_above_tcp: 100 mm\n")
+    summary = mtacc.thermal_state("three-axis-vertical", state)
+    assert summary["scales"] == [] and [d["direction"] for d in summary["spindle"]["directions"]] == ["X", "Y", "Z", "A", "B"]
+    y = summary["spindle"]["directions"][1]
+    assert 20 < y["drift"] < 35 and 0.2 < y["sigma"] < 0.5, "tens of um of Y drift for an 11.5 K warmer head, to 0.3 um"
+    for pose in ("X=0,Y=0,Z=0", "X=300,Y=200,Z=250"):
+        cold = run(cli, "fk", "three-axis-vertical", "--pose", pose)["poses"][0]["tcp"]
+        warm = run(cli, "fk", "three-axis-vertical", "--pose", pose, "--thermal", str(state))["poses"][0]["tcp"]
+        # The machine's angular errors (up to 15 urad) turn the drift (under 30 um): below 0.5 nm.
+        assert np.subtract(warm, cold) * 1e3 == pytest.approx(summary["spindle"]["at_tcp_um"], abs=5e-4)
+    section = report.thermal_section(summary)
+    assert "<svg" not in section and "The spindle's drift" in section and f"{y['drift']:.2f} um" in section
+    with pytest.raises(mtacc.InputError, match="save-model"):
+        mtacc.drift_test(THERMAL / "z-axis-drift.csv", save_model=tmp_path / "axis-model.yaml")
+    assert not (tmp_path / "axis-model.yaml").exists()

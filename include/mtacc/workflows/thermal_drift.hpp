@@ -15,6 +15,7 @@
 #include "mtacc/io/drift_test_csv.hpp"
 #include "mtacc/thermal/drift_regression.hpp"
 #include "mtacc/thermal/drift_test.hpp"
+#include "mtacc/thermal/spindle_drift.hpp"
 
 namespace mtacc {
 
@@ -23,6 +24,7 @@ struct DriftTestRequest {
   std::string hysteresisSensor;  // empty: the sensor whose temperature changes most
   SensorSelectionOptions selection;
   std::string positionAxis;      // the axis whose position the drift depends on; empty: the one that moves, if one does
+  std::string saveModel;         // where to write the spindle drift model (spindleDriftModel); empty: nowhere
 };
 
 enum class DriftTestKind { Spindle, AxisMotion, EnvironmentalVariation, Unstated };
@@ -46,8 +48,13 @@ struct DriftTestEvaluation {
 
 // Throws InputError naming the file (and the line and column of a bad reading), `sensor` for a
 // sensor the file does not hold, `position` for an axis it does not hold or that does not move,
-// or for two moving axes and none chosen, or the file's header for too few samples for the sensors.
+// or for two moving axes and none chosen, or the file's header for too few samples for the sensors;
+// with saveModel, also as spindleDriftModel does or for a file that cannot be written (written whole or not at all).
 DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request);
+// The test's models as the spindle's drift (each direction's chosen sensors, named), for a
+// thermal state's `spindle:`. Throws InputError (key save-model) for a test without
+// temperatures or whose models depend on an axis's position.
+SpindleDriftModel spindleDriftModel(const DriftTestEvaluation& evaluation);
 // Lengths in um, tilts in urad, coefficients per K (and per K per mm), times in s. With seriesPoints > 0 also the
 // curves ("series"): time, temperatures, and per direction the drift, the model's prediction and
 // its uncertainty (one standard deviation of a new reading, "predicted_sigma"), every k-th
