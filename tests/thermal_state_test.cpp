@@ -5,11 +5,15 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
 #include "mtacc/compensation/correction_tables.hpp"
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/errors/thermal_state.hpp"
 #include "mtacc/io/thermal_state_yaml.hpp"
 #include "mtacc/kinematics/forward.hpp"
+#include "mtacc/io/text_file.hpp"
+#include "mtacc/workflows/compensation.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 #include "test_helpers.hpp"
 
@@ -131,6 +135,59 @@ TEST(ThermalStateFile, ReadsTheScalesAndNamesItsErrors) {
   EXPECT_EQ(message("scales:\n  X: {sensors: [0 mm, 600 mm], temperatures: [20, 20]}\n"),
             "2 scales.X.reference: missing (the position where the scale reads true, e.g. where the drift was measured)");
   EXPECT_EQ(message("scale:\n  X: {}\n"), "1 scale: unknown key (expected one of: description, scales, spindle)");
+}
+
+}  // namespace
+}  // namespace mtacc
+
+namespace mtacc {
+namespace {
+
+// The periodic update (seed 003 §2.7) as a controller's logger drives it: the state rewritten
+// between two updates, the second tables written for the new temperatures and the grid said to
+// move by the change of the spindle's predicted drift at the TCP.
+TEST(ThermalState, KeptCurrentTheTablesFollowTheStateAsItIsRewritten) {
+  const auto folder = std::filesystem::temp_directory_path() / "mtacc-tables-kept-current";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const auto state = folder / "state.yaml";
+  const std::string model = std::string(MTACC_TEST_DATA) + "/../../data/thermal/maho-spindle-drift-model.yaml";
+  const auto writeState = [&](double head) {
+    writeFileAtomically(state.string(), fmt::format("spindle: {{model: {}, temperatures: {{head: {}, column: 22, bed: 21}}, probe_above_tcp: 100 mm}}\n", model, head));
+  };
+  writeState(25.0);
+  const MachineSource source{"three-axis-vertical", "", "", std::nullopt, state.string()};
+  const auto machine = loadMachineSetup(source).machine;
+  const auto atTcp = [&]() { return spindleDriftAtTcp(*machine, *loadThermalState(*machine, state.string()).spindle); };
+  const Vec3 before = atTcp();
+  std::vector<std::optional<double>> moves;
+  PeriodicTablesRequest request;
+  request.tables.grid = {{5, 4, 4}, {}};
+  request.folder = (folder / "tables").string();
+  request.periodSeconds = 0.01;
+  request.updates = 2;
+  keepTablesCurrent(source, request, [] { return false; }, [&](int update, const CompensationTablesResult& r, std::optional<double> moved) {
+    moves.push_back(moved);
+    EXPECT_EQ(update, static_cast<int>(moves.size()));
+    EXPECT_FALSE(r.files.empty());
+    EXPECT_TRUE(std::filesystem::exists(folder / "tables" / r.files.front().first));
+    if (update == 1) writeState(33.0);
+  });
+  ASSERT_EQ(moves.size(), 2u);
+  EXPECT_FALSE(moves[0]);
+  const Vec3 after = atTcp();
+  ASSERT_TRUE(moves[1]);
+  // As in TablesWrittenAtTwoSpindleTemperaturesDifferByThePrediction: to the machine's angular errors times the drift, below 1 nm.
+  EXPECT_NEAR(*moves[1], (after - before).norm(), 1e-6);
+  EXPECT_GT(*moves[1], 5e-3) << "8 K on the head moves the tool by micrometres";
+  EXPECT_TRUE(test::thrown<InputError>([&] { keepTablesCurrent({"three-axis-vertical", "", "", std::nullopt, ""}, request, [] { return false; }, [](int, const auto&, auto) {}); }));
+  int calls = 0;
+  request.periodSeconds = 3600.0;
+  request.updates = 0;
+  keepTablesCurrent(source, request, [&] { return calls > 0; },
+                    [&](int, const CompensationTablesResult&, std::optional<double>) { ++calls; });
+  EXPECT_EQ(calls, 1) << "a stop asked while waiting ends the wait";
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace

@@ -6,12 +6,9 @@
 #include <fmt/chrono.h>
 #include <fmt/format.h>
 
-#include <chrono>
 #include <csignal>
 #include <ctime>
-#include <filesystem>
 #include <iostream>
-#include <thread>
 
 #include "cli_common.hpp"
 #include "mtacc/core/input_error.hpp"
@@ -33,21 +30,19 @@ struct CompensateOptions : MachineOptions {
   double directionToleranceUrad = ProgramCompensationOptions{}.directionTolerance * 1e6;
 };
 
-CorrectionGrid runTables(const CompensateOptions& o) {
-  const auto setup = loadMachineSetup(o.source);
+CompensationTablesRequest tablesRequest(const CompensateOptions& o) {
   CompensationTablesRequest request;
   const auto counts = splitList(o.nodes);
   if (counts.size() != 3) throw InputError({"", 0, "--nodes"}, "give the nodes along X, Y, Z, e.g. 21,21,21");
   for (size_t a = 0; a < 3; ++a) request.grid.counts[a] = parseCount(counts[a], "--nodes", 2, 1000);
-  if (!o.pose.empty()) request.grid.pose = parsePose(*setup.machine, o.pose, "--pose", true);
+  if (!o.pose.empty()) request.grid.pose = parsePose(*loadMachineSetup(o.source).machine, o.pose, "--pose", true);
   request.oneAxisFunctions = o.functions;
   request.linuxcncType = o.linuxcncType;
   request.checkProgram = o.checkProgram;
-  const auto r = compensationTables(setup, request);
-  std::error_code error;
-  std::filesystem::create_directories(o.tables, error);
-  if (error) throw InputError({"", 0, "--tables"}, fmt::format("{}: cannot create the folder: {}", o.tables, error.message()));
-  for (const auto& [name, content] : r.files) writeFileAtomically((std::filesystem::path(o.tables) / name).string(), content, "--tables");
+  return request;
+}
+
+void emitTables(const CompensateOptions& o, const CompensationTablesResult& r) {
   const auto j = toJson(r);
   std::string others;
   for (const auto& [axis, value] : j["grid"]["pose"].items())
@@ -88,34 +83,23 @@ CorrectionGrid runTables(const CompensateOptions& o) {
     human += fmt::format("LinuxCNC trt kinematics parameters: none, {}\n", r.trtNotApplicable);
   }
   emit(o, j, human, csv);
-  return r.grid;
 }
 
 volatile std::sig_atomic_t stopRequested = 0;
 extern "C" void requestStop(int) { stopRequested = 1; }
 
-// The tables kept up with a thermal state that a temperature logger rewrites, as a controller
-// reads its compensation every 60 s (seed 003 §2.7): each period the state is read again and
-// every file replaced whole. A bad state stops with its error, the last tables left in place.
+// Each update's report as the one-off command prints it, and a line on stderr saying when.
 void runTablesPeriodically(const CompensateOptions& o) {
-  if (o.source.thermalFile.empty()) throw InputError({"", 0, "--every"}, "give --thermal STATE: the temperatures the tables follow");
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
-  std::optional<CorrectionGrid> previous;
-  for (int update = 1; stopRequested == 0; ++update) {
-    const CorrectionGrid grid = runTables(o);
-    double moved = 0.0;
-    if (previous)
-      for (size_t n = 0; n < grid.corrections.size(); ++n) moved = std::max(moved, (grid.corrections[n] - previous->corrections[n]).norm());
-    std::cerr << fmt::format("mtacc: update {} at {:%H:%M:%S}: tables for {} written to {}/{}\n", update, fmt::localtime(std::time(nullptr)),
-                             o.source.thermalFile, o.tables,
-                             previous ? fmt::format("; the grid moved by up to {:.3f} um since the last", moved * 1e3) : "")
-              << std::flush;
-    previous = grid;
-    if (o.updates > 0 && update >= o.updates) break;
-    const auto next = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.everySeconds);
-    while (stopRequested == 0 && std::chrono::steady_clock::now() < next) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  keepTablesCurrent(o.source, {tablesRequest(o), o.tables, o.everySeconds, o.updates}, [] { return stopRequested != 0; },
+                    [&](int update, const CompensationTablesResult& r, std::optional<double> moved) {
+                      emitTables(o, r);
+                      std::cerr << fmt::format("mtacc: update {} at {:%H:%M:%S}: tables for {} written to {}/{}\n", update,
+                                               fmt::localtime(std::time(nullptr)), o.source.thermalFile, o.tables,
+                                               moved ? fmt::format("; the grid moved by up to {:.3f} um since the last", *moved * 1e3) : "")
+                                << std::flush;
+                    });
 }
 
 void run(const CompensateOptions& o) {
@@ -123,8 +107,13 @@ void run(const CompensateOptions& o) {
     throw InputError({"", 0, "--program/--tables"}, "give --program IN.nc (a compensated program) or --tables DIR (controller tables)");
   if (o.everySeconds > 0 && o.tables.empty()) throw InputError({"", 0, "--every"}, "rewrites controller tables: give --tables DIR");
   if (!o.tables.empty()) {
-    if (o.everySeconds > 0) return runTablesPeriodically(o);
-    runTables(o);
+    if (o.everySeconds > 0) {
+      if (o.source.thermalFile.empty()) throw InputError({"", 0, "--every"}, "give --thermal STATE: the temperatures the tables follow");
+      return runTablesPeriodically(o);
+    }
+    const auto r = compensationTables(loadMachineSetup(o.source), tablesRequest(o));
+    writeCompensationTables(r, o.tables);
+    emitTables(o, r);
     return;
   }
   if (o.gcode.empty()) throw InputError({"", 0, "--gcode"}, "give the file to write the compensated program to (--gcode OUT.nc)");

@@ -2,11 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
+#include <filesystem>
 #include <iterator>
+#include <thread>
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/compensation/heidenhain_tables.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/io/text_file.hpp"
 
 namespace mtacc {
 
@@ -204,6 +208,37 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
     for (size_t t = 0; t < j["tables"].size(); ++t) j["tables"][t]["along_program"] = residualJson(*along[t]);
   }
   return j;
+}
+
+void writeCompensationTables(const CompensationTablesResult& result, const std::string& folder) {
+  const std::string key = "tables";
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (error) throw InputError({"", 0, key}, fmt::format("{}: cannot create the folder: {}", folder, error.message()));
+  for (const auto& [name, content] : result.files) writeFileAtomically((std::filesystem::path(folder) / name).string(), content, key);
+}
+
+void keepTablesCurrent(const MachineSource& source, const PeriodicTablesRequest& request, const std::function<bool()>& stop,
+                       const TablesUpdated& updated) {
+  if (source.thermalFile.empty()) throw InputError({"", 0, "every"}, "give a thermal state: the temperatures the tables follow");
+  if (!(request.periodSeconds > 0 && request.periodSeconds <= 86400)) throw InputError({"", 0, "every"}, "a period above 0 and at most a day, in s");
+  if (request.updates < 0) throw InputError({"", 0, "updates"}, "0 (until stopped) or more updates");
+  std::optional<CorrectionGrid> previous;
+  for (int update = 1; !stop(); ++update) {
+    const auto result = compensationTables(loadMachineSetup(source), request.tables);
+    writeCompensationTables(result, request.folder);
+    std::optional<double> moved;
+    if (previous) {
+      moved = 0.0;
+      for (size_t n = 0; n < result.grid.corrections.size(); ++n)
+        moved = std::max(*moved, (result.grid.corrections[n] - previous->corrections[n]).norm());
+    }
+    updated(update, result, moved);
+    previous = result.grid;
+    if (request.updates > 0 && update >= request.updates) break;
+    const auto next = std::chrono::steady_clock::now() + std::chrono::duration<double>(request.periodSeconds);
+    while (!stop() && std::chrono::steady_clock::now() < next) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
 }
 
 }  // namespace mtacc

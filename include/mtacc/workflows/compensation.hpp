@@ -2,6 +2,7 @@
 // Workflow `compensate program`: an axis program (G-code) read for a machine, compensated for
 // the machine's errors, as G-code text and a summary (corrections, what the tool's path would
 // deviate from the program on the machine with its errors, before and after).
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -69,5 +70,25 @@ struct CompensationTablesResult {
 // LinuxCNC.
 CompensationTablesResult compensationTables(const MachineSetup& setup, const CompensationTablesRequest& request);
 nlohmann::json toJson(const CompensationTablesResult& result);
+// Every file of `result` in `folder` (created if missing), each written whole or not at all.
+// Throws InputError (key "tables") for a folder or a file that cannot be written.
+void writeCompensationTables(const CompensationTablesResult& result, const std::string& folder);
+
+// The tables kept up with a thermal state that a temperature logger rewrites, as seed 003's
+// controller read its compensation every 60 s (§2.7): each period the machine is set up again
+// from `source` (its thermal state read anew), the tables computed and written to `folder`,
+// and `updated` told (the update's number from 1, the tables, and how far the grid's
+// corrections moved since the last, mm; none the first time). Stops after `updates` writes
+// (0: no limit) or when `stop` returns true, asked every 20 ms while waiting. A state that
+// cannot be read throws its InputError, the last tables left in place.
+struct PeriodicTablesRequest {
+  CompensationTablesRequest tables;
+  std::string folder;
+  double periodSeconds = 60.0;
+  int updates = 0;
+};
+using TablesUpdated = std::function<void(int update, const CompensationTablesResult& result, std::optional<double> moved)>;
+void keepTablesCurrent(const MachineSource& source, const PeriodicTablesRequest& request, const std::function<bool()>& stop,
+                       const TablesUpdated& updated);
 
 }  // namespace mtacc
