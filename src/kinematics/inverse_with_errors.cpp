@@ -43,8 +43,8 @@ int rotaryCount(const Machine& machine) {
 // over it, and rounding stays far below the step's effect), columns scaled, factorised. For the
 // position alone, a machine with three linear axes moves only those: the rotary axes keep their
 // commands rather than turn the tool to reach a few micrometres.
-void factorise(ErrorIkJacobian& jacobian, const Target& t, const std::vector<double>& q, bool withDirection, const Eigen::VectorXd& scale,
-               double singularRatio) {
+void factorise(ErrorIkJacobian& jacobian, const Target& t, const std::vector<double>& q, bool withDirection, double singularRatio) {
+  const auto& scale = jacobian.scale;
   const auto n = static_cast<Eigen::Index>(q.size());
   const Machine& machine = *t.model.machine;
   const bool positionByLinearAxes = n - rotaryCount(machine) >= 3;
@@ -63,8 +63,13 @@ void factorise(ErrorIkJacobian& jacobian, const Target& t, const std::vector<dou
     j.col(k) = scale[k] * (residual(t, plus, withDirection, reached) - residual(t, minus, withDirection, reached)) / (2.0 * h);
     plus[kk] = minus[kk] = q[kk];
   }
-  jacobian.svd.compute(j, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  jacobian.svd.setThreshold(singularRatio);
+  auto& svd = jacobian.svd;
+  svd.compute(j, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  svd.setThreshold(singularRatio);
+  jacobian.rank = svd.rank();
+  const Eigen::Index r = jacobian.rank;
+  jacobian.reachable = svd.matrixU().leftCols(r).transpose();
+  jacobian.pseudoInverse = svd.matrixV().leftCols(r) * svd.singularValues().head(r).cwiseInverse().asDiagonal() * jacobian.reachable;
   jacobian.valid = true;
   jacobian.withDirection = withDirection;
 }
@@ -82,7 +87,7 @@ ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& posit
   s.directionControlled = !o.positionOnly && rotaryCount(*actual.machine) >= 2;
   s.singular = singularStart;
   const auto n = static_cast<Eigen::Index>(s.q.size());
-  Eigen::VectorXd& scale = jacobian.scale;
+  auto& scale = jacobian.scale;
   scale.resize(n);
   for (Eigen::Index k = 0; k < n; ++k) scale[k] = actual.machine->axes[static_cast<size_t>(k)].isRotary() ? 1.0 / kDirectionWeight : 1.0;
   // At a singular pose the direction is given up and the position alone is reached.
@@ -94,8 +99,8 @@ ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& posit
   };
   while (!within(r) && s.iterations < o.maxIterations) {
     const bool fresh = !jacobian.valid || jacobian.withDirection != withDirection;
-    if (fresh) factorise(jacobian, target, s.q, withDirection, scale, o.singularRatio);
-    if (jacobian.svd.rank() < std::min<Eigen::Index>(n, withDirection ? 5 : 3)) {
+    if (fresh) factorise(jacobian, target, s.q, withDirection, o.singularRatio);
+    if (jacobian.rank < std::min<Eigen::Index>(n, withDirection ? 5 : 3)) {
       if (!fresh) {  // a kept Jacobian from a pose that was singular: take it here
         jacobian.valid = false;
         continue;
@@ -107,12 +112,14 @@ ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& posit
         continue;
       }
     }
-    jacobian.step = jacobian.svd.solve(-r);
-    for (Eigen::Index k = 0; k < n; ++k) s.q[static_cast<size_t>(k)] += scale[k] * jacobian.step[k];
+    jacobian.step.noalias() = jacobian.pseudoInverse * r;
+    for (Eigen::Index k = 0; k < n; ++k) s.q[static_cast<size_t>(k)] -= scale[k] * jacobian.step[k];
     const Residual next = residual(target, s.q, withDirection, reached);
     ++s.iterations;
-    const auto reachable = jacobian.svd.matrixU().leftCols(jacobian.svd.rank());
-    const double contraction = (reachable.transpose() * next).norm() / std::max((reachable.transpose() * r).norm(), 1e-300);
+    Residual reachedNext, reachedBefore;  // at most six rows: the rank of a Jacobian of six
+    reachedNext.noalias() = jacobian.reachable * next;
+    reachedBefore.noalias() = jacobian.reachable * r;
+    const double contraction = reachedNext.norm() / std::max(reachedBefore.norm(), 1e-300);
     r = next;
     // At a singular pose the part of the residual no command reaches stays: stop when the
     // reachable part no longer shrinks under a Jacobian taken here.

@@ -50,6 +50,9 @@ struct ErrorIkSolution {
 // the residual by less than 10x.
 struct ErrorIkJacobian {
   Eigen::JacobiSVD<Eigen::MatrixXd> svd;
+  Eigen::MatrixXd pseudoInverse;  // the scaled step per residual, V S^+ U^T over the rank kept
+  Eigen::MatrixXd reachable;      // U^T over the rank kept: the part of a residual the commands reach
+  Eigen::Index rank = 0;
   bool valid = false;
   bool withDirection = false;
   Eigen::VectorXd scale, step;  // scratch of the solves, kept so that a solve allocates no more
