@@ -50,7 +50,8 @@ struct ChainOp {
   // cos(theta) - a sin(phase) sin(theta), with one sine and cosine per pose for a group whose
   // frequency is not an integer multiple of the one before it at the same zero, and the
   // multiple-angle product for one that is (the orders of a harmonic series);
-  // polynomial and piecewise terms with their component; reversal terms summed per component;
+  // polynomial terms summed per power over the components, for each variable they share;
+  // piecewise terms with their component; reversal terms summed per component;
   // stiffness changes with their component, the joint of their other axis and their load factor.
   struct TableGroup {
     std::vector<double> positions;
@@ -66,9 +67,9 @@ struct ChainOp {
     std::vector<int> components;
     std::vector<double> cosine, sine;  // per term: a cos(phase), a sin(phase)
   };
-  struct Polynomial {
-    int component = 0;
-    PolynomialTerm term;
+  struct PolynomialGroup {  // the polynomials in one variable u = (q - zero) / scale, summed per power
+    double zero = 0.0, scale = 1.0;
+    std::vector<Vec6> powers;
   };
   struct Piecewise {
     int component = 0;
@@ -76,7 +77,7 @@ struct ChainOp {
   };
   std::vector<TableGroup> tableGroups;
   std::vector<HarmonicGroup> harmonicGroups;
-  std::vector<Polynomial> polynomials;
+  std::vector<PolynomialGroup> polynomialGroups;
   std::vector<Piecewise> piecewise;
   struct Stiffness {
     int component = 0;
@@ -186,7 +187,12 @@ inline Vec6 motionComponents(const ChainOp& op, const double* q, const int* dir)
     }
     for (size_t t = 0; t < group.components.size(); ++t) c[group.components[t]] += group.cosine[t] * cosine - group.sine[t] * sine;
   }
-  for (const auto& p : op.polynomials) c[p.component] += p.term.value(qa);
+  for (const auto& p : op.polynomialGroups) {
+    const double u = (qa - p.zero) / p.scale;
+    Vec6 v = p.powers.back();
+    for (auto k = p.powers.size() - 1; k-- > 0;) v = v * u + p.powers[k];
+    c += v;
+  }
   for (const auto& p : op.piecewise) c[p.component] += p.term.value(qa);
   for (const auto& s : op.stiffness) c[s.component] += s.loadFactor * s.term.value(qa, s.otherJoint >= 0 ? q[s.otherJoint] : 0.0);
   if (dir && op.joint >= 0 && dir[op.joint] != 0) c += dir[op.joint] > 0 ? op.halfReversal : Vec6(-op.halfReversal);

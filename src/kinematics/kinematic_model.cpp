@@ -85,7 +85,12 @@ ChainOp motionErrorOp(const Machine& machine, const ErrorModel& errors, const Ch
         continue;
       }
       if (const auto* p = std::get_if<PolynomialTerm>(&term)) {
-        op.polynomials.push_back({k, *p});
+        if (p->coefficients.empty()) continue;
+        auto same = std::find_if(op.polynomialGroups.begin(), op.polynomialGroups.end(),
+                                 [&](const auto& g) { return g.zero == p->zero && g.scale == p->scale; });
+        if (same == op.polynomialGroups.end()) same = op.polynomialGroups.insert(op.polynomialGroups.end(), {p->zero, p->scale, {}});
+        if (same->powers.size() < p->coefficients.size()) same->powers.resize(p->coefficients.size(), Vec6::Zero());
+        for (size_t power = 0; power < p->coefficients.size(); ++power) same->powers[power][k] += p->coefficients[power];
         continue;
       }
       if (const auto* p = std::get_if<PiecewiseTerm>(&term)) {
@@ -122,7 +127,7 @@ ChainOp motionErrorOp(const Machine& machine, const ErrorModel& errors, const Ch
     op.stiffness.push_back({s.component, otherJoint, s.loadFactor(errors.workpieceLoad), s});
   }
   orderHarmonicGroups(op.harmonicGroups);
-  op.sixTablesOnOneGrid = op.harmonicGroups.empty() && op.polynomials.empty() && op.piecewise.empty() && op.stiffness.empty() &&
+  op.sixTablesOnOneGrid = op.harmonicGroups.empty() && op.polynomialGroups.empty() && op.piecewise.empty() && op.stiffness.empty() &&
                           op.halfReversal.isZero(0.0) &&
                           op.tableGroups.size() == 1 &&
                           op.tableGroups[0].components == std::vector<int>{0, 1, 2, 3, 4, 5};
