@@ -64,8 +64,7 @@ struct ChainOp {
     double omega = 0.0;  // rad per unit of q
     double zero = 0.0;
     int multiple = 1;    // > 1: omega is this multiple of the last group with multiple 1
-    std::vector<int> components;
-    std::vector<double> cosine, sine;  // per term: a cos(phase), a sin(phase)
+    Vec6 cosine = Vec6::Zero(), sine = Vec6::Zero();  // per component, summed over its terms: a cos(phase), a sin(phase)
   };
   struct PolynomialGroup {  // the polynomials in one variable u = (q - zero) / scale, summed per power
     double zero = 0.0, scale = 1.0;
@@ -185,7 +184,7 @@ inline Vec6 motionComponents(const ChainOp& op, const double* q, const int* dir)
         cosine = next;
       }
     }
-    for (size_t t = 0; t < group.components.size(); ++t) c[group.components[t]] += group.cosine[t] * cosine - group.sine[t] * sine;
+    c += group.cosine * cosine - group.sine * sine;
   }
   for (const auto& p : op.polynomialGroups) {
     const double u = (qa - p.zero) / p.scale;

@@ -78,10 +78,9 @@ ChainOp motionErrorOp(const Machine& machine, const ErrorModel& errors, const Ch
         const double omega = 2.0 * kPi * h->order / h->period;
         auto same = std::find_if(op.harmonicGroups.begin(), op.harmonicGroups.end(),
                                  [&](const auto& g) { return g.omega == omega && g.zero == h->zero; });
-        if (same == op.harmonicGroups.end()) same = op.harmonicGroups.insert(op.harmonicGroups.end(), {omega, h->zero, 1, {}, {}, {}});
-        same->components.push_back(k);
-        same->cosine.push_back(h->amplitude * std::cos(h->phase));
-        same->sine.push_back(h->amplitude * std::sin(h->phase));
+        if (same == op.harmonicGroups.end()) same = op.harmonicGroups.insert(op.harmonicGroups.end(), {omega, h->zero, 1});
+        same->cosine[k] += h->amplitude * std::cos(h->phase);
+        same->sine[k] += h->amplitude * std::sin(h->phase);
         continue;
       }
       if (const auto* p = std::get_if<PolynomialTerm>(&term)) {
