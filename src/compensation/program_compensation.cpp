@@ -83,10 +83,10 @@ class Compensator {
     for (size_t k = 0; k < q.size(); ++k) start[k] += 2.0 * correction_[k] - previousCorrection_[k];
     if (&models != lastModels_) jacobian_.valid = false;
     lastModels_ = &models;
-    const ErrorIkSolution solution = refineWithErrors(models.actual, wanted.position, wanted.direction, start, o_.ik, jacobian_, false, motion.data());
-    previousCorrection_ = correction_;
+    ErrorIkSolution solution = refineWithErrors(models.actual, wanted.position, wanted.direction, start, o_.ik, jacobian_, false, motion.data());
+    previousCorrection_.swap(correction_);
     for (size_t k = 0; k < q.size(); ++k) correction_[k] = solution.q[k] - q[k];
-    const CompensatedPoint point{index, s, solution.q, solution.positionResidual, solution.directionResidual};
+    const CompensatedPoint point{index, s, std::move(solution.q), solution.positionResidual, solution.directionResidual};
     if (!counted) return point;
     for (size_t k = 0; k < q.size(); ++k) {
       out_.largestCorrection[k] = std::max(out_.largestCorrection[k], std::abs(correction_[k]));
