@@ -9,7 +9,7 @@ model of bench/identify_scipy.py): the TCP and the tool direction in the workpie
 Newton's method on all points at once from the nominal commands: the residual (position, and the
 direction times 1000 mm/rad as mtacc weighs it), an analytic 6 x 5 Jacobian per point, and a
 batched least-squares step (normal equations, np.linalg.solve), until every point is within
-1e-7 mm and 1e-10 rad (mtacc's tolerances for programs). Then the same check mtacc makes between written points: the midpoint of
+1e-7 mm and 1e-9 rad (mtacc's tolerances for programs). Then the same check mtacc makes between written points: the midpoint of
 each segment, with the correction interpolated, against the nominal path.
 
 Usage: compensation_numpy.py Q.bin N ERRORS.json REPEATS OUT.bin
@@ -108,7 +108,7 @@ def compensate(actual, nominal, q):
     while True:
         p, d, j = actual.pose(x, jacobian=True)
         r = np.concatenate([p - want_p, WEIGHT * (d - want_d)], axis=1)
-        if np.all(np.linalg.norm(r[:, :3], axis=1) <= 1e-7) and np.all(np.linalg.norm(r[:, 3:], axis=1) / WEIGHT <= 1e-10):
+        if np.all(np.linalg.norm(r[:, :3], axis=1) <= 1e-7) and np.all(np.linalg.norm(r[:, 3:], axis=1) / WEIGHT <= 1e-9):
             break
         if iterations == 10:
             break

@@ -13,6 +13,8 @@
 #include "mtacc/io/cone_program.hpp"
 #include "mtacc/io/cubic_program.hpp"
 #include "mtacc/io/cubic_test_yaml.hpp"
+#include "mtacc/kinematics/forward.hpp"
+#include "mtacc/kinematics/inverse_with_errors.hpp"
 #include "mtacc/procedures/cone.hpp"
 #include "mtacc/procedures/cubic_test.hpp"
 #include "test_helpers.hpp"
@@ -127,6 +129,27 @@ TEST(GcodeReader, DirectionsOfMotionAndReversalsAlongAnArc) {
   EXPECT_EQ(circle.motion(0.9), (std::vector<int>{1, -1, 0}));
   EXPECT_TRUE(line.reversals().empty());
   EXPECT_EQ(line.motion(0.3), (std::vector<int>{-1, 1, 0}));
+}
+
+// X moves +X, then stands while Y moves: its backlash stays taken up on the + side (EXX
+// reversal 2 um: +1 um), so the commands at the end equal the inverse error model with X moving
+// +, 1 um of X away from X standing (no reversal).
+TEST(ProgramCompensation, AnAxisStandingKeepsTheSideItLastMovedTo) {
+  const auto setup = bundledSetup("three-axis-vertical");
+  const auto p = parseGcodeProgram("G0 X100 Y100 Z50\nG1 X110 F500\nG1 Y120\nG1 Y140\n", "stand.nc", *setup.machine);
+  const CompensatedProgram c = compensateProgram(setup.machine, setup.errors, p);
+  // The start and the rapid's end, X's step as it sets off and its end, Y's step as it sets off
+  // and the two ends.
+  ASSERT_EQ(c.points.size(), 7u);
+  const auto actual = compile(setup.machine, setup.errors), nominal = compileNominal(setup.machine);
+  const std::vector<double> end = p.moves.back().to;
+  const ToolPoint wanted = toolPoint(nominal, end.data());
+  auto solvedWith = [&](std::vector<int> motion) {
+    ErrorIkJacobian jacobian;
+    return refineWithErrors(actual, wanted.position, wanted.direction, end, ProgramCompensationOptions{}.ik, jacobian, false, motion.data()).q[0];
+  };
+  EXPECT_NEAR(c.points.back().q[0], solvedWith({1, 1, 0}), 1e-6);
+  EXPECT_NEAR(std::abs(solvedWith({0, 1, 0}) - solvedWith({1, 1, 0})), 1e-3, 1e-6);
 }
 
 TEST(GcodeReader, KeptWordsAndCommentsStayInPlace) {

@@ -8,17 +8,17 @@
 namespace mtacc {
 namespace {
 
-// harmonicSinCos against libm's sincos. libm is within 1 ulp of the true values; the kernel's
+// fastSinCos against libm's sincos. libm is within 1 ulp of the true values; the kernel's
 // reduction is exact and its series truncation below 1e-19, so the two differ by at most an ulp
 // of 1 (2.2e-16) at any |x| < 1e5, including next to the multiples of pi/2 where the reduction
 // cancels, and beyond 1e5 they are the same call.
-TEST(HarmonicSinCos, WithinOneUlpOfLibmOverTheReducedRange) {
+TEST(FastSinCos, WithinOneUlpOfLibmOverTheReducedRange) {
   std::mt19937_64 random(17);
   std::uniform_real_distribution<double> argument(-1e5, 1e5), small(-4.0, 4.0);
   double worst = 0.0;
   auto compare = [&](double x) {
     double s, c, libmS, libmC;
-    harmonicSinCos(x, s, c);
+    fastSinCos(x, s, c);
     ::sincos(x, &libmS, &libmC);
     worst = std::max({worst, std::abs(s - libmS), std::abs(c - libmC)});
   };
@@ -34,23 +34,23 @@ TEST(HarmonicSinCos, WithinOneUlpOfLibmOverTheReducedRange) {
   EXPECT_LE(worst, std::ldexp(1.0, -52));
   for (double x : {1e5, -3e7, 1e300}) {
     double s, c, libmS, libmC;
-    harmonicSinCos(x, s, c);
+    fastSinCos(x, s, c);
     ::sincos(x, &libmS, &libmC);
     EXPECT_EQ(s, libmS) << x;
     EXPECT_EQ(c, libmC) << x;
   }
 }
 
-TEST(HarmonicSinCos, QuadrantsAndSmallArgumentsAreExact) {
+TEST(FastSinCos, QuadrantsAndSmallArgumentsAreExact) {
   const double cases[][3] = {{0.0, 0.0, 1.0}, {M_PI / 2, 1.0, 0.0}, {M_PI, 0.0, -1.0}, {-M_PI / 2, -1.0, 0.0}, {3 * M_PI / 2, -1.0, 0.0}};
   for (const auto& [x, sine, cosine] : cases) {
     double s, c;
-    harmonicSinCos(x, s, c);
+    fastSinCos(x, s, c);
     EXPECT_NEAR(s, sine, 4e-16) << x;
     EXPECT_NEAR(c, cosine, 4e-16) << x;
   }
   double s, c;
-  harmonicSinCos(1e-300, s, c);  // sin x = x exactly for tiny x
+  fastSinCos(1e-300, s, c);  // sin x = x exactly for tiny x
   EXPECT_EQ(s, 1e-300);
   EXPECT_EQ(c, 1.0);
 }

@@ -19,22 +19,32 @@ std::vector<double> GcodeMove::at(double s) const {
 }
 
 std::vector<int> GcodeMove::motion(double s) const {
-  std::vector<double> rate(from.size());
-  for (size_t k = 0; k < rate.size(); ++k) rate[k] = to[k] - from[k];
+  std::vector<int> d(from.size(), 0);
+  // Along the circle for an arc's plane axes (an end radius differing by its tolerance does not
+  // move the quadrants), along the line for the others.
+  double alongArc[2] = {0.0, 0.0};
   if (isArc()) {
-    const auto a = static_cast<size_t>(planeAxes[0]), b = static_cast<size_t>(planeAxes[1]);
-    // Along the circle (an end radius differing by its tolerance does not move the quadrants).
-    const double angle = std::atan2(from[b] - centre[1], from[a] - centre[0]) + s * sweep;
-    rate[a] = -sweep * std::sin(angle);
-    rate[b] = sweep * std::cos(angle);
+    const double angle = std::atan2(from[static_cast<size_t>(planeAxes[1])] - centre[1], from[static_cast<size_t>(planeAxes[0])] - centre[0]) + s * sweep;
+    alongArc[0] = -sweep * std::sin(angle);
+    alongArc[1] = sweep * std::cos(angle);
   }
+  auto rate = [&](size_t k) {
+    if (isArc() && static_cast<int>(k) == planeAxes[0]) return alongArc[0];
+    if (isArc() && static_cast<int>(k) == planeAxes[1]) return alongArc[1];
+    return to[k] - from[k];
+  };
   double largest = 0.0;
-  for (double v : rate) largest = std::max(largest, std::abs(v));
-  std::vector<int> d(rate.size(), 0);
+  for (size_t k = 0; k < d.size(); ++k) largest = std::max(largest, std::abs(rate(k)));
   // Rounding leaves a standing axis (an arc's quadrant point) a rate of about 1e-16 of the others.
   for (size_t k = 0; k < d.size(); ++k)
-    if (std::abs(rate[k]) > 1e-12 * largest) d[k] = rate[k] > 0 ? 1 : -1;
+    if (std::abs(rate(k)) > 1e-12 * largest) d[k] = rate(k) > 0 ? 1 : -1;
   return d;
+}
+
+std::vector<int> heldMotion(std::vector<int> motion, const std::vector<int>& last) {
+  for (size_t k = 0; k < motion.size() && k < last.size(); ++k)
+    if (motion[k] == 0) motion[k] = last[k];
+  return motion;
 }
 
 std::vector<double> GcodeMove::reversals() const {

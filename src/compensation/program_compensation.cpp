@@ -40,8 +40,6 @@ class ToolModels {
   std::map<double, Models> cache_;
 };
 
-double angleBetween(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
-
 std::vector<double> lerp(const std::vector<double>& a, const std::vector<double>& b, double t) {
   std::vector<double> q(a.size());
   for (size_t k = 0; k < q.size(); ++k) q[k] = a[k] + t * (b[k] - a[k]);
@@ -79,18 +77,16 @@ class Compensator {
     const ToolPoint wanted = toolPoint(models.nominal, q.data());
     // The correction changes smoothly along a program: extrapolated from the last two points,
     // it leaves the Newton iteration little or nothing to do.
-    std::vector<double> start = q;
-    for (size_t k = 0; k < q.size(); ++k) start[k] += 2.0 * correction_[k] - previousCorrection_[k];
+    start_.resize(q.size());
+    for (size_t k = 0; k < q.size(); ++k) start_[k] = q[k] + 2.0 * correction_[k] - previousCorrection_[k];
     if (&models != lastModels_) jacobian_.valid = false;
     lastModels_ = &models;
-    ErrorIkSolution solution = refineWithErrors(models.actual, wanted.position, wanted.direction, start, o_.ik, jacobian_, false, motion.data());
+    ErrorIkSolution solution = refineWithErrors(models.actual, wanted.position, wanted.direction, start_, o_.ik, jacobian_, false, motion.data());
     previousCorrection_.swap(correction_);
-    for (size_t k = 0; k < q.size(); ++k) correction_[k] = solution.q[k] - q[k];
+    for (size_t k = 0; k < q.size(); ++k) correction_[k] = solution.qLinearised[k] - q[k];
     const CompensatedPoint point{index, s, std::move(solution.q), solution.positionResidual, solution.directionResidual};
     if (!counted) return point;
-    for (size_t k = 0; k < q.size(); ++k) {
-      out_.largestCorrection[k] = std::max(out_.largestCorrection[k], std::abs(correction_[k]));
-    }
+    for (size_t k = 0; k < q.size(); ++k) out_.largestCorrection[k] = std::max(out_.largestCorrection[k], std::abs(point.q[k] - q[k]));
     out_.largestResidual = std::max(out_.largestResidual, solution.positionResidual);
     const bool problem = !solution.converged || solution.singular || !solution.travelViolation.empty();
     out_.notConverged += solution.converged ? 0 : 1;
@@ -105,11 +101,11 @@ class Compensator {
 
   // Where the written segment a-b, interpolated by the controller, leaves the nominal path at
   // its midpoint by more than the tolerances, it is halved.
-  void refine(int index, const GcodeMove& move, const CompensatedPoint& a, CompensatedPoint b, int depth) {
+  // `motion`: the axes' directions along the move from a to b.
+  void refine(int index, const GcodeMove& move, const CompensatedPoint& a, CompensatedPoint b, const std::vector<int>& motion, int depth) {
     const Models& models = models_(move.toolLength);
     const double s = 0.5 * (a.s + b.s);
     const std::vector<double> written = lerp(a.q, b.q, 0.5), programmed = move.at(s);
-    const std::vector<int> motion = move.motion(s);
     const ToolPoint reached = toolPoint(models.actual, written.data(), motion.data()), wanted = toolPoint(models.nominal, programmed.data());
     // What the ends themselves cannot correct (the direction at a singular pose, on a machine
     // without two rotary axes) is not the interpolation's fault.
@@ -121,14 +117,14 @@ class Compensator {
       return;
     }
     CompensatedPoint middle = solve(index, move, s, motion);
-    refine(index, move, a, middle, depth + 1);
-    refine(index, move, out_.points.back(), std::move(b), depth + 1);
+    refine(index, move, a, middle, motion, depth + 1);
+    refine(index, move, out_.points.back(), std::move(b), motion, depth + 1);
   }
 
   void compensate(int index) {
     const GcodeMove& move = program_.moves[static_cast<size_t>(index)];
     if (move.mode == MotionMode::Rapid) {
-      lastMotion_ = move.motion(0.5);
+      lastMotion_ = heldMotion(move.motion(0.5), lastMotion_);
       out_.points.push_back(solve(index, move, 1.0, lastMotion_));
       return;
     }
@@ -138,7 +134,7 @@ class Compensator {
     std::vector<double> ends = move.reversals();
     ends.push_back(1.0);
     double from = 0.0;
-    std::vector<int> after = move.motion(std::min(kSide, 0.5));
+    std::vector<int> after = heldMotion(move.motion(std::min(kSide, 0.5)), lastMotion_);
     if (after != lastMotion_) out_.points.push_back(solve(index, move, 0.0, after));
     for (const double to : ends) {
       // Arcs start as chords within the tolerance (sagitta r (1 - cos(angle / 2))), then halve.
@@ -148,7 +144,8 @@ class Compensator {
         const double chordAngle = r > o_.tolerance ? 2.0 * std::acos(1.0 - o_.tolerance / r) : angle;
         pieces = std::max(2, static_cast<int>(std::ceil(angle / chordAngle)));
       }
-      const std::vector<int> before = move.motion(to - std::min(kSide, 0.5 * (to - from)));
+      // A straight move goes one way throughout.
+      const std::vector<int> before = move.isArc() ? heldMotion(move.motion(to - std::min(kSide, 0.5 * (to - from))), after) : after;
       for (int i = 1; i <= pieces; ++i) {
         CompensatedPoint end = solve(index, move, from + (to - from) * i / pieces, before);
         CompensatedPoint start = out_.points.back();
@@ -156,11 +153,11 @@ class Compensator {
           start.move = index;
           start.s = 0.0;
         }
-        refine(index, move, start, std::move(end), 0);
+        refine(index, move, start, std::move(end), before, 0);
       }
       lastMotion_ = before;
       if (to < 1.0) {
-        after = move.motion(to + std::min(kSide, 0.5 * (1.0 - to)));
+        after = heldMotion(move.motion(to + std::min(kSide, 0.5 * (1.0 - to))), before);
         out_.points.push_back(solve(index, move, to, after));
         lastMotion_ = after;
       }
@@ -172,7 +169,7 @@ class Compensator {
   const GcodeProgram& program_;
   const ProgramCompensationOptions& o_;
   CompensatedProgram out_;
-  std::vector<double> correction_, previousCorrection_;
+  std::vector<double> correction_, previousCorrection_, start_;
   std::vector<int> lastMotion_;  // the direction of motion the last point was solved for
   const Models* lastModels_ = nullptr;
   ErrorIkJacobian jacobian_;
@@ -212,16 +209,17 @@ ProgramDeviation programDeviation(const std::shared_ptr<const Machine>& machine,
   ToolModels models(machine, errors);
   ProgramDeviation d;
   double before = 0.0, after = 0.0;
+  std::vector<int> motion;
   for (size_t i = 1; i < points.size(); ++i) {
     const CompensatedPoint &a = points[i - 1], &b = points[i];
     const GcodeMove& move = program.moves[static_cast<size_t>(b.move)];
-    if (move.mode == MotionMode::Rapid) continue;
-    const Models& m = models(move.toolLength);
     const double from = a.move == b.move ? a.s : 0.0;
     if (b.s == from) continue;  // a step at a reversal: the machine takes up its reversal there, standing
     // A written segment lies between reversals: its direction of motion is that of its middle
     // (at its ends an axis may be at its reversal point, standing for an instant).
-    const std::vector<int> motion = move.motion(0.5 * (from + b.s));
+    motion = heldMotion(move.motion(0.5 * (from + b.s)), motion);
+    if (move.mode == MotionMode::Rapid) continue;
+    const Models& m = models(move.toolLength);
     for (int k = 1; k <= 4; ++k) {
       const double t = k / 4.0, s = from + t * (b.s - from);
       const std::vector<double> programmed = move.at(s), written = lerp(a.q, b.q, t);

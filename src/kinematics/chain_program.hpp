@@ -174,7 +174,7 @@ inline Vec6 motionComponents(const ChainOp& op, const double* q, const int* dir)
     double cosine = baseCosine, sine = baseSine;
     if (group.multiple == 1) {
       const double theta = group.omega * (qa - group.zero);
-      harmonicSinCos(theta, sine, cosine);
+      fastSinCos(theta, sine, cosine);
       baseCosine = cosine;
       baseSine = sine;
     } else {

@@ -13,7 +13,7 @@ namespace {
 // Right-multiplies the rotation by a rotation of angle about principal axis k.
 void rotatePrincipal(Mat3& r, int k, double angle) {
   double s, c;
-  ::sincos(angle, &s, &c);
+  fastSinCos(angle, s, c);
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   const Vec3 ci = r.col(i), cj = r.col(j);
   r.col(i) = c * ci + s * cj;
@@ -73,7 +73,7 @@ struct PointTransport {
     if constexpr (Inverse) angle = -angle;
     if (op.principal >= 0) {
       double s, c;
-      ::sincos(angle, &s, &c);
+      fastSinCos(angle, s, c);
       const int i = kNext[op.principal], j = kAfterNext[op.principal];
       if (op.hasBase) x.p -= op.base;
       rotatePlane(x.p, i, j, s, c);

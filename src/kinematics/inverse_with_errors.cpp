@@ -33,12 +33,6 @@ Residual residual(const Target& t, const std::vector<double>& q, bool withDirect
   return r;
 }
 
-int rotaryCount(const Machine& machine) {
-  int n = 0;
-  for (int i = 0; i < machine.commandedCount(); ++i) n += machine.axes[static_cast<size_t>(i)].isRotary() ? 1 : 0;
-  return n;
-}
-
 // The Jacobian of the residual at q by central differences (h in mm or rad: the model is smooth
 // over it, and rounding stays far below the step's effect), columns scaled, factorised. For the
 // position alone, a machine with three linear axes moves only those: the rotary axes keep their
@@ -47,7 +41,7 @@ void factorise(ErrorIkJacobian& jacobian, const Target& t, const std::vector<dou
   const auto& scale = jacobian.scale;
   const auto n = static_cast<Eigen::Index>(q.size());
   const Machine& machine = *t.model.machine;
-  const bool positionByLinearAxes = n - rotaryCount(machine) >= 3;
+  const bool positionByLinearAxes = n - machine.rotaryCount() >= 3;
   Eigen::MatrixXd j(withDirection ? 6 : 3, n);
   std::vector<double> plus = q, minus = q;
   ToolPoint reached;
@@ -83,8 +77,7 @@ ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& posit
   const Target target{actual, position, direction, motion};
   ErrorIkSolution s;
   s.q = start;
-  s.nominalQ = start;
-  s.directionControlled = !o.positionOnly && rotaryCount(*actual.machine) >= 2;
+  s.directionControlled = !o.positionOnly && actual.machine->rotaryCount() >= 2;
   s.singular = singularStart;
   const auto n = static_cast<Eigen::Index>(s.q.size());
   auto& scale = jacobian.scale;
@@ -126,8 +119,13 @@ ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& posit
     if (fresh && contraction >= 0.5) break;
     if (contraction > 0.1) jacobian.valid = false;
   }
+  s.qLinearised = s.q;
+  if (jacobian.valid && jacobian.withDirection == withDirection) {
+    jacobian.step.noalias() = jacobian.pseudoInverse * r;
+    for (Eigen::Index k = 0; k < n; ++k) s.qLinearised[static_cast<size_t>(k)] -= scale[k] * jacobian.step[k];
+  }
   s.positionResidual = (reached.position - position).norm();
-  s.directionResidual = std::atan2(reached.direction.cross(direction).norm(), reached.direction.dot(direction));
+  s.directionResidual = angleBetween(reached.direction, direction);
   s.converged = within(r);
   s.travelViolation = actual.machine->travelViolation(s.q);
   return s;
@@ -137,7 +135,9 @@ ErrorIkSolution solveIkWithErrors(const KinematicModel& actual, const KinematicM
                                   const Vec3& toolDirection, const ErrorIkOptions& o) {
   const IkSolution start = solveIk(nominal, position, toolDirection.normalized(), o.ik);
   ErrorIkJacobian jacobian;
-  return refineWithErrors(actual, position, toolDirection, start.q, o, jacobian, start.singular);
+  ErrorIkSolution s = refineWithErrors(actual, position, toolDirection, start.q, o, jacobian, start.singular);
+  s.nominalQ = start.q;
+  return s;
 }
 
 }  // namespace mtacc

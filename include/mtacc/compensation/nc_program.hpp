@@ -35,6 +35,11 @@ struct GcodeMove {
   double radius() const;
 };
 
+// The directions of motion `motion` (GcodeMove::motion) as the machine's reversal errors see
+// them: an axis standing keeps the side it last moved to (`last`, the directions before; empty
+// at the program's start), as its backlash stays taken up; 0 only until the axis first moves.
+std::vector<int> heldMotion(std::vector<int> motion, const std::vector<int>& last);
+
 // One line of the file: its text without the motion, for the writer, and its moves' indices.
 struct GcodeLine {
   int number = 0;        // 1-based

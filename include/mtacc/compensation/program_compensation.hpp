@@ -20,8 +20,9 @@ struct ProgramCompensationOptions {
   double tolerance = 1e-4;           // mm: TCP deviation allowed at a written segment's midpoint (arc chords included)
   double directionTolerance = 5e-6;  // rad: the same for the tool direction (5-axis)
   int maxSplits = 12;                // halvings of one move at most (4096 segments)
-  // Each point solved to 0.1 nm and 0.1 nrad, far below the 10 nm and 1e-5 deg written.
-  ErrorIkOptions ik{{}, 1e-7, 1e-10};
+  // Each point solved to 0.1 nm and 1 nrad, a hundred times finer than the 10 nm and 1e-5 deg
+  // (175 nrad) written.
+  ErrorIkOptions ik{{}, 1e-7, 1e-9};
 };
 
 // One written point: where it lies on the program's move and the commands written there.

@@ -36,12 +36,12 @@ inline void exactSinCos(double x, double& s, double& c) {
   ::sincos(x, &s, &c);
 }
 
-// sin and cos of the error functions' harmonics, which the kinematics evaluate several times a
+// sin and cos of the joint angles and error harmonics, which the kinematics evaluate several times a
 // pose: within 1 ulp of libm's (tests/transform_test.cpp), at a third of its cost, without its
 // call and rounding-mode switch. The argument is reduced by pi/2 in two parts with FMA (exact
 // to |x| of 1e5), then Taylor series to degree 17 and 18 on |r| <= pi/4, whose first omitted
 // terms lie below 1e-19, evaluated by Estrin's scheme (short dependency chains); libm beyond 1e5.
-inline void harmonicSinCos(double x, double& s, double& c) {
+inline void fastSinCos(double x, double& s, double& c) {
   if (!(std::abs(x) < 1e5)) {
     ::sincos(x, &s, &c);
     return;
@@ -66,6 +66,14 @@ inline void harmonicSinCos(double x, double& s, double& c) {
     case 2: s = -sr; c = -cr; break;
     default: s = -cr; c = sr; break;
   }
+}
+
+// The angle between two unit vectors (rad), accurate at any angle; below 1e-4 rad by the series
+// of asin, whose first omitted term lies below 1e-17 of the result, without atan2's cost.
+inline double angleBetween(const Vec3& a, const Vec3& b) {
+  const double sine = a.cross(b).norm(), cosine = a.dot(b);
+  if (sine < 1e-4 && cosine > 0) return sine * (1.0 + sine * sine * (1.0 / 6));
+  return std::atan2(sine, cosine);
 }
 
 // R = Rx(a) * Ry(b) * Rz(c): the order of seed 003 eq. [3.8], exact (not linearised).

@@ -34,7 +34,11 @@ struct ErrorIkOptions {
 
 struct ErrorIkSolution {
   std::vector<double> q;           // mm, rad
-  std::vector<double> nominalQ;    // the nominal IK's commands it started from
+  std::vector<double> nominalQ;    // solveIkWithErrors: the nominal IK's commands it started from
+  // q moved by the Newton step its remaining residual asks for (with the Jacobian at hand, not
+  // evaluated): the closer estimate of the exact commands, to start a nearby pose from (q when
+  // no Jacobian was at hand).
+  std::vector<double> qLinearised;
   double positionResidual = 0.0;   // mm: |TCP(q) - wanted|
   double directionResidual = 0.0;  // rad: angle between the tool direction at q and the wanted one
   int iterations = 0;
@@ -65,7 +69,7 @@ ErrorIkSolution solveIkWithErrors(const KinematicModel& actual, const KinematicM
 
 // The same Newton iteration from `start` (the commands of a nearby pose, e.g. the nominal
 // commands plus the previous line's correction in a program), reusing `jacobian` while it
-// serves. nominalQ of the result is `start`. `singularStart`: the direction is known to be
+// serves (nominalQ of the result is left empty). `singularStart`: the direction is known to be
 // uncontrollable at this pose. `motion`: each commanded axis's direction of motion there (+1, -1,
 // 0), for the reversal errors of a machine on its way along a path; null: standing still.
 ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& position, const Vec3& toolDirection,
