@@ -81,6 +81,7 @@ ErrorIkOptions positionCorrectionOptions() {
   ErrorIkOptions options;
   options.positionOnly = true;
   options.positionTolerance = 1e-7;
+  options.checkTravel = false;
   return options;
 }
 

@@ -127,7 +127,7 @@ ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& posit
   s.positionResidual = (reached.position - position).norm();
   s.directionResidual = angleBetween(reached.direction, direction);
   s.converged = within(r);
-  s.travelViolation = actual.machine->travelViolation(s.q);
+  if (o.checkTravel) s.travelViolation = actual.machine->travelViolation(s.q);
   return s;
 }
 

@@ -30,6 +30,9 @@ struct ErrorIkOptions {
   // The position alone, by the linear axes, the rotary axes kept (what a table of linear-axis
   // corrections can do), whatever the machine's rotary axes.
   bool positionOnly = false;
+  // false: travelViolation is left empty (a correction table's nodes at the ends of travel lie
+  // beyond them by their correction, by design).
+  bool checkTravel = true;
 };
 
 struct ErrorIkSolution {
