@@ -154,8 +154,9 @@ int main() {
 
   // The virtual machine: seed 004's CapBall program at 600 mm/min (about 10 s) with the structure.
   const auto program = readGcodeProgram(std::string(MTACC_BENCH_DIR) + "/../data/programs/seed004-capball.nc", *machine);
-  std::vector<std::vector<double>> path{program.moves.front().to};
-  for (const auto& move : program.moves) path.push_back(move.to);
+  std::vector<std::vector<double>> path;
+  path.emplace_back(program.moves.front().to.begin(), program.moves.front().to.end());
+  for (const auto& move : program.moves) path.emplace_back(move.to.begin(), move.to.end());
   const auto structure = loadStructure("wcayfxzt-compact");
   const auto t0 = std::chrono::steady_clock::now();
   const auto motion = interpolateMotion(path, {false, false, false, true, true}, 600, {.jerkTime = 0.02}, kInstrumentPeriod);

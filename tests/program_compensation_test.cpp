@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <random>
 #include <numbers>
 
 #include "mtacc/compensation/program_compensation.hpp"
@@ -36,7 +38,7 @@ ProgramDeviation compensatedAndReadBack(const MachineSetup& setup, const std::st
   const GcodeProgram readBack = parseGcodeProgram(written, name + " compensated", *setup.machine);
   EXPECT_EQ(readBack.moves.size() + 1, compensated.points.size()) << name;
   std::vector<CompensatedPoint> points = compensated.points;
-  for (size_t i = 1; i < points.size() && i - 1 < readBack.moves.size(); ++i) points[i].q = readBack.moves[i - 1].to;
+  for (size_t i = 1; i < points.size() && i - 1 < readBack.moves.size(); ++i) points[i].q.assign(readBack.moves[i - 1].to.begin(), readBack.moves[i - 1].to.end());
   const ProgramDeviation d = programDeviation(setup.machine, setup.errors, program, points);
   std::cout << name << ": " << program.moves.size() << " moves, " << readBack.moves.size() << " written; largest TCP deviation "
             << d.before.maxPosition * 1e3 << " um as written, " << d.after.maxPosition * 1e3 << " um compensated; direction "
@@ -113,6 +115,32 @@ TEST(GcodeReader, IncrementalInchAndHelix) {
   EXPECT_NEAR(p.moves[3].to[0], 10.0, 1e-12);
 }
 
+// Every way a coordinate is written (signs, leading and trailing zeros, no whole part, no
+// fraction, up to 20 digits after the point) reads as the correctly rounded value strtod gives.
+TEST(GcodeReader, NumbersReadCorrectlyRounded) {
+  const auto machine = test::bundled("tilting-table");
+  std::mt19937 random(17);
+  std::uniform_int_distribution<int> digit(0, 9), length(0, 20), form(0, 5);
+  std::vector<std::string> written;
+  std::string program = "G1 F100\n";
+  for (int n = 0; n < 20000; ++n) {
+    std::string number = form(random) == 0 ? "-" : form(random) == 0 ? "+" : "";
+    const int whole = std::uniform_int_distribution<int>(0, 3)(random);
+    number += std::to_string(std::uniform_int_distribution<int>(0, 399)(random)).substr(0, static_cast<size_t>(std::max(whole, 1)));
+    if (whole == 0 && form(random) < 2) number.pop_back();  // ".5"
+    if (form(random) > 0) {
+      number += '.';
+      for (int k = length(random); k > 0; --k) number += static_cast<char>('0' + digit(random));
+    }
+    if (number.find_first_of("0123456789") == std::string::npos) number += '0';
+    written.push_back(number);
+    program += "X" + number + "\n";
+  }
+  const GcodeProgram p = parseGcodeProgram(program, "numbers.nc", *machine);
+  ASSERT_EQ(p.moves.size(), written.size());
+  for (size_t i = 0; i < written.size(); ++i) EXPECT_EQ(p.moves[i].to[0], std::strtod(written[i].c_str(), nullptr)) << written[i];
+}
+
 // A clockwise full circle from 3 o'clock: X and Y reverse at its quadrant points, each axis
 // standing at the instant it reverses; a straight move has one direction throughout.
 TEST(GcodeReader, DirectionsOfMotionAndReversalsAlongAnArc) {
@@ -142,7 +170,7 @@ TEST(ProgramCompensation, AnAxisStandingKeepsTheSideItLastMovedTo) {
   // and the two ends.
   ASSERT_EQ(c.points.size(), 7u);
   const auto actual = compile(setup.machine, setup.errors), nominal = compileNominal(setup.machine);
-  const std::vector<double> end = p.moves.back().to;
+  const std::vector<double> end(p.moves.back().to.begin(), p.moves.back().to.end());
   const ToolPoint wanted = toolPoint(nominal, end.data());
   auto solvedWith = [&](std::vector<int> motion) {
     ErrorIkJacobian jacobian;

@@ -123,6 +123,7 @@ CorrectionGrid correctionGrid(const std::shared_ptr<const Machine>& machine, con
   // Each Z layer on its own, from scratch: the result does not depend on the threads.
   parallelFor(g.counts[2], spec.threads, [&](long firstLayer, long endLayer) {
     ErrorIkJacobian jacobian;
+    ErrorIkSolution s;
     std::vector<double> q = g.pose, start(n);
     for (auto k = static_cast<int>(firstLayer); k < endLayer; ++k) {
       jacobian.valid = false;
@@ -140,7 +141,7 @@ CorrectionGrid correctionGrid(const std::shared_ptr<const Machine>& machine, con
           start[x] += guess.x();
           start[y] += guess.y();
           start[z] += guess.z();
-          const ErrorIkSolution s = refineWithErrors(actual, wanted, first.direction, start, options, jacobian);
+          refineWithErrors(actual, wanted, first.direction, start, options, jacobian, s);
           Vec3& c = g.corrections[static_cast<size_t>(i + g.counts[0] * (j + g.counts[1] * k))];
           c = Vec3(s.q[x] - q[x], s.q[y] - q[y], s.q[z] - q[z]);
           if (i == 0) rowStart = c;

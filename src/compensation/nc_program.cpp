@@ -7,19 +7,30 @@
 namespace mtacc {
 
 std::vector<double> GcodeMove::at(double s) const {
-  std::vector<double> q(from.size());
+  std::vector<double> q;
+  at(s, q);
+  return q;
+}
+
+void GcodeMove::at(double s, std::vector<double>& q) const {
+  q.resize(from.size());
   for (size_t k = 0; k < q.size(); ++k) q[k] = from[k] + s * (to[k] - from[k]);
-  if (!isArc()) return q;
+  if (!isArc()) return;
   const auto a = static_cast<size_t>(planeAxes[0]), b = static_cast<size_t>(planeAxes[1]);
   const double r0 = radius(), r1 = std::hypot(to[a] - centre[0], to[b] - centre[1]);
   const double angle = std::atan2(from[b] - centre[1], from[a] - centre[0]) + s * sweep, r = r0 + s * (r1 - r0);
   q[a] = centre[0] + r * std::cos(angle);
   q[b] = centre[1] + r * std::sin(angle);
-  return q;
 }
 
 std::vector<int> GcodeMove::motion(double s) const {
-  std::vector<int> d(from.size(), 0);
+  std::vector<int> d;
+  heldMotion(s, d);
+  return d;
+}
+
+void GcodeMove::heldMotion(double s, std::vector<int>& held) const {
+  held.resize(from.size(), 0);
   // Along the circle for an arc's plane axes (an end radius differing by its tolerance does not
   // move the quadrants), along the line for the others.
   double alongArc[2] = {0.0, 0.0};
@@ -34,17 +45,10 @@ std::vector<int> GcodeMove::motion(double s) const {
     return to[k] - from[k];
   };
   double largest = 0.0;
-  for (size_t k = 0; k < d.size(); ++k) largest = std::max(largest, std::abs(rate(k)));
+  for (size_t k = 0; k < held.size(); ++k) largest = std::max(largest, std::abs(rate(k)));
   // Rounding leaves a standing axis (an arc's quadrant point) a rate of about 1e-16 of the others.
-  for (size_t k = 0; k < d.size(); ++k)
-    if (std::abs(rate(k)) > 1e-12 * largest) d[k] = rate(k) > 0 ? 1 : -1;
-  return d;
-}
-
-std::vector<int> heldMotion(std::vector<int> motion, const std::vector<int>& last) {
-  for (size_t k = 0; k < motion.size() && k < last.size(); ++k)
-    if (motion[k] == 0) motion[k] = last[k];
-  return motion;
+  for (size_t k = 0; k < held.size(); ++k)
+    if (const double r = rate(k); std::abs(r) > 1e-12 * largest) held[k] = r > 0 ? 1 : -1;
 }
 
 std::vector<double> GcodeMove::reversals() const {

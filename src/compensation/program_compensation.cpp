@@ -40,10 +40,9 @@ class ToolModels {
   std::map<double, Models> cache_;
 };
 
-std::vector<double> lerp(const std::vector<double>& a, const std::vector<double>& b, double t) {
-  std::vector<double> q(a.size());
+void lerp(const AxisPositions& a, const AxisPositions& b, double t, std::vector<double>& q) {
+  q.resize(a.size());
   for (size_t k = 0; k < q.size(); ++k) q[k] = a[k] + t * (b[k] - a[k]);
-  return q;
 }
 
 class Compensator {
@@ -62,7 +61,7 @@ class Compensator {
     // the vector grows once instead of doubling through a million points.
     out_.points.reserve(program_.moves.size() + program_.moves.size() / 16 + 1);
     const GcodeMove& first = program_.moves.front();
-    lastMotion_ = first.motion(0.5);
+    first.heldMotion(0.5, lastMotion_);
     out_.points.push_back(solve(0, first, 0.0, lastMotion_, false));
     for (size_t m = 0; m < program_.moves.size(); ++m) compensate(static_cast<int>(m));
     return std::move(out_);
@@ -73,7 +72,8 @@ class Compensator {
   // machine stands then is the controller's business).
   CompensatedPoint solve(int index, const GcodeMove& move, double s, const std::vector<int>& motion, bool counted = true) {
     const Models& models = models_(move.toolLength);
-    const std::vector<double> q = move.at(s);
+    std::vector<double>& q = programmed_;
+    move.at(s, q);
     const ToolPoint wanted = toolPoint(models.nominal, q.data());
     // The correction changes smoothly along a program: extrapolated from the last two points,
     // it leaves the Newton iteration little or nothing to do.
@@ -81,10 +81,11 @@ class Compensator {
     for (size_t k = 0; k < q.size(); ++k) start_[k] = q[k] + 2.0 * correction_[k] - previousCorrection_[k];
     if (&models != lastModels_) jacobian_.valid = false;
     lastModels_ = &models;
-    ErrorIkSolution solution = refineWithErrors(models.actual, wanted.position, wanted.direction, start_, o_.ik, jacobian_, false, motion.data());
+    ErrorIkSolution& solution = solution_;
+    refineWithErrors(models.actual, wanted.position, wanted.direction, start_, o_.ik, jacobian_, solution, false, motion.data());
     previousCorrection_.swap(correction_);
     for (size_t k = 0; k < q.size(); ++k) correction_[k] = solution.qLinearised[k] - q[k];
-    const CompensatedPoint point{index, s, std::move(solution.q), solution.positionResidual, solution.directionResidual};
+    const CompensatedPoint point{index, s, {solution.q.begin(), solution.q.end()}, solution.positionResidual, solution.directionResidual};
     if (!counted) return point;
     for (size_t k = 0; k < q.size(); ++k) out_.largestCorrection[k] = std::max(out_.largestCorrection[k], std::abs(point.q[k] - q[k]));
     out_.largestResidual = std::max(out_.largestResidual, solution.positionResidual);
@@ -101,12 +102,15 @@ class Compensator {
 
   // Where the written segment a-b, interpolated by the controller, leaves the nominal path at
   // its midpoint by more than the tolerances, it is halved.
-  // `motion`: the axes' directions along the move from a to b.
-  void refine(int index, const GcodeMove& move, const CompensatedPoint& a, CompensatedPoint b, const std::vector<int>& motion, int depth) {
+  // `from`: where a lies on this move (0 for the previous move's end); `motion`: the axes'
+  // directions along the move from a to b.
+  void refine(int index, const GcodeMove& move, const CompensatedPoint& a, double from, CompensatedPoint b, const std::vector<int>& motion,
+              int depth) {
     const Models& models = models_(move.toolLength);
-    const double s = 0.5 * (a.s + b.s);
-    const std::vector<double> written = lerp(a.q, b.q, 0.5), programmed = move.at(s);
-    const ToolPoint reached = toolPoint(models.actual, written.data(), motion.data()), wanted = toolPoint(models.nominal, programmed.data());
+    const double s = 0.5 * (from + b.s);
+    lerp(a.q, b.q, 0.5, written_);
+    move.at(s, programmed_);
+    const ToolPoint reached = toolPoint(models.actual, written_.data(), motion.data()), wanted = toolPoint(models.nominal, programmed_.data());
     // What the ends themselves cannot correct (the direction at a singular pose, on a machine
     // without two rotary axes) is not the interpolation's fault.
     const double position = o_.tolerance + std::max(a.positionResidual, b.positionResidual);
@@ -117,26 +121,28 @@ class Compensator {
       return;
     }
     CompensatedPoint middle = solve(index, move, s, motion);
-    refine(index, move, a, middle, motion, depth + 1);
-    refine(index, move, out_.points.back(), std::move(b), motion, depth + 1);
+    refine(index, move, a, from, middle, motion, depth + 1);
+    refine(index, move, out_.points.back(), s, std::move(b), motion, depth + 1);
   }
 
   void compensate(int index) {
     const GcodeMove& move = program_.moves[static_cast<size_t>(index)];
     if (move.mode == MotionMode::Rapid) {
-      lastMotion_ = heldMotion(move.motion(0.5), lastMotion_);
+      move.heldMotion(0.5, lastMotion_);
       out_.points.push_back(solve(index, move, 1.0, lastMotion_));
       return;
     }
     // Where an axis reverses, the reversal errors step: the program steps with them, a point
     // solved with the direction before and one with the direction after, at the same place (the
     // move's start when it sets off the other way, and an arc's quadrant points).
-    std::vector<double> ends = move.reversals();
-    ends.push_back(1.0);
+    ends_.clear();
+    if (move.isArc()) ends_ = move.reversals();
+    ends_.push_back(1.0);
     double from = 0.0;
-    std::vector<int> after = heldMotion(move.motion(std::min(kSide, 0.5)), lastMotion_);
-    if (after != lastMotion_) out_.points.push_back(solve(index, move, 0.0, after));
-    for (const double to : ends) {
+    after_ = lastMotion_;
+    move.heldMotion(std::min(kSide, 0.5), after_);
+    if (after_ != lastMotion_) out_.points.push_back(solve(index, move, 0.0, after_));
+    for (const double to : ends_) {
       // Arcs start as chords within the tolerance (sagitta r (1 - cos(angle / 2))), then halve.
       int pieces = 1;
       if (move.isArc()) {
@@ -145,21 +151,19 @@ class Compensator {
         pieces = std::max(2, static_cast<int>(std::ceil(angle / chordAngle)));
       }
       // A straight move goes one way throughout.
-      const std::vector<int> before = move.isArc() ? heldMotion(move.motion(to - std::min(kSide, 0.5 * (to - from))), after) : after;
+      before_ = after_;
+      if (move.isArc()) move.heldMotion(to - std::min(kSide, 0.5 * (to - from)), before_);
       for (int i = 1; i <= pieces; ++i) {
-        CompensatedPoint end = solve(index, move, from + (to - from) * i / pieces, before);
-        CompensatedPoint start = out_.points.back();
-        if (start.move != index) {  // the previous move's end is this one's start
-          start.move = index;
-          start.s = 0.0;
-        }
-        refine(index, move, start, std::move(end), before, 0);
+        CompensatedPoint end = solve(index, move, from + (to - from) * i / pieces, before_);
+        const CompensatedPoint& start = out_.points.back();  // the previous move's end is this one's start
+        refine(index, move, start, start.move == index ? start.s : 0.0, std::move(end), before_, 0);
       }
-      lastMotion_ = before;
+      lastMotion_ = before_;
       if (to < 1.0) {
-        after = heldMotion(move.motion(to + std::min(kSide, 0.5 * (1.0 - to))), before);
-        out_.points.push_back(solve(index, move, to, after));
-        lastMotion_ = after;
+        after_ = before_;
+        move.heldMotion(to + std::min(kSide, 0.5 * (1.0 - to)), after_);
+        out_.points.push_back(solve(index, move, to, after_));
+        lastMotion_ = after_;
       }
       from = to;
     }
@@ -170,9 +174,13 @@ class Compensator {
   const ProgramCompensationOptions& o_;
   CompensatedProgram out_;
   std::vector<double> correction_, previousCorrection_, start_;
+  std::vector<double> programmed_, written_;  // scratch of solve and refine
   std::vector<int> lastMotion_;  // the direction of motion the last point was solved for
+  std::vector<int> after_, before_;  // a move's directions after its start or a reversal, and before its end or the next
+  std::vector<double> ends_;  // where a move's pieces end: its reversals and 1
   const Models* lastModels_ = nullptr;
   ErrorIkJacobian jacobian_;
+  ErrorIkSolution solution_;  // of the last point solved, its storage reused
 };
 
 // v with five decimals, as "{:.5f}" writes it up to the rounding of v * 1e5: the writer's inner
@@ -210,6 +218,7 @@ ProgramDeviation programDeviation(const std::shared_ptr<const Machine>& machine,
   ProgramDeviation d;
   double before = 0.0, after = 0.0;
   std::vector<int> motion;
+  std::vector<double> programmed, written;
   for (size_t i = 1; i < points.size(); ++i) {
     const CompensatedPoint &a = points[i - 1], &b = points[i];
     const GcodeMove& move = program.moves[static_cast<size_t>(b.move)];
@@ -217,12 +226,13 @@ ProgramDeviation programDeviation(const std::shared_ptr<const Machine>& machine,
     if (b.s == from) continue;  // a step at a reversal: the machine takes up its reversal there, standing
     // A written segment lies between reversals: its direction of motion is that of its middle
     // (at its ends an axis may be at its reversal point, standing for an instant).
-    motion = heldMotion(move.motion(0.5 * (from + b.s)), motion);
+    move.heldMotion(0.5 * (from + b.s), motion);
     if (move.mode == MotionMode::Rapid) continue;
     const Models& m = models(move.toolLength);
     for (int k = 1; k <= 4; ++k) {
       const double t = k / 4.0, s = from + t * (b.s - from);
-      const std::vector<double> programmed = move.at(s), written = lerp(a.q, b.q, t);
+      move.at(s, programmed);
+      lerp(a.q, b.q, t, written);
       const ToolPoint wanted = toolPoint(m.nominal, programmed.data());
       const ToolPoint uncompensated = toolPoint(m.actual, programmed.data(), motion.data()),
                       compensated = toolPoint(m.actual, written.data(), motion.data());
@@ -253,6 +263,8 @@ std::string compensatedGcode(const Machine& m, const GcodeProgram& program, cons
                              const std::string& header) {
   const auto axes = static_cast<size_t>(m.commandedCount());
   std::string g;
+  // About a dozen characters per axis on every point written (" X-123.45678"): grown once.
+  g.reserve(compensated.points.size() * (axes * 12 + 8) + program.lines.size() * 8);
   auto out = std::back_inserter(g);
   size_t line = 0;
   if (!program.lines.empty() && program.lines.front().kept.size() == 1 && program.lines.front().kept.front().starts_with('%'))

@@ -73,10 +73,18 @@ void factorise(ErrorIkJacobian& jacobian, const Target& t, const std::vector<dou
 ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& position, const Vec3& toolDirection,
                                  const std::vector<double>& start, const ErrorIkOptions& o, ErrorIkJacobian& jacobian,
                                  bool singularStart, const int* motion) {
+  ErrorIkSolution s;
+  refineWithErrors(actual, position, toolDirection, start, o, jacobian, s, singularStart, motion);
+  return s;
+}
+
+void refineWithErrors(const KinematicModel& actual, const Vec3& position, const Vec3& toolDirection, const std::vector<double>& start,
+                      const ErrorIkOptions& o, ErrorIkJacobian& jacobian, ErrorIkSolution& s, bool singularStart, const int* motion) {
   const Vec3 direction = toolDirection.normalized();
   const Target target{actual, position, direction, motion};
-  ErrorIkSolution s;
   s.q = start;
+  s.nominalQ.clear();
+  s.iterations = 0;
   s.directionControlled = !o.positionOnly && actual.machine->rotaryCount() >= 2;
   s.singular = singularStart;
   const auto n = static_cast<Eigen::Index>(s.q.size());
@@ -127,8 +135,7 @@ ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& posit
   s.positionResidual = (reached.position - position).norm();
   s.directionResidual = angleBetween(reached.direction, direction);
   s.converged = within(r);
-  if (o.checkTravel) s.travelViolation = actual.machine->travelViolation(s.q);
-  return s;
+  s.travelViolation = o.checkTravel ? actual.machine->travelViolation(s.q) : std::string();
 }
 
 ErrorIkSolution solveIkWithErrors(const KinematicModel& actual, const KinematicModel& nominal, const Vec3& position,

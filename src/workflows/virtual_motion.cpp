@@ -22,11 +22,11 @@ constexpr int kPointsPerArc = 64;
 std::vector<std::vector<double>> programPath(const GcodeProgram& program) {
   std::vector<std::vector<double>> path;
   for (const auto& move : program.moves) {
-    if (path.empty()) path.push_back(move.from.empty() ? move.to : move.from);
+    if (path.empty()) path.emplace_back(move.from.begin(), move.from.end());
     if (move.isArc())
       for (int i = 1; i <= kPointsPerArc; ++i) path.push_back(move.at(static_cast<double>(i) / kPointsPerArc));
     else
-      path.push_back(move.to);
+      path.emplace_back(move.to.begin(), move.to.end());
   }
   return path;
 }

@@ -5,14 +5,20 @@
 #include <string>
 #include <vector>
 
+#include <boost/container/small_vector.hpp>
+
 namespace mtacc {
+
+// A move's axis positions, held in the move itself up to six axes: a million-line program
+// allocates nothing per move.
+using AxisPositions = boost::container::small_vector<double, 6>;
 
 enum class MotionMode { Rapid, Linear, ArcClockwise, ArcCounterClockwise };
 
 struct GcodeMove {
   int line = 0;                   // 1-based line in the file
   MotionMode mode = MotionMode::Linear;
-  std::vector<double> from, to;   // commanded axes, mm and rad, absolute
+  AxisPositions from, to;         // commanded axes, mm and rad, absolute
   double feed = 0.0;              // mm/min; 0 for rapids
   double toolLength = 0.0;        // mm: the active G43 length, added to the machine's tool along its direction
   // Arcs: the centre in the plane's two linear axes (absolute, mm), the plane's axis indices
@@ -26,19 +32,19 @@ struct GcodeMove {
   // The commands at s in [0, 1] along the move as the controller interpolates it: linearly in
   // every axis, or along the arc (angle proportional to s).
   std::vector<double> at(double s) const;
+  void at(double s, std::vector<double>& q) const;  // the same into q, its storage reused along a program
   // Each commanded axis's direction of motion at s (+1, -1; 0 where it stands, as at an arc's
   // quadrant point), for the reversal errors of the machine on its way.
   std::vector<int> motion(double s) const;
+  // The same as the machine's reversal errors see it: `held` holds the directions before (empty
+  // at the program's start) and becomes those at s, an axis standing keeping the side it last
+  // moved to (its backlash stays taken up); 0 only until the axis first moves.
+  void heldMotion(double s, std::vector<int>& held) const;
   // Where along the move (0 < s < 1) an axis reverses: an arc's quadrant points.
   std::vector<double> reversals() const;
   // Arcs: the radius at the start (mm).
   double radius() const;
 };
-
-// The directions of motion `motion` (GcodeMove::motion) as the machine's reversal errors see
-// them: an axis standing keeps the side it last moved to (`last`, the directions before; empty
-// at the program's start), as its backlash stays taken up; 0 only until the axis first moves.
-std::vector<int> heldMotion(std::vector<int> motion, const std::vector<int>& last);
 
 // One line of the file: its text without the motion, for the writer, and its moves' indices.
 struct GcodeLine {

@@ -29,7 +29,7 @@ struct ProgramCompensationOptions {
 struct CompensatedPoint {
   int move = 0;    // index into GcodeProgram::moves
   double s = 1.0;  // along the move, (0, 1]
-  std::vector<double> q;
+  AxisPositions q;  // mm, rad
   double positionResidual = 0.0, directionResidual = 0.0;  // mm, rad: of the inverse error model here
 };
 

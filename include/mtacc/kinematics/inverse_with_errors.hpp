@@ -78,5 +78,10 @@ ErrorIkSolution solveIkWithErrors(const KinematicModel& actual, const KinematicM
 ErrorIkSolution refineWithErrors(const KinematicModel& actual, const Vec3& position, const Vec3& toolDirection,
                                  const std::vector<double>& start, const ErrorIkOptions& options, ErrorIkJacobian& jacobian,
                                  bool singularStart = false, const int* motion = nullptr);
+// The same into `solution`, its vectors' storage reused: a program or a correction grid solves a
+// million poses.
+void refineWithErrors(const KinematicModel& actual, const Vec3& position, const Vec3& toolDirection, const std::vector<double>& start,
+                      const ErrorIkOptions& options, ErrorIkJacobian& jacobian, ErrorIkSolution& solution, bool singularStart = false,
+                      const int* motion = nullptr);
 
 }  // namespace mtacc
