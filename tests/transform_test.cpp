@@ -55,5 +55,17 @@ TEST(FastSinCos, QuadrantsAndSmallArgumentsAreExact) {
   EXPECT_EQ(c, 1.0);
 }
 
+// Both ways angleBetween takes (the series of asin below 1e-4 rad, atan2 above, either side of
+// the switch) against the angle the vectors are built with: (1, 0, 0) and (cos t, sin t, 0),
+// whose cross product is sin t exactly. Within 2 ulp of t: the rounding of sin t and cos t.
+TEST(AngleBetween, WithinTwoUlpOfTheAngleBuiltOnEitherSideOfTheSeries) {
+  for (const double t : {1e-12, 1e-8, 3e-5, 9.999e-5, 1.0001e-4, 1e-3, 0.5, 2.0, 3.0}) {
+    const Vec3 a(1.0, 0.0, 0.0), b(std::cos(t), std::sin(t), 0.0);
+    EXPECT_NEAR(angleBetween(a, b), t, 4.5e-16 * t) << t;
+    EXPECT_NEAR(angleBetween(b, a), t, 4.5e-16 * t) << t;
+  }
+  EXPECT_EQ(angleBetween(Vec3(0.0, 0.0, 1.0), Vec3(0.0, 0.0, 1.0)), 0.0);
+}
+
 }  // namespace
 }  // namespace mtacc

@@ -127,24 +127,27 @@ CorrectionGrid correctionGrid(const std::shared_ptr<const Machine>& machine, con
     std::vector<double> q = g.pose, start(n);
     for (auto k = static_cast<int>(firstLayer); k < endLayer; ++k) {
       jacobian.valid = false;
-      Vec3 rowStart = Vec3::Zero();
       for (int j = 0; j < g.counts[1]; ++j)
         for (int i = 0; i < g.counts[0]; ++i) {
           q[x] = g.node(0, i);
           q[y] = g.node(1, j);
           q[z] = g.node(2, k);
           const Vec3 wanted = first.position + i * perNode[0] + j * perNode[1] + k * perNode[2];
-          // Along X the correction is extrapolated from the two nodes before; a row starts from
-          // the previous row's start.
-          const Vec3 guess = i >= 2 ? Vec3(2 * g.at(i - 1, j, k) - g.at(i - 2, j, k)) : i == 1 ? g.at(0, j, k) : rowStart;
+          // The errors are mostly sums of each axis's own functions: from the previous row the
+          // correction takes its change along X (periodic errors of the X axis included), from the
+          // node before its change along Y. The first row extrapolates along X from the two nodes
+          // before; a row starts from the previous row's start.
+          const Vec3 guess = j >= 1 && i >= 1 ? Vec3(g.at(i, j - 1, k) + g.at(i - 1, j, k) - g.at(i - 1, j - 1, k))
+                             : i >= 2         ? Vec3(2 * g.at(i - 1, j, k) - g.at(i - 2, j, k))
+                             : i == 1         ? g.at(0, j, k)
+                             : j >= 1         ? g.at(0, j - 1, k)
+                                              : Vec3::Zero();
           start = q;
           start[x] += guess.x();
           start[y] += guess.y();
           start[z] += guess.z();
           refineWithErrors(actual, wanted, first.direction, start, options, jacobian, s);
-          Vec3& c = g.corrections[static_cast<size_t>(i + g.counts[0] * (j + g.counts[1] * k))];
-          c = Vec3(s.q[x] - q[x], s.q[y] - q[y], s.q[z] - q[z]);
-          if (i == 0) rowStart = c;
+          g.corrections[static_cast<size_t>(i + g.counts[0] * (j + g.counts[1] * k))] = Vec3(s.q[x] - q[x], s.q[y] - q[y], s.q[z] - q[z]);
         }
     }
   }, 1);

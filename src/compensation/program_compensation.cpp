@@ -75,8 +75,9 @@ class Compensator {
     std::vector<double>& q = programmed_;
     move.at(s, q);
     const ToolPoint wanted = toolPoint(models.nominal, q.data());
-    // The correction changes smoothly along a program: extrapolated from the last two points,
-    // it leaves the Newton iteration little or nothing to do.
+    // The correction changes smoothly along a program: extrapolated from the linearised solutions
+    // of the last two points (ErrorIkSolution::qLinearised), it leaves the Newton iteration
+    // little or nothing to do.
     start_.resize(q.size());
     for (size_t k = 0; k < q.size(); ++k) start_[k] = q[k] + 2.0 * correction_[k] - previousCorrection_[k];
     if (&models != lastModels_) jacobian_.valid = false;

@@ -45,26 +45,31 @@ void addScales(const Machine& machine, ErrorModel& errors, const std::vector<Sca
   }
 }
 
+// The drift measured at the probe (drift: X, Y, Z in mm, A, B in rad) carried to the TCP.
+Vec3 driftAtTcp(const Machine& machine, const SpindleState& spindle, const Vec6& drift) {
+  const Mat3 turn = rotationXYZ(drift[kA], drift[kB], 0.0);
+  return drift.head<3>() - (turn - Mat3::Identity()) * (spindle.probeAboveTcp * machine.toolDirection);
+}
+
 // The spindle's location error is a rotation R about its location point L and a translation t;
 // it moves a point P of the spindle's frame by t + (R - I)(P - L).
 void addSpindleDrift(const Machine& machine, ErrorModel& errors, const SpindleState& spindle) {
-  const auto found = std::find_if(machine.axes.begin(), machine.axes.end(), [](const Axis& a) { return a.type == AxisType::Spindle; });
-  if (found == machine.axes.end())
+  const int index = machine.spindleIndex();
+  if (index < 0)
     throw std::invalid_argument("the machine has no spindle for the spindle's drift to move: name it in the structure code, e.g. t-(C)-Z-b-Y-X-w");
+  const Axis& axis = machine.axes[static_cast<size_t>(index)];
   const Vec6 drift = spindleDrift(spindle.model, spindle.temperatures);
   Vec6 location = Vec6::Zero();
-  location.head<3>() = spindleDriftAtTcp(machine, spindle) - (rotationXYZ(drift[kA], drift[kB], 0.0) - Mat3::Identity()) * (machine.toolOffset - found->location);
+  location.head<3>() = driftAtTcp(machine, spindle, drift) - (rotationXYZ(drift[kA], drift[kB], 0.0) - Mat3::Identity()) * (machine.toolOffset - axis.location);
   location[kA] = drift[kA];
   location[kB] = drift[kB];
-  errors.axes[static_cast<size_t>(found - machine.axes.begin())].location += location;
+  errors.axes[static_cast<size_t>(index)].location += location;
 }
 
 }  // namespace
 
 Vec3 spindleDriftAtTcp(const Machine& machine, const SpindleState& spindle) {
-  const Vec6 drift = spindleDrift(spindle.model, spindle.temperatures);
-  const Mat3 turn = rotationXYZ(drift[kA], drift[kB], 0.0);
-  return drift.head<3>() - (turn - Mat3::Identity()) * (spindle.probeAboveTcp * machine.toolDirection);
+  return driftAtTcp(machine, spindle, spindleDrift(spindle.model, spindle.temperatures));
 }
 
 ErrorModel atThermalState(const Machine& machine, ErrorModel errors, const ThermalState& state) {

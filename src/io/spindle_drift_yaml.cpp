@@ -13,11 +13,6 @@
 namespace mtacc {
 namespace {
 
-// Lengths are written in um, tilts in urad: the file's unit per internal unit (mm, rad).
-bool isTilt(int direction) { return direction >= static_cast<int>(DriftDirection::A); }
-const char* unitOf(int direction) { return isTilt(direction) ? "urad" : "um"; }
-double scaleOf(int direction) { return isTilt(direction) ? 1e6 : 1e3; }
-
 std::string yamlScalar(const std::string& text) {
   YAML::Emitter e;
   e << text;
@@ -34,8 +29,8 @@ std::string spindleDriftModelYaml(const SpindleDriftModel& model, const std::str
   for (int d = 0; d < 5; ++d) {
     if (!model.directions[d]) continue;
     const auto& m = *model.directions[d];
-    const double s = scaleOf(d);
-    const char* unit = unitOf(d);
+    const double s = displayScaleOf(kDriftDirections[d]);
+    const char* unit = displayUnitOf(kDriftDirections[d]);
     out += fmt::format("  {}:\n    offset: {:.9g} {}\n    sensors:", nameOf(kDriftDirections[d]), m.offset * s, unit);
     out += m.sensors.empty() ? " []\n" : "\n";
     for (size_t i = 0; i < m.sensors.size(); ++i)
@@ -64,18 +59,19 @@ SpindleDriftModel parseSpindleDriftModel(const std::string& text, const std::str
     const auto name = yamlin::scalar(ctx, entry.first, "directions");
     const auto found = std::find_if(std::begin(kDriftDirections), std::end(kDriftDirections), [&](DriftDirection d) { return name == nameOf(d); });
     if (found == std::end(kDriftDirections)) ctx.fail(entry.first, "directions." + name, "not a drift direction (X, Y, Z, A or B)");
-    const int d = static_cast<int>(*found);
+    const DriftDirection direction = *found;
+    const int d = static_cast<int>(direction);
     const std::string key = "directions." + name;
     if (model.directions[d]) ctx.fail(entry.first, key, "given twice");
     const auto node = entry.second;
     if (!yamlin::isMap(node)) ctx.fail(node, key, "expected {offset, sensors, residual_sigma, covariance}");
     yamlin::rejectUnknownKeys(ctx, node, key, {"offset", "sensors", "residual_sigma", "covariance"});
-    const Dimension dimension = isTilt(d) ? Dimension::Angle : Dimension::Length;
-    const double limit = isTilt(d) ? 0.1 : 10.0;  // rad, mm: far beyond any drift
+    const Dimension dimension = isTilt(direction) ? Dimension::Angle : Dimension::Length;
+    const double limit = isTilt(direction) ? 0.1 : 10.0;  // rad, mm: far beyond any drift
     const auto bounded = [&](const YAML::Node& n, const std::string& k, double bound) {
       if (!n) ctx.fail(node, k, "missing");
       const double v = yamlin::quantity(ctx, n, k, dimension);
-      if (!(std::fabs(v) <= bound)) ctx.fail(n, k, fmt::format("a value within +-{} {}", bound * scaleOf(d), unitOf(d)));
+      if (!(std::fabs(v) <= bound)) ctx.fail(n, k, fmt::format("a value within +-{} {}", bound * displayScaleOf(direction), displayUnitOf(direction)));
       return v;
     };
     DriftModel m;
@@ -110,7 +106,7 @@ SpindleDriftModel parseSpindleDriftModel(const std::string& text, const std::str
     if (!yamlin::isSequence(covariance) || static_cast<long>(covariance.size()) != n)
       ctx.fail(covariance ? covariance : node, key + ".covariance", fmt::format("expected {} rows of {} numbers (offset, then each sensor)", n, n));
     m.covariance.resize(n, n);
-    const double squared = scaleOf(d) * scaleOf(d);
+    const double squared = displayScaleOf(direction) * displayScaleOf(direction);
     for (long r = 0; r < n; ++r) {
       const auto row = covariance[static_cast<size_t>(r)];
       if (!yamlin::isSequence(row) || static_cast<long>(row.size()) != n) ctx.fail(row, key + ".covariance", fmt::format("expected a row of {} numbers", n));

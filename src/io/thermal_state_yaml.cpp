@@ -113,7 +113,7 @@ ThermalState parseThermalState(const Machine& machine, const std::string& text, 
   ThermalState state;
   if (const auto scales = root["scales"]) state.scales = parseScales(ctx, machine, scales);
   if (const auto spindle = root["spindle"]) {
-    if (std::none_of(machine.axes.begin(), machine.axes.end(), [](const Axis& a) { return a.type == AxisType::Spindle; }))
+    if (machine.spindleIndex() < 0)
       ctx.fail(spindle, "spindle", "the machine has no spindle for the drift to move: name it in the structure code, e.g. t-(C)-Z-b-Y-X-w");
     state.spindle = parseSpindle(ctx, spindle, source);
   }

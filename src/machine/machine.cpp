@@ -33,6 +33,11 @@ int Machine::rotaryCount() const {
   return n;
 }
 
+int Machine::spindleIndex() const {
+  const auto found = std::find_if(axes.begin(), axes.end(), [](const Axis& a) { return a.type == AxisType::Spindle; });
+  return found == axes.end() ? -1 : static_cast<int>(found - axes.begin());
+}
+
 int Machine::axisIndex(const std::string& axisName) const {
   for (size_t i = 0; i < axes.size(); ++i)
     if (axes[i].name == axisName) return static_cast<int>(i);

@@ -13,10 +13,7 @@
 namespace mtacc {
 namespace {
 
-bool isTilt(DriftDirection d) { return d == DriftDirection::A || d == DriftDirection::B; }
-
-// um for displacements, urad for tilts.
-double displayed(DriftDirection d, double value) { return value * (isTilt(d) ? 1e6 : 1e3); }
+double displayed(DriftDirection d, double value) { return value * displayScaleOf(d); }
 
 bool changes(const Eigen::VectorXd& v) { return v.size() && v.maxCoeff() > v.minCoeff(); }
 
@@ -162,9 +159,8 @@ nlohmann::json toJson(const DriftTestEvaluation& r, size_t seriesPoints) {
   if (r.positionAxis >= 0) j["position_axis"] = test.axes[static_cast<size_t>(r.positionAxis)];
   for (const auto& e : r.directions) {
     const auto d = e.direction;
-    const std::string unit = isTilt(d) ? "urad" : "um";
     nlohmann::json entry{{"direction", nameOf(d)},
-                         {"unit", unit},
+                         {"unit", displayUnitOf(d)},
                          {"largest", displayed(d, e.extremes.largest)},
                          {"largest_at_s", e.extremes.time},
                          {"range", displayed(d, e.extremes.range)}};

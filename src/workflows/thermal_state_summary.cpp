@@ -19,9 +19,8 @@ nlohmann::json spindleSummary(const Machine& machine, const SpindleState& spindl
   for (const auto d : kDriftDirections) {
     const int k = static_cast<int>(d);
     if (!spindle.model.directions[k]) continue;
-    const bool tilt = d == DriftDirection::A || d == DriftDirection::B;
-    const double scale = tilt ? 1e6 : 1e3;
-    j["directions"].push_back({{"direction", nameOf(d)}, {"unit", tilt ? "urad" : "um"}, {"drift", drift[k] * scale}, {"sigma", sigma[k] * scale}});
+    const double scale = displayScaleOf(d);
+    j["directions"].push_back({{"direction", nameOf(d)}, {"unit", displayUnitOf(d)}, {"drift", drift[k] * scale}, {"sigma", sigma[k] * scale}});
   }
   const Vec3 atTcp = spindleDriftAtTcp(machine, spindle) * 1e3;
   j["at_tcp_um"] = {atTcp.x(), atTcp.y(), atTcp.z()};

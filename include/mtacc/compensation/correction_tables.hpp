@@ -52,7 +52,8 @@ struct CorrectionGrid {
 };
 
 // The inverse error model's correction at every node (position only, by the linear axes), nodes
-// in order with the Jacobian kept and the correction extrapolated along X. Throws InputError when
+// in order with the Jacobian kept and each node started from its neighbours' corrections (the
+// previous row's change along X added to the node before). Throws InputError when
 // the machine has no linear X, Y, Z or an axis has no travel to spread the nodes over.
 CorrectionGrid correctionGrid(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGridSpec& spec);
 

@@ -68,6 +68,8 @@ struct Machine {
   // The commanded axes' names in joint-vector order.
   std::vector<std::string> commandedAxisNames() const;
   int rotaryCount() const;
+  // Index of the spindle in axes, or -1 when the structure code names none.
+  int spindleIndex() const;
   // Index of an axis (the spindle included) by name, or -1.
   int axisIndex(const std::string& name) const;
   // Index of a commanded axis (an entry of a joint vector) by name, or -1.

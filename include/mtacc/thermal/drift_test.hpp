@@ -24,6 +24,11 @@ struct MandrelProbes {
 enum class DriftDirection { X, Y, Z, A, B };
 constexpr DriftDirection kDriftDirections[] = {DriftDirection::X, DriftDirection::Y, DriftDirection::Z, DriftDirection::A, DriftDirection::B};
 const char* nameOf(DriftDirection direction);
+// A drift is shown in um (X, Y, Z) or urad (A, B): that unit, and its size per internal unit
+// (mm, rad).
+inline bool isTilt(DriftDirection d) { return d == DriftDirection::A || d == DriftDirection::B; }
+inline const char* displayUnitOf(DriftDirection d) { return isTilt(d) ? "urad" : "um"; }
+inline double displayScaleOf(DriftDirection d) { return isTilt(d) ? 1e6 : 1e3; }
 
 struct MandrelDrift {
   std::optional<Eigen::VectorXd> series[5];  // by DriftDirection
