@@ -1,6 +1,7 @@
 // Compensated NC programs (issue 17, item 2): the G-code reader, and the ballbar, cone-frustum
 // and cubic-test programs compensated, written, read back and run on the machine with its
 // errors.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,8 @@
 #include "mtacc/io/gcode_program.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/core/text.hpp"
+#include "mtacc/core/units.hpp"
 #include "mtacc/io/cone_program.hpp"
 #include "mtacc/io/cubic_program.hpp"
 #include "mtacc/io/cubic_test_yaml.hpp"
@@ -189,6 +192,32 @@ TEST(GcodeReader, KeptWordsAndCommentsStayInPlace) {
   // reversal 2 um) on N20's line, then the move; the stop after the motion, the comment kept.
   EXPECT_NE(out.find("\nN20 G1 X10.00130 "), std::string::npos) << out;
   EXPECT_TRUE(out.ends_with(" M30 ; end\n%\n")) << out;
+}
+
+// The writer's words: each axis with five decimals as fmt's "{:.5f}" writes it (rotary axes in
+// degrees), a value that rounds to zero without its sign, and values beyond the fast path (1e12)
+// as fmt writes them. Random values away from a rounding tie (v * 1e5 within 1e-4 of a half)
+// match fmt character for character.
+TEST(GcodeWriter, AxisWordsWithFiveDecimals) {
+  const auto machine = test::bundled("tilting-table");
+  const auto program = parseGcodeProgram("G0 X0 Y0 Z0 B0 C0\n", "words.nc", *machine);
+  CompensatedProgram points;
+  points.points.push_back({0, 0.0, {0, 0, 0, 0, 0}});
+  points.points.push_back({0, 1.0, {-0.000001, 123.456789, -98765.4321, -0.5, 1e12}});
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> value(-1000.0, 1000.0);
+  std::vector<double> drawn;
+  while (drawn.size() < 2000) {
+    const double v = value(random), scaled = std::abs(v) * 1e5;
+    if (std::abs(scaled - std::floor(scaled) - 0.5) > 1e-4) drawn.push_back(v);
+  }
+  for (const double v : drawn) points.points.push_back({0, 1.0, {v, 0, 0, 0, 0}});
+  const std::string out = compensatedGcode(*machine, program, points, "");
+  const auto lines = splitList(out, '\n');
+  ASSERT_EQ(lines.size(), 2 + drawn.size());  // "G21 G90", the first point, the drawn ones
+  EXPECT_EQ(lines[1], fmt::format("G0 X0.00000 Y123.45679 Z-98765.43210 B{:.5f} C{:.5f}", -0.5 / kDeg, 1e12 / kDeg));
+  for (size_t i = 0; i < drawn.size(); ++i)
+    EXPECT_EQ(lines[2 + i], fmt::format("G0 X{:.5f} Y0.00000 Z0.00000 B0.00000 C0.00000", drawn[i])) << drawn[i];
 }
 
 TEST(GcodeReader, ToolLengthMovesTheCompensatedPoint) {

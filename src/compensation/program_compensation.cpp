@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <iterator>
@@ -27,17 +28,22 @@ class ToolModels {
  public:
   ToolModels(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors) : machine_(machine), errors_(errors) {}
   const Models& operator()(double toolLength) {
+    if (last_ != nullptr && last_->first == toolLength) return last_->second;  // a tool stays for many lines
     auto it = cache_.find(toolLength);
-    if (it != cache_.end()) return it->second;
-    auto machine = std::make_shared<Machine>(*machine_);
-    machine->toolOffset -= toolLength * machine->toolDirection;
-    return cache_.emplace(toolLength, Models{compile(machine, errors_), compileNominal(machine)}).first->second;
+    if (it == cache_.end()) {
+      auto machine = std::make_shared<Machine>(*machine_);
+      machine->toolOffset -= toolLength * machine->toolDirection;
+      it = cache_.emplace(toolLength, Models{compile(machine, errors_), compileNominal(machine)}).first;
+    }
+    last_ = &*it;
+    return it->second;
   }
 
  private:
   std::shared_ptr<const Machine> machine_;
   const ErrorModel& errors_;
   std::map<double, Models> cache_;
+  const std::pair<const double, Models>* last_ = nullptr;  // the entry asked for last (map entries stay in place)
 };
 
 void lerp(const AxisPositions& a, const AxisPositions& b, double t, std::vector<double>& q) {
@@ -104,7 +110,9 @@ class Compensator {
   // Where the written segment a-b, interpolated by the controller, leaves the nominal path at
   // its midpoint by more than the tolerances, it is halved.
   // `from`: where a lies on this move (0 for the previous move's end); `motion`: the axes'
-  // directions along the move from a to b.
+  // directions along the move from a to b. `a` is an element of out_.points, which a push may
+  // move: no frame reads its `a` after the first push below it (the second half starts from
+  // the point pushed last).
   void refine(int index, const GcodeMove& move, const CompensatedPoint& a, double from, CompensatedPoint b, const std::vector<int>& motion,
               int depth) {
     const Models& models = models_(move.toolLength);
@@ -184,22 +192,27 @@ class Compensator {
   ErrorIkSolution solution_;  // of the last point solved, its storage reused
 };
 
-// v with five decimals, as "{:.5f}" writes it up to the rounding of v * 1e5: the writer's inner
-// loop formats five numbers on each of a million lines, where fmt's general float path is the
+// " X-123.45678": the word of axis `name` at v with five decimals, as "{:.5f}" writes it up to
+// the rounding of v * 1e5, appended at once: the writer's inner loop writes five words on each
+// of a million lines, where fmt's general float path and appending piece by piece were the
 // larger part of the time.
-void appendFixed5(std::string& out, double v) {
+void appendWord(std::string& out, const std::string& name, double v) {
   const double scaled = std::round(std::abs(v) * 1e5);
-  if (!(scaled < 9e15)) {
-    fmt::format_to(std::back_inserter(out), "{:.5f}", v);
+  if (!(scaled < 9e15) || name.size() > 8) {
+    fmt::format_to(std::back_inserter(out), " {}{:.5f}", name, v);
     return;
   }
-  auto n = static_cast<uint64_t>(scaled);
-  if (v < 0 && n != 0) out += '-';
+  char text[32];  // the space, 8 letters of name, the sign, 11 whole digits (below 9e10), the point, 5 decimals
+  char* p = text;
+  *p++ = ' ';
+  p = std::copy(name.begin(), name.end(), p);
+  const auto n = static_cast<uint64_t>(scaled);
+  if (v < 0 && n != 0) *p++ = '-';
   const fmt::format_int whole(n / 100000);
-  out.append(whole.data(), whole.size());
-  char fraction[6] = {'.', '0', '0', '0', '0', '0'};
-  for (int i = 5, f = static_cast<int>(n % 100000); i > 0; --i, f /= 10) fraction[i] = static_cast<char>('0' + f % 10);
-  out.append(fraction, 6);
+  p = std::copy_n(whole.data(), whole.size(), p);
+  *p++ = '.';
+  for (int i = 5, f = static_cast<int>(n % 100000); i > 0; --i, f /= 10) p[i - 1] = static_cast<char>('0' + f % 10);
+  out.append(text, p + 5);
 }
 
 // RS-274/NGC stops a program after the motion of its line; everything else kept acts before it.
@@ -291,12 +304,10 @@ std::string compensatedGcode(const Machine& m, const GcodeProgram& program, cons
     while (point < compensated.points.size() && compensated.points[point].move == l.move) {
       const CompensatedPoint& p = compensated.points[point++];
       if (firstSegment && !before.empty()) fmt::format_to(out, "{} ", before);
-      g += move.mode == MotionMode::Rapid ? "G0" : "G1";
+      g.append(move.mode == MotionMode::Rapid ? "G0" : "G1", 2);
       for (size_t k = 0; k < axes; ++k) {
         const Axis& a = m.axes[k];
-        g += ' ';
-        g += a.name;
-        appendFixed5(g, a.isRotary() ? p.q[k] / kDeg : p.q[k]);
+        appendWord(g, a.name, a.isRotary() ? p.q[k] / kDeg : p.q[k]);
       }
       if (move.mode != MotionMode::Rapid && move.feed != feed) {
         fmt::format_to(out, " F{:g}", move.feed);
@@ -304,7 +315,7 @@ std::string compensatedGcode(const Machine& m, const GcodeProgram& program, cons
       }
       const bool last = point == compensated.points.size() || compensated.points[point].move != l.move;
       if (last && !after.empty()) fmt::format_to(out, " {}", after);
-      g += "\n";
+      g += '\n';
       firstSegment = false;
     }
   }

@@ -45,16 +45,23 @@ bool isBlank(char c) { return c == ' ' || (c >= '\t' && c <= '\r'); }
 bool isLetter(char c) { return (c | 0x20) >= 'a' && (c | 0x20) <= 'z'; }
 bool isDigit(char c) { return c >= '0' && c <= '9'; }
 
-// A number of digits with at most one point and an optional sign, as std::from_chars reads it,
-// or nullopt. When its digits make a whole number below 2^53 with at most 22 of them after the
-// point, that number and the power of ten are both exact in a double and their quotient is the
-// correctly rounded value (Clinger's fast path): every coordinate a program writes, read at a
-// fraction of from_chars's cost in the reader's inner loop. Longer numbers go to from_chars.
-std::optional<double> decimalNumber(std::string_view number) {
+// The number at the start of `text`: an optional sign, then digits and points. `length` is how
+// far they run; `value` is nullopt unless they are digits with at most one point, as
+// std::from_chars reads them. When the digits make a whole number below 2^53 with at most 22 of
+// them after the point, that number and the power of ten are both exact in a double and their
+// quotient is the correctly rounded value (Clinger's fast path): every coordinate a program
+// writes, read in the same pass that finds its end, at a fraction of from_chars's cost in the
+// reader's inner loop. Longer numbers go to from_chars.
+struct LeadingNumber {
+  std::optional<double> value;
+  size_t length = 0;
+};
+
+LeadingNumber leadingNumber(std::string_view text) {
   static constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
                                             1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-  const char* p = number.data();
-  const char* const end = p + number.size();
+  const char* p = text.data();
+  const char* const end = p + text.size();
   const bool negative = p != end && *p == '-';
   if (p != end && (*p == '+' || *p == '-')) ++p;
   const char* const first = p;
@@ -68,15 +75,18 @@ std::optional<double> decimalNumber(std::string_view number) {
     afterPoint = p - fraction;
   }
   const long digits = p - first - (point ? 1 : 0);
-  if (p != end || digits == 0) return std::nullopt;
+  const char* const last = p;
+  while (p != end && (isDigit(*p) || *p == '.')) ++p;  // a second point and what follows it
+  const auto length = static_cast<size_t>(p - text.data());
+  if (p != last || digits == 0) return {std::nullopt, length};
   if (digits <= 19 && whole <= (uint64_t{1} << 53) && afterPoint <= 22) {
     const double value = static_cast<double>(whole) / kPowersOfTen[afterPoint];
-    return negative ? -value : value;
+    return {negative ? -value : value, length};
   }
   double value = 0.0;
-  const auto [stop, error] = std::from_chars(first, end, value);
-  if (error != std::errc() || stop != end) return std::nullopt;
-  return negative ? -value : value;
+  const auto [stop, error] = std::from_chars(first, last, value);
+  if (error != std::errc() || stop != last) return {std::nullopt, length};
+  return {negative ? -value : value, length};
 }
 
 class LineReader {
@@ -105,11 +115,9 @@ class LineReader {
         const char letter = static_cast<char>(c & ~0x20);
         size_t j = i + 1;
         while (j < text.size() && text[j] == ' ') ++j;
-        size_t end = j;
-        if (end < text.size() && (text[end] == '+' || text[end] == '-')) ++end;
-        while (end < text.size() && (isDigit(text[end]) || text[end] == '.')) ++end;
-        const std::string_view number = text.substr(j, end - j);
-        const std::optional<double> value = decimalNumber(number);
+        const auto [value, length] = leadingNumber(text.substr(j));
+        const size_t end = j + length;
+        const std::string_view number = text.substr(j, length);
         if (!value || !std::isfinite(*value))
           fail(std::string(1, letter), fmt::format("'{}' is not a word: a letter must be followed by a number", text.substr(i, std::max(end, i + 1) - i)));
         if (std::abs(*value) > kLargestWord) fail(std::string(1, letter), fmt::format("{}{} is beyond {:g}", letter, number, kLargestWord));

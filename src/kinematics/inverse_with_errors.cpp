@@ -38,9 +38,11 @@ Residual residual(const Target& t, const std::vector<double>& q, bool withDirect
 // position alone, a machine with three linear axes moves only those: the rotary axes keep their
 // commands rather than turn the tool to reach a few micrometres.
 void factorise(ErrorIkJacobian& jacobian, const Target& t, const std::vector<double>& q, bool withDirection, double singularRatio) {
-  const auto& scale = jacobian.scale;
   const auto n = static_cast<Eigen::Index>(q.size());
   const Machine& machine = *t.model.machine;
+  auto& scale = jacobian.scale;
+  scale.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k) scale[k] = machine.axes[static_cast<size_t>(k)].isRotary() ? 1.0 / kDirectionWeight : 1.0;
   const bool positionByLinearAxes = n - machine.rotaryCount() >= 3;
   Eigen::MatrixXd j(withDirection ? 6 : 3, n);
   std::vector<double> plus = q, minus = q;
@@ -88,9 +90,7 @@ void refineWithErrors(const KinematicModel& actual, const Vec3& position, const 
   s.directionControlled = !o.positionOnly && actual.machine->rotaryCount() >= 2;
   s.singular = singularStart;
   const auto n = static_cast<Eigen::Index>(s.q.size());
-  auto& scale = jacobian.scale;
-  scale.resize(n);
-  for (Eigen::Index k = 0; k < n; ++k) scale[k] = actual.machine->axes[static_cast<size_t>(k)].isRotary() ? 1.0 / kDirectionWeight : 1.0;
+  const auto& scale = jacobian.scale;  // set with the factorisation
   // At a singular pose the direction is given up and the position alone is reached.
   bool withDirection = s.directionControlled && !singularStart;
   ToolPoint reached;

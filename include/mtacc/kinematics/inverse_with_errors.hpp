@@ -62,7 +62,8 @@ struct ErrorIkJacobian {
   Eigen::Index rank = 0;
   bool valid = false;
   bool withDirection = false;
-  Eigen::VectorXd scale, step;  // scratch of the solves, kept so that a solve allocates no more
+  Eigen::VectorXd scale;  // per column: 1 for a linear axis (mm), 1e-3 for a rotary one (solved for in mrad)
+  Eigen::VectorXd step;   // scratch of the solves, kept so that a solve allocates no more
 };
 
 // `actual` compiled with the errors, `nominal` without; position and direction in the workpiece
