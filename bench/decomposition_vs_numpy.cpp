@@ -15,7 +15,7 @@
 
 #include <unistd.h>
 
-#include "python_baseline.hpp"
+#include "bench_support.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -35,13 +35,13 @@ using namespace mtacc;
 namespace {
 
 const std::vector<double> kFeeds{1000, 1800, 3240, 5832, 10498, 18896};
-constexpr double kSeconds = 15.0, kInstrumentPeriod = 1e-4;
+constexpr double kInstrumentPeriod = 1e-4;
 const Vec3 kBall(70, 40, 60);
 
-// Five axes moving smoothly for 15 s, faster at each higher feed.
-SampledTrace reference(size_t k) {
+// Five axes moving smoothly for `seconds` (15 s in the benchmark), faster at each higher feed.
+SampledTrace reference(size_t k, double seconds) {
   constexpr double amplitude[] = {40, 30, 20, 15 * kDeg, 60 * kDeg}, pulsation[] = {0.9, 1.3, 1.7, 0.7, 1.1};
-  const auto n = static_cast<size_t>(std::llround(kSeconds / kInstrumentPeriod)) + 1;
+  const auto n = static_cast<size_t>(std::llround(seconds / kInstrumentPeriod)) + 1;
   SampledTrace r{0.0, kInstrumentPeriod, std::vector<std::vector<double>>(5, std::vector<double>(n))};
   const double speed = 1.0 + 0.3 * static_cast<double>(k);
   for (size_t a = 0; a < 5; ++a)
@@ -66,7 +66,8 @@ struct PipelineResult {
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  const double testSeconds = bench::agreementCheckOnly(argc, argv) ? 2.0 : 15.0;
   const auto machine = std::make_shared<const Machine>(loadMachine("inclined-a-table"));
   const auto nominal = compileNominal(machine), identified = compileNominal(machine);
   std::vector<VirtualRecording> recordings;
@@ -76,7 +77,7 @@ int main() {
     options.ball = kBall;
     options.drift = 1e-3 * static_cast<double>(k) * Vec3(0.4, 0.25, 0.35);
     options.seed = 7 + k;
-    recordings.push_back(recordVirtualTest(nominal, identified, reference(k), options));
+    recordings.push_back(recordVirtualTest(nominal, identified, reference(k, testSeconds), options));
   }
 
   const auto pipeline = [&](int threads) {
@@ -118,8 +119,8 @@ int main() {
     meta["check_poses"].push_back({q[0], q[1], q[2], q[3], q[4], p.x(), p.y(), p.z()});
   }
   std::ofstream(dir / "meta.json") << meta.dump();
-  const std::string cmd = std::string(MTACC_BENCH_DIR) + "/decomposition_numpy.py " + dir.string();
-  const std::string pyOut = runPythonBaseline(cmd);
+  const std::string cmd = bench::benchDir() + "/decomposition_numpy.py " + dir.string();
+  const std::string pyOut = bench::runPythonBaseline(cmd);
   std::filesystem::remove_all(dir);
   PipelineResult twoThreadResult;
   const double twoThreads = timed(twoThreadResult, 2);
@@ -153,7 +154,7 @@ int main() {
   fmt::print("ratio at 1 thread against 1: mtacc is {:.1f}x faster\n", py["seconds"].get<double>() / ours);
 
   // The virtual machine: seed 004's CapBall program at 600 mm/min (about 10 s) with the structure.
-  const auto program = readGcodeProgram(std::string(MTACC_BENCH_DIR) + "/../data/programs/seed004-capball.nc", *machine);
+  const auto program = readGcodeProgram(bench::benchDir() + "/../data/programs/seed004-capball.nc", *machine);
   std::vector<std::vector<double>> path;
   path.emplace_back(program.moves.front().to.begin(), program.moves.front().to.end());
   for (const auto& move : program.moves) path.emplace_back(move.to.begin(), move.to.end());

@@ -3,7 +3,7 @@
 // X, Y, Z), reduced to the largest |H_ij| per position. Side by side in the same run, the
 // NumPy implementation of the same computation (bench/dynamics_numpy.py: vectorised over
 // positions, constants built once, real arithmetic) on the same model, positions and
-// frequencies; it runs on the first kBaselinePositions positions and its time is scaled to all
+// frequencies; it runs on the first 1000 positions and its time is scaled to all
 // of them (per-position work is identical). The ratio is one thread against one thread
 // (OpenBLAS limited to one); the two-thread time is printed beside it. Target: at least 10x
 // faster. The machine is shared and its speed drifts, so mtacc runs once before and once after
@@ -14,7 +14,7 @@
 
 #include <unistd.h>
 
-#include "python_baseline.hpp"
+#include "bench_support.hpp"
 
 #include <chrono>
 #include <filesystem>
@@ -27,7 +27,6 @@ using namespace mtacc;
 
 namespace {
 
-constexpr int kBaselinePositions = 1000;
 // Relative. Two eigensolvers agree on the lowest modes only to about eps |K| / lambda_min
 // (the soft set-up elements against the stiff guides), which the peaks at those modes inherit.
 constexpr double kAgreement = 1e-5;
@@ -61,14 +60,18 @@ nlohmann::json exportModel(const StructureModel& m, const std::vector<std::vecto
 
 }  // namespace
 
-int main() {
-  const auto model = loadStructure(std::string(MTACC_BENCH_DIR) + "/data/ten-bodies.yaml");
+int main(int argc, char** argv) {
+  const bool check = bench::agreementCheckOnly(argc, argv);
+  const auto model = loadStructure(bench::benchDir() + "/data/ten-bodies.yaml");
   std::vector<double> frequencies;
   for (int i = 1; i <= 500; ++i) frequencies.push_back(0.4 * i);
   std::vector<std::vector<double>> positions;
-  for (int i = 0; i < 25; ++i)
-    for (int j = 0; j < 20; ++j)
-      for (int k = 0; k < 20; ++k) positions.push_back({-0.6 + 1.2 * i / 24, -0.4 + 0.8 * j / 19, -0.3 + 0.6 * k / 19});
+  const int nx = check ? 5 : 25, ny = check ? 4 : 20, nz = ny;  // 80 or 10,000 positions
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < ny; ++j)
+      for (int k = 0; k < nz; ++k)
+        positions.push_back({-0.6 + 1.2 * i / (nx - 1), -0.4 + 0.8 * j / (ny - 1), -0.3 + 0.6 * k / (nz - 1)});
+  const int baselinePositions = std::min(1000, static_cast<int>(positions.size()));
 
   auto timed = [&](std::vector<Eigen::Matrix3d>& peaks, int threads) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -82,9 +85,8 @@ int main() {
   std::filesystem::create_directories(dir);
   const auto file = (dir / "model.json").string();
   std::ofstream(file) << exportModel(model, positions, frequencies).dump();
-  const std::string cmd = std::string(MTACC_BENCH_DIR) + "/dynamics_numpy.py " + file + " " +
-                          std::to_string(kBaselinePositions);
-  const std::string pyOut = runPythonBaseline(cmd);
+  const std::string cmd = bench::benchDir() + "/dynamics_numpy.py " + file + " " + std::to_string(baselinePositions);
+  const std::string pyOut = bench::runPythonBaseline(cmd);
   std::filesystem::remove_all(dir);
   const double twoThreads = timed(peaks, 2);
   const double after = timed(peaks, 1), ours = (before + after) / 2;
@@ -93,7 +95,7 @@ int main() {
     return 1;
   }
   const auto py = nlohmann::json::parse(pyOut);
-  const double theirs = py["seconds"].get<double>() * static_cast<double>(positions.size()) / kBaselinePositions;
+  const double theirs = py["seconds"].get<double>() * static_cast<double>(positions.size()) / baselinePositions;
   double worst = 0;
   const auto& pp = py["peaks"];
   for (size_t p = 0; p < pp.size(); ++p)
@@ -110,7 +112,7 @@ int main() {
   fmt::print("mtacc, 1 thread: {:.2f} s, mean of {:.2f} s before and {:.2f} s after the baseline; 2 threads: {:.2f} s\n", ours,
              before, after, twoThreads);
   fmt::print("NumPy (vectorised over positions), 1 thread: {:.2f} s for {} positions, {:.1f} s scaled to {}\n",
-             py["seconds"].get<double>(), kBaselinePositions, theirs, positions.size());
+             py["seconds"].get<double>(), baselinePositions, theirs, positions.size());
   fmt::print("ratio at 1 thread against 1: mtacc is {:.1f}x faster (target >= 10x)\n", theirs / ours);
   if (worst > kAgreement) {
     fmt::print(stderr, "bench_dynamics_vs_numpy: the peaks disagree by {:.2g} (relative, limit {})\n", worst, kAgreement);

@@ -19,6 +19,7 @@
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/io/machine_yaml.hpp"
+#include "bench_support.hpp"
 
 namespace {
 
@@ -158,6 +159,7 @@ class RatioReporter : public benchmark::ConsoleReporter {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const bool check = bench::agreementCheckOnly(argc, argv);
   // Eleven interleaved repetitions by default: the machines are shared and noisy, so KDL and
   // mtacc take turns and the ratios use medians.
   std::vector<char*> args(argv, argv + argc);
@@ -191,6 +193,7 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "bench_fk_vs_kdl: the frames disagree (limits 1e-9 mm, 1e-12)\n");
     return 1;
   }
+  if (check) return 0;
 
   RatioReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);

@@ -11,7 +11,7 @@
 
 #include <unistd.h>
 
-#include "python_baseline.hpp"
+#include "bench_support.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -33,24 +33,23 @@ const std::vector<std::string> kNames = {"X0B", "Y0B", "Z0B", "A0B", "C0B", "X0C
                                          "A0C", "B0C", "C0C", "C0Y", "A0Z", "B0Z"};
 const std::vector<double> kTruth = {6e-3, -3e-3, -4e-3, 25e-6, -20e-6, -5e-3, 4e-3,
                                     30e-6, -25e-6, 15e-6, 20e-6, -15e-6, 12e-6};
-constexpr int kRepeats = 7;
 constexpr double kAgreement = 1e-3;  // standard uncertainties: both minimise the same sum of squares
 
-// 10,000 poses: the sphere at 5 positions; C turning (250 steps) at B = 0, -30, -60, -90 deg
-// and B tilting (250 steps) at C = 0, 90, 180, 270 deg.
-std::vector<MeasurementRun> plan(const KinematicModel& nominal) {
+// 40 * steps poses (10,000 for the benchmark): the sphere at 5 positions; C turning at B = 0,
+// -30, -60, -90 deg and B tilting at C = 0, 90, 180, 270 deg, each in `steps` steps.
+std::vector<MeasurementRun> plan(const KinematicModel& nominal, int steps) {
   const std::vector<Vec3> spheres = {{120, 0, 60}, {0, 80, 160}, {-100, -50, 40}, {60, 60, 120}, {0, 0, 200}};
   std::vector<MeasurementRun> runs;
   for (int k = 0; k < 4; ++k) {
     SphereTestSpec c;
     c.axis = "C";
-    for (int i = 0; i < 250; ++i) c.angles.push_back(2 * kPi * i / 250);
+    for (int i = 0; i < steps; ++i) c.angles.push_back(2 * kPi * i / steps);
     c.spheres = spheres;
     c.pose = {0, 0, 0, -30.0 * k * kDeg, 0};
     for (auto& r : sphereTest(nominal, c)) runs.push_back(std::move(r));
     SphereTestSpec b;
     b.axis = "B";
-    for (int i = 0; i < 250; ++i) b.angles.push_back(-90.0 * kDeg * i / 249);
+    for (int i = 0; i < steps; ++i) b.angles.push_back(-90.0 * kDeg * i / (steps - 1));
     b.spheres = spheres;
     b.pose = {0, 0, 0, 0, 90.0 * k * kDeg};
     for (auto& r : sphereTest(nominal, b)) runs.push_back(std::move(r));
@@ -66,7 +65,9 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  const bool check = bench::agreementCheckOnly(argc, argv);
+  const int repeats = check ? 1 : 7, steps = check ? 25 : 250;
   const auto machine = std::make_shared<const Machine>(loadMachine("tilting-table"));
   const auto nominal = compileNominal(machine);
   IdentificationProblem problem;
@@ -77,7 +78,7 @@ int main() {
     problem.parameters.push_back(findParameter(*machine, problem.start, kNames[k]));
     setParameterValue(truth, problem.parameters.back(), kTruth[k]);
   }
-  problem.runs = plan(nominal);
+  problem.runs = plan(nominal, steps);
   const auto model = compile(machine, truth);
   std::mt19937_64 rng(3);
   long points = 0;
@@ -105,7 +106,7 @@ int main() {
   auto timeMtacc = [&](int threads, std::vector<double>& into) {
     IdentificationOptions options;
     options.threads = threads;
-    for (int k = 0; k < kRepeats; ++k) {
+    for (int k = 0; k < repeats; ++k) {
       const auto t0 = std::chrono::steady_clock::now();
       result = identify(problem, options);
       into.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
@@ -114,9 +115,9 @@ int main() {
   // mtacc is timed before and after the baseline (this machine's speed drifts within minutes).
   timeMtacc(1, seconds);
 
-  const std::string script = std::string(MTACC_BENCH_DIR) + "/identify_scipy.py";
-  const std::string cmd = script + " " + dataFile + " " + std::to_string(kRepeats);
-  const std::string pyOut = runPythonBaseline(cmd);
+  const std::string script = bench::benchDir() + "/identify_scipy.py";
+  const std::string cmd = script + " " + dataFile + " " + std::to_string(repeats);
+  const std::string pyOut = bench::runPythonBaseline(cmd);
   std::filesystem::remove_all(dir);
   timeMtacc(2, secondsTwoThreads);
   timeMtacc(1, seconds);

@@ -23,13 +23,11 @@
 #include "mtacc/io/machine_yaml.hpp"
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/measurement/plates.hpp"
-#include "python_baseline.hpp"
+#include "bench_support.hpp"
 
 using namespace mtacc;
 
 namespace {
-
-constexpr int kRepeats = 7;
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -53,7 +51,8 @@ nlohmann::json describe(const Machine& m, const ErrorModel& shape, const Paramet
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  const int repeats = bench::agreementCheckOnly(argc, argv) ? 1 : 7;  // the problem's size is already small
   const auto machine = std::make_shared<const Machine>(loadMachine("maho"));
   const auto truth = loadMachineErrors(*machine);
   const auto actual = compile(machine, truth), nominal = compileNominal(machine);
@@ -107,16 +106,16 @@ int main() {
   std::vector<double> seconds, secondsTwo;
   PlateIdentification result;
   auto timeMtacc = [&](int threads, std::vector<double>& into) {
-    for (int k = 0; k < kRepeats; ++k) {
+    for (int k = 0; k < repeats; ++k) {
       const auto t0 = std::chrono::steady_clock::now();
       result = identifyFromPlates(machine, shape, parameters, campaign, threads);
       into.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
   };
   timeMtacc(1, seconds);
-  const std::string cmd = std::string(MTACC_BENCH_DIR) + "/plate_scipy.py " + dir.string() + " " + std::to_string(design.rows()) + " " +
-                          std::to_string(design.cols()) + " " + std::to_string(kRepeats);
-  const std::string pyOut = runPythonBaseline(cmd);
+  const std::string cmd = bench::benchDir() + "/plate_scipy.py " + dir.string() + " " + std::to_string(design.rows()) + " " +
+                          std::to_string(design.cols()) + " " + std::to_string(repeats);
+  const std::string pyOut = bench::runPythonBaseline(cmd);
   std::filesystem::remove_all(dir);
   timeMtacc(2, secondsTwo);
   timeMtacc(1, seconds);

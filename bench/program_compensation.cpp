@@ -25,14 +25,12 @@
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/io/machine_yaml.hpp"
-#include "python_baseline.hpp"
+#include "bench_support.hpp"
 
 using namespace mtacc;
 
 namespace {
 
-constexpr int kLines = 1'000'000;
-constexpr int kRepeats = 3;
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -47,11 +45,11 @@ double seconds(F&& f) {
 }
 
 // A smooth 5-axis path through the working volume: every axis moves on every line.
-std::string program() {
+std::string program(int lines) {
   std::string g = "G21 G90 G94\n";
   auto out = std::back_inserter(g);
-  for (int i = 0; i < kLines; ++i) {
-    const double t = 200.0 * M_PI * i / (kLines - 1);
+  for (int i = 0; i < lines; ++i) {
+    const double t = 200.0 * M_PI * i / (lines - 1);
     fmt::format_to(out, "{} X{:.4f} Y{:.4f} Z{:.4f} B{:.4f} C{:.4f}{}\n", i == 0 ? "G0" : "G1", 150 * std::sin(t / 7), 100 * std::cos(t / 5),
                    50 + 80 * std::sin(t / 11), -20 - 40 * (0.5 + 0.5 * std::sin(t / 13)), std::fmod(t / 3 / kDeg, 360.0), i == 1 ? " F2000" : "");
   }
@@ -65,11 +63,13 @@ const char* kLocationErrors = "errors:\n  C0Y: 20 urad\n  A0Z: -15 urad\n  B0Z: 
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  const bool check = bench::agreementCheckOnly(argc, argv);
+  const int lines = check ? 20'000 : 1'000'000, repeats = check ? 1 : 3, gridNodes = check ? 20 : 100;
   const auto machine = std::make_shared<const Machine>(loadMachine("tilting-table"));
   const MachineSetup location{machine, parseErrors(*machine, kLocationErrors, "bench")};
   const MachineSetup full{machine, loadMachineErrors(*machine)};
-  const std::string text = program();
+  const std::string text = program(lines);
   GcodeProgram parsed;
   const double firstRead = seconds([&] { parsed = parseGcodeProgram(text, "bench.nc", *machine); });
 
@@ -89,15 +89,15 @@ int main() {
   std::vector<double> ours;
   CompensatedProgram result;
   auto timeMtacc = [&] {
-    for (int k = 0; k < kRepeats; ++k) {
+    for (int k = 0; k < repeats; ++k) {
       result = CompensatedProgram();
       ours.push_back(seconds([&] { result = compensateProgram(machine, location.errors, parsed); }));
     }
   };
   timeMtacc();
-  const std::string cmd = fmt::format("{}/compensation_numpy.py {} {} {} {} {}", MTACC_BENCH_DIR, (dir / "q.bin").string(), parsed.moves.size(),
-                                      (dir / "errors.json").string(), kRepeats, (dir / "out.bin").string());
-  const std::string pyOut = runPythonBaseline(cmd);
+  const std::string cmd = fmt::format("{}/compensation_numpy.py {} {} {} {} {}", bench::benchDir(), (dir / "q.bin").string(), parsed.moves.size(),
+                                      (dir / "errors.json").string(), repeats, (dir / "out.bin").string());
+  const std::string pyOut = bench::runPythonBaseline(cmd);
   std::vector<double> theirsQ(parsed.moves.size() * 5);
   std::ifstream((dir / "out.bin").string(), std::ios::binary)
       .read(reinterpret_cast<char*>(theirsQ.data()), static_cast<std::streamsize>(theirsQ.size() * sizeof(double)));
@@ -127,7 +127,7 @@ int main() {
   std::vector<double> read, solve, write;
   std::string written;
   CompensatedProgram fullResult;
-  for (int k = 0; k < kRepeats; ++k) {
+  for (int k = 0; k < repeats; ++k) {
     parsed = GcodeProgram();
     read.push_back(seconds([&] { parsed = parseGcodeProgram(text, "bench.nc", *machine); }));
     fullResult = CompensatedProgram();
@@ -140,13 +140,13 @@ int main() {
   // The 100 x 100 x 100 correction grid of the same machine with its full error model (no
   // baseline computes this table; the issue's target is < 1 s).
   std::vector<double> grid1, gridAll;
-  for (int k = 0; k < kRepeats; ++k) {
-    grid1.push_back(seconds([&] { correctionGrid(machine, full.errors, {{100, 100, 100}, {}, 1}); }));
-    gridAll.push_back(seconds([&] { correctionGrid(machine, full.errors, {{100, 100, 100}, {}, kAllCores}); }));
+  for (int k = 0; k < repeats; ++k) {
+    grid1.push_back(seconds([&] { correctionGrid(machine, full.errors, {{gridNodes, gridNodes, gridNodes}, {}, 1}); }));
+    gridAll.push_back(seconds([&] { correctionGrid(machine, full.errors, {{gridNodes, gridNodes, gridNodes}, {}, kAllCores}); }));
   }
 
   const double mine = median(ours), theirs = median(py["seconds"].get<std::vector<double>>());
-  fmt::print("1,000,000-line 5-axis G1 program on the tilting table ({} MB of G-code)\n", text.size() / 1000000);
+  fmt::print("{}-line 5-axis G1 program on the tilting table ({:.1f} MB of G-code)\n", lines, text.size() / 1e6);
   fmt::print("location errors (11), 1 thread: mtacc compensateProgram median {:.3f} s over {} runs (half before, half after NumPy): "
              "{} points written, {} not converged\n",
              mine, ours.size(), result.points.size() - 1, result.notConverged);
@@ -157,9 +157,10 @@ int main() {
   fmt::print("agreement at the lines' ends: {:.2e} mm, {:.2e} rad\n", worstLinear, worstRotary);
   fmt::print("full error model, the whole job on 1 core, medians of {} runs: read {:.3f} s (the first {:.3f} s) + compensate {:.3f} s + "
              "write {:.3f} s = {:.3f} s (target < 2 s); {} points written\n",
-             kRepeats, median(read), firstRead, median(solve), median(write), job, fullResult.points.size() - 1);
-  fmt::print("correction grid of 100 x 100 x 100 nodes, full error model: {:.3f} s on 1 thread, {:.3f} s on {} threads (target < 1 s)\n",
-             median(grid1), median(gridAll), threadCount(kAllCores));
+             repeats, median(read), firstRead, median(solve), median(write), job, fullResult.points.size() - 1);
+  fmt::print("correction grid of {} x {} x {} nodes, full error model: {:.3f} s on 1 thread, {:.3f} s on {} threads (target < 1 s "
+             "at 100)\n",
+             gridNodes, gridNodes, gridNodes, median(grid1), median(gridAll), threadCount(kAllCores));
   // Both solve each point to 1e-7 mm and 1e-9 rad of position and direction; the commands
   // that do so agree to twice that, times the condition of the Jacobian (near B = 0, C turns the
   // tool slowly): 1e-6 mm and 1e-8 rad.

@@ -9,7 +9,7 @@
 
 #include <unistd.h>
 
-#include "python_baseline.hpp"
+#include "bench_support.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -24,7 +24,6 @@ using namespace mtacc;
 namespace {
 
 constexpr long kPoses = 10000;
-constexpr int kRepeats = 15;
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -33,7 +32,8 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  const int repeats = bench::agreementCheckOnly(argc, argv) ? 1 : 15;
   const MachineSetup setup = loadMachineSetup({"tilting-table", "", "", std::nullopt, ""});
   const Machine& machine = *setup.machine;
   JointMatrix q(kPoses, machine.commandedCount());
@@ -63,16 +63,16 @@ int main() {
   std::vector<double> seconds;
   ForwardResult result;
   auto timeCpp = [&] {
-    for (int r = 0; r < kRepeats; ++r) {
+    for (int r = 0; r < repeats; ++r) {
       const auto t0 = std::chrono::steady_clock::now();
       result = forwardKinematics(setup, q, {}, {false, false, 1});
       seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
   };
   timeCpp();
-  const std::string cmd = std::string(MTACC_BENCH_DIR) + "/python_batch_fk.py " + MTACC_PYTHON_DIR +
-                          " " + file + " " + std::to_string(kRepeats);
-  const std::string pyOut = runPythonBaseline(cmd);
+  const std::string cmd =
+      bench::benchDir() + "/python_batch_fk.py " + bench::pythonBuildDir() + " " + file + " " + std::to_string(repeats);
+  const std::string pyOut = bench::runPythonBaseline(cmd);
   std::filesystem::remove_all(dir);
   timeCpp();
   if (pyOut.empty()) {

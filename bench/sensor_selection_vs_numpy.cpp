@@ -15,7 +15,7 @@
 
 #include <unistd.h>
 
-#include "python_baseline.hpp"
+#include "bench_support.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -26,7 +26,9 @@
 
 using namespace mtacc;
 
-int main() {
+// The benchmark's size is also its agreement check's: both sides take well under a second.
+int main(int argc, char** argv) {
+  bench::agreementCheckOnly(argc, argv);
   VirtualThermalMachine machine;
   for (int j = 0; j < 16; ++j) {
     const double gain = 2.0 + static_cast<double>((7 * j) % 11);
@@ -61,8 +63,8 @@ int main() {
                                                      {"maximum_sensors", options.maximumSensors},
                                                      {"minimum_improvement", options.minimumImprovement}}
                                           .dump();
-  const std::string cmd = std::string(MTACC_BENCH_DIR) + "/sensor_selection_numpy.py " + dir.string();
-  const std::string pyOut = runPythonBaseline(cmd);
+  const std::string cmd = bench::benchDir() + "/sensor_selection_numpy.py " + dir.string();
+  const std::string pyOut = bench::runPythonBaseline(cmd);
   std::filesystem::remove_all(dir);
   const double after = timed(result), ours = (before + after) / 2;
   if (pyOut.empty()) {

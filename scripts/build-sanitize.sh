@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # Configures and builds build-sanitize/: the library, CLI, C++ tests and fuzz harnesses with
-# clang's AddressSanitizer and UndefinedBehaviorSanitizer (-O1, line tables for the reports).
+# clang's AddressSanitizer and UndefinedBehaviorSanitizer (-O1, line tables for the reports),
+# through the compiler cache (scripts/ccache-env.sh). No Python module, no benchmarks.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-CC=clang CXX=clang++ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Release \
+source scripts/ccache-env.sh
+CC=clang CXX=clang++ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Release "${ccache_launcher[@]}" \
   -DCMAKE_CXX_FLAGS_RELEASE="-O1 -gline-tables-only" -DMTACC_BUILD_FUZZERS=ON \
   -DMTACC_BUILD_PYTHON=OFF -DMTACC_BUILD_BENCH=OFF > /dev/null
 cmake --build build-sanitize -j"$(nproc)"
+echo "compiler cache (build-sanitize/): $(ccache --show-stats | grep -m1 -E '^ *Hits:' | sed 's/^ *//')"

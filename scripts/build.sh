@@ -1,16 +1,20 @@
 #!/usr/bin/env bash
-# Configures and builds mtacc (Release) in build/, and installs the Python package mtacc into
-# the site directory of Debian's /usr/bin/python3 (module, sources and a copy of the bundled
-# data: it keeps working when this checkout moves or goes).
-# Usage: scripts/build.sh [extra cmake args]
+# Configures and builds mtacc (Release) in build/ through the compiler cache
+# (scripts/ccache-env.sh), then installs the Python package with pip (scripts/install-python.sh).
+# Usage: scripts/build.sh [--example] [extra cmake args]
+#   --example: only what the main job runs: the library, the CLI and the Python module (no
+#   tests, no benchmarks)
+# For binaries that must run on older CPUs: scripts/build.sh -DMTACC_USE_AVX2=OFF
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "$@" > /dev/null
-cmake --build build -j"$(nproc)"
-site=$(/usr/bin/python3 -c 'import sysconfig; print(sysconfig.get_path("purelib"))')
-rm -f "$site/mtacc.pth"  # left by earlier versions, which pointed at one checkout
-if mkdir -p "$site" 2>/dev/null && [ -w "$site" ]; then
-  cmake --install build --component python > /dev/null
+source scripts/ccache-env.sh
+if [ "${1:-}" = --example ]; then
+  shift
+  set -- -DMTACC_BUILD_TESTS=OFF -DMTACC_BUILD_BENCH=OFF "$@"
 else
-  echo "note: cannot write $site; use PYTHONPATH=$(pwd)/build/python to import mtacc" >&2
+  set -- -DMTACC_BUILD_TESTS=ON -DMTACC_BUILD_BENCH=ON "$@"
 fi
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${ccache_launcher[@]}" "$@" > /dev/null
+cmake --build build -j"$(nproc)"
+echo "compiler cache (build/): $(ccache --show-stats | grep -m1 -E '^ *Hits:' | sed 's/^ *//')"
+bash scripts/install-python.sh

@@ -13,6 +13,8 @@
 #include <sstream>
 #include <string>
 
+#include "test_paths.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -45,7 +47,7 @@ class CliBadInput : public ::testing::Test {
   }
   CliRun run(const std::string& args) {
     const auto out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string cmd = std::string(MTACC_CLI) + " " + args + " > " + out.string() + " 2> " + err.string();
+    const std::string cmd = mtacc::test::cliPath() + " " + args + " > " + out.string() + " 2> " + err.string();
     const int status = std::system(cmd.c_str());
     return {WEXITSTATUS(status), slurp(out), slurp(err)};
   }
@@ -64,7 +66,7 @@ class CliBadInput : public ::testing::Test {
 
 // The bad-input cases of the C++ and Python tests start from the same small machine.
 const std::string kMachine = [] {
-  std::ifstream in(std::string(MTACC_TEST_DATA) + "/test-machine.yaml");
+  std::ifstream in(mtacc::test::testDataDir() + "/test-machine.yaml");
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
@@ -190,7 +192,7 @@ TEST_F(CliBadInput, SimulatedBallbarEvaluates) {
 }
 
 std::string bundledStructure(const std::string& name) {
-  std::ifstream in(std::string(MTACC_TEST_DATA) + "/../../data/structures/" + name + ".yaml");
+  std::ifstream in(mtacc::test::testDataDir() + "/../../data/structures/" + name + ".yaml");
   std::stringstream s;
   s << in.rdbuf();
   return s.str();

@@ -11,6 +11,7 @@
 #include "mtacc/io/machine_yaml.hpp"
 #include "mtacc/io/pose_text.hpp"
 #include "mtacc/kinematics/forward.hpp"
+#include "test_paths.hpp"
 
 namespace mtacc {
 namespace {
@@ -33,7 +34,7 @@ Vec3 vector3(const std::string& text) {
   return v;
 }
 
-const std::string kFolder = std::string(MTACC_TEST_DATA) + "/../../docs/examples/";
+const std::string kFolder = test::testDataDir() + "/../../docs/examples/";
 
 // The table rows of the page with `columns` cells whose first names a machine file.
 std::vector<std::vector<std::string>> machineRows(size_t columns) {

@@ -12,11 +12,12 @@
 #include "mtacc/workflows/thermal_drift.hpp"
 #include "test_helpers.hpp"
 #include "thermal_machines.hpp"
+#include "test_paths.hpp"
 
 namespace mtacc {
 namespace {
 
-const std::string kThermalData = std::string(MTACC_TEST_DATA) + "/../../data/thermal/";
+const std::string kThermalData = test::testDataDir() + "/../../data/thermal/";
 const std::string kBundled = kThermalData + "maho-spindle-drift.csv";
 const std::string kEnvironment = kThermalData + "maho-environmental-variation.csv";
 const std::string kZAxis = kThermalData + "z-axis-drift.csv";

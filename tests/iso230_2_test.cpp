@@ -10,6 +10,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/io/bundled_data.hpp"
 #include "mtacc/io/positioning_files.hpp"
 #include "mtacc/procedures/iso230_2.hpp"
 #include "mtacc/workflows/positioning.hpp"
@@ -18,7 +19,7 @@
 namespace mtacc {
 namespace {
 
-const std::string kStage = std::string(MTACC_DATA_DIR) + "/positioning/ecmc-motion-stage.dat";
+const std::string kStage = bundledDataDir() + "/positioning/ecmc-motion-stage.dat";
 
 TEST(Iso230_2, EveryFormulaOnAHandCase) {
   // Two targets, three cycles, deviations in um (stored in mm).
@@ -132,7 +133,7 @@ TEST(Iso230_2, CsvFormGivesTheSameTestAsTheKeyForm) {
 }
 
 TEST(Iso230_2, RotaryAxisInArcseconds) {
-  const auto e = evaluatePositioningFile(std::string(MTACC_DATA_DIR) + "/positioning/rotary-table.csv");
+  const auto e = evaluatePositioningFile(bundledDataDir() + "/positioning/rotary-table.csv");
   EXPECT_EQ(e.test.axis, PositioningAxis::Rotary);
   EXPECT_NEAR(e.test.targets[2], 90 * kDeg, 1e-15);
   // At 90 deg the forward deviations 0.00055, 0.00058, 0.00053, 0.00056, 0.00054 deg average 0.000552 deg.

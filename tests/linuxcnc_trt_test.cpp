@@ -15,6 +15,7 @@
 #include "mtacc/io/machine_yaml.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 #include "test_helpers.hpp"
+#include "test_paths.hpp"
 
 namespace mtacc {
 namespace {
@@ -22,7 +23,7 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 std::shared_ptr<const Machine> example(const std::string& file) {
-  return std::make_shared<const Machine>(loadMachine(std::string(MTACC_TEST_DATA) + "/../../docs/examples/" + file));
+  return std::make_shared<const Machine>(loadMachine(test::testDataDir() + "/../../docs/examples/" + file));
 }
 
 // trtfuncs.c (LinuxCNC 2.9, xyzacKinematicsInverse and xyzbcKinematicsInverse), tool-offset 0,

@@ -20,11 +20,12 @@
 #include "mtacc/workflows/machine_setup.hpp"
 #include "mtacc/workflows/thermal_drift.hpp"
 #include "test_helpers.hpp"
+#include "test_paths.hpp"
 
 namespace mtacc {
 namespace {
 
-const std::string kThermalData = std::string(MTACC_TEST_DATA) + "/../../data/thermal/";
+const std::string kThermalData = test::testDataDir() + "/../../data/thermal/";
 
 // Every direction on two sensors, "head" and "column", both 20 degC at the reference.
 SpindleDriftModel handModel() {

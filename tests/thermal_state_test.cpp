@@ -16,6 +16,7 @@
 #include "mtacc/workflows/compensation.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 #include "test_helpers.hpp"
+#include "test_paths.hpp"
 
 namespace mtacc {
 namespace {
@@ -151,7 +152,7 @@ TEST(ThermalState, KeptCurrentTheTablesFollowTheStateAsItIsRewritten) {
   std::filesystem::remove_all(folder);
   std::filesystem::create_directories(folder);
   const auto state = folder / "state.yaml";
-  const std::string model = std::string(MTACC_TEST_DATA) + "/../../data/thermal/maho-spindle-drift-model.yaml";
+  const std::string model = test::testDataDir() + "/../../data/thermal/maho-spindle-drift-model.yaml";
   const auto writeState = [&](double head) {
     writeFileAtomically(state.string(), fmt::format("spindle: {{model: {}, temperatures: {{head: {}, column: 22, bed: 21}}, probe_above_tcp: 100 mm}}\n", model, head));
   };

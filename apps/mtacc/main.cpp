@@ -8,6 +8,7 @@
 
 #include "cli_common.hpp"
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/core/version.hpp"
 
 namespace {
 
@@ -60,6 +61,7 @@ int parseFailure(CLI::App& app, const CLI::ParseError& e, int argc, char** argv)
 int main(int argc, char** argv) {
   CLI::App app{"mtacc: geometric accuracy of multi-axis machine tools"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("mtacc ") + mtacc::version());
   mtacc::cli::addCheckCommand(app);
   mtacc::cli::addForwardCommands(app);
   mtacc::cli::addInverseCommand(app);

@@ -8,6 +8,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/core/version.hpp"
 #include "mtacc/errors/aliases.hpp"
 #include "mtacc/io/measurement_csv.hpp"
 #include "mtacc/io/structure_yaml.hpp"
@@ -115,6 +116,7 @@ struct PythonMachine : MachineSetup {
 
 PYBIND11_MODULE(_mtacc, mod) {
   mod.doc() = "mtacc: geometric accuracy of multi-axis machine tools (C++ core)";
+  mod.attr("__version__") = version();
   static py::exception<InputError> inputError(mod, "InputError", PyExc_ValueError);
   static py::exception<UnreachablePose> unreachable(mod, "UnreachablePose", PyExc_ValueError);
   mod.def("positioning", [](const std::string& path) { return toPython(toJson(evaluatePositioningFile(path))); }, py::arg("path"));

@@ -23,14 +23,14 @@ _DATA = os.path.join(os.path.dirname(__file__), "data")
 if os.path.isdir(_DATA):  # the installed package carries its own copy of the bundled data
     os.environ.setdefault("MTACC_DATA_DIR", _DATA)
 
-from ._mtacc import InputError, UnreachablePose  # noqa: E402
+from ._mtacc import InputError, UnreachablePose, __version__  # noqa: E402
 from ._mtacc import Machine as _CoreMachine  # noqa: E402
 from ._mtacc import Structure as _CoreStructure  # noqa: E402
 from ._mtacc import drift_test as _drift_test  # noqa: E402
 from ._mtacc import thermal_state as _thermal_state  # noqa: E402
 from ._mtacc import positioning as _positioning  # noqa: E402
 
-__all__ = ["Machine", "Errors", "Structure", "InputError", "UnreachablePose", "positioning", "drift_test", "thermal_state"]
+__all__ = ["__version__", "Machine", "Errors", "Structure", "InputError", "UnreachablePose", "positioning", "drift_test", "thermal_state"]
 
 
 def positioning(path):

@@ -22,6 +22,8 @@ def tilting_table_report(tmp_path_factory):
                                             compare="tzyx-arm-y"))
 
 
+# The two tests of the full report share it: one worker builds it once (pytest-xdist's loadgroup).
+@pytest.mark.xdist_group("tilting-table-report")
 def test_report_is_self_contained(tilting_table_report):
     text = tilting_table_report.read_text()
     assert text.count('<figure class="plot">') >= 15
@@ -33,6 +35,7 @@ def test_report_is_self_contained(tilting_table_report):
     assert "<link" not in text and "@import" not in text and "url(http" not in text
 
 
+@pytest.mark.xdist_group("tilting-table-report")
 def test_report_renders_in_headless_chromium(tilting_table_report, tmp_path, artifacts):
     profile = tmp_path / "chromium-profile"
     url = tilting_table_report.as_uri()
@@ -54,7 +57,8 @@ def test_report_renders_in_headless_chromium(tilting_table_report, tmp_path, art
 @pytest.mark.parametrize("name", ["three-axis-vertical", "maho", "inclined-a-table", "multitasking-b-c",
                                   "swivel-head-table", "double-pivot-head"])
 def test_report_for_other_machines(tmp_path, name):
-    path = pathlib.Path(report.build_report(name, str(tmp_path)))
+    # Every topology's sections build; the budget grid's density is not what is checked here.
+    path = pathlib.Path(report.build_report(name, str(tmp_path), samples=3))
     assert path.exists() and path.stat().st_size > 10000
 
 

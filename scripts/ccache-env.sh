@@ -1,0 +1,12 @@
+# Sourced by the build scripts: compile through ccache (Debian's package), with a cache outside
+# the checkout that survives between runs on the same machine and is shared by every clone:
+# paths below the checkout are hashed relative to it (CCACHE_BASEDIR) and the build folder is not
+# hashed (CCACHE_NOHASHDIR), so a fresh clone elsewhere hits the objects of the last one.
+# 5 GB holds the Release and the sanitizer trees with room for a few versions of each.
+export CCACHE_DIR=${CCACHE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/mtacc-ccache}
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(pwd)}
+export CCACHE_NOHASHDIR=1
+mkdir -p "$CCACHE_DIR"
+ccache --max-size=5G > /dev/null
+ccache --zero-stats > /dev/null
+ccache_launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
