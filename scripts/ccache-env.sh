@@ -6,6 +6,9 @@
 export CCACHE_DIR=${CCACHE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/mtacc-ccache}
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(pwd)}
 export CCACHE_NOHASHDIR=1
+# Depend mode: on a miss, ccache takes the headers from the compiler's own -MD output instead of
+# running the preprocessor a second time (CMake passes -MD to GCC and clang).
+export CCACHE_DEPEND=1
 mkdir -p "$CCACHE_DIR"
 ccache --max-size=5G > /dev/null
 ccache --zero-stats > /dev/null
