@@ -3,7 +3,8 @@
 # paths below the checkout are hashed relative to it (CCACHE_BASEDIR) and the build folder is not
 # hashed (CCACHE_NOHASHDIR), so a fresh clone elsewhere hits the objects of the last one.
 # 5 GB holds the Release and the sanitizer trees with room for a few versions of each.
-export CCACHE_DIR=${CCACHE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/mtacc-ccache}
+home=${HOME:-$(getent passwd "$(id -u)" | cut -d: -f6)}
+export CCACHE_DIR=${CCACHE_DIR:-${XDG_CACHE_HOME:-$home/.cache}/mtacc-ccache}
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(pwd)}
 export CCACHE_NOHASHDIR=1
 # Depend mode: on a miss, ccache takes the headers from the compiler's own -MD output instead of
