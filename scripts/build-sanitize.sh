@@ -9,4 +9,4 @@ CC=clang CXX=clang++ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Release "${
   -DCMAKE_CXX_FLAGS_RELEASE="-O1 -gline-tables-only" -DMTACC_BUILD_FUZZERS=ON \
   -DMTACC_BUILD_PYTHON=OFF -DMTACC_BUILD_BENCH=OFF > /dev/null
 cmake --build build-sanitize -j"$(nproc)"
-echo "compiler cache (build-sanitize/): $(ccache --show-stats | grep -m1 -E '^ *Hits:' | sed 's/^ *//')"
+ccache_summary build-sanitize/

@@ -16,5 +16,5 @@ else
 fi
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${ccache_launcher[@]}" "$@" > /dev/null
 cmake --build build -j"$(nproc)"
-echo "compiler cache (build/): $(ccache --show-stats | grep -m1 -E '^ *Hits:' | sed 's/^ *//')"
+ccache_summary build/
 bash scripts/install-python.sh

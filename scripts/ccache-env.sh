@@ -14,3 +14,5 @@ mkdir -p "$CCACHE_DIR"
 ccache --max-size=5G > /dev/null
 ccache --zero-stats > /dev/null
 ccache_launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+# One line on what the build just took from the cache: ccache_summary FOLDER
+ccache_summary() { echo "compiler cache ($1): $(ccache --show-stats | grep -m1 -E '^ *Hits:' | sed 's/^ *//')"; }
