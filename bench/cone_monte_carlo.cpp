@@ -42,8 +42,8 @@ double medianFormError[2] = {0, 0};  // first order, exact (mm)
 double run(bool exact) {
   auto& s = setup();
   if (exact) return medianFormError[1] = coneMonteCarlo(s.machine, s.limits, s.spec, s.path, s.motion, samples, 7).statistics.median;
-  std::vector<AxisSpan> spans;
-  for (const auto& a : s.motion.axes) spans.push_back({a.min, a.range});
+  std::vector<std::string> notes;
+  const auto spans = monteCarloSpans(*s.machine, s.limits, s.motion, notes);
   std::mt19937_64 rng(7);
   std::vector<double> v;
   for (int i = 0; i < samples; ++i)

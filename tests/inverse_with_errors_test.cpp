@@ -95,6 +95,22 @@ TEST(InverseWithErrorsStiffness, MahoUnderLoadReached) {
 // The tilting table with B = 0 has the tool along C: C cannot turn the direction, so the
 // direction error across it cannot be corrected. The solution says so, reaches the position,
 // and leaves C where the nominal IK put it instead of swinging it.
+// A machine without rotary axes: the pose fk reports with its errors has a tilted tool direction
+// (the errors' angles); the inverse error model takes it back (the direction is not corrected)
+// instead of refusing it as unreachable, and finds the command fk started from.
+TEST(InverseWithErrorsThreeAxis, TheToolDirectionFkReportsIsAccepted) {
+  const auto machine = test::bundled("three-axis-vertical");
+  const auto actual = compile(machine, loadMachineErrors(*machine)), nominal = compileNominal(machine);
+  const std::vector<double> q{100, 50, 100};
+  const ToolPoint reached = toolPoint(actual, q.data());
+  ASSERT_GT((reached.direction - Vec3::UnitZ()).norm(), 1e-6);
+  const auto s = solveIkWithErrors(actual, nominal, reached.position, reached.direction);
+  EXPECT_FALSE(s.directionControlled);
+  for (size_t k = 0; k < q.size(); ++k) EXPECT_NEAR(s.q[k], q[k], 1e-6);
+  // Beyond what errors tilt (1 mrad), the direction is still refused.
+  EXPECT_THROW(solveIkWithErrors(actual, nominal, reached.position, Vec3(0.01, 0, 1).normalized()), UnreachablePose);
+}
+
 TEST(InverseWithErrorsSingular, ToolAlongTheRotaryAxisIsReported) {
   const auto machine = test::bundled("tilting-table");
   const auto nominal = compileNominal(machine), actual = compile(machine, loadMachineErrors(*machine));

@@ -4,10 +4,12 @@
 
 #include <fmt/format.h>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/io/limits_yaml.hpp"
 #include "mtacc/io/bundled_data.hpp"
 #include "mtacc/io/machine_yaml.hpp"
 #include "mtacc/procedures/monte_carlo.hpp"
+#include "mtacc/workflows/cone_study.hpp"
 #include "reference_values.hpp"
 #include "test_helpers.hpp"
 
@@ -29,8 +31,8 @@ TEST(Seed000MonteCarlo, ExactAndFirstOrderAgreeForTable3_9SizedErrors) {
   const auto nominal = compileNominal(machine);
   const auto path = conePath(spec, 720);
   const auto motion = coneMotion(nominal, spec, path);
-  std::vector<AxisSpan> spans;
-  for (const auto& a : motion.axes) spans.push_back({a.min, a.range});
+  std::vector<std::string> notes;
+  const auto spans = monteCarloSpans(*machine, limits, motion, notes);
   std::mt19937_64 rng(3);
   for (int s = 0; s < 30; ++s) {
     const auto model = compile(machine, sampleErrors(*machine, limits, spans, rng));
@@ -38,6 +40,47 @@ TEST(Seed000MonteCarlo, ExactAndFirstOrderAgreeForTable3_9SizedErrors) {
     const double first = coneFormErrorFirstOrder(model, nominal, path, motion).formError;
     EXPECT_NEAR(exact, first, 0.02 * exact) << "sample " << s;
   }
+}
+
+ConeStudy monteCarloStudy(const std::string& machine, const std::string& preset, int samples) {
+  ConeStudyOptions o;
+  if (!preset.empty()) o.spec = *conePreset(preset);
+  o.monteCarlo = samples;
+  return coneStudy(loadMachineSetup({machine, "", "", std::nullopt, ""}), o);
+}
+
+// On the NAS 979 and double-pivot paths of the tilting-table machine Z does not move (range
+// 1e-13 mm): the .lin limits divided by that range gave median form errors of 2.9e10 um. Such an
+// axis's range-relative limits are taken over its travel, said in a note, and every form error
+// stays of the order of the limits (all of Table 3.9 at once: tens of um).
+TEST(Seed000MonteCarlo, AnAxisThatDoesNotMoveOnThePathIsScaledOverItsTravel) {
+  for (const char* preset : {"nas979", "double-pivot"}) {
+    const auto s = monteCarloStudy("tilting-table", preset, 40);
+    ASSERT_TRUE(s.monteCarlo);
+    EXPECT_FALSE(s.motion.axes[2].moves) << preset;
+    ASSERT_EQ(s.monteCarlo->notes.size(), 1u) << preset;
+    EXPECT_NE(s.monteCarlo->notes[0].find("Z does not move"), std::string::npos) << s.monteCarlo->notes[0];
+    for (double e : s.monteCarlo->formErrors) {
+      EXPECT_TRUE(std::isfinite(e)) << preset;
+      EXPECT_LT(e, 0.1) << preset;  // mm
+    }
+    EXPECT_EQ(s.monteCarlo->drawn.rows(), 40);
+    EXPECT_EQ(s.monteCarlo->drawn.cols(), static_cast<Eigen::Index>(s.limits.limits.size()));
+  }
+}
+
+// The bundled limits are seed 000's tilting-table machine's: on a machine without its B axis
+// the B entries are left out (and named), not a refusal of the whole Monte Carlo.
+TEST(Seed000MonteCarlo, BundledLimitsOnAMachineWithoutTheirAxes) {
+  const auto s = monteCarloStudy("inclined-a-table", "", 10);
+  ASSERT_TRUE(s.monteCarlo);
+  EXPECT_EQ(s.limits.leftOut.size(), 19u);
+  ASSERT_FALSE(s.monteCarlo->notes.empty());
+  EXPECT_NE(s.monteCarlo->notes[0].find("19 limits"), std::string::npos) << s.monteCarlo->notes[0];
+  for (double e : s.monteCarlo->formErrors) EXPECT_LT(e, 0.1);
+  // A user's own file naming an axis the machine lacks is a typo until shown otherwise.
+  const auto machine = test::bundled("inclined-a-table");
+  EXPECT_TRUE(test::thrown<InputError>([&] { loadErrorLimits(*machine, limitsFile()); }));
 }
 
 // Table 3.5 (L4133-4145): the distribution of 1000 random combinations of the thesis' model.

@@ -3,9 +3,11 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "mtacc/kinematics/budget.hpp"
 #include "mtacc/kinematics/jacobian.hpp"
+#include "mtacc/workflows/budget.hpp"
 #include "test_helpers.hpp"
 
 namespace mtacc {
@@ -32,6 +34,42 @@ TEST(SensitivityBudget, ExactCoefficientTendsToTheJacobianProjection) {
     const double first = n.dot(jac.col(static_cast<Eigen::Index>(k)).head<3>());
     const double bound = eps * arm + 8 * std::numeric_limits<double>::epsilon() * arm / eps;
     EXPECT_NEAR(exact, first, bound) << params[k].name;
+  }
+}
+
+// The Maho machine's component errors are C1 piecewise quadratics (seed 003): each coefficient
+// alone is no error of the machine (EXX.k2c2 alone moved the TCP by 4 mm while all errors
+// together move it by 86 um). The budget has one line per error function, each bounded by the
+// combined error's order of magnitude.
+TEST(SensitivityBudget, BudgetOfAModelHasOneLinePerErrorFunction) {
+  const auto setup = loadMachineSetup({"maho", "", "", std::nullopt, ""});
+  BudgetOptions options;
+  options.samplesPerAxis = 3;
+  const auto r = errorBudget(setup, options);
+  ASSERT_FALSE(r.entries.empty());
+  std::set<std::string> names;
+  for (const auto& e : r.entries) {
+    EXPECT_TRUE(names.insert(e.name).second) << e.name << " twice";
+    EXPECT_EQ(e.name.find('.'), std::string::npos) << e.name << ": a term of a function, not the function";
+    EXPECT_LE(e.maxPositionError, 3 * r.combinedMaxPositionError) << e.name;
+  }
+  EXPECT_TRUE(names.count("EXX") == 1 && names.count("ECX") == 1);
+}
+
+// The step of k = E / epsilon on a coefficient per mm^2 is scaled to the function's value at the
+// pose: the default 30 urad applied to the coefficient itself made the function 4 rad at
+// X = 385 mm, and exact and first-order k then differed (17 with opposite signs).
+TEST(SensitivityBudget, CoefficientStepsStayInTheLinearRange) {
+  const auto setup = loadMachineSetup({"maho", "", "", std::nullopt, ""});
+  SensitivityRequest request;
+  request.q = {385, 275, 330, 45 * kDeg, -12 * kDeg};
+  const auto r = sensitivities(setup, request);
+  ASSERT_FALSE(r.rows.empty());
+  for (const auto& row : r.rows) {
+    // Both are per unit of the parameter; what one-sided differencing and rounding leave is
+    // far below 1 % of the parameter's whole effect on the TCP.
+    const double scale = row.position.norm();
+    EXPECT_NEAR(row.kExact, row.kFirstOrder, 1e-3 * scale + 1e-9) << row.parameter.name;
   }
 }
 

@@ -80,6 +80,7 @@ void run(ConeCliOptions& o) {
                          "  min {:.2f}  lower quartile {:.2f}  median {:.2f}  upper quartile {:.2f}  max {:.2f}\n",
                          s.options.monteCarlo, s.limitsFile, st.min * 1e3, st.lowerQuartile * 1e3, st.median * 1e3,
                          st.upperQuartile * 1e3, st.max * 1e3);
+    for (const auto& n : s.monteCarlo->notes) human += "  note: " + n + "\n";
   }
   if (!o.clData.empty()) {
     writeFileAtomically(o.clData, coneClData(s.path), "cl");

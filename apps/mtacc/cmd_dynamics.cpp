@@ -13,7 +13,7 @@ namespace mtacc::cli {
 namespace {
 
 struct DynamicsCliOptions : MachineOptions {
-  std::string model, at, method = "modal", quantity = "Hx/X", axes = "Y,Z", grid = "20x20", compare;
+  std::string model, at, method = "auto", quantity = "Hx/X", axes = "Y,Z", grid = "20x20", compare;
   double from = 0, to = 200, step = 1;
   int count = 12;
 };
@@ -52,7 +52,9 @@ void frf(const DynamicsCliOptions& o) {
   }
   const Eigen::Matrix3d st = r.staticCompliance * 1e6;
   std::string human = fmt::format("{}: 3x3 FRF of the TCP relative to the workpiece, {} frequencies {:g}-{:g} Hz ({})\n",
-                                  model.name, r.frequencies.size(), o.from, o.to, o.method);
+                                  model.name, r.frequencies.size(), o.from, o.to,
+                                  r.method == "modal" ? "modal sum over all modes" : "direct solve");
+  for (const auto& w : r.warnings) human += "warning: " + w + "\n";
   human += fmt::format("static compliance [um/N]:\n  {:9.5f} {:9.5f} {:9.5f}\n  {:9.5f} {:9.5f} {:9.5f}\n  {:9.5f} {:9.5f} {:9.5f}\n",
                        st(0, 0), st(0, 1), st(0, 2), st(1, 0), st(1, 1), st(1, 2), st(2, 0), st(2, 1), st(2, 2));
   human += fmt::format("largest |Hxx| {:.4f} um/N at {:g} Hz; -o FILE writes magnitude and phase of all nine terms\n", peak * 1e6,
@@ -127,7 +129,7 @@ void addDynamicsCommand(CLI::App& app) {
   f->add_option("--from", o->from, "First frequency, Hz")->capture_default_str();
   f->add_option("--to", o->to, "Last frequency, Hz")->capture_default_str();
   f->add_option("--step", o->step, "Frequency step, Hz")->capture_default_str();
-  f->add_option("--method", o->method, "modal (all modes) or direct")->capture_default_str();
+  f->add_option("--method", o->method, "auto (the modal sum where the damping is proportional, else direct), modal or direct")->capture_default_str();
   f->callback([o] { frf(*o); });
   auto* a = dyn->add_subcommand("accel", "Quasi-static response to the acceleration of each axis, um/g_n");
   common(a);

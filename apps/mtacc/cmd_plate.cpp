@@ -60,9 +60,10 @@ void runIdentify(const PlateIdentifyCliOptions& o) {
   for (const auto& e : j["estimates"]) {
     const std::string name = e["name"], unit = e["unit"];
     const bool determined = e["determined"];
-    human += fmt::format("{:<14} {:>12.4f} {:>12.4f}  {}{}\n", name, e["value"].get<double>(), e["uncertainty"].get<double>(), unit,
+    const std::string u = determined ? fmt::format("{:.4f}", e["uncertainty"].get<double>()) : "";
+    human += fmt::format("{:<14} {:>12.4f} {:>12}  {}{}\n", name, e["value"].get<double>(), determined ? u : "-", unit,
                          determined ? "" : "  (not determined)");
-    csv += fmt::format("{},{},{},{},{}\n", name, e["value"].get<double>(), e["uncertainty"].get<double>(), unit, determined ? 1 : 0);
+    csv += fmt::format("{},{},{},{},{}\n", name, e["value"].get<double>(), u, unit, determined ? 1 : 0);
   }
   if (!j["findings"].empty()) human += "\nWhat these plates cannot determine:\n";
   for (const auto& f : j["findings"]) human += "  " + f.get<std::string>() + "\n";

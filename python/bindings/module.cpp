@@ -118,7 +118,7 @@ PYBIND11_MODULE(_mtacc, mod) {
   mod.doc() = "mtacc: geometric accuracy of multi-axis machine tools (C++ core)";
   mod.attr("__version__") = version();
   static py::exception<InputError> inputError(mod, "InputError", PyExc_ValueError);
-  static py::exception<UnreachablePose> unreachable(mod, "UnreachablePose", PyExc_ValueError);
+  static py::exception<UnreachablePose> unreachable(mod, "UnreachablePose", inputError.ptr());
   mod.def("positioning", [](const std::string& path) { return toPython(toJson(evaluatePositioningFile(path))); }, py::arg("path"));
   mod.def("thermal_state", [](const std::string& machine, const std::string& thermal, int points) {
     return toPython(thermalStateSummary({machine, "", "", std::nullopt, thermal}, points));
@@ -135,6 +135,8 @@ PYBIND11_MODULE(_mtacc, mod) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const UnreachableInput& e) {
+      unreachable(e.what());
     } catch (const InputError& e) {
       inputError(e.what());
     } catch (const UnreachablePose& e) {
@@ -197,11 +199,14 @@ PYBIND11_MODULE(_mtacc, mod) {
         return py::make_tuple(toPython(toJson(r)), toArray(q));
       })
       .def("jacobian", [](const PythonMachine& s, const Array& q, const std::vector<std::string>& names) {
-        const auto joints_ = joints(*s.machine, q);
-        const auto params = names.empty() ? parameterCatalogue(*s.machine, s.errors) : findParameters(s, names);
-        std::vector<std::string> used;
-        for (const auto& p : params) used.push_back(p.name);
-        return py::make_tuple(used, toArray(parameterJacobian(compile(s.machine, s.errors, params), s.nominal(), joints_.row(0).data())));
+        const auto r = parameterJacobians(s, joints(*s.machine, q), names);
+        const auto p = static_cast<py::ssize_t>(r.parameters.size());
+        py::array_t<double> out({static_cast<py::ssize_t>(r.perPose.size()), py::ssize_t{6}, p});
+        auto w = out.mutable_unchecked<3>();
+        for (size_t i = 0; i < r.perPose.size(); ++i)
+          for (py::ssize_t row = 0; row < 6; ++row)
+            for (py::ssize_t k = 0; k < p; ++k) w(static_cast<py::ssize_t>(i), row, k) = r.perPose[i](row, k);
+        return py::make_tuple(r.parameters, out);
       })
       .def("sensitivity_coefficient", [](const PythonMachine& s, const Array& q, const std::string& name, const py::object& epsilon,
                                          const std::vector<double>& direction) {
@@ -209,7 +214,10 @@ PYBIND11_MODULE(_mtacc, mod) {
         const auto p = findParameter(*s.machine, s.errors, name);
         const double eps = quantity(epsilon, p.dimension, "epsilon");
         if (eps == 0.0) throw InputError(InputLocation{"", 0, "epsilon"}, "must not be zero");
-        return sensitivityCoefficient(s.machine, s.errors, {p, eps}, {joints_.row(0).data(), vec3(direction, "direction")});
+        const Vec3 normal = vec3(direction, "direction");
+        if (!(normal.norm() > 1e-12)) throw InputError(InputLocation{"", 0, "direction"}, "has zero length");
+        requireWithinTravel(*s.machine, joints_);
+        return sensitivityCoefficient(s.machine, s.errors, {p, eps}, {joints_.row(0).data(), normal});
       })
       .def("working_volume_grid", [](const PythonMachine& s, int samples) {
         if (samples < 2 || samples > 50) throw InputError(InputLocation{"", 0, "samples"}, "must be between 2 and 50");

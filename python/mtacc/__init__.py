@@ -15,7 +15,7 @@ parameters read back in mm or rad (see Errors.unit). One call per pose costs the
 overhead: pass all poses of a batch at once.
 """
 import os
-from collections.abc import MutableMapping
+from collections.abc import Mapping, MutableMapping
 
 import numpy as np
 
@@ -72,30 +72,51 @@ def _pose_text(pose):
 
 
 class Errors(MutableMapping):
-    """The machine's error parameters by ISO 230-1 name (aliases accepted).
+    """The machine's non-zero error parameters by ISO 230-1 name (aliases accepted).
 
-    Reading gives the value in mm (lengths) or rad (angles); writing accepts a number in
-    those units or a string with a unit such as "10 um", "30 urad", "5 arcsec".
-    Iteration visits the non-zero parameters.
+    It behaves like collections.Counter: iteration, len() and `in` cover the non-zero parameters;
+    reading a parameter the machine has but that is zero gives 0.0 (and get() its default); a name
+    the machine does not have raises KeyError; `del` sets a parameter to zero.
+
+    Units, one rule: a bare number is in the unit the parameter reads back in, mm for a length and
+    rad for an angle (unit(name) says which); a string carries its own unit ("10 um", "30 urad",
+    "5 arcsec"), and a string without one is refused. Results elsewhere (tcp_errors, budgets) are
+    in um and urad, as the command line prints them.
     """
 
     def __init__(self, core):
         self._core = core
 
     def __getitem__(self, name):
-        return self._core.get_error(name)
+        try:
+            return self._core.get_error(name)
+        except InputError as e:
+            raise KeyError(str(e)) from None
 
     def __setitem__(self, name, value):
         self._core.set_error(name, value)
 
     def __delitem__(self, name):
+        self[name]  # KeyError for a name the machine does not have
         self._core.set_error(name, 0.0)
+
+    def __contains__(self, name):
+        try:
+            return isinstance(name, str) and self._core.get_error(name) != 0.0
+        except InputError:
+            return False
+
+    def get(self, name, default=None):
+        return self[name] if name in self else default
 
     def __iter__(self):
         return iter(self._core.nonzero_errors())
 
     def __len__(self):
         return len(self._core.nonzero_errors())
+
+    def __repr__(self):
+        return f"Errors({dict(self)!r})"
 
     def unit(self, name):
         """'mm' or 'rad'."""
@@ -107,15 +128,46 @@ class Errors(MutableMapping):
 
 
 class Machine:
-    """A machine description with its errors (from the machine file, or `errors=FILE`); `load` is the
-    workpiece load in kg that scales the errors' load-dependent stiffness changes (default: their
-    file's workpiece_load); `thermal` a thermal state (YAML: the temperatures along the scales) whose
-    scale expansion joins the errors (default: cold, 20 degC)."""
+    """A machine description with its errors.
+
+    machine: a YAML file or the name of a bundled machine. errors: an errors file (replacing the
+    machine file's errors), or a dict {name: value} (the machine file's errors set to zero, then
+    these; values as Errors takes them). load: the workpiece load in kg that scales the errors'
+    load-dependent stiffness changes (default: their file's workpiece_load). thermal: a thermal
+    state (YAML: the temperatures along the scales) whose scale expansion joins the errors
+    (default: cold, 20 degC). A Machine copies (copy.copy and copy.deepcopy alike give an
+    independent machine) and pickles: its files are read again, its errors set as they were."""
 
     def __init__(self, machine, errors=None, alignment=None, load=None, thermal=None):
-        self._core = _CoreMachine(str(machine), _text(errors), _text(alignment), None if load is None else float(load), _text(thermal))
+        errors_file = None if isinstance(errors, Mapping) else errors
+        self._args = (str(machine), _text(errors_file), _text(alignment), None if load is None else float(load), _text(thermal))
+        self._build()
+        if isinstance(errors, Mapping):
+            self.errors.clear()
+            self.errors.update(errors)
+
+    def _build(self):
+        self._core = _CoreMachine(*self._args)
         self._description = self._core.check()
         self.errors = Errors(self._core)
+
+    def __getstate__(self):
+        return {"args": self._args, "errors": dict(self.errors)}
+
+    def __setstate__(self, state):
+        self._args = tuple(state["args"])
+        self._build()
+        self.errors.clear()
+        self.errors.update(state["errors"])
+
+    def __repr__(self):
+        def shown_value(name, value):
+            length = self.errors.unit(name) == "mm"
+            return f"{name}={value * (1e3 if length else 1e6):.4g} {'um' if length else 'urad'}"
+
+        shown = ", ".join(shown_value(k, v) for k, v in list(self.errors.items())[:6])
+        more = ", ..." if len(self.errors) > 6 else ""
+        return f"<mtacc.Machine {self.name!r}, {len(self.errors)} non-zero errors: {{{shown}{more}}}>"
 
     def check(self):
         """The machine summary, as `mtacc check --json` (with the current errors)."""
@@ -164,13 +216,23 @@ class Machine:
         return q
 
     def jacobian(self, q, params=None):
-        """(names, J): J is 6 x n, d(dx, dy, dz [mm], rotation [rad]) / d(parameter [mm or rad])."""
-        return self._core.jacobian(self._q(q)[:1], list(params or []))
+        """(names, J): the derivative of the pose error by each parameter.
+        q: one pose (axes,) or many (n, axes) [mm, deg], each within travel.
+        J: (6, p) for one pose, (n, 6, p) for many; rows dx, dy, dz [mm] and the rotation vector
+        [rad], one column per parameter of `names` (derivative per mm or per rad of the parameter).
+        params: the parameters to differentiate by (default: every parameter of the machine)."""
+        q = np.asarray(q, dtype=float)
+        names, J = self._core.jacobian(self._q(q), list(params or []))
+        return names, (J[0] if q.ndim == 1 else J)
 
     def sensitivity_coefficient(self, q, parameter, epsilon, direction):
-        """Seed 001 eq. 15: k = E / epsilon with the exact model; epsilon in mm/rad or with a unit
-        ("10 um"); E is the TCP deviation along `direction` (outward normal) in mm."""
-        return self._core.sensitivity_coefficient(self._q(q)[:1], parameter, epsilon, list(map(float, direction)))
+        """Seed 001 eq. 15: k = E / epsilon with the exact model, at one pose q (axes,) [mm, deg]
+        within travel; epsilon in mm/rad or with a unit ("10 um"); E is the TCP deviation along
+        `direction` (the outward normal, any length but zero) in mm. k is in mm/mm or mm/rad."""
+        q = np.asarray(q, dtype=float)
+        if q.ndim != 1:
+            raise InputError(f"q: one pose, an array of shape (axes,), not {q.shape}")
+        return self._core.sensitivity_coefficient(self._q(q), parameter, epsilon, list(map(float, direction)))
 
     def working_volume_grid(self, samples=5):
         """Grid of `samples` positions per axis across its travel (mm, deg), as the budget uses."""
@@ -367,8 +429,11 @@ class Structure:
         """As `mtacc dynamics modes --json`: frequencies, damping, dominant body, mass-normalised shapes."""
         return self._core.modes(_at(at), count)
 
-    def frf(self, frequencies, at=None, method="modal"):
-        """3x3 FRF of the TCP relative to the workpiece (um/N, complex), one per frequency (Hz)."""
+    def frf(self, frequencies, at=None, method="auto"):
+        """(n, 3, 3) complex FRF of the TCP relative to the workpiece [um/N], H[s, i, k] the
+        displacement along i per force along k (x, y, z) at frequencies[s] [Hz].
+        method: "auto" (the modal sum where the damping is proportional, where it is exact; else
+        the direct solve), "modal" or "direct". frf_method(at) says which "auto" uses."""
         rows = self._core.frf(list(map(float, frequencies)), _at(at), method)["frf"]
         h = np.empty((len(rows), 3, 3), complex)
         for s, row in enumerate(rows):
@@ -377,6 +442,12 @@ class Structure:
                     magnitude, phase = row[f"H{a}{b}"]
                     h[s, i, k] = magnitude * np.exp(1j * np.radians(phase))
         return h
+
+    def frf_method(self, at=None):
+        """The method "auto" computes the FRF with at these positions ("modal" or "direct"), and the
+        damping's coupling of the modes (0 for proportional damping)."""
+        r = self._core.frf([1.0], _at(at), "auto")
+        return r["method"], r["damping_coupling"]
 
     def acceleration_response(self, at=None):
         """As `mtacc dynamics accel --json`: {"Hx": {axis: um/g_n}, ...} (seed 000 Table 7.1 form)."""

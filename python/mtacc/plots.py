@@ -175,7 +175,7 @@ def sensitivity_along_path(machine, q_path, parameter, direction=None, s=None):
     (µm/µm or µm/µrad); with `direction`, also its projection (the sensitivity coefficient)."""
     q_path = np.asarray(q_path, float)
     s = np.arange(len(q_path)) if s is None else np.asarray(s)
-    cols = np.array([machine.jacobian(q, [parameter])[1][:3, 0] for q in q_path])
+    cols = machine.jacobian(q_path.reshape(len(q_path), -1), [parameter])[1][:, :3, 0]
     scale = 1.0 if machine.errors.unit(parameter) == "mm" else 1e-3
     cols *= scale
     unit = "µm/µm" if scale == 1.0 else "µm/µrad"

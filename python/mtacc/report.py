@@ -220,7 +220,11 @@ def dynamics_section(structure_name, compare=None):
     out += table(["mode", "f [Hz]", "damped f [Hz]", "ζ [%]"], rows, left=0)
     out += figure(plots.mode_shape_view(s, modes, 0, at), "First mode shape")
     f = np.arange(1.0, 201.0)
-    out += figure(plots.frf_plot(f, s.frf(f, at=at)), "FRF of the TCP relative to the workpiece: direct terms and cross-talk")
+    method, coupling = s.frf_method(at=at)
+    how = ("modal sum (the damping is proportional)" if method == "modal"
+           else f"direct solve (the damping couples the modes by up to {100 * coupling:.0f} %)")
+    out += figure(plots.frf_plot(f, s.frf(f, at=at)),
+                  f"FRF of the TCP relative to the workpiece: direct terms and cross-talk; {how}")
     r = s.acceleration_response(at=at)
     names = [a["name"] for a in s.axes]
     out += "<p>Quasi-static TCP displacement per axis acceleration [µm/g<sub>n</sub>] (the form of seed 000 Table 7.1):</p>"

@@ -206,6 +206,17 @@ Eigen::VectorXd modalDampingCoefficients(const StructureMatrices& m, const Modes
   return modes.shapes.cwiseProduct(dampedShapes).colwise().sum().transpose();
 }
 
+double modalDampingCoupling(const StructureMatrices& m, const Modes& modes) {
+  const Eigen::MatrixXd modal = modes.shapes.transpose() * m.damping * modes.shapes;
+  double coupling = 0;
+  for (Eigen::Index i = 0; i < modal.rows(); ++i)
+    for (Eigen::Index k = 0; k < i; ++k) {
+      const double scale = std::sqrt(std::abs(modal(i, i) * modal(k, k)));
+      if (modal(i, k) != 0) coupling = std::max(coupling, scale > 0 ? std::abs(modal(i, k)) / scale : 1.0);
+    }
+  return coupling;
+}
+
 namespace {
 
 // The six distinct entries of the symmetric H at every frequency, by modal superposition:

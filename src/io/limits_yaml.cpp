@@ -10,11 +10,11 @@
 
 namespace mtacc {
 
-ErrorLimits loadErrorLimits(const Machine& machine, const std::string& path) {
-  return parseErrorLimits(machine, readTextFile(path), path);
+ErrorLimits loadErrorLimits(const Machine& machine, const std::string& path, AbsentAxes absent) {
+  return parseErrorLimits(machine, readTextFile(path), path, absent);
 }
 
-ErrorLimits parseErrorLimits(const Machine& machine, const std::string& yamlText, const std::string& path) {
+ErrorLimits parseErrorLimits(const Machine& machine, const std::string& yamlText, const std::string& path, AbsentAxes absent) {
   const yamlin::Context ctx{path};
   const auto root = yamlin::loadText(yamlText, path);
   if (!root.IsMap() || !root["limits"] || !root["limits"].IsMap()) ctx.fail(root, "limits", "expected a 'limits:' mapping");
@@ -29,9 +29,14 @@ ErrorLimits parseErrorLimits(const Machine& machine, const std::string& yamlText
     l.key = name;
     YAML::Node range = kv.second;
     std::smatch m;
-    if (std::regex_match(name, m, pattern)) {
-      l.axis = machine.axisIndex(m[3]);
-      if (l.axis < 0) ctx.fail(kv.first, key, "unknown axis '" + m[3].str() + "'");
+    const std::string axisName = std::regex_match(name, m, pattern) ? m[3].str() : name.size() > 2 ? name.substr(2) : "";
+    if (absent == AbsentAxes::LeaveOut && machine.commandedAxisIndex(axisName) < 0) {
+      out.leftOut.push_back(name);
+      continue;
+    }
+    if (!m.empty()) {
+      l.axis = machine.axisIndex(axisName);
+      if (l.axis < 0) ctx.fail(kv.first, key, "unknown axis '" + axisName + "'");
       l.component = static_cast<int>(std::string("XYZABC").find(m[2].str()[0]));
       const std::string type = m[4];
       l.kind = type == "lin" ? ErrorLimit::Linear : type == "hyst" ? ErrorLimit::Reversal

@@ -31,11 +31,41 @@ std::vector<BudgetItem> budgetItemsAtMagnitude(const Machine& machine, double le
   return items;
 }
 
+namespace {
+
+// The largest |value| of an error function over the axis's travel (one turn for a continuous
+// axis), both directions of motion: the magnitude a budget line states for it.
+double largestValue(const ErrorFunction& f, const Axis& axis) {
+  const AxisSpan span = harmonicSpan(axis);
+  constexpr int kSamples = 400;
+  double largest = 0;
+  for (int i = 0; i <= kSamples; ++i)
+    for (int direction : {-1, 1})
+      largest = std::max(largest, std::abs(f.value(span.min + span.range * i / kSamples, direction)));
+  return largest;
+}
+
+}  // namespace
+
 std::vector<BudgetItem> budgetItemsOfModel(const Machine& machine, const ErrorModel& errors) {
   std::vector<BudgetItem> items;
+  std::vector<std::pair<int, int>> functionsDone;
   for (const auto& p : nonZeroParameters(machine, errors)) {
-    const double v = parameterValue(errors, p);
-    items.push_back({p.name, p.dimension, v, singleError(machine, errors, p, v)});
+    if (p.kind != ParameterKind::Motion) {
+      const double v = parameterValue(errors, p);
+      items.push_back({p.name, p.dimension, v, singleError(machine, errors, p, v)});
+      continue;
+    }
+    // A component error is one line however many terms or coefficients describe it: the
+    // coefficients of a piecewise or polynomial function alone are not errors of the machine.
+    const std::pair<int, int> function{p.axis, p.component};
+    if (std::find(functionsDone.begin(), functionsDone.end(), function) != functionsDone.end()) continue;
+    functionsDone.push_back(function);
+    const auto& f = errors.axes[static_cast<size_t>(p.axis)].motion[static_cast<size_t>(p.component)];
+    ErrorModel alone = ErrorModel::zero(machine);
+    alone.axes[static_cast<size_t>(p.axis)].motion[static_cast<size_t>(p.component)] = f;
+    items.push_back({motionErrorName(machine, p.axis, p.component), p.component < 3 ? Dimension::Length : Dimension::Angle,
+                     largestValue(f, machine.axes[static_cast<size_t>(p.axis)]), std::move(alone)});
   }
   return items;
 }

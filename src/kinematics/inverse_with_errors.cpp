@@ -140,7 +140,17 @@ void refineWithErrors(const KinematicModel& actual, const Vec3& position, const 
 
 ErrorIkSolution solveIkWithErrors(const KinematicModel& actual, const KinematicModel& nominal, const Vec3& position,
                                   const Vec3& toolDirection, const ErrorIkOptions& o) {
-  const IkSolution start = solveIk(nominal, position, toolDirection.normalized(), o.ik);
+  Vec3 startDirection = toolDirection.normalized();
+  if (nominal.machine->rotaryCount() == 0) {
+    // The errors tilt the one direction a machine without rotary axes has (fk reports it tilted),
+    // and its direction is not corrected: start from the nominal direction when the target's is
+    // within what errors can tilt.
+    const std::vector<double> home(static_cast<size_t>(nominal.machine->commandedCount()), 0.0);
+    const Vec3 fixed = toolPoint(nominal, home.data()).direction;
+    constexpr double kLargestTilt = 1e-3;  // rad
+    if (std::acos(std::clamp(fixed.dot(startDirection), -1.0, 1.0)) <= kLargestTilt) startDirection = fixed;
+  }
+  const IkSolution start = solveIk(nominal, position, startDirection, o.ik);
   ErrorIkJacobian jacobian;
   ErrorIkSolution s = refineWithErrors(actual, position, toolDirection, start.q, o, jacobian, start.singular);
   s.nominalQ = start.q;

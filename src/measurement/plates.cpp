@@ -316,7 +316,17 @@ PlateIdentification identifyFromPlates(const std::shared_ptr<const Machine>& mac
   // minimum-norm solution on the observable subspace, its covariance, and (as R D, which has
   // A's singular values and column norms) the observability report, without squaring A's
   // condition number as normal equations would.
-  const Eigen::VectorXd norms = a.colwise().norm().transpose().cwiseMax(1e-300);
+  // A column without effect (a zero column, to rounding) is held at zero: scaled by its tiny norm
+  // the solve's rounding would come back as values of 1e289.
+  Eigen::VectorXd norms = a.colwise().norm().transpose();
+  const double largest = norms.size() > 0 ? norms.maxCoeff() : 0.0;
+  std::vector<bool> noEffect(static_cast<size_t>(n));
+  for (Eigen::Index k = 0; k < n; ++k)
+    if (norms[k] <= 1e-12 * largest) {
+      noEffect[static_cast<size_t>(k)] = true;
+      a.col(k).setZero();
+      norms[k] = 1.0;
+    }
   Eigen::MatrixXd augmented(a.rows(), n + 1);
   augmented.leftCols(n) = a * norms.cwiseInverse().asDiagonal();
   augmented.col(n) = b;
@@ -340,6 +350,8 @@ PlateIdentification identifyFromPlates(const std::shared_ptr<const Machine>& mac
   out.sigma = std::sqrt(std::max(0.0, residualSquares) / std::max(1, out.degreesOfFreedom));
   const double scale = weighted ? 1.0 : out.sigma;  // weighted: the stated noise sets the scale
   out.covariance = scale * scale * norms.cwiseInverse().asDiagonal() * pseudo * norms.cwiseInverse().asDiagonal();
+  for (Eigen::Index k = 0; k < n; ++k)
+    if (noEffect[static_cast<size_t>(k)]) out.values[k] = 0.0;
   out.uncertainty = out.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
   Eigen::VectorXd typical(n);
   for (Eigen::Index k = 0; k < n; ++k) typical[k] = k < static_cast<Eigen::Index>(parameters.size()) && parameters[static_cast<size_t>(k)].dimension == Dimension::Angle ? 1e-5 : 1e-3;

@@ -22,6 +22,8 @@ std::vector<double> basePose(const Machine& m, const std::vector<double>& pose) 
 
 int commandedAxis(const Machine& m, const std::string& name) {
   const int j = m.axisIndex(name);
+  if (j >= 0 && j == m.spindleIndex())
+    throw std::invalid_argument("'" + name + "' is the spindle of " + m.name + ", not a commanded rotary axis");
   if (j < 0 || !m.axes[static_cast<size_t>(j)].isRotary())
     throw std::invalid_argument("'" + name + "' is not a rotary axis of " + m.name);
   return j;

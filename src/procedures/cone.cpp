@@ -145,6 +145,7 @@ ConeMotion coneMotion(const KinematicModel& nominal, const ConeSpec& spec, const
       a.maxAcceleration = std::max(a.maxAcceleration, std::abs(curvature) * phiDot * phiDot);
     }
     a.range = a.max - a.min;
+    a.moves = a.range > 1e-9 * std::max({1.0, std::abs(a.min), std::abs(a.max)});
     // A reversal is a change of the sign of motion, standing still in between allowed.
     const double still = 1e-9 * std::max(1.0, a.range);
     auto sign = [&](size_t i) { return slope[i] > still ? 1 : (slope[i] < -still ? -1 : 0); };

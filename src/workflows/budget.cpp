@@ -56,6 +56,21 @@ nlohmann::json toJson(const BudgetResult& r) {
   return j;
 }
 
+namespace {
+
+// The step of k = E / epsilon: a location error or a term's amplitude moves by the requested
+// length or angle; a coefficient whose basis is a power of the position (a piecewise or
+// polynomial coefficient, per mm or mm^2) by as much as makes the error function move by that
+// length or angle at this pose, so that the step stays in the linear range.
+double parameterStep(const Machine& m, const ErrorModel& errors, const Parameter& p, const double* q, double step) {
+  if (p.kind != ParameterKind::Motion || p.axis >= m.commandedCount()) return step;
+  const auto& f = errors.axes[static_cast<size_t>(p.axis)].motion[static_cast<size_t>(p.component)];
+  const double basis = std::abs(f.basis(p.index, q[p.axis], 0));
+  return basis > 1.0 ? step / basis : step;
+}
+
+}  // namespace
+
 SensitivityResult sensitivities(const MachineSetup& setup, const SensitivityRequest& request) {
   const Machine& m = *setup.machine;
   if (request.q.size() != static_cast<size_t>(m.commandedCount()))
@@ -78,7 +93,7 @@ SensitivityResult sensitivities(const MachineSetup& setup, const SensitivityRequ
     // Per unit of the parameter in its display unit: um/um or um/urad.
     const double perUnit = length ? 1.0 : 1e-3;
     const Vec6 col = jac.col(static_cast<Eigen::Index>(k));
-    const double eps = length ? request.epsilonLength : request.epsilonAngle;
+    const double eps = parameterStep(m, setup.errors, p, request.q.data(), length ? request.epsilonLength : request.epsilonAngle);
     r.rows.push_back({p, col.head<3>() * perUnit, col.tail<3>() * (length ? 1e3 : 1.0), r.direction.dot(col.head<3>()) * perUnit,
                       sensitivityCoefficient(setup.machine, setup.errors, {p, eps}, {request.q.data(), r.direction}) * perUnit});
   }

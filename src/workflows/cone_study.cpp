@@ -4,6 +4,9 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/bundled_data.hpp"
@@ -52,7 +55,7 @@ ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyOptions& options) 
   try {
     s.motion = coneMotion(nominal, spec, s.path, {options.branch, options.feed});
   } catch (const UnreachablePose& e) {
-    throw InputError(InputLocation{"", 0, "centre"}, std::string("the path cannot be machined: ") + e.what());
+    throw UnreachableInput(InputLocation{"", 0, "centre"}, std::string("the path cannot be machined: ") + e.what());
   }
   s.closedForm = rotaryRangesClosedForm(spec.alpha, spec.beta);
   s.machineNormals.resize(static_cast<Eigen::Index>(s.path.normals.size()), 3);
@@ -76,9 +79,14 @@ ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyOptions& options) 
                      [](const auto& a, const auto& b) { return a.form.formError > b.form.formError; });
   }
   if (options.monteCarlo > 0) {
-    s.limitsFile = options.limitsFile.empty() ? bundledDataDir() + "/limits/seed000-table3.9.yaml" : options.limitsFile;
-    const auto limits = loadErrorLimits(m, s.limitsFile);
-    s.monteCarlo = coneMonteCarlo(setup.machine, limits, spec, s.path, s.motion, options.monteCarlo, options.seed, options.progress);
+    const bool bundled = options.limitsFile.empty();
+    s.limitsFile = bundled ? bundledDataDir() + "/limits/seed000-table3.9.yaml" : options.limitsFile;
+    s.limits = loadErrorLimits(m, s.limitsFile, bundled ? AbsentAxes::LeaveOut : AbsentAxes::Refuse);
+    s.monteCarlo = coneMonteCarlo(setup.machine, s.limits, spec, s.path, s.motion, options.monteCarlo, options.seed, options.progress);
+    if (!s.limits.leftOut.empty())
+      s.monteCarlo->notes.insert(s.monteCarlo->notes.begin(),
+                                 fmt::format("{} limits of seed 000's tilting-table machine left out: their axes are not on this machine ({})",
+                                             s.limits.leftOut.size(), fmt::join(s.limits.leftOut, ", ")));
   }
   return s;
 }
@@ -131,7 +139,20 @@ nlohmann::json toJson(const ConeStudy& s) {
     j["monte_carlo"] = {{"samples", s.options.monteCarlo}, {"limits", s.limitsFile}, {"seed", s.options.seed},
                         {"min_um", st.min * 1e3}, {"lower_quartile_um", st.lowerQuartile * 1e3}, {"median_um", st.median * 1e3},
                         {"upper_quartile_um", st.upperQuartile * 1e3}, {"max_um", st.max * 1e3},
-                        {"form_errors_um", umArray(s.monteCarlo->formErrors)}};
+                        {"form_errors_um", umArray(s.monteCarlo->formErrors)}, {"notes", s.monteCarlo->notes}};
+    // Each limit's drawn value per sample, in the unit of its error (um or urad).
+    nlohmann::json names = nlohmann::json::array(), units = nlohmann::json::array(), values = nlohmann::json::array();
+    for (const auto& l : s.limits.limits) {
+      names.push_back(l.key);
+      units.push_back(l.component < 3 ? "um" : "urad");
+    }
+    for (Eigen::Index i = 0; i < s.monteCarlo->drawn.rows(); ++i) {
+      nlohmann::json row = nlohmann::json::array();
+      for (Eigen::Index k = 0; k < s.monteCarlo->drawn.cols(); ++k)
+        row.push_back(s.monteCarlo->drawn(i, k) * (s.limits.limits[static_cast<size_t>(k)].component < 3 ? 1e3 : 1e6));
+      values.push_back(std::move(row));
+    }
+    j["monte_carlo"]["drawn"] = {{"names", names}, {"units", units}, {"values", values}};
   }
   return j;
 }

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/io/cubic_test_yaml.hpp"
 
@@ -17,7 +20,7 @@ IdentificationOutcome identifyFromZones(const MachineSetup& setup, const CubicTe
   try {
     all = cubicZoneRuns(aligned.nominal(), spec, slopes);
   } catch (const UnreachablePose& e) {
-    throw InputError(InputLocation{"", 0, "test"}, std::string("the test cannot be machined: ") + e.what());
+    throw UnreachableInput(InputLocation{"", 0, "test"}, std::string("the test cannot be machined: ") + e.what());
   }
   const auto points = cubicZoneRunPoints(spec, slopes);
   IdentificationRequest r;
@@ -35,7 +38,22 @@ IdentificationOutcome identifyFromZones(const MachineSetup& setup, const CubicTe
     run.noise = results.noise;
     r.runs.push_back(std::move(run));
   }
-  return identifyParameters(aligned, r);
+  auto outcome = identifyParameters(aligned, r);
+  // The zone model measures each zone at its clamped pose at standstill; the cut moves the axes,
+  // and a reversal error shifts it by half its width one way or the other. Held at their values,
+  // such errors are not in the model, and what they do to the cut biases the estimates.
+  std::vector<std::string> reversals;
+  for (size_t a = 0; a < setup.errors.axes.size(); ++a)
+    for (int c = 0; c < 6; ++c)
+      for (const auto& t : setup.errors.axes[a].motion[static_cast<size_t>(c)].terms())
+        if (const auto* rev = std::get_if<ReversalTerm>(&t); rev && rev->width != 0.0)
+          reversals.push_back(motionErrorName(*setup.machine, static_cast<int>(a), c));
+  if (!reversals.empty())
+    outcome.quality.warnings.push_back(
+        fmt::format("the errors have reversal terms ({}): ", fmt::join(reversals, ", ")) +
+        "the zone model takes each zone at its clamped pose at standstill and does not see what a reversal does to the "
+        "cut, so the estimates carry their effect (simulate the zones without them, or measure them and compensate first)");
+  return outcome;
 }
 
 IdentificationOutcome identifyFromZones(const MachineSetup& setup, const CubicIdentificationRequest& request) {

@@ -74,7 +74,7 @@ CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestOptions&
   try {
     s.path = cubicToolPath(nominal, spec);
   } catch (const UnreachablePose& e) {
-    throw InputError(InputLocation{"", 0, "test"}, std::string("the test cannot be machined: ") + e.what());
+    throw UnreachableInput(InputLocation{"", 0, "test"}, std::string("the test cannot be machined: ") + e.what());
   }
   s.referenceZone = referenceZone(spec);
   const HeightGrid grid = squareGrid(spec.blockSize, options.gridSpacing, "grid", spec.centreX, spec.centreY);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
@@ -89,11 +91,24 @@ std::vector<double> frequencyGrid(double from, double to, double step) {
 }
 
 FrfResult structureFrf(const StructureModel& model, const FrfRequest& request) {
-  FrfResult r{model.name, request.method, request.frequencies, {}, Eigen::Matrix3d::Zero()};
+  for (const double f : request.frequencies)
+    if (!(f >= 0 && f <= 1e9)) throw InputError(InputLocation{"", 0, "frequencies"}, fmt::format("{} Hz: expected 0 to 1e9 Hz", f));
+  if (request.method != "auto" && request.method != "modal" && request.method != "direct")
+    throw InputError(InputLocation{"", 0, "method"}, "expected auto, modal or direct");
+  FrfResult r;
+  r.model = model.name;
+  r.frequencies = request.frequencies;
   const auto mats = assembleStructure(model, request.positions);
-  if (request.method == "modal") r.frf = frfModal(mats, undampedModes(model, mats), request.frequencies);
-  else if (request.method == "direct") r.frf = frfDirect(mats, request.frequencies);
-  else throw InputError(InputLocation{"", 0, "method"}, "expected modal or direct");
+  const auto modes = undampedModes(model, mats);
+  r.dampingCoupling = modalDampingCoupling(mats, modes);
+  // Rounding leaves ~1e-12 of coupling in a proportional damping; a real coupling is percent.
+  constexpr double kProportional = 1e-6;
+  r.method = request.method == "auto" ? (r.dampingCoupling <= kProportional ? "modal" : "direct") : request.method;
+  if (r.method == "modal" && r.dampingCoupling > kProportional)
+    r.warnings.push_back(fmt::format("the damping is not proportional (modes coupled up to {:.1f} % by it): the modal sum "
+                                     "ignores that coupling; method direct is exact",
+                                     100 * r.dampingCoupling));
+  r.frf = r.method == "modal" ? frfModal(mats, modes, request.frequencies) : frfDirect(mats, request.frequencies);
   r.staticCompliance = staticCompliance(mats);
   return r;
 }
@@ -103,6 +118,8 @@ nlohmann::json toJson(const FrfResult& r) {
   nlohmann::json j;
   j["model"] = r.model;
   j["method"] = r.method;
+  j["damping_coupling"] = r.dampingCoupling;
+  j["warnings"] = r.warnings;
   j["units"] = {{"magnitude", "um/N"}, {"phase", "deg"}};
   j["frf"] = nlohmann::json::array();
   for (size_t s = 0; s < r.frequencies.size(); ++s) {

@@ -3,8 +3,29 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/forward.hpp"
+#include "mtacc/kinematics/jacobian.hpp"
 
 namespace mtacc {
+
+void requireWithinTravel(const Machine& m, const JointMatrix& q, const std::vector<int>& lines, const std::string& file) {
+  for (Eigen::Index r = 0; r < q.rows(); ++r) {
+    const auto violation = m.travelViolation({q.row(r).data(), static_cast<size_t>(q.cols())});
+    if (violation.empty()) continue;
+    if (static_cast<size_t>(r) < lines.size()) throw InputError(InputLocation{file, lines[static_cast<size_t>(r)], ""}, "pose " + violation);
+    throw InputError(InputLocation{file, 0, q.rows() == 1 ? "pose" : "row " + std::to_string(r)}, "pose " + violation);
+  }
+}
+
+ParameterJacobians parameterJacobians(const MachineSetup& setup, const JointMatrix& q, const std::vector<std::string>& names) {
+  requireWithinTravel(*setup.machine, q);
+  const auto params = names.empty() ? parameterCatalogue(*setup.machine, setup.errors) : findParameters(setup, names);
+  ParameterJacobians out;
+  for (const auto& p : params) out.parameters.push_back(p.name);
+  const auto model = compile(setup.machine, setup.errors, params);
+  const auto nominal = setup.nominal();
+  for (Eigen::Index r = 0; r < q.rows(); ++r) out.perPose.push_back(parameterJacobian(model, nominal, q.row(r).data()));
+  return out;
+}
 
 ForwardResult forwardKinematics(const MachineSetup& setup, const JointMatrix& q, const DirectionMatrix& direction,
                                 const ForwardOptions& options, const std::vector<int>& lines, const std::string& file) {
@@ -14,14 +35,8 @@ ForwardResult forwardKinematics(const MachineSetup& setup, const JointMatrix& q,
 ForwardResult forwardKinematics(const KinematicModel& actualModel, const KinematicModel& nominal, const JointMatrix& q,
                                 const DirectionMatrix& direction, const ForwardOptions& options, const std::vector<int>& lines,
                                 const std::string& file) {
-  const Machine& m = *nominal.machine;
   if (options.threads < 0) throw InputError(InputLocation{"", 0, "threads"}, "must be 0 (all cores) or a positive count");
-  for (Eigen::Index r = 0; r < q.rows(); ++r) {
-    const auto violation = m.travelViolation({q.row(r).data(), static_cast<size_t>(q.cols())});
-    if (violation.empty()) continue;
-    if (static_cast<size_t>(r) < lines.size()) throw InputError(InputLocation{file, lines[static_cast<size_t>(r)], ""}, "pose " + violation);
-    throw InputError(InputLocation{file, 0, q.rows() == 1 ? "pose" : "row " + std::to_string(r)}, "pose " + violation);
-  }
+  requireWithinTravel(*nominal.machine, q, lines, file);
   ForwardResult out;
   out.machine = nominal.machine;
   out.nominal = options.nominal;
@@ -94,7 +109,7 @@ InverseResult inverseKinematics(const KinematicModel& actual, const KinematicMod
     else
       out.solutions = solveIkPath(nominal, request.positions, request.directions, request.options);
   } catch (const UnreachableTarget& e) {
-    throw InputError(where(e.index, "tcp"), std::string("unreachable: ") + e.what());
+    throw UnreachableInput(where(e.index, "tcp"), std::string("unreachable: ") + e.what());
   }
   return out;
 }

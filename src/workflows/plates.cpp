@@ -17,7 +17,7 @@ PlatePoses measuredPlatePoses(const KinematicModel& nominal, const PlateMeasurem
   try {
     return platePoses(nominal, m.plate, m.placement);
   } catch (const UnreachablePose& e) {
-    throw InputError(InputLocation{m.file, m.originLine, "origin"}, e.what());
+    throw UnreachableInput(InputLocation{m.file, m.originLine, "origin"}, e.what());
   }
 }
 
@@ -119,11 +119,15 @@ nlohmann::json toJson(const PlateIdentificationStudy& s) {
     const bool machine = k < s.parameters.size();
     const bool angle = machine ? s.parameters[k].dimension == Dimension::Angle : s.result.names[k].ends_with(".rot");
     const double unit = angle ? 1e6 : 1e3;
+    // Undetermined: the minimum-norm share of a group the plates cannot separate, or 0 for a
+    // parameter without effect, with no uncertainty to state.
+    const bool determined = s.result.determined[k];
     estimates.push_back({{"name", s.result.names[k]},
                          {"value", s.result.values[static_cast<Eigen::Index>(k)] * unit},
-                         {"uncertainty", s.result.uncertainty[static_cast<Eigen::Index>(k)] * unit},
+                         {"uncertainty", determined ? nlohmann::json(s.result.uncertainty[static_cast<Eigen::Index>(k)] * unit)
+                                                    : nlohmann::json(nullptr)},
                          {"unit", angle ? "urad" : "um"},
-                         {"determined", static_cast<bool>(s.result.determined[k])}});
+                         {"determined", determined}});
   }
   return {{"files", s.files},
           {"readings", s.result.readings},

@@ -33,8 +33,10 @@ ErrorModel stiffnessOnly(const Machine& machine, const ErrorModel& errors) {
 
 StiffnessSummary summariseStiffness(const MachineSetup& setup, int samplesPerAxis) {
   if (setup.errors.stiffness.empty())
-    throw InputError(InputLocation{"", 0, "errors"},
-                     "the errors have no stiffness changes: give them as 'stiffness:' terms (docs/errors-file.md)");
+    throw InputError(InputLocation{"", 0, ""},
+                     "the errors of " + setup.machine->name +
+                         " have no stiffness changes (with another axis's position or the workpiece load): give them as "
+                         "'stiffness:' terms of an errors file (docs/file-formats.md, \"Finite stiffness\")");
   const Machine& m = *setup.machine;
   const JointMatrix grid = workingVolumeGrid(m, samplesPerAxis);
   const DirectionMatrix none;

@@ -91,3 +91,28 @@ def test_identify_from_plates(cli, tmp_path):
     path = tmp_path / "identified.yaml"
     path.write_text("errors:\n" + r["yaml"])
     assert mtacc.Machine("maho", errors=path).tcp_errors(np.zeros((1, 5))).shape == (1, 6)
+
+
+def test_one_plate_leaves_what_it_cannot_see_at_zero(cli, tmp_path):
+    # The README's flow with one plate in the XY plane: the Z axis's pitch and straightness terms
+    # have no effect on it. They used to come back as 1e289 um (their zero columns scaled by their
+    # norms) and the YAML written was then refused. Every estimate is finite and of the size of the
+    # machine's errors, those without effect are held at 0 with no uncertainty, and the YAML loads.
+    plate = tmp_path / "plate.csv"
+    subprocess.run([cli, "simulate", "plate", "maho", "--origin=-350,-455,-18mm", "--noise", "0.5um", "-o", str(plate)],
+                   check=True, capture_output=True)
+    yaml = tmp_path / "identified.yaml"
+    out = subprocess.run([cli, "plate-identify", "maho", str(plate), "--piece", "100", "--json", "--yaml-out", str(yaml)],
+                         capture_output=True, text=True, check=True)
+    r = json.loads(out.stdout)
+    values = np.array([e["value"] for e in r["estimates"]], float)
+    assert np.all(np.isfinite(values)) and np.abs(values).max() < 1000.0
+    no_effect = [f.split(" has no effect")[0] for f in r["findings"] if " has no effect" in f]
+    assert no_effect
+    for e in r["estimates"]:
+        if e["name"] in no_effect:
+            assert e["value"] == 0.0 and e["uncertainty"] is None and not e["determined"]
+        if not e["determined"]:
+            assert e["uncertainty"] is None
+    check = subprocess.run([cli, "check", "maho", "--errors", str(yaml)], capture_output=True, text=True)
+    assert check.returncode == 0, check.stderr

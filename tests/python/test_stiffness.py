@@ -3,6 +3,7 @@ scaling the changes, the bundled 260 kg file adding to the machine's own errors,
 report section."""
 import json
 import pathlib
+import re
 import subprocess
 
 import numpy as np
@@ -38,8 +39,12 @@ def test_the_load_scales_the_changes_and_the_geometric_errors_stay():
 
 
 def test_a_machine_without_changes_is_told_so(cli):
+    # No --errors was given, so the message does not blame it, and the page it cites exists.
     run = subprocess.run([cli, "stiffness", "maho"], capture_output=True, text=True)
     assert run.returncode != 0 and "no stiffness changes" in run.stderr and run.stderr.count("\n") == 1
+    assert "--errors" not in run.stderr
+    cited = re.search(r"(docs/[\w-]+\.md)", run.stderr).group(1)
+    assert (pathlib.Path(__file__).resolve().parents[2] / cited).exists(), cited
 
 
 def test_plot_and_report_section(cli, tmp_path):

@@ -23,6 +23,14 @@ class InputError : public std::runtime_error {
   std::string reason_;
 };
 
+// Input that is well formed but asks for a pose the machine cannot reach (a TCP or a tool
+// direction out of its reach): the CLI reports it as any InputError, Python raises
+// UnreachablePose (itself an InputError there).
+class UnreachableInput : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 // Raised when a requested pose cannot be reached (direction impossible, beyond travel,
 // singular without a rule to resolve it).
 class UnreachablePose : public std::runtime_error {

@@ -44,6 +44,9 @@ Modes undampedModes(const StructureModel& model, const StructureMatrices& m);
 // phi_r^T D phi_r per mode (1/s): the modal equations q'' + c_r q' + w_r^2 q = phi_r^T f,
 // exact for proportional damping.
 Eigen::VectorXd modalDampingCoefficients(const StructureMatrices& m, const Modes& modes);
+// How far the damping is from proportional: the largest off-diagonal term of phi^T D phi over
+// the geometric mean of its two diagonal terms. 0 when the modal sum is exact.
+double modalDampingCoupling(const StructureMatrices& m, const Modes& modes);
 
 struct DampedMode {
   double frequency;     // Hz, |lambda| / 2 pi

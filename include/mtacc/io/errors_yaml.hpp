@@ -1,6 +1,6 @@
 #pragma once
 // Reading error descriptions: the `errors:` mapping of a machine file or of a separate file
-// (schema in docs/errors-file.md). Names are ISO 230-1 or an alias from aliases.hpp; every
+// (schema in docs/file-formats.md, "Errors"). Names are ISO 230-1 or an alias from aliases.hpp; every
 // value states its unit.
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Loading a machine description (YAML; schema in docs/machine-file.md).
+// Loading a machine description (YAML; schema in docs/file-formats.md, "Machine description").
 #include <string>
 
 #include "mtacc/machine/machine.hpp"

@@ -45,7 +45,9 @@ struct BudgetEntry {
 // Every location error at `length` / `angle`, and each of the six component errors of every
 // axis as a constant of that magnitude.
 std::vector<BudgetItem> budgetItemsAtMagnitude(const Machine& machine, double length, double angle);
-// Each non-zero parameter of `errors`, alone, at its own value.
+// Each non-zero location error of `errors`, alone, at its own value, and each non-zero
+// component error function whole (all its terms), named by the function ("EXX") with its
+// largest |value| over the axis's travel as the magnitude.
 std::vector<BudgetItem> budgetItemsOfModel(const Machine& machine, const ErrorModel& errors);
 
 // Grid of `samplesPerAxis` positions per commanded axis over its travel (one turn for a

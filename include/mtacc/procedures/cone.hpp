@@ -52,6 +52,7 @@ double rotarySpeedFactorAtStart(double alpha, double beta);
 struct AxisMotion {
   std::string axis;
   double min = 0, max = 0, range = 0;       // mm or rad
+  bool moves = false;                       // range above rounding (1e-9 of the position)
   std::vector<double> reversalsPhi;         // rad, where the axis changes direction
   double maxSpeed = 0, maxAcceleration = 0; // per minute and per minute^2 at the feed (mm or rad)
 };

@@ -46,6 +46,7 @@ struct ConeStudy {
   std::vector<ConeSingleError> singleErrors;  // largest first
   std::optional<ConeMonteCarlo> monteCarlo;
   std::string limitsFile;
+  ErrorLimits limits;  // as drawn: their names and units label monteCarlo->drawn's columns
 };
 
 ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyOptions& options);

@@ -35,10 +35,16 @@ nlohmann::json toJson(const ModesResult& result, int count);
 struct FrfRequest {
   std::vector<double> positions;  // m
   std::vector<double> frequencies;  // Hz
-  std::string method = "modal";     // or "direct"
+  // "auto": the modal sum where the damping is proportional (it is exact there), else the
+  // direct solve; "modal" or "direct" to force one (a forced modal sum on a non-proportional
+  // damping is flagged in the result's warnings).
+  std::string method = "auto";
 };
 struct FrfResult {
-  std::string model, method;
+  std::string model;
+  std::string method;            // the one that computed the FRF: "modal" or "direct"
+  double dampingCoupling = 0;    // modalDampingCoupling: 0 for proportional damping
+  std::vector<std::string> warnings;
   std::vector<double> frequencies;
   Frf frf;                       // m/N
   Eigen::Matrix3d staticCompliance;  // m/N

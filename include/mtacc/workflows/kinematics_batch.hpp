@@ -10,6 +10,7 @@
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/kinematics/inverse.hpp"
 #include "mtacc/kinematics/inverse_with_errors.hpp"
+#include "mtacc/kinematics/jacobian.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
 namespace mtacc {
@@ -29,8 +30,12 @@ struct ForwardResult {
   double maxPositionError = 0;  // mm
 };
 
-// Every pose must be within travel (InputError naming the row's file line when `lines` is
-// given, else the row).
+// InputError for the first pose beyond travel, naming the row's file line when `lines` is
+// given, else the row (or "pose" for a single one).
+void requireWithinTravel(const Machine& machine, const JointMatrix& q, const std::vector<int>& lines = {},
+                         const std::string& file = "");
+
+// Every pose must be within travel (requireWithinTravel).
 ForwardResult forwardKinematics(const MachineSetup& setup, const JointMatrix& q, const DirectionMatrix& direction,
                                 const ForwardOptions& options = {}, const std::vector<int>& lines = {},
                                 const std::string& file = "");
@@ -40,6 +45,15 @@ ForwardResult forwardKinematics(const KinematicModel& actual, const KinematicMod
                                 const DirectionMatrix& direction, const ForwardOptions& options = {},
                                 const std::vector<int>& lines = {}, const std::string& file = "");
 nlohmann::json toJson(const ForwardResult& result);
+
+// d(pose error)/d(parameter) at each pose: rows dx, dy, dz [mm] and the rotation vector [rad],
+// one column per parameter (its unit: mm or rad). Every pose must be within travel.
+struct ParameterJacobians {
+  std::vector<std::string> parameters;
+  std::vector<ParameterJacobian> perPose;  // 6 x parameters, one per row of q
+};
+// `names`: the parameters to differentiate by; empty: every parameter of the machine's catalogue.
+ParameterJacobians parameterJacobians(const MachineSetup& setup, const JointMatrix& q, const std::vector<std::string>& names);
 
 struct InverseRequest {
   std::vector<Vec3> positions;   // TCP, mm, workpiece frame
