@@ -66,6 +66,28 @@ def _text(value):
     return "" if value is None else str(value)
 
 
+def _with_arrays(result, *paths):
+    """`result` with the numeric lists at `paths` as float ndarrays. A path is a sequence of keys;
+    "*" stands for every element of a list (e.g. ("single_errors", "*", "deviation_um")); a path
+    that is absent is skipped."""
+    def convert(node, path):
+        if not path or node is None:
+            return
+        key, rest = path[0], path[1:]
+        if key == "*":
+            for item in node:
+                convert(item, rest)
+        elif isinstance(node, dict) and key in node:
+            if rest:
+                convert(node[key], rest)
+            else:
+                node[key] = np.asarray(node[key], dtype=float)
+
+    for path in paths:
+        convert(result, path)
+    return result
+
+
 def _pose_text(pose):
     """{axis: mm or deg} as the CLI's pose text "B=10.0,C=0.0"."""
     return ",".join(f"{name}={float(value)!r}" for name, value in (pose or {}).items())
@@ -247,13 +269,23 @@ class Machine:
              limits=None, seed=1):
         """The cone-frustum test piece of seed 000 (as `mtacc cone --json`): path, axis positions and their
         statistics, the form error of the machine's errors, each error alone, a Monte Carlo over limits.
-        preset: "tilting-table", "swivel-head", "double-pivot", "nas979" or "family" (this machine's)."""
+        preset: "tilting-table", "swivel-head", "double-pivot", "nas979" or "family" (this machine's).
+        Arrays (n points, s samples, k limits): path["phi_deg"] (n,), path["points_mm"], ["tools"],
+        ["normals"], ["normals_machine"] (n, 3), path["q"] (n, axes) [mm, deg]; "deviation_um" and
+        "raw_deviation_um" (n,), also per single error; monte_carlo["form_errors_um"] (s,) and
+        monte_carlo["drawn"]["values"] (s, k), each limit's drawn value in its unit (["units"], um or
+        urad) under its key (["names"]). limits: a limits file (docs/file-formats.md "Error limits";
+        default: seed 000 Table 3.9)."""
         if preset == "family":
             preset = self._core.cone_preset_name()
             if preset is None:
                 raise InputError("preset: the machine does not have two rotary axes")
-        return self._core.cone(_text(preset), alpha, beta, radius, list(map(float, centre)), gamma, face_milling, points,
-                               branch, feed, single_errors, monte_carlo, _text(limits), seed)
+        result = self._core.cone(_text(preset), alpha, beta, radius, list(map(float, centre)), gamma, face_milling, points,
+                                 branch, feed, single_errors, monte_carlo, _text(limits), seed)
+        return _with_arrays(result, ("path", "phi_deg"), ("path", "points_mm"), ("path", "tools"), ("path", "normals"),
+                            ("path", "normals_machine"), ("path", "q"), ("deviation_um",), ("raw_deviation_um",),
+                            ("single_errors", "*", "deviation_um"), ("single_errors", "*", "raw_deviation_um"),
+                            ("monte_carlo", "form_errors_um"), ("monte_carlo", "drawn", "values"))
 
     def cubic(self, test="seed001-cubic", grid=0.01, inset=1.0, sensitivities=False, parameters=None,
               sensitivity_grid=0.02, threads=0):
@@ -387,8 +419,12 @@ class Machine:
         return self._core.evaluate_ballbar(str(path))
 
     def observability(self, plan, parameters=None):
-        """Rank, singular values and findings of a test plan (as `mtacc observability --json`)."""
-        return self._core.observability(str(plan), list(parameters or []))
+        """Rank, singular values and findings of a test plan (as `mtacc observability --json`), for the
+        plan's parameters or `parameters`. result["singular_values"] (p,) of the column-normalised
+        Jacobian, descending; result["singular_vectors"] (k, p) the right singular vectors as rows
+        (numpy.linalg.svd's Vh), over result["names"]; a parameter without effect is 0 in every row."""
+        return _with_arrays(self._core.observability(str(plan), list(parameters or [])), ("singular_values",),
+                            ("singular_vectors",))
 
     def identify(self, files, parameters=None, plan=None, robust=False, noise=None, uncertainty_fraction=0.1,
                  from_nominal=False):
@@ -426,8 +462,12 @@ class Structure:
     bodies = property(lambda self: self._description["bodies"])
 
     def modes(self, at=None, count=1000):
-        """As `mtacc dynamics modes --json`: frequencies, damping, dominant body, mass-normalised shapes."""
-        return self._core.modes(_at(at), count)
+        """As `mtacc dynamics modes --json`: per mode its frequencies [Hz], damping ratio, dominant body and
+        DOF, and "shape" an ndarray (6 bodies,), mass-normalised [m, rad per sqrt(kg)], whose entries
+        result["dofs"] labels "<body>.x", ".y", ".z", ".rx", ".ry", ".rz"."""
+        result = _with_arrays(self._core.modes(_at(at), count), ("modes", "*", "shape"))
+        result["dofs"] = [f"{b['name']}.{d}" for b in self.bodies for d in ("x", "y", "z", "rx", "ry", "rz")]
+        return result
 
     def frf(self, frequencies, at=None, method="auto"):
         """(n, 3, 3) complex FRF of the TCP relative to the workpiece [um/N], H[s, i, k] the
@@ -454,5 +494,15 @@ class Structure:
         return self._core.acceleration_response(_at(at))["response_um_per_g"]
 
     def map(self, quantity="Hx/X", axes=("Y", "Z"), grid=(20, 20), at=None):
-        """As `mtacc dynamics map --json`: a quantity over a grid of two axes, with its statistics."""
-        return self._core.map(quantity, axes[0], axes[1], int(grid[0]), int(grid[1]), _at(at))
+        """As `mtacc dynamics map --json`: a quantity ("Hx/X" um/g, "Cxx" um/N, "f1" Hz; result["unit"]) over
+        a grid of two axes across their travel, with its statistics. grid: (na, nb) positions of
+        axes[0] and axes[1]. result["a_mm"] (na,), result["b_mm"] (nb,), result["values"] (na, nb)
+        with values[i, k] at a_mm[i], b_mm[k] (numpy.meshgrid's indexing="ij")."""
+        try:
+            na, nb = (int(n) for n in grid)
+            if (na, nb) != tuple(grid):
+                raise ValueError
+        except (TypeError, ValueError):
+            raise InputError(f"grid: expected two whole numbers of positions (na, nb), e.g. (20, 20), not {grid!r}") from None
+        result = self._core.map(quantity, axes[0], axes[1], na, nb, _at(at))
+        return _with_arrays(result, ("a_mm",), ("b_mm",), ("values",))

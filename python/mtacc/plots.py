@@ -1,9 +1,12 @@
-"""Figures of a machine and its errors. Every function returns a matplotlib Figure."""
+"""Figures of a machine and its errors. Every function returns a matplotlib Figure;
+volumetric_error_map also returns the data it plots with return_data=True, as (figure, data)."""
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+from . import InputError  # noqa: E402
 
 SIDE_COLOURS = {"tool": "#1f77b4", "workpiece": "#d62728", "bed": "#555555"}
 
@@ -63,6 +66,11 @@ def _plane_grid(machine, plane, fixed, samples):
     (dict, mm/deg; default mid-travel for linear, 0 for rotary): (q, u, v, base)."""
     names = machine.axis_names
     axes = {a["name"]: a for a in machine.axes}
+    for n in fixed or {}:
+        if n not in names:
+            raise InputError(f"fixed: '{n}' is not an axis of {machine.name} (axes: {', '.join(names)})")
+        if n in plane:
+            raise InputError(f"fixed: '{n}' is an axis of the plane {plane[0]}-{plane[1]}, which runs over its travel")
     base = []
     for n in names:
         a = axes[n]
@@ -89,10 +97,14 @@ def _along(machine, err, axis):
     return err[:, :3] @ direction
 
 
-def volumetric_error_map(machine, plane=("X", "Y"), fixed=None, samples=41):
+def volumetric_error_map(machine, plane=("X", "Y"), fixed=None, samples=41, return_data=False):
     """|TCP position error| over a plane of two linear axes across their travel, other axes at
-    `fixed` (dict, mm/deg; default mid-travel for linear, 0 for rotary). Arrows: the error along
-    the two axes' directions of motion."""
+    `fixed` (dict {axis: mm or deg}; default mid-travel for linear, 0 for rotary; a name that is
+    not an axis is refused). Arrows: the error along the two axes' directions of motion.
+    With return_data, (figure, data): data["u"] (samples,) and data["v"] (samples,) the two axes'
+    positions [mm], data["errors"] (samples, samples, 6) the TCP errors [um, urad] indexed [v, u]
+    (numpy.meshgrid's default "xy" order), data["magnitude"] (samples, samples) [um], data["pose"]
+    the other axes' positions."""
     q, u, v, base = _plane_grid(machine, plane, fixed, samples)
     names = machine.axis_names
     i, j = names.index(plane[0]), names.index(plane[1])
@@ -113,7 +125,10 @@ def volumetric_error_map(machine, plane=("X", "Y"), fixed=None, samples=41):
     ax.set_xlabel(f"{plane[0]} [mm]")
     ax.set_ylabel(f"{plane[1]} [mm]")
     fig.tight_layout()
-    return fig
+    if not return_data:
+        return fig
+    pose = {n: b for k, (n, b) in enumerate(zip(names, base)) if k not in (i, j)}
+    return fig, {"u": u, "v": v, "errors": err.reshape(shape + (6,)), "magnitude": magnitude, "pose": pose}
 
 
 def _relative_errors(machine, plane, fixed, reference, samples):

@@ -310,7 +310,7 @@ namespace mtacc {
 
 DynamicsQuantity dynamicsQuantity(const StructureModel& model, const std::string& name) {
   auto fail = [&]() -> DynamicsQuantity {
-    throw InputError(InputLocation{"", 0, "--quantity"},
+    throw InputError(InputLocation{"", 0, "quantity"},
                      "unknown quantity '" + name + "' (H<x|y|z>/<axis> in um/g, C<x|y|z><x|y|z> in um/N, f<n> in Hz)");
   };
   auto component = [](char c) { return c == 'x' ? 0 : c == 'y' ? 1 : c == 'z' ? 2 : -1; };

@@ -143,6 +143,11 @@ nlohmann::json toJson(const ObservabilityReport& r) {
   j["condition"] = r.condition;
   j["identifiable"] = r.identifiable();
   j["singular_values"] = std::vector<double>(r.singularValues.data(), r.singularValues.data() + r.singularValues.size());
+  j["singular_vectors"] = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < r.singularVectors.rows(); ++i) {
+    const Eigen::RowVectorXd row = r.singularVectors.row(i);
+    j["singular_vectors"].push_back(std::vector<double>(row.data(), row.data() + row.size()));
+  }
   j["no_effect"] = r.noEffect;
   j["findings"] = r.findings();
   j["groups"] = nlohmann::json::array();

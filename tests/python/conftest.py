@@ -21,3 +21,20 @@ def artifacts():
     path = pathlib.Path(os.environ.get("MTACC_TEST_ARTIFACTS", ROOT / "build" / "test-artifacts"))
     path.mkdir(parents=True, exist_ok=True)
     return path
+
+
+def _as_json(node):
+    """A result with its ndarrays as nested lists."""
+    if isinstance(node, dict):
+        return {k: _as_json(v) for k, v in node.items()}
+    if isinstance(node, (list, tuple)):
+        return [_as_json(v) for v in node]
+    if hasattr(node, "tolist"):
+        return node.tolist()
+    return node
+
+
+@pytest.fixture(scope="session")
+def as_json():
+    """The Python result as the CLI's JSON has it (ndarrays as nested lists), to compare the two."""
+    return _as_json

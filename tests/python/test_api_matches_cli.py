@@ -102,11 +102,15 @@ def test_sensitivity_coefficient(cli):
     assert data["parameters"][1]["k_exact"] == k_a0b * 1e-3    # um/urad from mm/rad
 
 
-def test_check_and_cone(cli):
+def test_check_and_cone(cli, as_json):
     machine = mtacc.Machine("swivel-head-table")
     assert run_json(cli, "check", "swivel-head-table") == machine.check()
-    assert run_json(cli, "cone", "swivel-head-table", "--preset", "swivel-head", "--single-errors") == \
-        machine.cone(preset="swivel-head", single_errors=True)
+    cone = machine.cone(preset="swivel-head", single_errors=True)
+    n = len(cone["path"]["phi_deg"])
+    assert cone["path"]["q"].shape == (n, 5) and cone["path"]["points_mm"].shape == (n, 3)
+    with_errors = mtacc.Machine("tilting-table").cone(single_errors=True, points=90)
+    assert with_errors["deviation_um"].shape == with_errors["single_errors"][0]["deviation_um"].shape == (90,)
+    assert run_json(cli, "cone", "swivel-head-table", "--preset", "swivel-head", "--single-errors") == as_json(cone)
 
 
 def test_check_lists_every_parameter_on_request(cli):
@@ -121,10 +125,10 @@ def test_check_lists_every_parameter_on_request(cli):
     assert listed["C1"] == ["X0C1", "Y0C1", "Z0C1", "A0C1", "B0C1", "C0C1"]  # the spindle's location errors by their own name
 
 
-def test_observability(cli):
+def test_observability(cli, as_json):
     machine = mtacc.Machine("tilting-table")
     assert run_json(cli, "observability", "tilting-table", "--plan", "tilting-table-rtest") == \
-        machine.observability("tilting-table-rtest")
+        as_json(machine.observability("tilting-table-rtest"))
 
 
 def test_ik_near_a_pose_and_poses_without_rounding_noise(cli):

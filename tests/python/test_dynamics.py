@@ -22,9 +22,13 @@ def test_acceleration_response_matches_cli():
     assert cli == api
 
 
-def test_modes_and_frf_match_cli():
+def test_modes_and_frf_match_cli(as_json):
     s = mtacc.Structure("tzyx-arm-x")
-    assert cli_json("modes", "tzyx-arm-x", "--count", "5") == s.modes(count=5)
+    modes = s.modes(count=5)
+    assert modes["modes"][0]["shape"].shape == (len(modes["dofs"]),) == (6 * len(s.bodies),)
+    assert modes["dofs"][:2] == ["base.x", "base.y"]
+    del modes["dofs"]
+    assert cli_json("modes", "tzyx-arm-x", "--count", "5") == as_json(modes)
     f = np.arange(0.0, 201.0, 5.0)
     h = s.frf(f, method="direct")
     cli = cli_json("frf", "tzyx-arm-x", "--method", "direct", "--step", "5")

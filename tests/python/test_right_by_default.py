@@ -109,3 +109,40 @@ def test_monte_carlo_returns_its_drawn_values(tmp_path):
     assert all(math.isfinite(v) and v < 100 for v in full["form_errors_um"])
     assert np.asarray(full["drawn"]["values"]).shape == (10, len(full["drawn"]["names"]))
     assert any("Z does not move" in n for n in full["notes"])
+
+
+def test_maps_return_ndarrays_in_a_documented_order():
+    s = mtacc.Structure("tzyx-arm-x")
+    r = s.map("Cxx", axes=("Y", "Z"), grid=(3, 4))
+    assert r["values"].shape == (3, 4) and r["a_mm"].shape == (3,) and r["b_mm"].shape == (4,)
+    # values[i, k] at a_mm[i], b_mm[k]: the corner is the compliance at those positions.
+    corner = s.map("Cxx", axes=("Y", "Z"), grid=(2, 2), at={"X": 0})["values"][1, 0]
+    assert r["values"][2, 0] == pytest.approx(corner, rel=1e-12)
+    with pytest.raises(mtacc.InputError, match=r"grid: expected two whole numbers"):
+        s.map(grid="20x20")
+    m = mtacc.Machine("tilting-table")
+    from mtacc import plots
+    fig, data = plots.volumetric_error_map(m, ("X", "Y"), samples=5, return_data=True)
+    assert data["errors"].shape == (5, 5, 6) and data["magnitude"].shape == (5, 5)
+    assert np.allclose(data["magnitude"], np.linalg.norm(data["errors"][..., :3], axis=2))
+    with pytest.raises(mtacc.InputError, match="'Q' is not an axis"):
+        plots.volumetric_error_map(m, ("X", "Y"), fixed={"Q": 3})
+    assert json_safe(m.cubic(grid=0.1))
+
+
+def json_safe(result):
+    import json
+    from conftest import _as_json
+    return json.dumps(_as_json(result))
+
+
+def test_observability_returns_the_singular_vectors():
+    r = mtacc.Machine("tilting-table").observability("tilting-table-rtest")
+    p = len(r["names"])
+    vh = r["singular_vectors"]
+    assert r["singular_values"].shape == (p,) and vh.shape[1] == p
+    assert np.allclose(vh @ vh.T, np.eye(vh.shape[0]), atol=1e-12)
+    # A parameter the plan does not see has no share in any direction.
+    blind = mtacc.Machine("tilting-table").observability("tilting-table-rtest", parameters=["X0B", "C0C1"])
+    assert "C0C1 has no effect" in " ".join(blind["findings"])
+    assert np.all(blind["singular_vectors"][:, blind["names"].index("C0C1")] == 0.0)

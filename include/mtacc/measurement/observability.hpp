@@ -21,6 +21,9 @@ struct ParameterGroup {
 struct ObservabilityReport {
   std::vector<std::string> names;
   Eigen::VectorXd singularValues;  // of the column-normalised Jacobian, descending
+  // Row i: the right singular vector of singularValues[i] over the parameters (numpy's Vh), in
+  // the column-normalised parameters; a parameter without effect has 0 in every row.
+  Eigen::MatrixXd singularVectors;
   int rank = 0;
   double condition = 0;             // largest / smallest non-zero singular value
   std::vector<std::string> noEffect;
