@@ -219,7 +219,10 @@ class Machine:
         return self._core.fk(self._q(q), directions, nominal, False, threads)
 
     def tcp_errors(self, q, directions=None, threads=0):
-        """(n, 6): position error dx dy dz [um] and orientation error [urad], actual minus nominal."""
+        """(n, 6): the TCP's position error dx dy dz [um] and orientation error (rotation vector) [urad],
+        actual minus nominal, in the workpiece frame. q: one pose (axes,) or many (n, axes) [mm, deg];
+        directions: None (every axis standing still, reversal errors not applied) or an int array of
+        q's shape with the sign of each axis's motion (+1, -1, 0); threads: 0 for every core."""
         position, orientation = self._core.fk(self._q(q), directions, False, True, threads)
         return np.hstack([position, orientation])
 
@@ -261,7 +264,11 @@ class Machine:
         return self._core.working_volume_grid(samples)
 
     def budget(self, samples=5, length=None, angle=None):
-        """Each error alone: largest TCP deviation over a grid of `samples` positions per axis."""
+        """The error budget (as `mtacc budget --json`): each error alone, its largest TCP deviation [um]
+        and tool tilt [urad] over a grid of `samples` (2 to 50) positions per axis across the travel.
+        Without length and angle: each non-zero error of the machine at its value, one entry per
+        component error function. With them (a bare number in mm and rad, or "10 um", "30 urad"):
+        every location error and every component error as a constant of that size."""
         return self._core.budget(samples, length, angle)
 
     def cone(self, preset=None, alpha=45.0, beta=30.0, radius=40.0, centre=(-65.0, 0.0, 150.0), gamma=0.0,

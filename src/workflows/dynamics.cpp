@@ -39,7 +39,11 @@ std::vector<double> structurePositions(const StructureModel& m, const std::strin
   std::vector<double> q(m.axes.size(), 0.0);
   for (const auto& a : parseAssignments(text, key)) {
     const int j = m.axisIndex(a.name);
-    if (j < 0) throw InputError(InputLocation{"", 0, key}, "expected AXIS=mm for the axes of " + m.name + ", got '" + a.name + "'");
+    if (j < 0) {
+      std::string axes;
+      for (const auto& axis : m.axes) axes += (axes.empty() ? "" : ", ") + axis.name;
+      throw InputError(InputLocation{"", 0, key}, "'" + a.name + "' is not an axis of " + m.name + " (axes: " + axes + ")");
+    }
     q[static_cast<size_t>(j)] = parseNumber(a.value, key + " " + a.name) * 1e-3;
   }
   if (const auto violation = travelViolation(m, q); !violation.empty()) throw InputError(InputLocation{"", 0, key}, violation);
