@@ -78,7 +78,7 @@ void run(ConeCliOptions& o) {
     const auto& st = s.monteCarlo->statistics;
     human += fmt::format("\nMonte Carlo, {} samples within {}: equivalent cone form error [um]\n"
                          "  min {:.2f}  lower quartile {:.2f}  median {:.2f}  upper quartile {:.2f}  max {:.2f}\n",
-                         s.options.monteCarlo, s.limitsFile, st.min * 1e3, st.lowerQuartile * 1e3, st.median * 1e3,
+                         s.options.monteCarlo, s.limits.file, st.min * 1e3, st.lowerQuartile * 1e3, st.median * 1e3,
                          st.upperQuartile * 1e3, st.max * 1e3);
     for (const auto& n : s.monteCarlo->notes) human += "  note: " + n + "\n";
   }

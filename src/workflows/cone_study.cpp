@@ -80,8 +80,8 @@ ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyOptions& options) 
   }
   if (options.monteCarlo > 0) {
     const bool bundled = options.limitsFile.empty();
-    s.limitsFile = bundled ? bundledDataDir() + "/limits/seed000-table3.9.yaml" : options.limitsFile;
-    s.limits = loadErrorLimits(m, s.limitsFile, bundled ? AbsentAxes::LeaveOut : AbsentAxes::Refuse);
+    s.limits = loadErrorLimits(m, bundled ? bundledDataDir() + "/limits/seed000-table3.9.yaml" : options.limitsFile,
+                               bundled ? AbsentAxes::LeaveOut : AbsentAxes::Refuse);
     s.monteCarlo = coneMonteCarlo(setup.machine, s.limits, spec, s.path, s.motion, options.monteCarlo, options.seed, options.progress);
     if (!s.limits.leftOut.empty())
       s.monteCarlo->notes.insert(s.monteCarlo->notes.begin(),
@@ -136,21 +136,22 @@ nlohmann::json toJson(const ConeStudy& s) {
                                   {"deviation_um", umArray(e.form.deviation)}, {"raw_deviation_um", umArray(e.form.rawDeviation)}});
   if (s.monteCarlo) {
     const auto& st = s.monteCarlo->statistics;
-    j["monte_carlo"] = {{"samples", s.options.monteCarlo}, {"limits", s.limitsFile}, {"seed", s.options.seed},
+    j["monte_carlo"] = {{"samples", s.options.monteCarlo}, {"limits", s.limits.file}, {"seed", s.options.seed},
                         {"min_um", st.min * 1e3}, {"lower_quartile_um", st.lowerQuartile * 1e3}, {"median_um", st.median * 1e3},
                         {"upper_quartile_um", st.upperQuartile * 1e3}, {"max_um", st.max * 1e3},
                         {"form_errors_um", umArray(s.monteCarlo->formErrors)}, {"notes", s.monteCarlo->notes}};
     // Each limit's drawn value per sample, in the unit of its error (um or urad).
     nlohmann::json names = nlohmann::json::array(), units = nlohmann::json::array(), values = nlohmann::json::array();
-    for (const auto& l : s.limits.limits) {
-      names.push_back(l.key);
-      units.push_back(l.component < 3 ? "um" : "urad");
+    Eigen::RowVectorXd scale(static_cast<Eigen::Index>(s.limits.limits.size()));
+    for (size_t k = 0; k < s.limits.limits.size(); ++k) {
+      const bool length = s.limits.limits[k].component < 3;
+      names.push_back(s.limits.limits[k].key);
+      units.push_back(length ? "um" : "urad");
+      scale[static_cast<Eigen::Index>(k)] = length ? 1e3 : 1e6;
     }
     for (Eigen::Index i = 0; i < s.monteCarlo->drawn.rows(); ++i) {
-      nlohmann::json row = nlohmann::json::array();
-      for (Eigen::Index k = 0; k < s.monteCarlo->drawn.cols(); ++k)
-        row.push_back(s.monteCarlo->drawn(i, k) * (s.limits.limits[static_cast<size_t>(k)].component < 3 ? 1e3 : 1e6));
-      values.push_back(std::move(row));
+      const Eigen::RowVectorXd row = s.monteCarlo->drawn.row(i).cwiseProduct(scale);
+      values.push_back(std::vector<double>(row.data(), row.data() + row.size()));
     }
     j["monte_carlo"]["drawn"] = {{"names", names}, {"units", units}, {"values", values}};
   }

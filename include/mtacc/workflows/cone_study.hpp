@@ -45,8 +45,7 @@ struct ConeStudy {
   double firstOrderFormError = 0;      // mm
   std::vector<ConeSingleError> singleErrors;  // largest first
   std::optional<ConeMonteCarlo> monteCarlo;
-  std::string limitsFile;
-  ErrorLimits limits;  // as drawn: their names and units label monteCarlo->drawn's columns
+  ErrorLimits limits;  // as drawn (with their file): their keys label monteCarlo->drawn's columns
 };
 
 ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyOptions& options);
