@@ -243,7 +243,8 @@ PYBIND11_MODULE(_mtacc, mod) {
       })
       .def("cone", [](const PythonMachine& s, const std::string& preset, double alpha, double beta, double radius,
                       const std::vector<double>& centre, double gamma, bool face, int points, const std::string& branch, double feed,
-                      bool singleErrors, int monteCarlo, const std::string& limits, std::uint64_t seed) {
+                      bool singleErrors, int monteCarlo, const std::string& limitsFile, const std::string& limitsYaml,
+                      std::uint64_t seed) {
         ConeStudyOptions o;
         if (!preset.empty()) {
           const auto p = conePreset(preset);
@@ -262,7 +263,8 @@ PYBIND11_MODULE(_mtacc, mod) {
         o.feed = feed;
         o.singleErrors = singleErrors;
         o.monteCarlo = monteCarlo;
-        o.limitsFile = limits;
+        o.limitsFile = limitsFile;
+        o.limitsYaml = limitsYaml;
         o.seed = seed;
         ConeStudy r;
         {

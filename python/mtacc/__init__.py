@@ -14,6 +14,7 @@ command line: mm and degrees for axis positions, mm for the TCP, um and urad for
 parameters read back in mm or rad (see Errors.unit). One call per pose costs the Python call
 overhead: pass all poses of a batch at once.
 """
+import json
 import os
 from collections.abc import Mapping, MutableMapping
 
@@ -30,7 +31,24 @@ from ._mtacc import drift_test as _drift_test  # noqa: E402
 from ._mtacc import thermal_state as _thermal_state  # noqa: E402
 from ._mtacc import positioning as _positioning  # noqa: E402
 
-__all__ = ["__version__", "Machine", "Errors", "Structure", "InputError", "UnreachablePose", "positioning", "drift_test", "thermal_state"]
+__all__ = ["__version__", "Machine", "Errors", "Structure", "InputError", "UnreachablePose", "positioning", "drift_test",
+           "thermal_state", "as_json"]
+
+
+def as_json(result):
+    """`result` with its ndarrays as nested lists (complex values as [real, imag]): what
+    json.dumps takes, and what the command line's --json prints for the same call."""
+    if isinstance(result, dict):
+        return {k: as_json(v) for k, v in result.items()}
+    if isinstance(result, (list, tuple)):
+        return [as_json(v) for v in result]
+    if isinstance(result, np.ndarray):
+        if np.iscomplexobj(result):
+            return np.stack([result.real, result.imag], axis=-1).tolist()
+        return result.tolist()
+    if isinstance(result, np.generic):
+        return result.item()
+    return result
 
 
 def positioning(path):
@@ -235,7 +253,8 @@ class Machine:
         return result["solutions"]
 
     def ik_path(self, tcps, tools, branch="auto", with_errors=False):
-        """Axis positions (n, axes) [mm, deg] along a continuous path; with_errors: on the machine with its
+        """Axis positions (n, axes) [mm, deg] along a continuous path through the TCPs (n, 3) [mm] with the
+        tool directions (n, 3) (unit vectors, workpiece frame); with_errors: on the machine with its
         errors (as `ik`)."""
         _, q = self._core.ik(np.asarray(tcps, float).tolist(), np.asarray(tools, float).tolist(), branch, False, with_errors, "")
         return q
@@ -260,7 +279,8 @@ class Machine:
         return self._core.sensitivity_coefficient(self._q(q), parameter, epsilon, list(map(float, direction)))
 
     def working_volume_grid(self, samples=5):
-        """Grid of `samples` positions per axis across its travel (mm, deg), as the budget uses."""
+        """(samples ** axes, axes) poses [mm, deg]: `samples` positions per axis across its travel, every
+        combination, as the budget uses."""
         return self._core.working_volume_grid(samples)
 
     def budget(self, samples=5, length=None, angle=None):
@@ -282,13 +302,20 @@ class Machine:
         "raw_deviation_um" (n,), also per single error; monte_carlo["form_errors_um"] (s,) and
         monte_carlo["drawn"]["values"] (s, k), each limit's drawn value in its unit (["units"], um or
         urad) under its key (["names"]). limits: a limits file (docs/file-formats.md "Error limits";
-        default: seed 000 Table 3.9)."""
+        default: seed 000 Table 3.9) or the same mapping as a dict, each range with its units:
+        {"X0B": ("-10 um", "10 um"), "EXX.rev": ("0 um", "4 um"), "EXX.lin": ("-3 um", "3 um"),
+        "EXX.cyclic": {"range": ("-1 um", "1 um"), "pitch": "30 mm"}}. A location error and a reversal
+        (.rev, or .hyst as seed 000 writes it) are limited by the parameter's own name; ".lin" and
+        ".<k>harm" are the error's change over the axis's range on the path (seed 000 eqs 3.63-3.66),
+        not a coefficient per mm, and so have names of their own."""
         if preset == "family":
             preset = self._core.cone_preset_name()
             if preset is None:
                 raise InputError("preset: the machine does not have two rotary axes")
+        limits_yaml = json.dumps({"limits": limits}) if isinstance(limits, Mapping) else ""
+        limits_file = "" if isinstance(limits, Mapping) else _text(limits)
         result = self._core.cone(_text(preset), alpha, beta, radius, list(map(float, centre)), gamma, face_milling, points,
-                                 branch, feed, single_errors, monte_carlo, _text(limits), seed)
+                                 branch, feed, single_errors, monte_carlo, limits_file, limits_yaml, seed)
         return _with_arrays(result, ("path", "phi_deg"), ("path", "points_mm"), ("path", "tools"), ("path", "normals"),
                             ("path", "normals_machine"), ("path", "q"), ("deviation_um",), ("raw_deviation_um",),
                             ("single_errors", "*", "deviation_um"), ("single_errors", "*", "raw_deviation_um"),
@@ -418,11 +445,14 @@ class Machine:
         return self._core.simulate(str(plan), noise, seed, _text(output_dir), text)
 
     def read_measurement(self, path):
-        """A measurement CSV file (docs/file-formats.md) as one run of `simulate`'s result."""
+        """A measurement CSV file (docs/file-formats.md) as one run of `simulate`'s result: "q" its
+        poses (n, axes) [mm, deg], "readings_um" (n, channels) [um] (a ballbar's change of length),
+        and the instrument's set-up (a ballbar's "length_mm")."""
         return self._core.read_measurement(str(path))
 
     def evaluate_ballbar(self, path):
-        """ISO 230-4 evaluation, eccentricity and diagnostics of a ballbar CSV file (as `mtacc evaluate`)."""
+        """ISO 230-4 evaluation (circular deviations G, F, H in um), eccentricity (um) and diagnostics of
+        a ballbar CSV file (as `mtacc evaluate --json`)."""
         return self._core.evaluate_ballbar(str(path))
 
     def observability(self, plan, parameters=None):
@@ -435,8 +465,8 @@ class Machine:
 
     def identify(self, files, parameters=None, plan=None, robust=False, noise=None, uncertainty_fraction=0.1,
                  from_nominal=False):
-        """Least-squares estimates with standard uncertainties, covariance and correlation (as
-        `mtacc identify --json`); the parameters default to the plan's list; refuses (InputError) a
+        """Least-squares estimates with standard uncertainties (um or urad, "unit"), covariance (um^2,
+        um urad, urad^2) and correlation (as `mtacc identify --json`) from measurement CSV files; the parameters default to the plan's list; refuses (InputError) a
         set the data cannot determine. `noise` (e.g. "0.5 um", default: the files' '# noise:'
         lines) feeds the goodness-of-fit test; result["quality"]["warnings"] lists what is doubtful.
         The errors not determined are held at this machine's values (result["held"] names the
@@ -445,11 +475,13 @@ class Machine:
                                    uncertainty_fraction, bool(from_nominal))
 
     def xy_circle(self):
-        """The report's X-Y circle: radial TCP deviation around mid-travel, or None."""
+        """The report's X-Y circle: radial TCP deviation [um] at each angle [deg] around mid-travel, or
+        None (a machine without X and Y)."""
         return self._core.xy_circle()
 
     def tilted_circle(self):
-        """The report's 5-axis circle (tool tilted 30 deg towards the centre), or None."""
+        """The report's 5-axis circle (tool tilted 30 deg towards the centre): radial TCP deviation [um]
+        at each angle [deg], or None (a machine without two rotary axes)."""
         return self._core.tilted_circle()
 
 
@@ -470,7 +502,7 @@ class Structure:
 
     def modes(self, at=None, count=1000):
         """As `mtacc dynamics modes --json`: per mode its frequencies [Hz], damping ratio, dominant body and
-        DOF, and "shape" an ndarray (6 bodies,), mass-normalised [m, rad per sqrt(kg)], whose entries
+        DOF, and "shape" an ndarray (6 x bodies,), mass-normalised [m, rad per sqrt(kg)], whose entries
         result["dofs"] labels "<body>.x", ".y", ".z", ".rx", ".ry", ".rz"."""
         result = _with_arrays(self._core.modes(_at(at), count), ("modes", "*", "shape"))
         result["dofs"] = [f"{b['name']}.{d}" for b in self.bodies for d in ("x", "y", "z", "rx", "ry", "rz")]

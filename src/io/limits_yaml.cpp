@@ -20,7 +20,7 @@ ErrorLimits parseErrorLimits(const Machine& machine, const std::string& yamlText
   if (!root.IsMap() || !root["limits"] || !root["limits"].IsMap()) ctx.fail(root, "limits", "expected a 'limits:' mapping");
   ErrorLimits out;
   out.file = path;
-  static const std::regex pattern(R"(^(E([XYZABC])([A-Z]\d*))\.(lin|hyst|cyclic|([1-9])harm)$)");
+  static const std::regex pattern(R"(^(E([XYZABC])([A-Z]\d*))\.(lin|hyst|rev|cyclic|([1-9])harm)$)");
   const ErrorModel zero = ErrorModel::zero(machine);
   for (const auto& kv : root["limits"]) {
     const auto name = kv.first.as<std::string>();
@@ -39,7 +39,7 @@ ErrorLimits parseErrorLimits(const Machine& machine, const std::string& yamlText
       if (l.axis < 0) ctx.fail(kv.first, key, "unknown axis '" + axisName + "'");
       l.component = static_cast<int>(std::string("XYZABC").find(m[2].str()[0]));
       const std::string type = m[4];
-      l.kind = type == "lin" ? ErrorLimit::Linear : type == "hyst" ? ErrorLimit::Reversal
+      l.kind = type == "lin" ? ErrorLimit::Linear : type == "hyst" || type == "rev" ? ErrorLimit::Reversal
                : type == "cyclic" ? ErrorLimit::Cyclic : ErrorLimit::Harmonic;
       if (l.kind == ErrorLimit::Harmonic) l.order = std::stoi(m[5]);
       if (l.kind == ErrorLimit::Cyclic) {
@@ -54,7 +54,7 @@ ErrorLimits parseErrorLimits(const Machine& machine, const std::string& yamlText
       } catch (const InputError& e) {
         ctx.fail(kv.first, key, e.reason());
       }
-      if (l.location.kind != ParameterKind::Location) ctx.fail(kv.first, key, "expected a location error or NAME.lin/.hyst/.cyclic/.<k>harm (k from 1 to 9)");
+      if (l.location.kind != ParameterKind::Location) ctx.fail(kv.first, key, "expected a location error or NAME.lin/.hyst (or .rev)/.cyclic/.<k>harm (k from 1 to 9)");
       l.axis = l.location.axis;
       l.component = l.location.component;
     }

@@ -79,9 +79,11 @@ ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyOptions& options) 
                      [](const auto& a, const auto& b) { return a.form.formError > b.form.formError; });
   }
   if (options.monteCarlo > 0) {
-    const bool bundled = options.limitsFile.empty();
-    s.limits = loadErrorLimits(m, bundled ? bundledDataDir() + "/limits/seed000-table3.9.yaml" : options.limitsFile,
-                               bundled ? AbsentAxes::LeaveOut : AbsentAxes::Refuse);
+    const bool bundled = options.limitsFile.empty() && options.limitsYaml.empty();
+    s.limits = !options.limitsYaml.empty()
+                   ? parseErrorLimits(m, options.limitsYaml, "limits")
+                   : loadErrorLimits(m, bundled ? bundledDataDir() + "/limits/seed000-table3.9.yaml" : options.limitsFile,
+                                     bundled ? AbsentAxes::LeaveOut : AbsentAxes::Refuse);
     s.monteCarlo = coneMonteCarlo(setup.machine, s.limits, spec, s.path, s.motion, options.monteCarlo, options.seed, options.progress);
     if (!s.limits.leftOut.empty())
       s.monteCarlo->notes.insert(s.monteCarlo->notes.begin(),

@@ -23,18 +23,8 @@ def artifacts():
     return path
 
 
-def _as_json(node):
-    """A result with its ndarrays as nested lists."""
-    if isinstance(node, dict):
-        return {k: _as_json(v) for k, v in node.items()}
-    if isinstance(node, (list, tuple)):
-        return [_as_json(v) for v in node]
-    if hasattr(node, "tolist"):
-        return node.tolist()
-    return node
-
-
 @pytest.fixture(scope="session")
 def as_json():
     """The Python result as the CLI's JSON has it (ndarrays as nested lists), to compare the two."""
-    return _as_json
+    import mtacc
+    return mtacc.as_json

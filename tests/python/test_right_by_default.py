@@ -92,10 +92,8 @@ def test_frf_default_is_the_exact_solve_where_the_damping_couples_the_modes():
 def test_monte_carlo_returns_its_drawn_values(tmp_path):
     # One limit: the form error is linear in the drawn value, so the regression of the form
     # errors on the drawn values recovers the single-error sensitivity of that error.
-    limits = tmp_path / "limits.yaml"
-    limits.write_text("limits:\n  X0B: [-10 um, 10 um]\n")
     m = mtacc.Machine("tilting-table", errors={})
-    mc = m.cone(monte_carlo=30, limits=limits)["monte_carlo"]
+    mc = m.cone(monte_carlo=30, limits={"X0B": ("-10 um", "10 um")})["monte_carlo"]
     drawn = np.asarray(mc["drawn"]["values"])
     assert mc["drawn"]["names"] == ["X0B"] and mc["drawn"]["units"] == ["um"] and drawn.shape == (30, 1)
     assert np.all(np.abs(drawn) <= 10.0)
@@ -105,6 +103,18 @@ def test_monte_carlo_returns_its_drawn_values(tmp_path):
     single = m.cone(single_errors=True)["single_errors"][0]
     assert single["error"] == "X0B"
     assert slope == pytest.approx(single["form_error_um"] / 10.0, rel=0.1)
+    # The same limits as a file give the same draws; a reversal goes by its parameter name.
+    limits = tmp_path / "limits.yaml"
+    limits.write_text("limits:\n  X0B: [-10 um, 10 um]\n")
+    assert np.array_equal(m.cone(monte_carlo=30, limits=limits)["monte_carlo"]["drawn"]["values"], drawn)
+    by_name = m.cone(monte_carlo=5, limits={"EXX.rev": ("0 um", "4 um")})["monte_carlo"]
+    as_written = m.cone(monte_carlo=5, limits={"EXX.hyst": ("0 um", "4 um")})["monte_carlo"]
+    assert np.array_equal(by_name["form_errors_um"], as_written["form_errors_um"])
+    assert np.all(by_name["form_errors_um"] > 0)
+    with pytest.raises(mtacc.InputError, match=r"limits\.X0B"):
+        m.cone(monte_carlo=5, limits={"X0B": (-10, 10)})
+    with pytest.raises(mtacc.InputError, match=r"limits\.EXX\.c1"):
+        m.cone(monte_carlo=5, limits={"EXX.c1": ("-1 um", "1 um")})
     # The bundled table (every limit at once): finite, each sample's values within its limits.
     full = mtacc.Machine("tilting-table").cone(preset="nas979", monte_carlo=10)["monte_carlo"]
     assert all(math.isfinite(v) and v < 100 for v in full["form_errors_um"])
@@ -139,3 +149,14 @@ def test_observability_returns_the_singular_vectors():
     blind = mtacc.Machine("tilting-table").observability("tilting-table-rtest", parameters=["X0B", "C0C1"])
     assert "C0C1 has no effect" in " ".join(blind["findings"])
     assert np.all(blind["singular_vectors"][:, blind["names"].index("C0C1")] == 0.0)
+
+
+def test_results_serialise_as_the_command_line_prints_them():
+    import json
+    m = mtacc.Machine("tilting-table")
+    cubic = m.cubic(grid=0.2)
+    assert isinstance(cubic["heights_um"], np.ndarray)
+    text = json.dumps(mtacc.as_json(cubic))
+    assert json.loads(text)["heights_um"][0][0] == pytest.approx(cubic["heights_um"][0, 0])
+    h = mtacc.Structure("tzyx-arm-x").frf([50.0])
+    assert mtacc.as_json({"h": h})["h"][0][0][0] == [h[0, 0, 0].real, h[0, 0, 0].imag]

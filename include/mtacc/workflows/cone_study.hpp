@@ -23,7 +23,8 @@ struct ConeStudyOptions {
   double feed = 500;             // mm/min, for the axis speeds
   bool singleErrors = false;     // form error of each non-zero error alone
   int monteCarlo = 0;            // samples; 0: none
-  std::string limitsFile;        // empty: seed 000 Table 3.9 (bundled)
+  std::string limitsFile;        // empty (and no limitsYaml): seed 000 Table 3.9 (bundled)
+  std::string limitsYaml;        // a 'limits:' mapping given as text (Python's dict) instead of a file
   std::uint64_t seed = 1;
   std::function<void(int, int)> progress;  // Monte Carlo samples done, total
 };
