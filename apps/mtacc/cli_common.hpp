@@ -41,9 +41,12 @@ std::string poseHeader(const Machine& m);
 std::string poseCsv(const Machine& m, const double* q);
 std::string poseCsvHeader(const Machine& m);
 
-// The estimates, residuals and quality of an identification (human, JSON or CSV); warnings on
-// stderr, and StrictFailure after them when `strict`.
-void emitIdentification(const MachineOptions& o, const IdentificationOutcome& out, bool strict);
+// The estimates, residuals and quality of an identification (human, JSON or CSV), and with
+// `errorsOut` the identified errors file written there; warnings on stderr, and StrictFailure
+// after them when `strict`.
+void emitIdentification(const MachineOptions& o, const IdentificationOutcome& out, bool strict, const std::string& errorsOut);
+// --errors-out of identify and cubic-identify.
+void addErrorsOutOption(CLI::App& cmd, std::string& errorsOut);
 
 // Registration of each subcommand.
 void addCheckCommand(CLI::App& app);

@@ -112,7 +112,7 @@ void run(CubicCliOptions& o) {
 
 struct CubicIdentifyCliOptions : MachineOptions {
   CubicIdentificationRequest request;
-  std::string params, noise;
+  std::string params, noise, errorsOut;
   bool strict = false;
 };
 
@@ -121,7 +121,7 @@ void identify(CubicIdentifyCliOptions& o) {
   if (!o.noise.empty()) o.request.noise = parseQuantityAs(o.noise, Dimension::Length, "--noise");
   if (o.request.threads < 0 || o.request.threads > 1024)
     throw InputError(InputLocation{"", 0, "--threads"}, "must be from 0 (every core) to 1024");
-  emitIdentification(o, identifyFromZones(loadMachineSetup(o.source), o.request), o.strict);
+  emitIdentification(o, identifyFromZones(loadMachineSetup(o.source), o.request), o.strict, o.errorsOut);
 }
 
 }  // namespace
@@ -156,6 +156,7 @@ void addCubicCommands(CLI::App& app) {
   idc->add_option("--noise", id->noise, "height noise (standard deviation), e.g. 0.2um; default: the file's '# noise:' line");
   idc->add_option("--threads", id->request.threads, "threads (0 = all cores)")->capture_default_str();
   idc->add_flag("--strict", id->strict, "exit with status 4 when the fit or the conditioning draws a warning");
+  addErrorsOutOption(*idc, id->errorsOut);
   idc->callback([id] { identify(*id); });
 }
 

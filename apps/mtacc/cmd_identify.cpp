@@ -12,13 +12,14 @@
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/workflows/identification.hpp"
+#include "mtacc/workflows/identified_errors.hpp"
 
 namespace mtacc::cli {
 namespace {
 
 struct IdentifyCliOptions : MachineOptions {
   std::vector<std::string> data;
-  std::string plan, params, setup, robustScale = "2 um", noise;
+  std::string plan, params, setup, robustScale = "2 um", noise, errorsOut;
   double uncertaintyFraction = 0.1;
   bool robust = false, strict = false, fromNominal = false;
   int threads = kAllCores;
@@ -61,7 +62,7 @@ void observability(const IdentifyCliOptions& o) {
 }
 
 void identify(const IdentifyCliOptions& o) {
-  emitIdentification(o, identifyParameters(loadMachineSetup(o.source), request(o)), o.strict);
+  emitIdentification(o, identifyParameters(loadMachineSetup(o.source), request(o)), o.strict, o.errorsOut);
 }
 
 void addOptions(CLI::App* cmd, IdentifyCliOptions& o) {
@@ -77,7 +78,14 @@ void addOptions(CLI::App* cmd, IdentifyCliOptions& o) {
 
 }  // namespace
 
-void emitIdentification(const MachineOptions& o, const IdentificationOutcome& out, bool strict) {
+void addErrorsOutOption(CLI::App& cmd, std::string& errorsOut) {
+  cmd.add_option("--errors-out", errorsOut,
+                 "Write the identified errors (the estimates merged onto the errors held, with a record of the data) "
+                 "as an errors file that --errors reads");
+}
+
+void emitIdentification(const MachineOptions& o, const IdentificationOutcome& out, bool strict, const std::string& errorsOut) {
+  if (!errorsOut.empty()) writeIdentifiedErrors(errorsOut, out, "--errors-out");
   const auto& r = out.result;
   std::string human = fmt::format("Identification on {} from {} runs ({} readings, {} unknowns)\n", out.machine->name, out.runs,
                                   r.readings, r.values.size());
@@ -88,6 +96,7 @@ void emitIdentification(const MachineOptions& o, const IdentificationOutcome& ou
   for (Eigen::Index k = 0; k < r.values.size(); ++k) {
     const auto d = r.columns.dimensions[static_cast<size_t>(k)];
     const auto& name = r.columns.names[static_cast<size_t>(k)];
+    if (static_cast<size_t>(k) == out.given.size()) human += "set-up errors of each run (<run>.<error>):\n";
     const bool aliased = static_cast<size_t>(k) < out.given.size() && out.given[static_cast<size_t>(k)] != name;
     human += fmt::format("{:<22} {:>14.4f} {:>14.4f}  {}\n", aliased ? name + " (" + out.given[static_cast<size_t>(k)] + ")" : name,
                          toDisplay(r.values[k], d), toDisplay(r.uncertainty[k], d), displayUnit(d));
@@ -115,6 +124,7 @@ void emitIdentification(const MachineOptions& o, const IdentificationOutcome& ou
                          q.noiseSource, *q.chiSquare, r.degreesOfFreedom, *q.pValue);
   else
     human += "goodness of fit: not tested (state the reading noise with --noise or '# noise:' in the files)\n";
+  if (!errorsOut.empty()) human += "identified errors written to " + errorsOut + " (read them with --errors)\n";
   emit(o, toJson(out), human, csv);
   for (const auto& w : q.warnings) std::cerr << "mtacc: warning: " << w << "\n";
   if (strict && !q.warnings.empty()) throw StrictFailure{q.warnings.size()};
@@ -132,6 +142,7 @@ void addIdentifyCommands(CLI::App& app) {
                  "Warn when a standard uncertainty exceeds this fraction of the plausible magnitude (50 um, 200 urad)")
       ->capture_default_str();
   id->add_flag("--strict", o->strict, "Exit with status 4 when the fit or the conditioning draws a warning");
+  addErrorsOutOption(*id, o->errorsOut);
   id->callback([o] { identify(*o); });
 
   auto* obs = app.add_subcommand("observability", "Which parameters a test plan can determine (SVD of its Jacobian)");

@@ -23,6 +23,7 @@
 #include "mtacc/io/cubic_test_yaml.hpp"
 #include "mtacc/workflows/dynamics.hpp"
 #include "mtacc/workflows/identification.hpp"
+#include "mtacc/workflows/identified_errors.hpp"
 #include "mtacc/workflows/kinematics_batch.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
 #include "mtacc/workflows/plates.hpp"
@@ -156,8 +157,10 @@ PYBIND11_MODULE(_mtacc, mod) {
         return isoSign(name) * parameterValue(s.errors, findParameter(*s.machine, s.errors, name));
       })
       .def("set_error", [](PythonMachine& s, const std::string& name, const py::object& value) {
-        const auto p = findParameter(*s.machine, s.errors, name);
-        setParameterValue(s.errors, p, isoSign(name) * quantity(value, p.dimension, name));
+        auto errors = s.errors;
+        const auto p = defineParameter(*s.machine, errors, name);
+        setParameterValue(errors, p, isoSign(name) * quantity(value, p.dimension, name));
+        s.errors = std::move(errors);
         s.models.reset();
       })
       .def("nonzero_errors", [](const PythonMachine& s) {
@@ -308,7 +311,7 @@ PYBIND11_MODULE(_mtacc, mod) {
         return out;
       })
       .def("cubic_identify", [](const PythonMachine& s, const std::string& zones, const std::vector<std::string>& parameters,
-                                const std::string& test, const std::string& noise) {
+                                const std::string& test, const std::string& noise, const std::string& errorsOut) {
         CubicIdentificationRequest request;
         request.test = test;
         request.zonesFile = zones;
@@ -319,6 +322,7 @@ PYBIND11_MODULE(_mtacc, mod) {
           py::gil_scoped_release release;
           out = identifyFromZones(s, request);
         }
+        if (!errorsOut.empty()) writeIdentifiedErrors(errorsOut, out, "errors_out");
         return toPython(toJson(out));
       })
       .def("cone_preset_name", [](const PythonMachine& s) { return conePresetName(*s.machine); })
@@ -449,7 +453,8 @@ PYBIND11_MODULE(_mtacc, mod) {
         return toPython(toJson(planObservability(s, {.plan = plan, .parameters = parameters})));
       })
       .def("identify", [](const PythonMachine& s, const std::vector<std::string>& files, const std::vector<std::string>& parameters,
-                          const std::string& plan, bool robust, const std::string& noise, double uncertaintyFraction, bool fromNominal) {
+                          const std::string& plan, bool robust, const std::string& noise, double uncertaintyFraction, bool fromNominal,
+                          const std::string& errorsOut) {
         IdentificationRequest request{.plan = plan, .data = files, .parameters = parameters, .robust = robust, .fromNominal = fromNominal};
         if (!noise.empty()) request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
         request.uncertaintyFraction = uncertaintyFraction;
@@ -458,6 +463,7 @@ PYBIND11_MODULE(_mtacc, mod) {
           py::gil_scoped_release release;
           out = identifyParameters(s, request);
         }
+        if (!errorsOut.empty()) writeIdentifiedErrors(errorsOut, out, "errors_out");
         return toPython(toJson(out));
       })
       .def("xy_circle", [](const PythonMachine& s) {

@@ -332,11 +332,11 @@ class Machine:
         points (n, 3) of each zone."""
         return self._core.cubic(str(test), grid, inset, sensitivities, list(parameters or []), sensitivity_grid, threads)
 
-    def cubic_identify(self, zones, parameters, test="seed001-cubic", noise=None):
+    def cubic_identify(self, zones, parameters, test="seed001-cubic", noise=None, errors_out=None):
         """Errors from the zone results of a cubic machining test (CSV: zone,height_um[,slope_x_um_per_mm,
         slope_y_um_per_mm]), as `mtacc cubic-identify --json`; refuses (InputError) a set the zones
-        cannot determine, naming what they cannot separate."""
-        return self._core.cubic_identify(str(zones), list(parameters), str(test), _text(noise))
+        cannot determine, naming what they cannot separate. errors_out: as identify's."""
+        return self._core.cubic_identify(str(zones), list(parameters), str(test), _text(noise), _text(errors_out))
 
     def fit_component(self, path, breaks=None, pieces=0, degree=2, significance=0.05, period=None, period_zero=0.0,
                       disturbance_threshold=5.0, remove_disturbed=False):
@@ -464,15 +464,17 @@ class Machine:
                             ("singular_vectors",))
 
     def identify(self, files, parameters=None, plan=None, robust=False, noise=None, uncertainty_fraction=0.1,
-                 from_nominal=False):
+                 from_nominal=False, errors_out=None):
         """Least-squares estimates with standard uncertainties (um or urad, "unit"), covariance (um^2,
         um urad, urad^2) and correlation (as `mtacc identify --json`) from measurement CSV files; the parameters default to the plan's list; refuses (InputError) a
         set the data cannot determine. `noise` (e.g. "0.5 um", default: the files' '# noise:'
         lines) feeds the goodness-of-fit test; result["quality"]["warnings"] lists what is doubtful.
         The errors not determined are held at this machine's values (result["held"] names the
-        non-zero ones); from_nominal=True holds them at zero."""
+        non-zero ones); from_nominal=True holds them at zero. errors_out: a path to write the identified
+        errors to, as an errors file that Machine(errors=...) and every command's --errors read
+        (docs/file-formats.md "Identified errors")."""
         return self._core.identify([str(f) for f in files], list(parameters or []), _text(plan), robust, _text(noise),
-                                   uncertainty_fraction, bool(from_nominal))
+                                   uncertainty_fraction, bool(from_nominal), _text(errors_out))
 
     def xy_circle(self):
         """The report's X-Y circle: radial TCP deviation [um] at each angle [deg] around mid-travel, or

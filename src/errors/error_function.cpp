@@ -9,17 +9,11 @@
 
 #include <Eigen/LU>
 
+#include "mtacc/core/overloaded.hpp"
 #include "mtacc/core/units.hpp"
 
 namespace mtacc {
 namespace {
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
 
 int termParameterCount(const ErrorTerm& term) {
   return std::visit(Overloaded{[](const PolynomialTerm& p) { return static_cast<int>(p.coefficients.size()); },

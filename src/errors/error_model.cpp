@@ -198,6 +198,17 @@ Parameter findParameter(const Machine& machine, const ErrorModel& errors, const 
                                                    " for this machine; its parameters are: " + known);
 }
 
+Parameter defineParameter(const Machine& machine, ErrorModel& errors, const std::string& name) {
+  ErrorModel defined = errors;
+  const auto names = defineNamedTerms(machine, defined, {name});
+  if (names.size() != 1)
+    throw InputError(InputLocation{"", 0, name}, "'" + name + "' names the two parts of a harmonic: give " + names[0] + " and " +
+                                                     names[1] + " (or the function's 'harmonics:')");
+  const Parameter p = findParameter(machine, defined, names[0]);
+  errors = std::move(defined);
+  return p;
+}
+
 ErrorModel withParametersZero(const Machine& machine, const ErrorModel& shape) {
   ErrorModel e = shape;
   e.stiffness.clear();

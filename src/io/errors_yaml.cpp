@@ -13,6 +13,7 @@
 #include <string_view>
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/core/units.hpp"
 #include "yaml_input.hpp"
 #include "mtacc/errors/aliases.hpp"
 
@@ -163,6 +164,11 @@ void readTerms(const Context& ctx, const Machine& m, const MotionComponent& t, c
     f.add(PolynomialTerm{0.0, 1.0, {yamlin::quantity(ctx, node, key, valueDim)}});
     return;
   }
+  if (node.IsSequence()) {  // blocks added in order (two of a kind: two polynomials, two tables)
+    if (node.size() == 0) ctx.fail(node, key, "expected a value with a unit, a mapping of terms or a list of them");
+    for (const auto& block : node) readTerms(ctx, m, t, block, key, f, stiffness);
+    return;
+  }
   yamlin::rejectUnknownKeys(ctx, node, key, {"constant", "linear", "polynomial", "harmonics", "cyclic", "table", "reversal", "piecewise", "stiffness"});
   for (const auto& kv : node) {
     const auto type = kv.first.as<std::string>();
@@ -201,11 +207,20 @@ void readTerms(const Context& ctx, const Machine& m, const MotionComponent& t, c
       const auto terms = v["terms"];
       if (!yamlin::isSequence(terms) || terms.size() == 0) ctx.fail(terms, k + ".terms", "expected a list of {order, amplitude, phase}");
       for (const auto& h : terms) {
-        yamlin::rejectUnknownKeys(ctx, h, k + ".terms", {"order", "amplitude", "phase"});
+        yamlin::rejectUnknownKeys(ctx, h, k + ".terms", {"order", "amplitude", "phase", "part"});
         const int order = yamlin::wholeNumber(ctx, h["order"], k + ".terms.order", 1, 1000);
+        const double amplitude = yamlin::quantity(ctx, h["amplitude"], k + ".terms.amplitude", valueDim);
+        if (h["part"]) {  // the cosine or sine part of a pair (parameters .h<k>c, .h<k>s): its phase is fixed
+          const auto part = yamlin::scalar(ctx, h["part"], k + ".terms.part");
+          if (part != "cosine" && part != "sine") ctx.fail(h["part"], k + ".terms.part", "expected 'cosine' or 'sine'");
+          if (h["phase"]) ctx.fail(h["phase"], k + ".terms.phase", "a cosine or sine part has no phase of its own");
+          const bool sine = part == "sine";
+          f.add(HarmonicTerm{period, zero, order, amplitude, sine ? -0.5 * kPi : 0.0, false,
+                             sine ? HarmonicPart::Sine : HarmonicPart::Cosine});
+          continue;
+        }
         const double phase = h["phase"] ? yamlin::quantity(ctx, h["phase"], k + ".terms.phase", Dimension::Angle) : 0.0;
-        f.add(HarmonicTerm{period, zero, order,
-                           yamlin::quantity(ctx, h["amplitude"], k + ".terms.amplitude", valueDim), phase});
+        f.add(HarmonicTerm{period, zero, order, amplitude, phase});
       }
     } else if (type == "table") {
       yamlin::rejectUnknownKeys(ctx, v, k, {"positions", "values", "interpolation"});
@@ -261,10 +276,16 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
   const bool loadStated = loadDependent() || root["workpiece_load"];  // a base with load changes stated its load
   const auto errors = root["errors"];
   if (!errors && errorsKey == ErrorsKey::Required) ctx.fail(root, "errors", "an errors file needs an 'errors:' mapping");
+  if (errorsKey == ErrorsKey::Required) {
+    yamlin::rejectUnknownKeys(ctx, root, "", {"errors", "base", "workpiece_load", "identification", "description", "source"});
+    if (root["identification"] && !root["identification"].IsMap())
+      ctx.fail(root["identification"], "identification", "expected a mapping (what identified these errors)");
+  }
   if (root["workpiece_load"]) model.workpieceLoad = readLoad(ctx, root["workpiece_load"], "workpiece_load", false);
   if (!errors) return model;
   if (!errors.IsMap()) ctx.fail(errors, "errors", "expected a mapping of error names to values");
   std::map<std::string, std::string> namedBy;  // parameter or component -> the key that gave it alone
+  std::map<std::string, std::string> termNamedBy;  // component -> the first key that named one of its terms (EXX.c1)
   for (const auto& kv : errors) {
     const auto name = kv.first.as<std::string>();
     const std::string key = "errors." + name;
@@ -274,6 +295,8 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
     if (const auto target = findMotionComponent(machine, iso); target && terms.size() == 1) {
       auto& f = model.axes[static_cast<size_t>(target->axis)].motion[static_cast<size_t>(target->component)];
       if (!namedBy.emplace(iso, name).second) ctx.fail(kv.first, key, "error given twice (" + iso + ")");
+      if (const auto it = termNamedBy.find(iso); it != termNamedBy.end())
+        ctx.fail(kv.first, key, "its term " + it->second + " is named on its own too: give " + iso + "'s terms in one of the two forms");
       if (terms[0].sign < 0) ctx.fail(kv.first, key, "a negated alias of a component error is not supported");
       readTerms(ctx, machine, *target, kv.second, key, f, model.stiffness);
       continue;
@@ -281,9 +304,15 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
     for (const auto& term : terms) {
       Parameter p;
       try {
-        p = findParameter(machine, model, term.isoName);
+        p = defineParameter(machine, model, term.isoName);
       } catch (const InputError& e) {
         ctx.fail(kv.first, key, e.reason());
+      }
+      if (p.kind == ParameterKind::Motion) {
+        const std::string component = motionErrorName(machine, p.axis, p.component);
+        if (namedBy.count(component))
+          ctx.fail(kv.first, key, "'" + component + "' is given as a function too: give its terms in one of the two forms");
+        termNamedBy.emplace(component, name);
       }
       if (terms.size() == 1) {
         const auto [it, added] = namedBy.emplace(p.name, name);
@@ -301,18 +330,8 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
 
 std::string piecewiseErrorYaml(const std::string& name, const std::vector<PiecewiseTerm>& terms, Dimension valueDimension,
                                Dimension positionDimension) {
-  const bool angle = valueDimension == Dimension::Angle, rotary = positionDimension == Dimension::Angle;
-  const double unit = angle ? kArcsec : 1.0, per = rotary ? kDeg : 1.0;
   std::string out = fmt::format("  {}:\n    piecewise:\n", name);
-  for (const auto& t : terms) {
-    out += fmt::format("      - unit: {}\n        per: {}\n        breaks: [", angle ? "arcsec" : "mm", rotary ? "deg" : "mm");
-    for (size_t i = 0; i < t.breaks.size(); ++i) out += fmt::format("{}{:.10g}", i ? ", " : "", t.breaks[i] / per);
-    out += "]\n";
-    if (t.period > 0.0) out += fmt::format("        period: {:.10g}\n        zero: {:.10g}\n", t.period / per, t.zero / per);
-    out += "        intervals:\n";
-    for (const auto& c : t.intervals())
-      out += fmt::format("          - [{:.9e}, {:.9e}, {:.9e}]\n", c[0] / unit, c[1] * per / unit, c[2] * per * per / unit);
-  }
+  for (const auto& t : terms) out += "      - " + piecewiseBlockYaml(t, valueDimension, positionDimension) + "\n";
   return out;
 }
 

@@ -57,7 +57,11 @@ IdentificationOutcome identifyFromZones(const MachineSetup& setup, const CubicTe
 }
 
 IdentificationOutcome identifyFromZones(const MachineSetup& setup, const CubicIdentificationRequest& request) {
-  return identifyFromZones(setup, loadCubicTest(request.test), readZoneResults(request.zonesFile), request);
+  auto outcome = identifyFromZones(setup, loadCubicTest(request.test), readZoneResults(request.zonesFile), request);
+  outcome.command = "cubic-identify";
+  outcome.plan = request.test;
+  outcome.dataFiles = {request.zonesFile};
+  return outcome;
 }
 
 ZoneResults zoneResults(const CubicTestStudy& study) {

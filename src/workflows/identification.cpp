@@ -180,10 +180,18 @@ IdentificationOutcome identifyParameters(const MachineSetup& setup, const Identi
   options.robust = request.robust;
   options.robustScale = request.robustScale;
   options.threads = request.threads;
-  IdentificationOutcome out{setup.machine, p.problem.runs.size(), p.given, {}, request.robust, {}, {}, {}};
+  IdentificationOutcome out{setup.machine, p.problem.runs.size(), p.given, {}, request.robust, {}, {}, {},
+                            "identify", request.plan, request.data, request.fromNominal};
+  // A rotary axis's zero offset estimated (B.zero) turns its line: the A0k B0k C0k it moves are
+  // estimated with it, not held.
+  auto estimated = [&](const Parameter& h) {
+    return std::any_of(p.problem.parameters.begin(), p.problem.parameters.end(), [&](const Parameter& q) {
+      return q.name == h.name || (q.kind == ParameterKind::ZeroOffset && h.kind == ParameterKind::Location && q.axis == h.axis &&
+                                  h.component >= 3 && q.turn[h.component - 3] != 0.0);
+    });
+  };
   for (const Parameter& held : nonZeroParameters(*setup.machine, p.problem.start))
-    if (std::none_of(p.problem.parameters.begin(), p.problem.parameters.end(), [&](const Parameter& q) { return q.name == held.name; }))
-      out.held.push_back(held.name);
+    if (!estimated(held)) out.held.push_back(held.name);
   try {
     out.result = identify(p.problem, options);
   } catch (const NotIdentifiable& e) {

@@ -122,7 +122,7 @@ def test_plans(cli, bounds, machine, plan):
 
 
 # The machine each bundled plan was written for (its header says so).
-PLAN_MACHINES = {"seed001-cubic": "tilting-table", "seed002-six-runs": "multitasking-b-c",
+PLAN_MACHINES = {"double-pivot-rtest": "double-pivot-head", "seed001-cubic": "tilting-table", "seed002-six-runs": "multitasking-b-c",
                  "tilting-table-rtest": "tilting-table"}
 
 

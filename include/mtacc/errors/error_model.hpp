@@ -78,6 +78,13 @@ AxisSpan harmonicSpan(const Axis& axis);
 // give amplitude and phase), "ECC.h<k>c" or ".h<k>s" one part. Other names pass unchanged.
 std::vector<std::string> defineNamedTerms(const Machine& machine, ErrorModel& errors, const std::vector<std::string>& names);
 
+// The parameter `name` names, for setting its value (an errors file's key, Python's
+// errors[name] = v): as findParameter, with a component-error term the errors do not define
+// (EXX.c1, ECC.h1c) added at zero first, as defineNamedTerms does for a test plan, so that a
+// name means the same term in a plan, an identification's result and an errors file. A harmonic
+// named without its part (ECC.h1, two parameters) is refused.
+Parameter defineParameter(const Machine& machine, ErrorModel& errors, const std::string& name);
+
 // Every location parameter of the machine, then every parameter of the motion functions
 // defined in `errors`.
 std::vector<Parameter> parameterCatalogue(const Machine& machine, const ErrorModel& errors);

@@ -19,10 +19,17 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
                        ErrorsKey errorsKey = ErrorsKey::Optional);
 
 // One component's entry of an `errors:` mapping with its piecewise terms, as the machine YAML
-// loads it back: values in arcsec (rotations) or mm (translations), positions in mm or deg, per
-// interval [c0, c1, c2] to nine significant digits. `valueDimension` is the component's,
-// `positionDimension` its axis's.
+// loads it back: values in arcsec (rotations) or mm (translations), positions in mm or deg.
+// `valueDimension` is the component's, `positionDimension` its axis's.
 std::string piecewiseErrorYaml(const std::string& name, const std::vector<PiecewiseTerm>& terms, Dimension valueDimension,
                                Dimension positionDimension);
+// One piecewise term as a flow mapping {unit, per, breaks, [period, zero,] intervals}.
+std::string piecewiseBlockYaml(const PiecewiseTerm& term, Dimension valueDimension, Dimension positionDimension);
+
+// The errors as an errors file that parseErrors reads back to the same model: every non-zero
+// location error, every component function term by term (a list of blocks, so that its
+// parameters keep their names and meaning), the stiffness changes and the workpiece load
+// they need; values to 15 significant digits in um, urad, mm and deg.
+std::string errorsYaml(const Machine& machine, const ErrorModel& errors);
 
 }  // namespace mtacc

@@ -80,6 +80,11 @@ struct IdentificationOutcome {
   IdentificationResult result;
   IdentificationQuality quality;
   std::vector<HarmonicEstimate> harmonics;
+  // Where it came from, for the record an identified errors file keeps (identified_errors.hpp).
+  std::string command = "identify";  // or "cubic-identify"
+  std::string plan;                  // the test plan (or cubic test piece), as given
+  std::vector<std::string> dataFiles;
+  bool heldAtZero = false;           // the errors not identified held at zero (--from-nominal)
 };
 
 // Identifies from the request's files; refuses (InputError) a set the data cannot determine,
