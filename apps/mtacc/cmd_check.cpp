@@ -75,6 +75,7 @@ void run(const CheckOptions& o) {
              "poses within travel); identify one of each group and hold the others:\n";
     for (const auto& f : c.actingAlike) human += "  " + f + "\n";
   }
+  for (const auto& w : c.warnings) human += "Warning: " + w + "\n";
   if (!c.setup.errors.stiffness.empty())
     human += fmt::format("Stiffness changes: {} at a workpiece load of {:g} kg (mtacc stiffness shows them)\n",
                          c.setup.errors.stiffness.size(), c.setup.errors.workpieceLoad);

@@ -3,6 +3,7 @@
 #include <random>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/jacobian.hpp"
@@ -112,6 +113,22 @@ MachineCheck checkMachine(const MachineSetup& setup) {
     if (m.axes[static_cast<size_t>(a)].isRotary() && m.axes[static_cast<size_t>(a)].commanded())
       c.zeroOffsets.push_back(zeroOffsetExpression(m, zeroOffsetParameter(m, a)));
   c.actingAlike = locationErrorsActingAlike(setup, c.parameters);
+  if (m.spindleIndex() < 0) {
+    std::vector<std::string> heads;
+    for (const auto& a : m.axes)
+      if (a.isRotary() && a.commanded() && a.side == Side::Tool && a.direction.cross(m.toolDirection).norm() > 1e-6) heads.push_back(a.name);
+    if (!heads.empty()) {
+      const bool hasC = m.axisIndex("C") >= 0;
+      Eigen::Index along = 0;
+      m.toolDirection.cwiseAbs().maxCoeff(&along);
+      const std::string spindle = hasC ? "C1" : "C";
+      c.warnings.push_back(fmt::format(
+          "{} turns the tool across its line, but the structure code '{}' names no spindle element: the spindle's "
+          "location errors on the head, among them the pivot length {}0{} (the tool's position along the spindle line "
+          "about {}), are not parameters of this model. Add the spindle as '(C)' next to 't' (it is then named {})",
+          fmt::join(heads, " and "), m.structure.text, "XYZ"[along], spindle, heads.front(), spindle));
+    }
+  }
   return c;
 }
 
@@ -155,6 +172,7 @@ nlohmann::json toJson(const MachineCheck& c) {
   j["workpiece_load_kg"] = c.setup.errors.workpieceLoad;
   j["zero_offsets"] = c.zeroOffsets;
   j["location_errors_acting_alike"] = c.actingAlike;
+  j["warnings"] = c.warnings;
   j["parameter_count"] = c.parameters.size();
   j["location_parameter_count"] = c.locationCount;
   j["valid"] = true;

@@ -102,3 +102,25 @@ def test_named_terms_in_python_mean_what_identify_means():
     assert dz == pytest.approx([-3.0, 0.0, 3.0], abs=1e-9)
     with pytest.raises(mtacc.InputError, match="two parts"):
         m.errors["EZX.h1"] = "1 um"
+
+
+def test_check_warns_of_a_head_without_its_spindle(cli, tmp_path):
+    text = (ROOT / "data/machines/swivel-head-table.yaml").read_text()
+    assert "t-(C)-B-Z-Y-b-X-C-w" in text
+    without = tmp_path / "no-spindle.yaml"
+    without.write_text(text.replace("t-(C)-B-Z-Y-b-X-C-w", "t-B-Z-Y-b-X-C-w"))
+    warned = json.loads(run(cli, "check", without, "--json"))
+    assert len(warned["warnings"]) == 1 and "pivot length Z0C1" in warned["warnings"][0]
+    assert "Z0C1" not in warned["parameters"]
+    ok = json.loads(run(cli, "check", "swivel-head-table", "--json"))
+    assert ok["warnings"] == [] and "Z0C1" in ok["parameters"]
+    # Seed 003's Maho: a C head turning a horizontal spindle (along Y), modelled without it.
+    assert "pivot length Y0C1" in json.loads(run(cli, "check", "maho", "--json"))["warnings"][0]
+    # A rotary axis along the tool has no pivot length to miss.
+    along = tmp_path / "c-along-the-tool.yaml"
+    along.write_text("name: C head along the tool\nstructure: t-C-Z-Y-b-X-w\naxes:\n"
+                     "  X: {direction: [1, 0, 0], travel: [-500 mm, 500 mm]}\n"
+                     "  Y: {direction: [0, 1, 0], travel: [-350 mm, 350 mm]}\n"
+                     "  Z: {direction: [0, 0, 1], travel: [-200 mm, 600 mm]}\n"
+                     "  C: {direction: [0, 0, 1], location: [0 mm, 0 mm, 0 mm], travel: continuous}\n")
+    assert json.loads(run(cli, "check", along, "--json"))["warnings"] == []

@@ -22,6 +22,10 @@ struct MachineCheck {
   // Location errors that act alike at every pose within travel (TCP and tool direction):
   // "X0B and X0C act alike: only X0B - X0C is observable ...", and those without effect.
   std::vector<std::string> actingAlike;
+  // What the description leaves out that a measurement would need: a rotary axis carrying the
+  // tool across its line with no spindle element in the structure code, so that the spindle's
+  // location errors (the pivot length among them) are not parameters.
+  std::vector<std::string> warnings;
 };
 
 MachineCheck checkMachine(const MachineSetup& setup);
