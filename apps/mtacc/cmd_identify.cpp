@@ -54,11 +54,45 @@ std::string reportText(const ObservabilityReport& r, Eigen::Index readings) {
   return s;
 }
 
+std::string proposalText(const ObservabilityResult& r) {
+  if (!r.proposal) return "";
+  const auto& s = *r.proposal;
+  std::string t = "what the plan can determine instead: identify";
+  for (const auto& k : s.kept) t += " " + k.name;
+  t += ", hold at zero";
+  for (const auto& h : s.held) t += " " + h.name;
+  t += "; each estimate then stands for:\n";
+  for (size_t k = 0; k < s.kept.size(); ++k) t += fmt::format("  {:<10} {}\n", s.kept[k].name, s.standsFor(k));
+  return t;
+}
+
+std::string predictionText(const ObservabilityResult& r) {
+  if (!r.prediction) return "predicted uncertainties: state the readings' noise (--noise, or 'noise:' in the plan's runs)\n";
+  const auto& p = *r.prediction;
+  std::string t = fmt::format("predicted standard uncertainty with the noise of {} (first order, about the nominal machine):\n"
+                              "{:<22} {:>12} {:>12}  unit\n", r.noiseSource, "parameter", "u (k = 1)", "U (k = 2)");
+  for (size_t a = 0; a < r.parameterCount; ++a) {
+    const auto d = p.columns.dimensions[a];
+    const double u = toDisplay(p.uncertainty[static_cast<Eigen::Index>(a)], d);
+    t += fmt::format("{:<22} {:>12.4f} {:>12.4f}  {}\n", p.columns.names[a], u, 2.0 * u, displayUnit(d));
+  }
+  for (size_t a = 0; a < r.parameterCount; ++a)
+    for (size_t b = a + 1; b < r.parameterCount; ++b) {
+      const auto ia = static_cast<Eigen::Index>(a), ib = static_cast<Eigen::Index>(b);
+      const double c = p.covariance(ia, ib) / (p.uncertainty[ia] * p.uncertainty[ib]);
+      if (std::abs(c) > 0.9) t += fmt::format("  correlated: {} and {} ({:.3f})\n", p.columns.names[a], p.columns.names[b], c);
+    }
+  return t;
+}
+
 void observability(const IdentifyCliOptions& o) {
   const auto r = planObservability(loadMachineSetup(o.source), request(o));
   std::string csv = "index,singular_value\n";
   for (Eigen::Index i = 0; i < r.report.singularValues.size(); ++i) csv += fmt::format("{},{}\n", i + 1, r.report.singularValues[i]);
-  emit(o, toJson(r), fmt::format("Observability on {} ({} runs)\n", r.machine->name, r.runs) + reportText(r.report, r.readings), csv);
+  emit(o, toJson(r),
+       fmt::format("Observability on {} ({} runs)\n", r.machine->name, r.runs) + reportText(r.report, r.readings) + proposalText(r) +
+           predictionText(r),
+       csv);
 }
 
 void identify(const IdentifyCliOptions& o) {
@@ -147,6 +181,8 @@ void addIdentifyCommands(CLI::App& app) {
 
   auto* obs = app.add_subcommand("observability", "Which parameters a test plan can determine (SVD of its Jacobian)");
   addOptions(obs, *o);
+  obs->add_option("--noise", o->noise, "Reading noise (standard deviation), e.g. 0.5um: the uncertainty each parameter would get; "
+                                       "default: the plan's runs' 'noise:'");
   obs->callback([o] { observability(*o); });
 }
 

@@ -449,8 +449,11 @@ PYBIND11_MODULE(_mtacc, mod) {
         return toPython(runJson(*s.machine, readMeasurementCsv(s.nominal(), path)));
       })
       .def("evaluate_ballbar", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(evaluateBallbarFile(s, path))); })
-      .def("observability", [](const PythonMachine& s, const std::string& plan, const std::vector<std::string>& parameters) {
-        return toPython(toJson(planObservability(s, {.plan = plan, .parameters = parameters})));
+      .def("observability", [](const PythonMachine& s, const std::string& plan, const std::vector<std::string>& parameters,
+                               const std::string& noise) {
+        IdentificationRequest request{.plan = plan, .parameters = parameters};
+        if (!noise.empty()) request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
+        return toPython(toJson(planObservability(s, request)));
       })
       .def("identify", [](const PythonMachine& s, const std::vector<std::string>& files, const std::vector<std::string>& parameters,
                           const std::string& plan, bool robust, const std::string& noise, double uncertaintyFraction, bool fromNominal,

@@ -455,13 +455,18 @@ class Machine:
         a ballbar CSV file (as `mtacc evaluate --json`)."""
         return self._core.evaluate_ballbar(str(path))
 
-    def observability(self, plan, parameters=None):
+    def observability(self, plan, parameters=None, noise=None):
         """Rank, singular values and findings of a test plan (as `mtacc observability --json`), for the
         plan's parameters or `parameters`. result["singular_values"] (p,) of the column-normalised
         Jacobian, descending; result["singular_vectors"] (k, p) the right singular vectors as rows
-        (numpy.linalg.svd's Vh), over result["names"]; a parameter without effect is 0 in every row."""
-        return _with_arrays(self._core.observability(str(plan), list(parameters or [])), ("singular_values",),
-                            ("singular_vectors",))
+        (numpy.linalg.svd's Vh), over result["names"]; a parameter without effect is 0 in every row.
+        result["identifiable_set"]: when the plan cannot determine every parameter, the set it can
+        ("parameters", each with what its estimate "stands_for") and those to hold at zero ("held").
+        noise (e.g. "0.5 um"; default: the plan's runs' `noise:`): result["prediction"] gives each
+        parameter's predicted standard uncertainty (um, urad; set-up unknowns flagged "setup") and
+        result["prediction"]["correlation"] (q, q) over them."""
+        return _with_arrays(self._core.observability(str(plan), list(parameters or []), _text(noise)), ("singular_values",),
+                            ("singular_vectors",), ("prediction", "correlation"))
 
     def identify(self, files, parameters=None, plan=None, robust=False, noise=None, uncertainty_fraction=0.1,
                  from_nominal=False, errors_out=None):

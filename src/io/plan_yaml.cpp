@@ -151,7 +151,7 @@ TestPlan parseTestPlan(const KinematicModel& nominal, const std::string& text, c
     const std::string key = "runs[" + std::to_string(i) + "]";
     const auto entry = runs[i];
     if (!entry.IsMap()) ctx.fail(entry, key, "expected a mapping");
-    yamlin::rejectUnknownKeys(ctx, entry, key, {"name", "estimate", "tool_ball", "circle", "rotary", "sphere", "cone", "cubic_zones"});
+    yamlin::rejectUnknownKeys(ctx, entry, key, {"name", "estimate", "noise", "tool_ball", "circle", "rotary", "sphere", "cone", "cubic_zones"});
     auto generated = generate(ctx, nominal, entry, key);
     for (size_t g = 0; g < generated.size(); ++g) {
       auto& run = generated[g];
@@ -166,6 +166,10 @@ TestPlan parseTestPlan(const KinematicModel& nominal, const std::string& text, c
             ctx.fail(item, key + ".estimate", "'" + name + "' is not a set-up parameter of a " + instrumentName(run.instrument));
           run.estimate.push_back(*p);
         }
+      }
+      if (const auto n = entry["noise"]) {  // the readings' expected standard deviation, for observability's prediction
+        run.noise = yamlin::size(ctx, n, key + ".noise", Dimension::Length);
+        if (*run.noise > 1.0) ctx.fail(n, key + ".noise", "must be from 1 nm to 1 mm");
       }
       if (const auto [it, added] = runLines.emplace(run.name, entry.Mark().line + 1); !added)
         ctx.fail(entry["name"] ? entry["name"] : entry, key + ".name",

@@ -434,6 +434,37 @@ ObservabilityReport planObservability(const IdentificationProblem& problem, int 
   return analyseObservability(std::move(state.jacobian), cols.names, cols.typical, kRankTolerance, threads);
 }
 
+PredictedUncertainty predictUncertainty(const IdentificationProblem& problem, const std::vector<double>& runNoise, int threads) {
+  if (runNoise.size() != problem.runs.size()) throw std::invalid_argument("predictUncertainty: one noise per run");
+  State state(problem, true, threadCount(threads));
+  state.evaluateAll();
+  PredictedUncertainty out;
+  out.columns = problemColumns(problem);
+  const auto report = analyseObservability(state.jacobian, out.columns.names, out.columns.typical, kRankTolerance, threads);
+  if (!report.identifiable()) {
+    std::string why;
+    for (const auto& f : report.findings()) why += (why.empty() ? "" : "; ") + f;
+    throw NotIdentifiable(report, "the plan cannot determine this parameter set: " + why);
+  }
+  // Weighted and scaled to the typical sizes, so that the normal matrix is well conditioned.
+  Eigen::MatrixXd& j = state.jacobian;
+  for (size_t r = 0; r < problem.runs.size(); ++r)
+    j.middleRows(state.rowStart[r], state.runs[r].poses() * readingSize(state.runs[r].instrument)) /= runNoise[r];
+  j *= out.columns.typical.asDiagonal();
+  const Eigen::MatrixXd normal = j.transpose() * j;
+  const Eigen::Index n = normal.cols();
+  out.covariance = out.columns.typical.asDiagonal() * normal.llt().solve(Eigen::MatrixXd::Identity(n, n)) *
+                   out.columns.typical.asDiagonal();
+  out.uncertainty = out.covariance.diagonal().cwiseSqrt();
+  return out;
+}
+
+IdentifiableColumns proposeIdentifiableSet(const IdentificationProblem& problem, int threads) {
+  State state(problem, true, threadCount(threads));
+  state.evaluateAll();
+  return proposeIdentifiableColumns(state.jacobian, problemColumns(problem).typical, static_cast<Eigen::Index>(problem.parameters.size()));
+}
+
 IdentificationResult identify(const IdentificationProblem& problem, const IdentificationOptions& options) {
   IdentificationResult out;
   out.columns = problemColumns(problem);

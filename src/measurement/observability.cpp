@@ -1,6 +1,8 @@
 #include "mtacc/measurement/observability.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
@@ -176,6 +178,40 @@ std::vector<std::string> ObservabilityReport::findings(const std::string& scope)
                   (combos.empty() ? ": none of them is observable" : ": only " + combos + " observable") +
                   (scaled ? " (lengths in mm, angles in rad)" : ""));
   }
+  return out;
+}
+
+IdentifiableColumns proposeIdentifiableColumns(const Eigen::MatrixXd& jacobian, const Eigen::VectorXd& typical,
+                                               Eigen::Index firstAlwaysKept, double tol) {
+  const Eigen::Index rows = jacobian.rows();
+  Eigen::MatrixXd candidates = jacobian.leftCols(firstAlwaysKept) * typical.head(firstAlwaysKept).asDiagonal();
+  if (jacobian.cols() > firstAlwaysKept) {
+    const Eigen::MatrixXd always = jacobian.rightCols(jacobian.cols() - firstAlwaysKept) *
+                                   typical.tail(jacobian.cols() - firstAlwaysKept).asDiagonal();
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(always);
+    qr.setThreshold(tol);
+    const Eigen::MatrixXd q = Eigen::MatrixXd(qr.householderQ()).leftCols(qr.rank());
+    candidates -= q * (q.transpose() * candidates);
+  }
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(candidates);
+  // Relative to the largest column of the scaled Jacobian, not of what the set-up leaves of it:
+  // a column the set-up unknowns absorb is dropped.
+  const double largest = (jacobian * typical.asDiagonal()).colwise().norm().maxCoeff();
+  qr.setThreshold(tol * largest / std::max(qr.maxPivot(), std::numeric_limits<double>::min()));
+  IdentifiableColumns out;
+  const auto& order = qr.colsPermutation().indices();
+  for (Eigen::Index i = 0; i < firstAlwaysKept; ++i) (i < qr.rank() ? out.kept : out.dropped).push_back(order[i]);
+  std::sort(out.kept.begin(), out.kept.end());
+  std::sort(out.dropped.begin(), out.dropped.end());
+  Eigen::MatrixXd kept(rows, static_cast<Eigen::Index>(out.kept.size())), dropped(rows, static_cast<Eigen::Index>(out.dropped.size()));
+  for (size_t k = 0; k < out.kept.size(); ++k) kept.col(static_cast<Eigen::Index>(k)) = candidates.col(out.kept[k]);
+  for (size_t d = 0; d < out.dropped.size(); ++d) dropped.col(static_cast<Eigen::Index>(d)) = candidates.col(out.dropped[d]);
+  // In the scaled columns; then back to the columns' own units (p_k / t_k stands for ... p_d / t_d).
+  out.standsFor = kept.cols() > 0 ? Eigen::MatrixXd(kept.colPivHouseholderQr().solve(dropped))
+                                  : Eigen::MatrixXd::Zero(0, dropped.cols());
+  for (Eigen::Index k = 0; k < out.standsFor.rows(); ++k)
+    for (Eigen::Index d = 0; d < out.standsFor.cols(); ++d)
+      out.standsFor(k, d) *= typical[out.kept[static_cast<size_t>(k)]] / typical[out.dropped[static_cast<size_t>(d)]];
   return out;
 }
 

@@ -130,9 +130,49 @@ Eigen::Index countReadings(const IdentificationProblem& p) {
 
 }  // namespace
 
+std::string IdentifiableSetProposal::standsFor(size_t k) const {
+  const Parameter& p = kept[k];
+  std::string s = p.name;
+  for (size_t d = 0; d < held.size(); ++d) {
+    const Parameter& h = held[d];
+    const double c = coefficients(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(d)) * toDisplay(1.0, p.dimension) /
+                     toDisplay(1.0, h.dimension);
+    // Terms below 1e-6 in the columns' typical sizes (1 um, 10 urad: problemColumns) are rounding.
+    const double typicalShare = std::abs(c) * (h.dimension == Dimension::Angle ? 10.0 : 1.0) / (p.dimension == Dimension::Angle ? 10.0 : 1.0);
+    if (!(typicalShare > 1e-6)) continue;
+    const std::string unit = p.dimension == h.dimension ? "" : fmt::format(" {}/{}", displayUnit(p.dimension), displayUnit(h.dimension));
+    s += fmt::format(" {} {:.4g}{} {}", c < 0 ? "-" : "+", std::abs(c), unit, h.name);
+  }
+  return s;
+}
+
 ObservabilityResult planObservability(const MachineSetup& setup, const IdentificationRequest& request) {
-  const auto p = buildProblem(setup, request, true);
-  return {setup.machine, p.problem.runs.size(), countReadings(p.problem), planObservability(p.problem, request.threads)};
+  if (request.noise && !(*request.noise >= 1e-6 && *request.noise <= 1.0))
+    throw InputError(InputLocation{"", 0, "noise"}, "must be from 1 nm to 1 mm");
+  auto p = buildProblem(setup, request, true);
+  ObservabilityResult out{setup.machine, p.problem.runs.size(), countReadings(p.problem), planObservability(p.problem, request.threads)};
+  IdentificationProblem determinable = p.problem;
+  if (!out.report.identifiable()) {
+    const auto columns = proposeIdentifiableSet(p.problem, request.threads);
+    IdentifiableSetProposal proposal{{}, {}, columns.standsFor};
+    for (const auto k : columns.kept) proposal.kept.push_back(p.problem.parameters[static_cast<size_t>(k)]);
+    for (const auto d : columns.dropped) proposal.held.push_back(p.problem.parameters[static_cast<size_t>(d)]);
+    determinable.parameters = proposal.kept;
+    out.proposal = std::move(proposal);
+  }
+  std::vector<double> noise;
+  for (const auto& run : p.problem.runs)
+    if (const auto n = request.noise ? request.noise : run.noise) noise.push_back(*n);
+  if (noise.size() == p.problem.runs.size() && !noise.empty()) {
+    out.noiseSource = request.noise ? "--noise" : "the runs' own noise";
+    out.parameterCount = determinable.parameters.size();
+    try {
+      out.prediction = predictUncertainty(determinable, noise, request.threads);
+    } catch (const NotIdentifiable&) {
+      // The set-up unknowns alone cannot be determined: no prediction, the findings say why.
+    }
+  }
+  return out;
 }
 
 nlohmann::json toJson(const ObservabilityReport& r) {
@@ -160,6 +200,38 @@ nlohmann::json toJson(const ObservabilityResult& r) {
   j["machine"] = r.machine->name;
   j["runs"] = r.runs;
   j["readings"] = r.readings;
+  j["identifiable_set"] = nullptr;
+  if (r.proposal) {
+    const auto& s = *r.proposal;
+    nlohmann::json kept = nlohmann::json::array(), held = nlohmann::json::array();
+    for (size_t k = 0; k < s.kept.size(); ++k) kept.push_back({{"parameter", s.kept[k].name}, {"stands_for", s.standsFor(k)}});
+    for (const auto& h : s.held) held.push_back(h.name);
+    j["identifiable_set"] = {{"parameters", kept}, {"held", held}};
+  }
+  j["prediction"] = nullptr;
+  if (r.prediction) {
+    const auto& pr = *r.prediction;
+    nlohmann::json estimates = nlohmann::json::array(), correlation = nlohmann::json::array(), strong = nlohmann::json::array();
+    const Eigen::Index n = pr.uncertainty.size();
+    for (Eigen::Index a = 0; a < n; ++a) {
+      const auto d = pr.columns.dimensions[static_cast<size_t>(a)];
+      estimates.push_back({{"parameter", pr.columns.names[static_cast<size_t>(a)]},
+                           {"standard_uncertainty", toDisplay(pr.uncertainty[a], d)},
+                           {"expanded_uncertainty_k2", 2.0 * toDisplay(pr.uncertainty[a], d)},
+                           {"unit", displayUnit(d)},
+                           {"setup", static_cast<size_t>(a) >= r.parameterCount}});
+      nlohmann::json row = nlohmann::json::array();
+      for (Eigen::Index b = 0; b < n; ++b) {
+        const double c = pr.covariance(a, b) / (pr.uncertainty[a] * pr.uncertainty[b]);
+        row.push_back(c);
+        if (b > a && std::abs(c) > 0.9)
+          strong.push_back(fmt::format("{} and {}: {:.3f}", pr.columns.names[static_cast<size_t>(a)], pr.columns.names[static_cast<size_t>(b)], c));
+      }
+      correlation.push_back(row);
+    }
+    j["prediction"] = {{"noise_source", r.noiseSource}, {"estimates", estimates}, {"correlation", correlation},
+                       {"correlations_above_0_9", strong}};
+  }
   return j;
 }
 

@@ -59,6 +59,21 @@ struct IdentificationResult {
   ObservabilityReport observability;
 };
 
+// What the plan would give with readings of standard deviation runNoise[r] (mm) in run r: the
+// first-order covariance (J^T W J)^-1 of the least-squares estimates about the nominal machine,
+// W = diag(1 / noise^2). Throws NotIdentifiable when the plan cannot determine the unknowns.
+struct PredictedUncertainty {
+  ProblemColumns columns;
+  Eigen::VectorXd uncertainty;  // standard uncertainty, mm or rad
+  Eigen::MatrixXd covariance;
+};
+PredictedUncertainty predictUncertainty(const IdentificationProblem& problem, const std::vector<double>& runNoise,
+                                        int threads = kAllCores);
+// The problem's machine parameters that the plan can determine together (the set-up unknowns
+// always estimated), and what each then stands for: proposeIdentifiableColumns about the
+// nominal machine.
+IdentifiableColumns proposeIdentifiableSet(const IdentificationProblem& problem, int threads = kAllCores);
+
 // Refusal of a parameter set the plan cannot determine; what() lists the findings.
 class NotIdentifiable : public std::runtime_error {
  public:

@@ -47,4 +47,16 @@ ObservabilityReport analyseObservability(Eigen::MatrixXd jacobian, const std::ve
                                          const Eigen::VectorXd& typical, double relativeTolerance = kRankTolerance,
                                          int threads = kAllCores);
 
+// Which columns to determine when a Jacobian cannot determine them all: a set of full rank
+// chosen by column-pivoted QR on the columns scaled by `typical`, after removing the span of the
+// columns from `firstAlwaysKept` on (set-up unknowns, estimated in every case). The estimate of
+// kept column k then stands for p_k + sum_d standsFor(k, d) p_d over the dropped columns d (held
+// at zero), in the columns' own units.
+struct IdentifiableColumns {
+  std::vector<Eigen::Index> kept, dropped;  // among the columns before firstAlwaysKept, ascending
+  Eigen::MatrixXd standsFor;                // kept x dropped
+};
+IdentifiableColumns proposeIdentifiableColumns(const Eigen::MatrixXd& jacobian, const Eigen::VectorXd& typical,
+                                               Eigen::Index firstAlwaysKept, double relativeTolerance = kRankTolerance);
+
 }  // namespace mtacc

@@ -48,14 +48,31 @@ struct IdentificationQuality {
   std::vector<std::string> warnings;        // one sentence each; empty when nothing is wrong
 };
 
+// The parameters a plan can determine together when it cannot determine all that were named:
+// identify `kept`, hold `held` at zero, and the estimate of kept[k] stands for
+// kept[k] + sum_d coefficients(k, d) held[d] (coefficients in the parameters' units, mm/rad).
+struct IdentifiableSetProposal {
+  std::vector<Parameter> kept, held;
+  Eigen::MatrixXd coefficients;
+  std::string standsFor(size_t k) const;  // "X0B - 1 X0C + 0.15 um/urad B0C"
+};
+
 struct ObservabilityResult {
   std::shared_ptr<const Machine> machine;
   size_t runs = 0;
   Eigen::Index readings = 0;
   ObservabilityReport report;
+  std::optional<IdentifiableSetProposal> proposal;  // when the plan cannot determine every parameter
+  // With the readings' noise known (request.noise, or every run's own: a plan's `noise:`, a
+  // file's '# noise:'): the standard uncertainties the plan would give the parameters (the
+  // proposal's when there is one) and the set-up unknowns.
+  std::optional<PredictedUncertainty> prediction;
+  std::string noiseSource;  // "--noise", "the runs' own noise", or empty
+  size_t parameterCount = 0;  // of the prediction's columns, the machine parameters come first
 };
 
-// The plan's runs (and any files): rank, singular values and what it cannot separate.
+// The plan's runs (and any files): rank, singular values, what it cannot separate and what it
+// can instead, and with a noise the uncertainty each parameter would get.
 ObservabilityResult planObservability(const MachineSetup& setup, const IdentificationRequest& request);
 nlohmann::json toJson(const ObservabilityResult& result);
 nlohmann::json toJson(const ObservabilityReport& report);
