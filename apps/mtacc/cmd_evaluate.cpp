@@ -1,8 +1,10 @@
 // mtacc evaluate: a ballbar file's ISO 230-4 circular deviation, radial deviation and
-// hysteresis, its eccentricity and the usual diagnostics.
+// hysteresis, its eccentricity and the usual diagnostics; an R-test file's displacements about
+// the axis that moves (ISO 10791-6).
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
+#include "mtacc/core/units.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
 
 namespace mtacc::cli {
@@ -12,8 +14,47 @@ struct EvaluateCliOptions : MachineOptions {
   std::string data;
 };
 
+void emitRTest(const EvaluateCliOptions& o, const RTestRunEvaluation& e) {
+  const auto& r = e.result;
+  const Axis& axis = e.machine->axes[static_cast<size_t>(r.movingAxis)];
+  const double unit = axis.isRotary() ? 1.0 / kDeg : 1.0;
+  std::string human = fmt::format("R-test run '{}' ({} poses, {} from {:g} to {:g} {}) from {}\n\n", e.run.name, e.run.poses(), axis.name,
+                                  r.position.minCoeff() * unit, r.position.maxCoeff() * unit, axis.isRotary() ? "deg" : "mm", o.data);
+  const auto& a = r.aboutTheAxis;
+  human += fmt::format("{:>10}  {:>9} {:>9} {:>9}", axis.name, "dX", "dY", "dZ");
+  if (a) human += fmt::format("  {:>9} {:>9} {:>9}", "radial", "axial", "tangent.");
+  human += "   (um)\n";
+  std::string csv = fmt::format("{}_{},dx_um,dy_um,dz_um{}\n", axis.name, axis.isRotary() ? "deg" : "mm",
+                                a ? ",radial_um,axial_um,tangential_um" : "");
+  for (Eigen::Index i = 0; i < r.displacement.rows(); ++i) {
+    const auto d = r.displacement.row(i) * 1e3;
+    human += fmt::format("{:>10.3f}  {:>9.3f} {:>9.3f} {:>9.3f}", r.position[i] * unit, d[0], d[1], d[2]);
+    csv += fmt::format("{},{},{},{}", r.position[i] * unit, d[0], d[1], d[2]);
+    if (a) {
+      const auto c = a->components.row(i) * 1e3;
+      human += fmt::format("  {:>9.3f} {:>9.3f} {:>9.3f}", c[0], c[1], c[2]);
+      csv += fmt::format(",{},{},{}", c[0], c[1], c[2]);
+    }
+    human += "\n";
+    csv += "\n";
+  }
+  human += fmt::format("{:>10}  {:>9.3f} {:>9.3f} {:>9.3f}", "range", r.range.x() * 1e3, r.range.y() * 1e3, r.range.z() * 1e3);
+  if (a) human += fmt::format("  {:>9.3f} {:>9.3f} {:>9.3f}", a->range.x() * 1e3, a->range.y() * 1e3, a->range.z() * 1e3);
+  human += "\n";
+  if (a)
+    human += fmt::format("\nthe ball's circle about {}: radius {:.3f} mm, centre ({:.3f}, {:.3f}, {:.3f}) mm, "
+                         "direction ({:.4f}, {:.4f}, {:.4f}) at the first pose; tangential along the axis's positive motion\n",
+                         axis.name, a->radius, a->point.x(), a->point.y(), a->point.z(), a->direction.x(), a->direction.y(),
+                         a->direction.z());
+  else
+    human += "\nno rotary axis moves, or its ball is on its line: components along X, Y, Z only\n";
+  emit(o, toJson(e), human, csv);
+}
+
 void run(const EvaluateCliOptions& o) {
-  const auto e = evaluateBallbarFile(loadMachineSetup(o.source), o.data);
+  const auto evaluation = evaluateMeasurementFile(loadMachineSetup(o.source), o.data);
+  if (const auto* rtest = std::get_if<RTestRunEvaluation>(&evaluation)) return emitRTest(o, *rtest);
+  const auto& e = std::get<CircularEvaluation>(evaluation);
   const auto& r = e.result;
   const auto& g = r.diagnostics;
   const Vec3 ecc = r.eccentricity.eccentricity * 1e3;
@@ -51,9 +92,9 @@ void run(const EvaluateCliOptions& o) {
 
 void addEvaluateCommand(CLI::App& app) {
   auto o = std::make_shared<EvaluateCliOptions>();
-  auto* cmd = app.add_subcommand("evaluate", "ISO 230-4 evaluation and diagnostics of a ballbar file");
+  auto* cmd = app.add_subcommand("evaluate", "ISO 230-4 evaluation and diagnostics of a ballbar file, or an R-test run about its axis");
   addMachineOptions(*cmd, *o);
-  cmd->add_option("data", o->data, "Ballbar CSV (docs/file-formats.md)")->required();
+  cmd->add_option("data", o->data, "Ballbar or R-test CSV (docs/file-formats.md)")->required();
   cmd->callback([o] { run(*o); });
 }
 

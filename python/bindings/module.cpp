@@ -449,6 +449,7 @@ PYBIND11_MODULE(_mtacc, mod) {
         return toPython(runJson(*s.machine, readMeasurementCsv(s.nominal(), path)));
       })
       .def("evaluate_ballbar", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(evaluateBallbarFile(s, path))); })
+      .def("evaluate_rtest", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(evaluateRTestFile(s, path))); })
       .def("observability", [](const PythonMachine& s, const std::string& plan, const std::vector<std::string>& parameters,
                                const std::string& noise) {
         IdentificationRequest request{.plan = plan, .parameters = parameters};

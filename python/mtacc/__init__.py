@@ -455,6 +455,15 @@ class Machine:
         a ballbar CSV file (as `mtacc evaluate --json`)."""
         return self._core.evaluate_ballbar(str(path))
 
+    def evaluate_rtest(self, path):
+        """An R-test run about the axis that moves (ISO 10791-6, as `mtacc evaluate --json`): the axis
+        ("moving_axis", its "position" in mm or deg), the sphere's displacement per pose in machine X, Y,
+        Z (["readings_um"], (n, 3)) and its range ("range_um"); where the sphere travels around the axis
+        (a table axis), "about_the_axis": the fitted line and per pose the radial, axial and tangential
+        components ["radial_axial_tangential_um"] (n, 3) with their ranges."""
+        return _with_arrays(self._core.evaluate_rtest(str(path)), ("position",), ("readings_um",), ("q",),
+                            ("about_the_axis", "radial_axial_tangential_um"))
+
     def observability(self, plan, parameters=None, noise=None):
         """Rank, singular values and findings of a test plan (as `mtacc observability --json`), for the
         plan's parameters or `parameters`. result["singular_values"] (p,) of the column-normalised

@@ -154,14 +154,71 @@ nlohmann::json toJson(const SimulationResult& r) {
   return j;
 }
 
-CircularEvaluation evaluateBallbarFile(const MachineSetup& setup, const std::string& file) {
-  CircularEvaluation e{setup.machine, file, readMeasurementCsv(setup.nominal(), file), {}};
+namespace {
+
+CircularEvaluation evaluateBallbarRun(const MachineSetup& setup, const std::string& file, MeasurementRun run) {
+  CircularEvaluation e{setup.machine, file, std::move(run), {}};
   try {
     e.result = evaluateCircularTest(e.run);
   } catch (const std::invalid_argument& reason) {
     throw InputError(InputLocation{file, 0, ""}, reason.what());
   }
   return e;
+}
+
+RTestRunEvaluation evaluateRTestRun(const MachineSetup& setup, const std::string& file, MeasurementRun run) {
+  RTestRunEvaluation e{setup.machine, file, std::move(run), {}};
+  try {
+    e.result = evaluateRTest(setup.nominal(), e.run);
+  } catch (const std::invalid_argument& reason) {
+    throw InputError(InputLocation{file, 0, ""}, reason.what());
+  }
+  return e;
+}
+
+}  // namespace
+
+CircularEvaluation evaluateBallbarFile(const MachineSetup& setup, const std::string& file) {
+  return evaluateBallbarRun(setup, file, readMeasurementCsv(setup.nominal(), file));
+}
+
+RTestRunEvaluation evaluateRTestFile(const MachineSetup& setup, const std::string& file) {
+  return evaluateRTestRun(setup, file, readMeasurementCsv(setup.nominal(), file));
+}
+
+std::variant<CircularEvaluation, RTestRunEvaluation> evaluateMeasurementFile(const MachineSetup& setup, const std::string& file) {
+  auto run = readMeasurementCsv(setup.nominal(), file);
+  if (run.instrument == Instrument::Ballbar) return evaluateBallbarRun(setup, file, std::move(run));
+  if (run.instrument == Instrument::RTest) return evaluateRTestRun(setup, file, std::move(run));
+  throw InputError(InputLocation{file, 0, "instrument"},
+                   "evaluate takes a ballbar or an R-test run, not a " + instrumentName(run.instrument) + " run");
+}
+
+nlohmann::json toJson(const RTestRunEvaluation& e) {
+  const Machine& m = *e.machine;
+  const auto& r = e.result;
+  const Axis& axis = m.axes[static_cast<size_t>(r.movingAxis)];
+  const double unit = axis.isRotary() ? 1.0 / kDeg : 1.0;
+  nlohmann::json j = runJson(m, e.run);
+  j["file"] = e.file;
+  j["moving_axis"] = axis.name;
+  j["position"] = std::vector<double>(r.position.data(), r.position.data() + r.position.size());
+  for (auto& v : j["position"]) v = v.get<double>() * unit;
+  j["position_unit"] = axis.isRotary() ? "deg" : "mm";
+  j["range_um"] = vectorJson(r.range * 1e3);
+  j["about_the_axis"] = nullptr;
+  if (r.aboutTheAxis) {
+    const auto& a = *r.aboutTheAxis;
+    nlohmann::json rows = nlohmann::json::array();
+    for (Eigen::Index i = 0; i < a.components.rows(); ++i)
+      rows.push_back({a.components(i, 0) * 1e3, a.components(i, 1) * 1e3, a.components(i, 2) * 1e3});
+    j["about_the_axis"] = {{"point_mm", vectorJson(a.point)},
+                           {"direction", vectorJson(a.direction)},
+                           {"radius_mm", a.radius},
+                           {"radial_axial_tangential_um", rows},
+                           {"range_um", {{"radial", a.range.x() * 1e3}, {"axial", a.range.y() * 1e3}, {"tangential", a.range.z() * 1e3}}}};
+  }
+  return j;
 }
 
 nlohmann::json toJson(const CircularEvaluation& e) {

@@ -5,11 +5,13 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "mtacc/measurement/circular_evaluation.hpp"
+#include "mtacc/measurement/rtest_evaluation.hpp"
 #include "mtacc/measurement/simulation.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
@@ -61,5 +63,20 @@ struct CircularEvaluation {
 // Reads a ballbar measurement file and evaluates it; throws InputError naming the file.
 CircularEvaluation evaluateBallbarFile(const MachineSetup& setup, const std::string& file);
 nlohmann::json toJson(const CircularEvaluation& evaluation);
+
+struct RTestRunEvaluation {
+  std::shared_ptr<const Machine> machine;
+  std::string file;
+  MeasurementRun run;
+  RTestEvaluation result;
+};
+// Reads an R-test measurement file and evaluates it (rtest_evaluation.hpp); throws InputError
+// naming the file.
+RTestRunEvaluation evaluateRTestFile(const MachineSetup& setup, const std::string& file);
+nlohmann::json toJson(const RTestRunEvaluation& evaluation);
+
+// `mtacc evaluate`: a ballbar run's circular evaluation or an R-test run's, by the file's
+// instrument; any other instrument is refused.
+std::variant<CircularEvaluation, RTestRunEvaluation> evaluateMeasurementFile(const MachineSetup& setup, const std::string& file);
 
 }  // namespace mtacc
