@@ -156,24 +156,24 @@ nlohmann::json toJson(const SimulationResult& r) {
 
 namespace {
 
-CircularEvaluation evaluateBallbarRun(const MachineSetup& setup, const std::string& file, MeasurementRun run) {
-  CircularEvaluation e{setup.machine, file, std::move(run), {}};
+template <class Result, class Evaluate>
+RunEvaluation<Result> evaluateRun(const MachineSetup& setup, const std::string& file, MeasurementRun run, Evaluate&& evaluate) {
+  RunEvaluation<Result> e{setup.machine, file, std::move(run), {}};
   try {
-    e.result = evaluateCircularTest(e.run);
+    e.result = evaluate(e.run);
   } catch (const std::invalid_argument& reason) {
     throw InputError(InputLocation{file, 0, ""}, reason.what());
   }
   return e;
 }
 
+CircularEvaluation evaluateBallbarRun(const MachineSetup& setup, const std::string& file, MeasurementRun run) {
+  return evaluateRun<CircularTestResult>(setup, file, std::move(run), [](const MeasurementRun& r) { return evaluateCircularTest(r); });
+}
+
 RTestRunEvaluation evaluateRTestRun(const MachineSetup& setup, const std::string& file, MeasurementRun run) {
-  RTestRunEvaluation e{setup.machine, file, std::move(run), {}};
-  try {
-    e.result = evaluateRTest(setup.nominal(), e.run);
-  } catch (const std::invalid_argument& reason) {
-    throw InputError(InputLocation{file, 0, ""}, reason.what());
-  }
-  return e;
+  const auto nominal = setup.nominal();
+  return evaluateRun<RTestEvaluation>(setup, file, std::move(run), [&](const MeasurementRun& r) { return evaluateRTest(nominal, r); });
 }
 
 }  // namespace

@@ -53,23 +53,21 @@ SimulationResult simulatePlan(const MachineSetup& setup, const std::string& plan
 // Poses (mm, deg), readings (um), plot angles (deg) and sense of one run.
 nlohmann::json runJson(const Machine& machine, const MeasurementRun& run);
 
-struct CircularEvaluation {
+// A measurement file's run with its evaluation.
+template <class Result>
+struct RunEvaluation {
   std::shared_ptr<const Machine> machine;
   std::string file;
   MeasurementRun run;
-  CircularTestResult result;
+  Result result;
 };
+using CircularEvaluation = RunEvaluation<CircularTestResult>;
+using RTestRunEvaluation = RunEvaluation<RTestEvaluation>;
 
 // Reads a ballbar measurement file and evaluates it; throws InputError naming the file.
 CircularEvaluation evaluateBallbarFile(const MachineSetup& setup, const std::string& file);
 nlohmann::json toJson(const CircularEvaluation& evaluation);
 
-struct RTestRunEvaluation {
-  std::shared_ptr<const Machine> machine;
-  std::string file;
-  MeasurementRun run;
-  RTestEvaluation result;
-};
 // Reads an R-test measurement file and evaluates it (rtest_evaluation.hpp); throws InputError
 // naming the file.
 RTestRunEvaluation evaluateRTestFile(const MachineSetup& setup, const std::string& file);
