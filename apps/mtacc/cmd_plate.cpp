@@ -5,6 +5,7 @@
 
 #include "cli_common.hpp"
 #include "mtacc/io/text_file.hpp"
+#include "mtacc/workflows/identified_errors.hpp"
 #include "mtacc/workflows/plates.hpp"
 
 namespace mtacc::cli {
@@ -42,13 +43,13 @@ void run(const PlateCliOptions& o) {
 struct PlateIdentifyCliOptions : MachineOptions {
   std::vector<std::string> files;
   double piece = 100.0;
-  std::string yamlOut;
+  std::string errorsOut;
 };
 
 void runIdentify(const PlateIdentifyCliOptions& o) {
   const auto s = identifyPlateFiles(loadMachineSetup(o.source), o.files, o.piece);
   const auto j = toJson(s);
-  if (!o.yamlOut.empty()) writeFileAtomically(o.yamlOut, "errors:\n" + s.yaml, "--yaml-out");
+  if (!o.errorsOut.empty()) writeIdentifiedErrors(o.errorsOut, *s.machine, s.identified, identificationRecord(s), "--errors-out");
   std::string human = fmt::format("{} plates, {} readings; {} parameters (component functions of X, Y, Z in pieces of {:g} mm, "
                                   "squareness) + 3 per plate; rank {} of {}\n",
                                   o.files.size(), s.result.readings, s.parameters.size(), o.piece, s.result.observability.rank,
@@ -84,7 +85,8 @@ void addPlateCommand(CLI::App& app) {
   addMachineOptions(*identify, *io);
   identify->add_option("files", io->files, "plate measurement CSVs, one per placement")->required();
   identify->add_option("--piece", io->piece, "length of the pieces of the identified functions [mm] (default 100)");
-  identify->add_option("--yaml-out", io->yamlOut, "write the identified functions as an errors file (YAML), atomically");
+  identify->add_option("--errors-out", io->errorsOut,
+                       "write the identified functions as an errors file with the record of the data (as identify's), atomically");
   identify->callback([io] { runIdentify(*io); });
 }
 

@@ -404,7 +404,7 @@ class Machine:
         """The component functions of X, Y, Z (C1 piecewise, pieces of about piece_length mm) and the
         squareness from measured plates, one file per placement, as `mtacc plate-identify --json`:
         estimates with uncertainties (um, urad) and whether the plates determine each, the
-        observability findings, and "yaml", the identified errors for the machine YAML."""
+        observability findings, and "yaml", the identified model as an errors file (Machine(errors=...) reads it)."""
         return self._core.identify_plates([str(f) for f in files], float(piece_length))
 
     def simulate_plate(self, output, origin, axes=((1, 0, 0), (0, 1, 0)), stylus=(0, 0, 0), plate=(9, 9, 50.0),

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 
 #include "mtacc/core/units.hpp"
 #include "mtacc/core/version.hpp"
@@ -24,55 +25,89 @@ std::string optionalNumber(const std::optional<double>& v) { return v ? fmt::for
 
 }  // namespace
 
-std::string identifiedErrorsYaml(const IdentificationOutcome& outcome) {
+IdentificationRecord identificationRecord(const IdentificationOutcome& outcome) {
   const IdentificationResult& r = outcome.result;
-  const Machine& machine = *outcome.machine;
+  IdentificationRecord record{outcome.command, outcome.plan, outcome.dataFiles, {}, {}, outcome.held, r.columns.names,
+                              r.columns.dimensions, r.values, r.uncertainty, r.covariance};
+  const auto& q = outcome.quality;
+  record.fit = {{"readings", std::to_string(r.readings)},
+                {"degrees_of_freedom", std::to_string(r.degreesOfFreedom)},
+                {"sigma", fmt::format("{:.15g} um", r.sigma * 1e3)},
+                {"residual_rms", fmt::format("{:.15g} um", r.residualRms * 1e3)},
+                {"residual_max", fmt::format("{:.15g} um", r.residualMax * 1e3)},
+                {"noise_source", q.noiseSource.empty() ? "null" : quoted(q.noiseSource)},
+                {"chi_square", optionalNumber(q.chiSquare)},
+                {"p_value", optionalNumber(q.pValue)},
+                {"solver", fmt::format("{{converged: {}, iterations: {}, robust: {}}}", r.converged, r.iterations, outcome.robust)}};
+  record.heldAt = outcome.heldAtZero ? "zero (--from-nominal)" : "the machine file's or --errors' values";
+  return record;
+}
+
+IdentificationRecord identificationRecord(const PlateIdentificationStudy& s) {
+  const PlateIdentification& r = s.result;
+  IdentificationRecord record{"plate-identify", "", s.files, {}, {}, {}, r.names, {}, r.values, r.uncertainty, r.covariance};
+  for (size_t k = 0; k < r.names.size(); ++k) {
+    record.dimensions.push_back(k < s.parameters.size() ? s.parameters[k].dimension
+                                                        : r.names[k].ends_with(".rot") ? Dimension::Angle : Dimension::Length);
+    if (!r.determined[k]) record.uncertainty[static_cast<Eigen::Index>(k)] = std::nan("");
+  }
+  record.fit = {{"readings", std::to_string(r.readings)},
+                {"degrees_of_freedom", std::to_string(r.degreesOfFreedom)},
+                {s.weighted ? "sigma_over_probe_noise" : "sigma", s.weighted ? fmt::format("{:.15g}", r.sigma)
+                                                                            : fmt::format("{:.15g} um", r.sigma * 1e3)}};
+  record.heldAt = "zero: the plates identify the linear axes' functions and squareness alone";
+  return record;
+}
+
+std::string identifiedErrorsYaml(const Machine& machine, const ErrorModel& errors, const IdentificationRecord& record) {
   std::string y = "# Identified by mtacc: the estimates below merged onto the errors held (listed under\n"
                   "# identification.held). Read it with --errors; docs/file-formats.md, \"Identified errors\".\n";
-  y += errorsYaml(machine, r.errors);
+  y += errorsYaml(machine, errors);
   y += "identification:\n";
-  y += fmt::format("  by: {}\n", quoted(std::string("mtacc ") + version() + " " + outcome.command));
+  y += fmt::format("  by: {}\n", quoted(std::string("mtacc ") + version() + " " + record.command));
   y += fmt::format("  date: {:%Y-%m-%dT%H:%M:%SZ}\n", std::chrono::floor<std::chrono::seconds>(std::chrono::system_clock::now()));
   y += fmt::format("  machine: {{name: {}, file: {}}}\n", quoted(machine.name), quoted(machine.sourceFile));
-  y += fmt::format("  plan: {}\n", outcome.plan.empty() ? "null" : quoted(outcome.plan));
-  y += "  data:\n";
-  for (const auto& file : outcome.dataFiles) y += fmt::format("    - {{file: {}, sha256: {}}}\n", quoted(file), sha256OfFile(file));
-  if (outcome.dataFiles.empty()) y += "    []\n";
-  y += fmt::format("  readings: {}\n  degrees_of_freedom: {}\n", r.readings, r.degreesOfFreedom);
-  y += fmt::format("  sigma: {:.15g} um\n  residual_rms: {:.15g} um\n  residual_max: {:.15g} um\n", r.sigma * 1e3,
-                   r.residualRms * 1e3, r.residualMax * 1e3);
-  const auto& q = outcome.quality;
-  y += fmt::format("  noise_source: {}\n  chi_square: {}\n  p_value: {}\n", q.noiseSource.empty() ? "null" : quoted(q.noiseSource),
-                   optionalNumber(q.chiSquare), optionalNumber(q.pValue));
-  y += fmt::format("  solver: {{converged: {}, iterations: {}, robust: {}}}\n", r.converged, r.iterations, outcome.robust);
-  y += fmt::format("  held_at: {}\n", outcome.heldAtZero ? "zero (--from-nominal)" : "the machine file's or --errors' values");
-  y += "  held:";
-  if (outcome.held.empty()) y += " {}";
+  y += fmt::format("  plan: {}\n", record.plan.empty() ? "null" : quoted(record.plan));
+  y += "  data:";
+  if (record.dataFiles.empty()) y += " []";
   y += "\n";
-  for (const auto& name : outcome.held) {
-    const Parameter p = findParameter(machine, r.errors, name);
-    y += fmt::format("    {}: {}\n", name, quantity(parameterValue(r.errors, p), p.dimension));
+  for (const auto& file : record.dataFiles) y += fmt::format("    - {{file: {}, sha256: {}}}\n", quoted(file), sha256OfFile(file));
+  for (const auto& [key, value] : record.fit) y += fmt::format("  {}: {}\n", key, value);
+  y += fmt::format("  held_at: {}\n", quoted(record.heldAt));
+  y += "  held:";
+  if (record.held.empty()) y += " {}";
+  y += "\n";
+  for (const auto& name : record.held) {
+    const Parameter p = findParameter(machine, errors, name);
+    y += fmt::format("    {}: {}\n", name, quantity(parameterValue(errors, p), p.dimension));
   }
-  y += "  estimates:  # the machine's parameters, then each run's set-up errors (<run>.<error>)\n";
-  for (Eigen::Index k = 0; k < r.values.size(); ++k) {
-    const auto d = r.columns.dimensions[static_cast<size_t>(k)];
-    y += fmt::format("    - {{parameter: {}, value: {}, standard_uncertainty: {}}}\n", quoted(r.columns.names[static_cast<size_t>(k)]),
-                     quantity(r.values[k], d), quantity(r.uncertainty[k], d));
+  y += "  estimates:  # the machine's parameters, then the set-up unknowns of each run or placement\n";
+  for (Eigen::Index k = 0; k < record.values.size(); ++k) {
+    const auto d = record.dimensions[static_cast<size_t>(k)];
+    const double u = record.uncertainty[k];
+    y += fmt::format("    - {{parameter: {}, value: {}, standard_uncertainty: {}}}\n", quoted(record.names[static_cast<size_t>(k)]),
+                     quantity(record.values[k], d), std::isnan(u) ? std::string("null") : quantity(u, d));
   }
   y += "  covariance:  # of the estimates in their order, in um and urad (um^2, um urad, urad^2)\n";
-  for (Eigen::Index a = 0; a < r.values.size(); ++a) {
+  for (Eigen::Index a = 0; a < record.values.size(); ++a) {
     y += "    - [";
-    for (Eigen::Index b = 0; b < r.values.size(); ++b)
-      y += fmt::format("{}{:.15g}", b ? ", " : "",
-                       toDisplay(toDisplay(r.covariance(a, b), r.columns.dimensions[static_cast<size_t>(a)]),
-                                 r.columns.dimensions[static_cast<size_t>(b)]));
+    for (Eigen::Index b = 0; b < record.values.size(); ++b) {
+      const double c = toDisplay(toDisplay(record.covariance(a, b), record.dimensions[static_cast<size_t>(a)]),
+                                 record.dimensions[static_cast<size_t>(b)]);
+      y += (b ? ", " : "") + (std::isfinite(c) ? fmt::format("{:.15g}", c) : std::string("null"));  // null: not determined
+    }
     y += "]\n";
   }
   return y;
 }
 
+void writeIdentifiedErrors(const std::string& path, const Machine& machine, const ErrorModel& errors,
+                           const IdentificationRecord& record, const std::string& key) {
+  writeFileAtomically(path, identifiedErrorsYaml(machine, errors, record), key);
+}
+
 void writeIdentifiedErrors(const std::string& path, const IdentificationOutcome& outcome, const std::string& key) {
-  writeFileAtomically(path, identifiedErrorsYaml(outcome), key);
+  writeIdentifiedErrors(path, *outcome.machine, outcome.result.errors, identificationRecord(outcome), key);
 }
 
 }  // namespace mtacc

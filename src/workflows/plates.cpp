@@ -97,19 +97,7 @@ PlateIdentificationStudy identifyPlateFiles(const MachineSetup& setup, const std
   s.result = identifyFromPlates(setup.machine, shape, s.parameters, campaign);
   s.identified = shape;
   for (size_t k = 0; k < s.parameters.size(); ++k) setParameterValue(s.identified, s.parameters[k], s.result.values[static_cast<Eigen::Index>(k)]);
-  for (const char* name : {"X", "Y", "Z"}) {
-    const int a = setup.machine->axisIndex(name);
-    if (a < 0) continue;
-    for (int c = 0; c < 6; ++c) {
-      std::vector<PiecewiseTerm> terms;
-      for (const auto& t : s.identified.axes[static_cast<size_t>(a)].motion[static_cast<size_t>(c)].terms())
-        if (const auto* p = std::get_if<PiecewiseTerm>(&t)) terms.push_back(*p);
-      if (!terms.empty())
-        s.yaml += piecewiseErrorYaml(motionErrorName(*setup.machine, a, c), terms, c < 3 ? Dimension::Length : Dimension::Angle, Dimension::Length);
-    }
-  }
-  for (const auto& p : s.parameters)
-    if (p.kind == ParameterKind::Location) s.yaml += fmt::format("  {}: {:.6f} urad\n", p.name, parameterValue(s.identified, p) * 1e6);
+  s.yaml = errorsYaml(*setup.machine, s.identified);
   return s;
 }
 

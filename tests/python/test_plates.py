@@ -1,6 +1,7 @@
 """`mtacc plate`, `mtacc simulate plate`, `Machine.compare_plate` and `Machine.simulate_plate` (seed 003
 hole plates): CLI and API alike, a plate simulated with the machine's own errors leaves only the
 probe noise, one simulated with another model does not, and the plot and report section."""
+import hashlib
 import json
 import pathlib
 import subprocess
@@ -89,7 +90,7 @@ def test_identify_from_plates(cli, tmp_path):
     out = subprocess.run([cli, "plate-identify", "maho", *files, "--piece", "175", "--json"], capture_output=True, text=True, check=True)
     assert json.loads(out.stdout) == r
     path = tmp_path / "identified.yaml"
-    path.write_text("errors:\n" + r["yaml"])
+    path.write_text(r["yaml"])
     assert mtacc.Machine("maho", errors=path).tcp_errors(np.zeros((1, 5))).shape == (1, 6)
 
 
@@ -102,7 +103,7 @@ def test_one_plate_leaves_what_it_cannot_see_at_zero(cli, tmp_path):
     subprocess.run([cli, "simulate", "plate", "maho", "--origin=-350,-455,-18mm", "--noise", "0.5um", "-o", str(plate)],
                    check=True, capture_output=True)
     yaml = tmp_path / "identified.yaml"
-    out = subprocess.run([cli, "plate-identify", "maho", str(plate), "--piece", "100", "--json", "--yaml-out", str(yaml)],
+    out = subprocess.run([cli, "plate-identify", "maho", str(plate), "--piece", "100", "--json", "--errors-out", str(yaml)],
                          capture_output=True, text=True, check=True)
     r = json.loads(out.stdout)
     values = np.array([e["value"] for e in r["estimates"]], float)
@@ -116,3 +117,8 @@ def test_one_plate_leaves_what_it_cannot_see_at_zero(cli, tmp_path):
             assert e["uncertainty"] is None
     check = subprocess.run([cli, "check", "maho", "--errors", str(yaml)], capture_output=True, text=True)
     assert check.returncode == 0, check.stderr
+    # The model written is the one identified, with its record: the plate's hash, the estimates
+    # (undetermined ones without an uncertainty).
+    text = yaml.read_text()
+    assert hashlib.sha256(plate.read_bytes()).hexdigest() in text and 'by: "mtacc ' in text
+    assert text.count("standard_uncertainty: null") == sum(not e["determined"] for e in r["estimates"])

@@ -3,18 +3,39 @@
 // model that `check`, `compensate`, `decompose`, `report` and a second identification read
 // without an edit, with what produced it.
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mtacc/workflows/identification.hpp"
+#include "mtacc/workflows/plates.hpp"
 
 namespace mtacc {
 
-// The estimates merged onto the errors held, every component term in the form whose parameter
-// names identify uses, and under `identification:` the record: mtacc's version, the date, the
-// machine, the command, the plan, each data file with its SHA-256, the estimates (set-up errors too) with
-// their standard uncertainties, the covariance, the errors held at their values, chi-square,
-// degrees of freedom and p-value.
-std::string identifiedErrorsYaml(const IdentificationOutcome& outcome);
+// What produced an identified model, as its file keeps it under `identification:`.
+struct IdentificationRecord {
+  std::string command;                 // "identify", "cubic-identify", "plate-identify"
+  std::string plan;                    // the test plan or test piece; empty: none
+  std::vector<std::string> dataFiles;  // each recorded with its SHA-256
+  // The fit's statistics, each a key and its YAML value with its unit ("sigma", "0.31 um").
+  std::vector<std::pair<std::string, std::string>> fit;
+  std::string heldAt;                  // where the errors not identified were held
+  std::vector<std::string> held;       // their names (values read from the model)
+  // The estimates (machine parameters, then set-up unknowns), mm or rad; an uncertainty that is
+  // NaN marks an estimate the data did not determine.
+  std::vector<std::string> names;
+  std::vector<Dimension> dimensions;
+  Eigen::VectorXd values, uncertainty;
+  Eigen::MatrixXd covariance;
+};
+IdentificationRecord identificationRecord(const IdentificationOutcome& outcome);
+IdentificationRecord identificationRecord(const PlateIdentificationStudy& study);
+
+// `errors` as an errors file (every component term in the form whose parameter names identify
+// uses), and under `identification:` the record with mtacc's version and the date.
+std::string identifiedErrorsYaml(const Machine& machine, const ErrorModel& errors, const IdentificationRecord& record);
 // The same written to `path` whole or not at all; an error names `key` (the option or argument).
+void writeIdentifiedErrors(const std::string& path, const Machine& machine, const ErrorModel& errors,
+                           const IdentificationRecord& record, const std::string& key);
 void writeIdentifiedErrors(const std::string& path, const IdentificationOutcome& outcome, const std::string& key);
 
 }  // namespace mtacc
