@@ -3,6 +3,8 @@
 // paper's shares (Table 1), maxima (Tables 2-3), dynamic RMS (Table 4) and power law (eq. 23).
 #include <fmt/format.h>
 
+#include <iostream>
+
 #include "cli_common.hpp"
 #include "mtacc/workflows/recorded_decomposition.hpp"
 
@@ -12,6 +14,7 @@ namespace {
 struct DecomposeCliOptions : MachineOptions {
   std::string set;
   size_t seriesPoints = 0;
+  bool strict = false;
 };
 
 void run(const DecomposeCliOptions& o) {
@@ -52,6 +55,8 @@ void run(const DecomposeCliOptions& o) {
     human += fmt::format("dynamic RMS {} = {:.4g} um * F^{:.3f} (F in mm/min; largest misfit {:.1f} %)\n", direction, law["kappa_um"].get<double>(),
                          law["exponent"].get<double>(), 100 * law["largest_relative_misfit"].get<double>());
   emit(o, j, human, csv);
+  for (const auto& w : r.warnings) std::cerr << "mtacc: warning: " << w << "\n";
+  if (o.strict && !r.warnings.empty()) throw StrictFailure{r.warnings.size()};
 }
 
 }  // namespace
@@ -63,6 +68,7 @@ void addDecomposeCommand(CLI::App& app) {
   cmd->add_option("set", o->set, "decomposition set (YAML, docs/file-formats.md \"Decomposition sets\")")->required();
   cmd->add_option("--series", o->seriesPoints, "with --json: each test's contributions along the normalised path u, at most this many "
                                                "points (every k-th sample)")->check(CLI::Range(0, 10000000));
+  cmd->add_flag("--strict", o->strict, "exit with status 4 when a result is doubtful (offset at the search limit, instrument spikes)");
   cmd->callback([o] { run(*o); });
 }
 

@@ -1,5 +1,7 @@
 #include "mtacc/procedures/recorded_test.hpp"
 
+#include "mtacc/procedures/signal_spikes.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -43,8 +45,11 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
   } else {
     const auto found = estimateClockOffset(command, encoder, processing.search);
     alignment = {found.offset, true, found.rmsMisfit, 0, 0};
+    const double step = std::fmax(encoder.period, (processing.search.highest - processing.search.lowest) / 20000);
+    alignment.atSearchLimit = found.offset - processing.search.lowest < step || processing.search.highest - found.offset < step;
   }
   alignment.instrumentSamples = instrument.samples();
+  alignment.instrumentSpikes = spikeSamples(instrument);
   const auto [departure, arrival] = motionSpan(command);
   const double from = std::max(departure + alignment.offset, encoder.start);
   const double to = std::min(arrival + alignment.offset, encoder.end());

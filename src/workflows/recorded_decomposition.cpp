@@ -1,6 +1,7 @@
 #include "mtacc/workflows/recorded_decomposition.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <stdexcept>
 
@@ -47,6 +48,19 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
     auto& u = out.pathFraction.emplace_back(aligned.test.path);
     const double length = u.back() - u.front();
     for (double& v : u) v = length > 0 ? (v - aligned.test.path.front()) / length : 0.0;
+    const auto& a = aligned.alignment;
+    if (a.atSearchLimit)
+      out.warnings.push_back(fmt::format(
+          "{} mm/min: the clock offset estimated, {:.3f} ms, lies at the end of the search window [{:g}, {:g}] ms: the best offset "
+          "may lie beyond it, and the contouring error it sets is then wrong; widen search_ms or state clock_offset_ms",
+          recorded.feed, a.offset * 1e3, set.searchLowest * 1e3, set.searchHighest * 1e3));
+    if (!a.instrumentSpikes.empty())
+      out.warnings.push_back(fmt::format(
+          "{} mm/min: {} instrument sample(s) of {} stand out from their neighbours by more than 8 robust standard deviations "
+          "(samples counted from 0: {}{}): a spike or a lost sample enters the dynamic error as if the machine had moved so",
+          recorded.feed, a.instrumentSpikes.size(), recorded.instrument,
+          fmt::join(a.instrumentSpikes.begin(), a.instrumentSpikes.begin() + static_cast<std::ptrdiff_t>(std::min<size_t>(5, a.instrumentSpikes.size())), ", "),
+          a.instrumentSpikes.size() > 5 ? ", ..." : ""));
     tests.push_back(std::move(aligned.test));
     out.alignment.push_back(aligned.alignment);
   }
@@ -114,6 +128,8 @@ nlohmann::json toJson(const RecordedDecomposition& r, size_t seriesPoints) {
         {"alignment_rms_misfit", a.rmsMisfit},
         {"instrument_samples", a.instrumentSamples},
         {"samples_used", a.samplesUsed},
+        {"clock_offset_at_search_limit", a.atSearchLimit},
+        {"instrument_spikes", a.instrumentSpikes},
         {"drift_um", um(r.tests[k].drift)},
         {"shares_percent",
          {{"contouring", s.contouring}, {"quasi_static", s.quasiStatic}, {"dynamic", s.dynamic}}},
@@ -127,6 +143,7 @@ nlohmann::json toJson(const RecordedDecomposition& r, size_t seriesPoints) {
     });
     if (seriesPoints > 0) j["tests"].back()["series"] = seriesJson(r.tests[k], r.pathFraction[k], seriesPoints);
   }
+  j["warnings"] = r.warnings;
   j["dynamic_rms_power_law"] = nlohmann::json::object();
   for (size_t d = 0; d < 3; ++d)
     if (const auto& law = r.dynamicLaw[d])

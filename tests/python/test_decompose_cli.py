@@ -135,3 +135,35 @@ def test_the_series_along_the_path_are_the_contributions_of_every_kth_sample(cli
             assert np.max(np.abs(dynamic)) == pytest.approx(t["dynamic_max_um"][d], rel=1e-12)
             assert np.sqrt(np.mean(dynamic ** 2)) == pytest.approx(t["dynamic_rms_um"][d], rel=1e-9)
             assert abs(np.mean(dynamic)) < 1e-9
+
+
+def test_a_result_that_cannot_be_trusted_is_flagged(cli, tmp_path):
+    # Issue 44: the virtual machine recorded with its command clock 150 ms off, searched over
+    # the default +-100 ms, and an instrument signal with one 50 um spike. Clean signals (the
+    # first test above, a 18 ms offset) draw no warning.
+    simulated = run(cli, "simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", "1000,3240",
+                    "--noise", "0.2um", "--clock-offset-ms", "150", "-o", str(tmp_path))
+    out = subprocess.run([cli, "decompose", "inclined-a-table", simulated["set"], "--json"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    result = json.loads(out.stdout)
+    assert all(t["clock_offset_at_search_limit"] for t in result["tests"])
+    assert sum("lies at the end of the search window" in w for w in result["warnings"]) == 2
+    assert "mtacc: warning:" in out.stderr
+    strict = subprocess.run([cli, "decompose", "inclined-a-table", simulated["set"], "--strict"], capture_output=True, text=True)
+    assert strict.returncode == 4
+
+    clean = run(cli, "simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", "1000,3240",
+                "--noise", "0.2um", "-o", str(tmp_path / "clean"))
+    assert run(cli, "decompose", "inclined-a-table", clean["set"])["warnings"] == []
+    instrument = [tmp_path / "clean" / "f1000-instrument.csv"]
+    lines = instrument[0].read_text().splitlines()
+    header = next(i for i, line in enumerate(lines) if not line.startswith("#"))
+    row = header + 1 + 2000
+    cells = lines[row].split(",")
+    cells[1] = repr(float(cells[1]) + 50.0)  # dx_um
+    lines[row] = ",".join(cells)
+    instrument[0].write_text("\n".join(lines) + "\n")
+    spiked = run(cli, "decompose", "inclined-a-table", clean["set"])
+    flagged = [t for t in spiked["tests"] if t["instrument_spikes"]]
+    assert len(flagged) == 1 and flagged[0]["instrument_spikes"] == [2000]
+    assert any("stand out from their neighbours" in w and "2000" in w for w in spiked["warnings"])

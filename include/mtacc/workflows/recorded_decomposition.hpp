@@ -24,6 +24,9 @@ struct RecordedDecomposition {
   std::vector<DirectionStatistics> contouring, quasiStatic, dynamic;
   // delta_d RMS against feed per direction (eq. 23); absent for fewer than two feeds or a zero RMS
   std::array<std::optional<PowerLaw>, 3> dynamicLaw;
+  // What makes a result doubtful: a clock offset estimated at its search limit, spikes in an
+  // instrument signal. One sentence each; `decompose --strict` exits non-zero on any.
+  std::vector<std::string> warnings;
 };
 
 // The errors file's model is taken as the identified link errors (delta_l = its TCP minus the
