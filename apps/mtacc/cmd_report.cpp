@@ -16,7 +16,7 @@ struct ReportOptions {
   std::string errorsFile;
   std::string output = ".";
   std::string plan, structure, compare, load, decomposition, thermal;
-  std::vector<std::string> positioning, components, plates, drift;
+  std::vector<std::string> positioning, components, plates, drift, data;
   int samples = 5;
 };
 
@@ -38,7 +38,8 @@ struct ReportOptions {
       args.push_back(flag);
       args.push_back(value);
     }
-  for (const auto& [flag, files] : {std::pair{"--positioning", &o.positioning}, {"--component", &o.components}, {"--plate", &o.plates}, {"--drift", &o.drift}})
+  for (const auto& [flag, files] : {std::pair{"--positioning", &o.positioning}, {"--component", &o.components}, {"--plate", &o.plates}, {"--drift", &o.drift},
+        {"--data", &o.data}})
     for (const auto& file : *files) {
       args.push_back(flag);
       args.push_back(file);
@@ -62,6 +63,7 @@ void addReportCommand(CLI::App& app) {
       ->check(loadInKg());
   cmd->add_option("--samples", o->samples, "positions per axis for the error budget (default 5)");
   cmd->add_option("--plan", o->plan, "test plan to simulate, evaluate and identify from (e.g. tilting-table-rtest)");
+  cmd->add_option("--data", o->data, "the plan's measured files (CSV) to identify from, instead of simulating the plan");
   cmd->add_option("--structure", o->structure, "structure model for the dynamics section (e.g. tzyx-arm-x)");
   cmd->add_option("--compare", o->compare, "a second structure model to compare with (e.g. tzyx-arm-y)");
   cmd->add_option("--positioning", o->positioning, "ISO 230-2 positioning-test files for the positioning section");

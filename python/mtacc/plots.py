@@ -345,7 +345,7 @@ def identified_values(result, truth=None):
     values = np.array([e["value"] for e in estimates])
     u = np.array([e["standard_uncertainty"] for e in estimates])
     units = [e["unit"] for e in estimates]
-    keep = [k for k, n in enumerate(names) if "." not in n]  # machine parameters, not set-up errors
+    keep = [k for k, e in enumerate(estimates) if not e["setup"]]  # machine parameters, not set-up errors
     groups = [(unit, [k for k in keep if units[k] == unit]) for unit in ("um", "urad")]
     groups = [(unit, ks) for unit, ks in groups if ks]
     fig, axes = plt.subplots(1, len(groups), figsize=(4.5 * len(groups), 3.6), squeeze=False)
@@ -358,6 +358,30 @@ def identified_values(result, truth=None):
         ax.set_ylabel("µm" if unit == "um" else "µrad")
         ax.axhline(0, color="#aaa", lw=0.8)
         ax.legend(fontsize=7)
+    fig.tight_layout()
+    return fig
+
+
+def run_residuals(result):
+    """Each run's residuals (reading minus model at the estimates) along its poses, one panel per
+    run, with the run's RMS; a run whose residuals stand out is where the model misses."""
+    runs = result["run_residuals"]
+    cols = min(3, len(runs))
+    rows = (len(runs) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 2.4 * rows), squeeze=False, sharey=True)
+    largest = max(r["max_um"] for r in runs)
+    for ax, r in zip(axes.flat, runs):
+        values = np.asarray(r["residuals_um"], float)
+        for c in range(values.shape[1]):
+            ax.plot(values[:, c], ".-", lw=0.8, ms=3, label="dx dy dz".split()[c] if values.shape[1] == 3 else "dL")
+        ax.set_title(f"{r['run']}: RMS {r['rms_um']:.2f} µm", fontsize=8,
+                     color="#d62728" if r["max_um"] >= 0.5 * largest and largest > 0 else "black")
+        ax.axhline(0, color="#aaa", lw=0.8)
+        ax.tick_params(labelsize=7)
+    for ax in axes.flat[len(runs):]:
+        ax.set_visible(False)
+    axes[0][0].set_ylabel("residual [µm]")
+    axes[0][0].legend(fontsize=6)
     fig.tight_layout()
     return fig
 

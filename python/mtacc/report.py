@@ -164,44 +164,111 @@ def cone_section(machine, monte_carlo=200):
     return out
 
 
-def identification_section(machine, plan, obs):
-    """Simulated measurements of a test plan (0.5 µm noise), the ballbar evaluations, the
-    plan's observability and the identification of its parameters."""
+def plan_table(runs):
+    """The plan for the operator: each run's instrument, poses, what it moves and where the balls are."""
+    rows = []
+    for r in runs:
+        q = np.asarray(r["q"], float)
+        spread = q.max(axis=0) - q.min(axis=0) if len(q) else []
+        moves = ", ".join(f"{name} {q[:, k].min():.4g}..{q[:, k].max():.4g}" for k, name in enumerate(r["axes"]) if spread[k] > 1e-9)
+        placement = r["target_mm"]
+        rows.append([r["name"], r["instrument"], r["poses"], moves or "—",
+                     "—" if placement is None else ", ".join(f"{v:.4g}" for v in placement),
+                     ", ".join(f"{v:.4g}" for v in r["tool_ball_mm"])])
+    return table(["run", "instrument", "poses", "axes moved [mm, °]", "sphere / work ball [mm] (— set at the tool ball)",
+                  "tool ball [mm]"], rows)
+
+
+def identification_section(machine, plan, obs, data=(), measured=()):
+    """A test plan's measurements identified: the measured files given (`data`, read as
+    `measured`) or, without them, the plan simulated from this machine's errors (0.5 µm noise);
+    the plan for the operator, the ballbar and R-test evaluations, the plan's observability, the
+    estimates with their uncertainties and correlations, what was held, the goodness of fit and
+    each run's residuals. Returns the HTML and the identified model as an errors file's text (None
+    when the plan cannot determine its parameters)."""
     out = f"<h2>Measurement and identification: {html.escape(plan)}</h2>"
     with tempfile.TemporaryDirectory() as tmp:
-        runs = machine.simulate(plan, noise="0.5 um", seed=1, output_dir=tmp)["runs"]
-        files = [r["file"] for r in runs]
-        out += (f"<p>{len(runs)} runs simulated on this machine with its errors and 0.5 µm reading noise, written "
-                "as measurement files and read back as measured data would be.</p>")
+        if data:
+            files = [str(f) for f in data]
+            runs = list(measured)
+            out += (f"<p>{len(files)} measured runs, read from: {html.escape(', '.join(os.path.basename(f) for f in files))}. "
+                    "The errors not identified are held at the values of the machine file (or --errors), listed below.</p>")
+        else:
+            runs = machine.simulate(plan, noise="0.5 um", seed=1, output_dir=tmp)["runs"]
+            files = [r["file"] for r in runs]
+            out += (f"<p><b>Simulated data:</b> the {len(runs)} runs of the plan were simulated from the errors this report "
+                    "was given, with 0.5 µm reading noise, and identified back holding every other error at its true "
+                    "value; the identification shows what the plan can do, not what a machine measured. Give the "
+                    "measured files with --data to identify from them.</p>")
+        described = [dict(r, axes=machine.axis_names) for r in runs]
+        out += "<h3>The plan</h3>" + plan_table(described)
         rows = []
         for r, f in zip(runs, files):
-            if r["instrument"] != "ballbar":
-                continue
-            ev = machine.evaluate_ballbar(f)
-            out += figure(plots.ballbar_polar(ev), f"Ballbar run {html.escape(r['name'])}: trace and fitted eccentricity")
-            d = ev["diagnostics"]
-            g = max(x["circular_deviation_um"] for x in ev["directions"])
-            rows.append([r["name"], f"{g:.2f}", "—" if ev["hysteresis_um"] is None else f"{ev['hysteresis_um']:.2f}",
-                         f"{d['squareness_urad']:.1f}", f"{d['scale_mismatch_um_per_m']:.1f}", f"{d['backlash_a_um']:.2f}",
-                         f"{d['backlash_b_um']:.2f}"])
+            if r["instrument"] == "ballbar":
+                ev = machine.evaluate_ballbar(f)
+                out += figure(plots.ballbar_polar(ev), f"Ballbar run {html.escape(r['name'])}: trace and fitted eccentricity")
+                d = ev["diagnostics"]
+                g = max(x["circular_deviation_um"] for x in ev["directions"])
+                rows.append([r["name"], f"{g:.2f}", "—" if ev["hysteresis_um"] is None else f"{ev['hysteresis_um']:.2f}",
+                             f"{d['squareness_urad']:.1f}", f"{d['scale_mismatch_um_per_m']:.1f}", f"{d['backlash_a_um']:.2f}",
+                             f"{d['backlash_b_um']:.2f}"])
         if rows:
             out += table(["run", "G [µm]", "H [µm]", "squareness [µrad]", "scale mismatch [µm/m]", "backlash a [µm]",
                           "backlash b [µm]"], rows)
+        rtest = [(r, f) for r, f in zip(runs, files) if r["instrument"] == "rtest"]
+        if rtest:
+            evaluated = [machine.evaluate_rtest(f) for _, f in rtest]
+            out += table(["R-test run", "axis", "range dX dY dZ [µm]", "range radial, axial, tangential [µm]"],
+                         [[r["name"], e["moving_axis"], " ".join(f"{v:.2f}" for v in e["range_um"]),
+                           "—" if e["about_the_axis"] is None else
+                           " ".join(f"{e['about_the_axis']['range_um'][k]:.2f}" for k in ("radial", "axial", "tangential"))]
+                          for (r, _), e in zip(rtest, evaluated)])
         out += figure(plots.singular_values(obs), "Singular values of the plan's scaled Jacobian")
         findings = "".join(f"<li>{html.escape(f)}</li>" for f in obs["findings"]) or "<li>every parameter is determined</li>"
         out += f"<ul>{findings}</ul>"
         if not obs["identifiable"]:
-            return out + "<p>Identification skipped: the plan cannot determine its parameter set.</p>"
-        result = machine.identify(files, plan=plan)
-    truth = {}
-    for e in result["estimates"]:
-        if "." not in e["parameter"]:
-            truth[e["parameter"]] = machine.errors[e["parameter"]] * (1e3 if e["unit"] == "um" else 1e6)
-    out += figure(plots.identified_values(result, truth), "Identified parameters (95 % intervals) and the simulated values")
+            return out + "<p>Identification skipped: the plan cannot determine its parameter set.</p>", None
+        written = os.path.join(tmp, "identified.yaml")
+        result = machine.identify(files, plan=plan, noise="0.5 um" if not data else None, errors_out=written)
+        with open(written, encoding="utf-8") as f:
+            model = f.read()
+    estimates = [e for e in result["estimates"] if not e["setup"]]
+    truth = None if data else {e["parameter"]: machine.errors.get(e["parameter"], 0.0) * (1e3 if e["unit"] == "um" else 1e6)
+                               for e in estimates if e["parameter"] in machine.errors.names()}
+    out += "<h3>Identified parameters</h3>"
+    out += figure(plots.identified_values(result, truth),
+                  "Identified parameters (95 % intervals)" + (" and the simulated values" if truth else ""))
+    out += table(["parameter", "value", "u (k = 1)", "U (k = 2)", "unit"],
+                 [[e["parameter"], f"{e['value']:.4f}", f"{e['standard_uncertainty']:.4f}", f"{2 * e['standard_uncertainty']:.4f}",
+                   e["unit"]] for e in estimates])
+    names = [e["parameter"] for e in result["estimates"]]
+    n = len(estimates)
+    strong = [f"{names[a]} and {names[b]}: {result['correlation'][a][b]:.3f}" for a in range(n) for b in range(a + 1, n)
+              if abs(result["correlation"][a][b]) > 0.9]
+    out += "<p>Correlations above 0.9: " + (html.escape("; ".join(strong)) if strong else "none") + ".</p>"
+    held = machine.errors
+    out += ("<p>Held at their values, not identified: " +
+            (html.escape(", ".join(f"{h} = {held[h] * (1e3 if held.unit(h) == 'mm' else 1e6):.3f} "
+                                   f"{'µm' if held.unit(h) == 'mm' else 'µrad'}" for h in result["held"])) if result["held"] else "none") +
+            ".</p>")
+    q = result["quality"]
+    if q["p_value"] is None:
+        out += "<p>Goodness of fit: not tested (the files state no reading noise).</p>"
+    else:
+        verdict = ("<b>fails</b>: the residuals are larger than the stated noise explains (errors the parameter set does not "
+                   "model, outliers, or an understated noise; the run whose residuals stand out below is where to look)"
+                   if q["p_value"] < q["fit_significance"] else "passes")
+        out += (f"<p>Goodness of fit against the noise of {html.escape(q['noise_source'])}: χ² = {q['chi_square']:.4g} for "
+                f"{result['degrees_of_freedom']} degrees of freedom, p = {q['p_value']:.3g}: {verdict}.</p>")
+    out += table(["run", "instrument", "residual RMS [µm]", "largest [µm]", "stated noise [µm]"],
+                 [[r["run"], r["instrument"], f"{r['rms_um']:.3f}", f"{r['max_um']:.3f}",
+                   "—" if r["noise_um"] is None else f"{r['noise_um']:.3f}"] for r in result["run_residuals"]])
+    out += figure(plots.run_residuals(result), "Residuals of each run at the estimates (the largest in red)")
     out += (f"<p>Residual standard deviation {result['sigma_um']:.3f} µm (RMS {result['residual_rms_um']:.3f} µm, "
-            f"largest {result['residual_max_um']:.3f} µm) after {result['iterations']} iterations. A residual well above "
-            "the 0.5 µm noise shows the errors the parameter set does not model (component errors).</p>")
-    return out
+            f"largest {result['residual_max_um']:.3f} µm) after {result['iterations']} iterations.</p>")
+    out += ("<p>The identified model is written beside this report as <code>&lt;machine&gt;-identified.yaml</code>: an errors "
+            "file that every command reads with --errors, with the record of the data it came from.</p>")
+    return out, model
 
 
 def dynamics_section(structure_name, compare=None):
@@ -448,7 +515,8 @@ def thermal_section(state):
 
 
 def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=None, plan=None, structure=None,
-                 compare=None, positioning=(), components=(), plates=(), load=None, decomposition=None, drift=(), thermal=None):
+                 compare=None, positioning=(), components=(), plates=(), load=None, decomposition=None, drift=(), thermal=None,
+                 data=()):
     """Writes <output_dir>/<machine>-report.html atomically and returns its path."""
     start = time.perf_counter()
     steps = ["machine", "error budget", "volumetric error maps", "circular test", "5-axis circle", "cone frustum",
@@ -488,7 +556,10 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     if compensation:
         steps.insert(-1, "after compensation")
     budget = machine.budget(samples=samples)
+    if data and not plan:
+        raise InputError("data: measured files need --plan (the parameters to identify and how the runs were planned)")
     observability = machine.observability(plan) if plan else None
+    measured = [machine.read_measurement(f) for f in data]
     if structure:
         from . import Structure
         Structure(structure)
@@ -573,7 +644,8 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
         parts.append(cubic_section(machine_path, errors, load))
     step("cubic machining test")
     if plan:
-        parts.append(identification_section(machine, plan, observability))
+        section, identified_model = identification_section(machine, plan, observability, data, measured)
+        parts.append(section)
         step("identification")
     if structure:
         parts.append(dynamics_section(structure, compare))
@@ -608,18 +680,24 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     os.makedirs(output_dir, exist_ok=True)
     base = os.path.splitext(os.path.basename(machine.file))[0]
     target = os.path.join(output_dir, f"{base}-report.html")
-    fd, tmp = tempfile.mkstemp(dir=output_dir, prefix=".report-", suffix=".tmp")
+    if plan and identified_model:
+        _write_atomically(os.path.join(output_dir, f"{base}-identified.yaml"), identified_model)
+    _write_atomically(target, document)
+    step("writing")
+    return target
+
+
+def _write_atomically(target, text):
+    fd, tmp = tempfile.mkstemp(dir=os.path.dirname(target) or ".", prefix=".report-", suffix=".tmp")
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(document)
+            f.write(text)
         os.chmod(tmp, 0o644)
         os.replace(tmp, target)
     except BaseException:
         if os.path.exists(tmp):
             os.remove(tmp)
         raise
-    step("writing")
-    return target
 
 
 def main(argv=None):
@@ -631,6 +709,8 @@ def main(argv=None):
                                                    "(default: the errors' workpiece_load)")
     parser.add_argument("--samples", type=int, default=5, help="positions per axis for the budget grid")
     parser.add_argument("--plan", help="test plan (YAML or bundled name) to simulate, evaluate and identify from")
+    parser.add_argument("--data", action="append", default=[],
+                        help="measured file of the plan's runs (CSV) to identify from instead of simulating; may be given several times")
     parser.add_argument("--structure", help="structure model (YAML or bundled name) for the dynamics section")
     parser.add_argument("--compare", help="a second structure model to compare with")
     parser.add_argument("--positioning", action="append", default=[],
@@ -648,7 +728,8 @@ def main(argv=None):
         path = build_report(args.machine, args.output, args.errors, args.samples,
                             progress=lambda s: print(s, file=sys.stderr, flush=True), plan=args.plan,
                             structure=args.structure, compare=args.compare, positioning=args.positioning, components=args.component, plates=args.plate,
-                            load=args.load, decomposition=args.decomposition, drift=args.drift, thermal=args.thermal)
+                            load=args.load, decomposition=args.decomposition, drift=args.drift, thermal=args.thermal,
+                            data=args.data)
     except (InputError, UnreachablePose) as e:
         message = str(e)
         first = message.split(":", 1)[0]

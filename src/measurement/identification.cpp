@@ -508,6 +508,7 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
   out.sigma = std::sqrt(residual.squaredNorm() / out.degreesOfFreedom);
   out.residualRms = std::sqrt(residual.squaredNorm() / static_cast<double>(residual.size()));
   out.residualMax = residual.cwiseAbs().maxCoeff();
+  out.residual = residual;
   for (size_t r = 0; r < state.runs.size(); ++r) {
     const Eigen::Index rows = state.runs[r].poses() * readingSize(state.runs[r].instrument);
     out.runResidualSquares.push_back(residual.segment(state.rowStart[r], rows).squaredNorm());

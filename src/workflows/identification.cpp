@@ -322,10 +322,32 @@ nlohmann::json toJson(const IdentificationOutcome& o) {
     const auto& name = r.columns.names[static_cast<size_t>(k)];
     const bool aliased = static_cast<size_t>(k) < o.given.size() && o.given[static_cast<size_t>(k)] != name;
     j["estimates"].push_back({{"parameter", name},
+                              {"setup", static_cast<size_t>(k) >= o.given.size()},
                               {"given_as", aliased ? nlohmann::json(o.given[static_cast<size_t>(k)]) : nlohmann::json(nullptr)},
                               {"value", toDisplay(r.values[k], d)},
                               {"standard_uncertainty", toDisplay(r.uncertainty[k], d)},
                               {"unit", displayUnit(d)}});
+  }
+  // Each run's residuals (reading minus model, um; one row per pose), their RMS and largest.
+  j["run_residuals"] = nlohmann::json::array();
+  Eigen::Index row = 0;
+  for (size_t k = 0; k < r.runs.size(); ++k) {
+    const auto& run = r.runs[k];
+    const Eigen::Index m = readingSize(run.instrument), n = run.poses() * m;
+    nlohmann::json poses = nlohmann::json::array();
+    for (Eigen::Index i = 0; i < run.poses(); ++i) {
+      nlohmann::json reading = nlohmann::json::array();
+      for (Eigen::Index c = 0; c < m; ++c) reading.push_back(r.residual[row + i * m + c] * 1e3);
+      poses.push_back(reading);
+    }
+    const auto segment = r.residual.segment(row, n);
+    j["run_residuals"].push_back({{"run", run.name},
+                                  {"instrument", instrumentName(run.instrument)},
+                                  {"rms_um", std::sqrt(segment.squaredNorm() / static_cast<double>(n)) * 1e3},
+                                  {"max_um", segment.cwiseAbs().maxCoeff() * 1e3},
+                                  {"noise_um", run.noise ? nlohmann::json(*run.noise * 1e3) : nlohmann::json(nullptr)},
+                                  {"residuals_um", poses}});
+    row += n;
   }
   j["harmonics"] = nlohmann::json::array();
   for (const auto& h : o.harmonics)

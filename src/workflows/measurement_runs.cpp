@@ -138,7 +138,11 @@ nlohmann::json runJson(const Machine& m, const MeasurementRun& run) {
   for (double a : run.angle) angle.push_back(a / kDeg);
   return {{"name", run.name}, {"instrument", instrumentName(run.instrument)}, {"poses", poses.size()},
           {"q", poses}, {"readings_um", readings}, {"angle_deg", angle}, {"sense", run.sense},
-          {"length_mm", run.setup.length}};
+          {"length_mm", run.setup.length},
+          // Where the balls are: the sphere (R-test, probe) or work ball (ballbar, unless set at
+          // the tool ball: "set_at"), workpiece frame, and the tool ball, tool frame.
+          {"target_mm", run.setup.setAt ? nlohmann::json(nullptr) : vectorJson(run.setup.target)},
+          {"tool_ball_mm", vectorJson(run.setup.toolBall)}};
 }
 
 nlohmann::json toJson(const SimulationResult& r) {

@@ -53,6 +53,7 @@ struct IdentificationResult {
   double sigma = 0;             // residual standard deviation (mm), dof-corrected
   double residualRms = 0, residualMax = 0;
   std::vector<double> runResidualSquares;  // sum of the squared residuals of each run, mm^2
+  Eigen::VectorXd residual;     // reading minus model at the estimates (mm), runs in order, each pose's readings together
   int readings = 0, degreesOfFreedom = 0, iterations = 0;
   bool converged = false;
   std::string solverReport;
