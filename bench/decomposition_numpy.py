@@ -5,7 +5,7 @@ analytic Jacobian (the spline's derivative) on the not-a-knot CubicSpline misfit
 samples inside the moved traces, the nominal and identified TCP of the inclined-A machine
 (TCP = R_C(C) R_A(A) (X, Y, Z), checked against mtacc's before timing) vectorised over samples,
 then the Legendre degree-20 fit of the reference test in the normalised path travelled (legvander +
-lstsq), drift, dynamic error, shares and per-direction RMS.
+lstsq), drift (constant in the machine frame), dynamic error, shares and per-direction RMS.
 
 Usage: decomposition_numpy.py DIR -> one JSON line {"seconds", "tests": [{offset, drift, rms, shares}]}
 """
@@ -31,10 +31,14 @@ A_AXIS = np.array([1.0, 0.0, 1.0]) / np.sqrt(2.0)
 C_AXIS = np.array([0.0, 0.0, 1.0])
 
 
+def to_workpiece(q):
+    """q: n x 5 -> the rotations (n x 3 x 3) from the machine frame into the workpiece frame."""
+    return rotations(C_AXIS, q[:, 4]) @ rotations(A_AXIS, q[:, 3])
+
+
 def tcp(q):
     """q: n x 5 (X, Y, Z mm, A, C rad) -> TCP in the workpiece frame, n x 3."""
-    r = rotations(C_AXIS, q[:, 4]) @ rotations(A_AXIS, q[:, 3])
-    return np.einsum("nij,nj->ni", r, q[:, :3])
+    return np.einsum("nij,nj->ni", to_workpiece(q), q[:, :3])
 
 
 def compared(cmd_t, enc_t, lo, hi):
@@ -99,7 +103,7 @@ def decompose(meta, data):
         link = tcp(q_enc) - (chi_enc + ball)  # the identified machine is the nominal one here
         fgroup = np.column_stack([q_enc[:, :3], np.degrees(q_enc[:, 3:])])  # FGROUP: mm and deg on one length
         path = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(fgroup, axis=0), axis=1))])
-        aligned.append((offset, path, inst[use], chi_enc, chi_nom, link))
+        aligned.append((offset, path, inst[use], chi_enc, chi_nom, link, to_workpiece(q_enc)))
 
     def basis(path):
         return legendre.legvander(2 * (path - path[0]) / (path[-1] - path[0]) - 1, meta["degree"])
@@ -107,13 +111,15 @@ def decompose(meta, data):
     ref = aligned[0]
     coef = np.linalg.lstsq(basis(ref[1]), ref[2] - ref[3] - ref[5], rcond=None)[0]
     out = []
-    for k, (offset, path, chi, chi_enc, chi_nom, link) in enumerate(aligned):
+    for k, (offset, path, chi, chi_enc, chi_nom, link, rotation) in enumerate(aligned):
         motion = basis(path) @ coef
         rest = chi - chi_enc - link - motion
-        drift = np.zeros(3) if k == 0 else rest.mean(axis=0)
-        dynamic = rest - drift
+        # The drift constant in the machine frame (seed 004): the mean of the rest turned there.
+        drift = np.zeros(3) if k == 0 else np.einsum("nji,nj->ni", rotation, rest).mean(axis=0)
+        drift_along = np.einsum("nij,j->ni", rotation, drift)
+        dynamic = rest - drift_along
         contouring = chi_enc - chi_nom
-        c, qs, d = (np.linalg.norm(v, axis=1) for v in (contouring, link + motion + drift, dynamic))
+        c, qs, d = (np.linalg.norm(v, axis=1) for v in (contouring, link + motion + drift_along, dynamic))
         total = c + qs + d
         out.append({"offset": offset, "drift": drift.tolist(), "rms": np.sqrt((dynamic ** 2).mean(axis=0)).tolist(),
                     "shares": [100 * np.mean(v / total) for v in (c, qs, d)], "samples": int(len(path))})

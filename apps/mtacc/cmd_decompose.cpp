@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cli_common.hpp"
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/workflows/recorded_decomposition.hpp"
 
 namespace mtacc::cli {
@@ -14,11 +15,16 @@ namespace {
 struct DecomposeCliOptions : MachineOptions {
   std::string set;
   size_t seriesPoints = 0;
+  std::string driftFrame;
   bool strict = false;
 };
 
 void run(const DecomposeCliOptions& o) {
-  const auto r = decomposeRecordedSet(loadMachineSetup(o.source), loadDecompositionSet(o.set));
+  std::optional<DriftFrame> frame;
+  if (!o.driftFrame.empty()) frame = parseDriftFrame(o.driftFrame, InputLocation{"", 0, "--drift-frame"});
+  auto set = loadDecompositionSet(o.set);
+  if (frame) set.driftFrame = *frame;
+  const auto r = decomposeRecordedSet(loadMachineSetup(o.source), set);
   const auto j = toJson(r, o.seriesPoints);
   std::string human = fmt::format("{} tests; motion errors fitted at {:g} mm/min (Legendre degree {} in the normalised {}), {} interpolation\n\n",
                                   r.tests.size(), j["reference_feed_mm_min"].get<double>(), r.set.degree, j["parameter"].get<std::string>(),
@@ -68,6 +74,8 @@ void addDecomposeCommand(CLI::App& app) {
   cmd->add_option("set", o->set, "decomposition set (YAML, docs/file-formats.md \"Decomposition sets\")")->required();
   cmd->add_option("--series", o->seriesPoints, "with --json: each test's contributions along the normalised path u, at most this many "
                                                "points (every k-th sample)")->check(CLI::Range(0, 10000000));
+  cmd->add_option("--drift-frame", o->driftFrame,
+                  "where the drift is constant over a test: machine (seed 004's, the default) or workpiece; overrides the set's drift_frame");
   cmd->add_flag("--strict", o->strict, "exit with status 4 when a result is doubtful (offset at the search limit, instrument spikes)");
   cmd->callback([o] { run(*o); });
 }

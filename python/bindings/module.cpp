@@ -335,11 +335,15 @@ PYBIND11_MODULE(_mtacc, mod) {
         r.removeDisturbed = removeDisturbed;
         return toPython(toJson(fitComponentFile(s, r)));
       })
-      .def("decompose", [](const PythonMachine& s, const std::string& set, size_t seriesPoints) {
+      .def("decompose", [](const PythonMachine& s, const std::string& setFile, size_t seriesPoints, const std::string& driftFrame) {
+        std::optional<DriftFrame> frame;
+        if (!driftFrame.empty()) frame = parseDriftFrame(driftFrame, InputLocation{"", 0, "drift_frame"});
+        auto set = loadDecompositionSet(setFile);
+        if (frame) set.driftFrame = *frame;
         RecordedDecomposition result;
         {
           py::gil_scoped_release release;
-          result = decomposeRecordedSet(s, loadDecompositionSet(set));
+          result = decomposeRecordedSet(s, set);
         }
         return toPython(toJson(result, seriesPoints));
       })

@@ -380,12 +380,14 @@ class Machine:
         the misalignment removed, and the residual's k = 2 bound when the file states the 2S values."""
         return self._core.compare_plate(str(path))
 
-    def decompose(self, set_file, series_points=0):
+    def decompose(self, set_file, series_points=0, drift_frame=None):
         """Seed 004's decomposition of recorded signals (a decomposition set, docs/file-formats.md), as
         `mtacc decompose --json`: per feed the clock offset (ms), shares of eq. 21 with both denominators,
         drift, maxima and dynamic RMS (um), and the power law of the dynamic RMS over the feeds. With
-        series_points > 0, each test's contributions along the normalised path u ("series", um)."""
-        return self._core.decompose(str(set_file), int(series_points))
+        series_points > 0, each test's contributions along the normalised path u ("series", um). drift_frame:
+        "machine" (seed 004's: the drift constant in the machine frame) or "workpiece"; default the set's
+        drift_frame, else machine. Warnings (an offset at its search limit, instrument spikes): result["warnings"]."""
+        return self._core.decompose(str(set_file), int(series_points), _text(drift_frame))
 
     def simulate_motion(self, program, output, feeds=None, structure="", noise="0.2 um", acceleration=3000.0,
                         jerk_time_ms=20.0, kv=40.0, feed_forward=0.99, clock_offset_ms=18.0, seed=1, format="csv"):

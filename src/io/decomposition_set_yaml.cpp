@@ -23,13 +23,19 @@ std::string besideTheSet(const std::string& setFile, const std::string& path) {
 
 }  // namespace
 
+DriftFrame parseDriftFrame(const std::string& text, const InputLocation& key) {
+  if (text == "machine") return DriftFrame::Machine;
+  if (text == "workpiece") return DriftFrame::Workpiece;
+  throw InputError(key, "expected machine (seed 004's: constant in the machine frame) or workpiece, not '" + text + "'");
+}
+
 DecompositionSet parseDecompositionSet(const std::string& text, const std::string& source) {
   const yamlin::Context ctx{source};
   const auto root = yamlin::loadText(text, source);
   if (!yamlin::isMap(root)) ctx.fail(root, "", "expected a mapping with tests: [{feed, command, encoder, instrument}, ...]");
   yamlin::rejectUnknownKeys(ctx, root, "",
                             {"description", "ball", "nc_rate_hz", "instrument_rate_hz", "interpolation", "clock_offset_ms", "search_ms",
-                             "reference_feed", "degree", "parameter", "tests"});
+                             "reference_feed", "degree", "parameter", "drift_frame", "tests"});
   DecompositionSet set;
   set.file = source;
   if (root["ball"]) set.ball = yamlin::lengthVector(ctx, root["ball"], "ball");
@@ -58,6 +64,8 @@ DecompositionSet parseDecompositionSet(const std::string& text, const std::strin
     if (kind != "path" && kind != "time") ctx.fail(node, "parameter", "expected path or time (the paper's)");
     set.parameter = kind == "path" ? MotionParameter::Path : MotionParameter::Time;
   }
+  if (const auto node = root["drift_frame"])
+    set.driftFrame = parseDriftFrame(yamlin::scalar(ctx, node, "drift_frame"), ctx.at(node, "drift_frame"));
 
   const auto tests = root["tests"];
   if (!yamlin::isSequence(tests) || tests.size() == 0)

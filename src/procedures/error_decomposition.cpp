@@ -19,6 +19,8 @@ void check(const DecompositionTest& t, size_t index, MotionParameter parameter) 
     if (!(t.time[i] > t.time[i - 1]))
       throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): time does not increase at sample {}", index, t.feed, i));
   if (parameter != MotionParameter::Path) return;
+  if (!t.workpieceRotation.empty() && t.workpieceRotation.size() != n)
+    throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): its workpiece rotations have another length", index, t.feed));
   if (t.path.size() != n) throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): its path has another length", index, t.feed));
   for (size_t i = 1; i < n; ++i)
     if (!(t.path[i] >= t.path[i - 1]))
@@ -77,14 +79,20 @@ std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>
     d.dynamic.resize(n);
     const Eigen::MatrixXd motion = legendreBasis(t, o.parameter, o.degree) * coefficients;
     const Eigen::MatrixXd rest = beyondLink(t) - motion;
-    // Eq. 18: the drift is the mean of what neither link nor motion errors explain; the reference
-    // test's is zero because its fit has the constant term.
-    d.drift = static_cast<int>(k) == o.referenceTest ? Vec3::Zero() : Vec3(rest.colwise().mean().transpose());
+    // Eq. 18: the drift is the mean of what neither link nor motion errors explain, taken in the
+    // drift frame; the reference test's is zero because its fit has the constant term.
+    const bool machineFrame = o.driftFrame == DriftFrame::Machine && !t.workpieceRotation.empty();
+    auto toDriftFrame = [&](size_t i) { return machineFrame ? t.workpieceRotation[i] : Mat3::Identity(); };
+    Vec3 sum = Vec3::Zero();
+    for (size_t i = 0; i < n; ++i) sum += toDriftFrame(i) * rest.row(static_cast<Eigen::Index>(i)).transpose();
+    d.drift = static_cast<int>(k) == o.referenceTest ? Vec3::Zero() : Vec3(sum / static_cast<double>(n));
+    d.driftAlong.resize(n);
     for (size_t i = 0; i < n; ++i) {
       const auto row = static_cast<Eigen::Index>(i);
       d.contouring[i] = t.encoder[i] - t.nominal[i];
       d.motion[i] = motion.row(row).transpose();
-      d.dynamic[i] = rest.row(row).transpose() - d.drift;
+      d.driftAlong[i] = toDriftFrame(i).transpose() * d.drift;
+      d.dynamic[i] = rest.row(row).transpose() - d.driftAlong[i];
     }
     out.push_back(std::move(d));
   }

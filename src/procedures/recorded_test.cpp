@@ -64,6 +64,7 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
     }
   }
   alignment.samplesUsed = used.size();
+  alignment.firstSampleUsed = used.empty() ? 0 : used.front();
   if (used.size() < 4)
     throw std::invalid_argument(fmt::format("{} instrument samples fall inside the command's motion and the encoder trace (offset {:.3f} ms)",
                                             used.size(), alignment.offset * 1e3));
@@ -88,8 +89,10 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
   test.encoder.resize(n);
   test.link.resize(n);
   test.measured.resize(n);
+  test.workpieceRotation.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const auto k = static_cast<long>(i);
+    test.workpieceRotation[i] = workpiecePose(nominal, encoderQ.row(k).data(), nullptr).linear();
     test.nominal[i] = atCommand.row(k).transpose() - processing.ball;
     test.encoder[i] = atEncoder.row(k).transpose() - processing.ball;
     test.link[i] = (withErrors.row(k) - atEncoder.row(k)).transpose();

@@ -79,8 +79,10 @@ VirtualRecording recordVirtualTest(const KinematicModel& nominal, const Kinemati
     const auto i = static_cast<long>(k);
     out.contouring[k] = (atAxes.row(i) - atReference.row(i)).transpose();
     out.geometric[k] = (withErrors.row(i) - atAxes.row(i)).transpose();
-    out.dynamic[k] = workpiecePose(nominal, q.row(i).data(), nullptr).linear().transpose() * deflected[k];
-    const Vec3 reading = withErrors.row(i).transpose() - options.ball + options.drift + out.dynamic[k] +
+    const Mat3 toWorkpiece = workpiecePose(nominal, q.row(i).data(), nullptr).linear().transpose();
+    out.dynamic[k] = toWorkpiece * deflected[k];
+    const Vec3 drift = options.driftFrame == DriftFrame::Machine ? Vec3(toWorkpiece * options.drift) : options.drift;
+    const Vec3 reading = withErrors.row(i).transpose() - options.ball + drift + out.dynamic[k] +
                          options.noise * Vec3(noise(random), noise(random), noise(random));
     for (int c = 0; c < 3; ++c) out.instrument.channels[static_cast<size_t>(c)][k] = reading[c];
   }

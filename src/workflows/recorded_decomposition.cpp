@@ -65,7 +65,7 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
     out.alignment.push_back(aligned.alignment);
   }
   try {
-    out.tests = decomposeErrors(tests, {set.referenceTest, set.degree, set.parameter});
+    out.tests = decomposeErrors(tests, {set.referenceTest, set.degree, set.parameter, set.driftFrame});
   } catch (const std::invalid_argument& e) {
     throw InputError({set.file, set.tests[static_cast<size_t>(set.referenceTest)].line, fmt::format("tests[{}]", set.referenceTest)}, e.what());
   }
@@ -128,6 +128,7 @@ nlohmann::json toJson(const RecordedDecomposition& r, size_t seriesPoints) {
         {"alignment_rms_misfit", a.rmsMisfit},
         {"instrument_samples", a.instrumentSamples},
         {"samples_used", a.samplesUsed},
+        {"first_sample_used", a.firstSampleUsed},
         {"clock_offset_at_search_limit", a.atSearchLimit},
         {"instrument_spikes", a.instrumentSpikes},
         {"drift_um", um(r.tests[k].drift)},
@@ -144,6 +145,7 @@ nlohmann::json toJson(const RecordedDecomposition& r, size_t seriesPoints) {
     if (seriesPoints > 0) j["tests"].back()["series"] = seriesJson(r.tests[k], r.pathFraction[k], seriesPoints);
   }
   j["warnings"] = r.warnings;
+  j["drift_frame"] = r.set.driftFrame == DriftFrame::Machine ? "machine" : "workpiece";
   j["dynamic_rms_power_law"] = nlohmann::json::object();
   for (size_t d = 0; d < 3; ++d)
     if (const auto& law = r.dynamicLaw[d])

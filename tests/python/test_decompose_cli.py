@@ -116,9 +116,11 @@ def test_the_series_along_the_path_are_the_contributions_of_every_kth_sample(cli
     import numpy as np
     simulated = run(cli, "simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", "1000,10498",
                     "--structure", "wcayfxzt-compact", "--format", "npy", "-o", str(tmp_path))
-    plain = run(cli, "decompose", "inclined-a-table", simulated["set"])
-    sampled = run(cli, "decompose", "inclined-a-table", simulated["set"], "--series", "500")
-    every = run(cli, "decompose", "inclined-a-table", simulated["set"], "--series", "10000000")
+    # The drift taken constant in the workpiece frame, where the dynamic error's mean is zero.
+    workpiece = ["--drift-frame", "workpiece"]
+    plain = run(cli, "decompose", "inclined-a-table", simulated["set"], *workpiece)
+    sampled = run(cli, "decompose", "inclined-a-table", simulated["set"], "--series", "500", *workpiece)
+    every = run(cli, "decompose", "inclined-a-table", simulated["set"], "--series", "10000000", *workpiece)
     for t, s, e in zip(plain["tests"], sampled["tests"], every["tests"]):
         series = s.pop("series")
         assert s == t
@@ -167,3 +169,32 @@ def test_a_result_that_cannot_be_trusted_is_flagged(cli, tmp_path):
     flagged = [t for t in spiked["tests"] if t["instrument_spikes"]]
     assert len(flagged) == 1 and flagged[0]["instrument_spikes"] == [2000]
     assert any("stand out from their neighbours" in w and "2000" in w for w in spiked["warnings"])
+
+
+def test_the_drift_is_taken_in_the_frame_it_is_constant_in(cli, tmp_path):
+    # Issue 44: seed 004 keeps the thermal drift constant in the machine frame (the structure
+    # warms while the A-C table turns under it). The virtual machine records it so, noise free;
+    # decomposed in the machine frame, the drift is the injected one and the dynamic error is
+    # recovered far better than with the drift taken constant in the workpiece frame, which books
+    # the turning drift as dynamic error.
+    import csv
+    import numpy as np
+    simulated = run(cli, "simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", "1000,3240,10498",
+                    "--structure", "wcayfxzt-compact", "--noise", "0um", "-o", str(tmp_path))
+    with open(tmp_path / "f10498-truth.csv") as f:
+        truth = np.array([[float(r[f"dynamic_{c}_um"]) for c in "xyz"] for r in csv.DictReader(f)])
+    error = {}
+    for frame in ("machine", "workpiece"):
+        result = run(cli, "decompose", "inclined-a-table", simulated["set"], "--series", "10000000", "--drift-frame", frame)
+        assert result["drift_frame"] == frame
+        top = result["tests"][-1]
+        recovered = np.array([top["series"]["dynamic_um"][c] for c in "xyz"]).T
+        first = top["first_sample_used"]
+        expected = truth[first:first + len(recovered)]
+        expected = expected - expected.mean(axis=0)
+        error[frame] = np.sqrt(np.mean(np.sum((recovered - expected) ** 2, axis=1)) / np.mean(np.sum(expected ** 2, axis=1)))
+        if frame == "machine":
+            assert top["drift_um"] == pytest.approx([0.8, 0.5, 0.7], abs=0.03)  # 2 x (0.4, 0.25, 0.35) um
+    # Measured: 9.4 % against 22.9 %. What is left in the machine frame is the method's own:
+    # the reference test's dynamic error is fitted as motion error and carried to every feed.
+    assert error["machine"] < 0.5 * error["workpiece"]

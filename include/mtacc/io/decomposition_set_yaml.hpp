@@ -2,11 +2,12 @@
 // A set of recorded tests for the error decomposition of seed 004 (YAML, docs/file-formats.md
 // "Decomposition sets"): per feed the command, encoder and instrument signal files, and the
 // processing choices (interpolation, clock offset or its search window, reference test, degree,
-// the parameter of the motion errors).
+// the parameter of the motion errors, the drift frame).
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/core/transform.hpp"
 #include "mtacc/core/uniform_spline.hpp"
 #include "mtacc/procedures/error_decomposition.hpp"
@@ -31,7 +32,10 @@ struct DecompositionSet {
   int referenceTest = 0;                    // index into tests: the given reference feed, else the lowest
   int degree = 20;
   MotionParameter parameter = MotionParameter::Path;
+  DriftFrame driftFrame = DriftFrame::Machine;
 };
+// "machine" or "workpiece" (drift_frame:, decompose --drift-frame); throws InputError at `key`.
+DriftFrame parseDriftFrame(const std::string& text, const InputLocation& key);
 
 // Throws InputError naming file, line and key.
 DecompositionSet loadDecompositionSet(const std::string& path);

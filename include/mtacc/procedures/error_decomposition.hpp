@@ -18,7 +18,14 @@ struct DecompositionTest {
   std::vector<Vec3> encoder;    // chi_enc: the direct kinematics of the encoder positions
   std::vector<Vec3> nominal;    // chi_nom: the direct kinematics of the interpolator's commands
   std::vector<Vec3> link;       // delta_l: the identified link errors along the path (eqs. 13-15)
+  // The workpiece frame's rotation in the machine frame at each sample (the nominal machine at
+  // the encoder positions), for a drift constant in the machine frame; empty: the identity.
+  std::vector<Mat3> workpieceRotation;
 };
+
+// Where the thermal drift is constant over a test (eq. 19): in the machine frame, as seed 004
+// takes it (the structure warms, the table turns under it), or in the workpiece frame.
+enum class DriftFrame { Machine, Workpiece };
 
 // What the motion errors are a function of (O5): the time from the test's first sample to its
 // last scaled to [0, 1] (the paper's), or the path travelled, scaled alike. The motion errors
@@ -31,6 +38,7 @@ struct DecompositionOptions {
   int referenceTest = 0;  // the slow test whose error beyond the link errors is all motion error (eq. 16)
   int degree = 20;        // of the Legendre fit of the motion errors in the normalised parameter (eq. 17, O5, O6)
   MotionParameter parameter = MotionParameter::Path;
+  DriftFrame driftFrame = DriftFrame::Machine;
 };
 
 struct DecomposedTest {
@@ -38,10 +46,11 @@ struct DecomposedTest {
   std::vector<Vec3> contouring;  // delta_c = chi_enc - chi_nom (eq. 10)
   std::vector<Vec3> link;        // delta_l, as given
   std::vector<Vec3> motion;      // delta_m: the reference test's fit at this test's normalised parameter
-  Vec3 drift = Vec3::Zero();     // td (eq. 18), the same at every sample (eq. 19); 0 in the reference test
-  std::vector<Vec3> dynamic;     // delta_d = chi - chi_enc - delta_qs (eq. 20); zero mean by construction
+  Vec3 drift = Vec3::Zero();     // td (eq. 18), constant in the drift frame (eq. 19); 0 in the reference test
+  std::vector<Vec3> driftAlong;  // the same at each sample in the workpiece frame
+  std::vector<Vec3> dynamic;     // delta_d = chi - chi_enc - delta_qs (eq. 20); zero mean (in the drift frame) by construction
 
-  Vec3 quasiStatic(size_t i) const { return link[i] + motion[i] + drift; }  // delta_qs (eq. 12)
+  Vec3 quasiStatic(size_t i) const { return link[i] + motion[i] + driftAlong[i]; }  // delta_qs (eq. 12)
 };
 
 // What the method cannot split, by construction: a mean of the true dynamic error is booked as

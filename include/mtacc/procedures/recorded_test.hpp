@@ -16,6 +16,7 @@ struct TestAlignment {
   bool estimated = false;
   double rmsMisfit = 0.0;  // of the estimate, in the axes' spreads (0 when given)
   size_t instrumentSamples = 0, samplesUsed = 0;  // those outside the command's motion or the encoder trace are left out
+  size_t firstSampleUsed = 0;                     // the used ones are consecutive from this instrument sample on
   // An estimate within one scan step of an end of the search window: the misfit may fall
   // further beyond it, and the offset (with the contouring error it sets) cannot be trusted.
   bool atSearchLimit = false;

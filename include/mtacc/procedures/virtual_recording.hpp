@@ -11,6 +11,7 @@
 #include "mtacc/core/parallel.hpp"
 #include "mtacc/dynamics/structure.hpp"
 #include "mtacc/kinematics/kinematic_model.hpp"
+#include "mtacc/procedures/error_decomposition.hpp"
 #include "mtacc/procedures/servo_loop.hpp"
 #include "mtacc/procedures/trace_alignment.hpp"
 
@@ -21,7 +22,8 @@ struct VirtualRecordingOptions {
   double ncPeriod = 0.003;        // s: a whole multiple of the reference's period
   double clockOffset = 0.018;     // s: the command sample stamped s is the reference at encoder time s + clockOffset
   Vec3 ball = Vec3::Zero();       // the instrument's workpiece ball centre, workpiece frame, mm
-  Vec3 drift = Vec3::Zero();      // mm, in every reading of the test
+  Vec3 drift = Vec3::Zero();      // mm, in every reading of the test, constant in driftFrame
+  DriftFrame driftFrame = DriftFrame::Machine;
   double noise = 2e-4;            // mm: standard deviation of each reading component
   std::uint64_t seed = 1;
   const StructureModel* structure = nullptr;  // deflection under the accelerations of its axes (by name); none when null
