@@ -6,7 +6,6 @@
 #include <iostream>
 
 #include "cli_common.hpp"
-#include "mtacc/core/input_error.hpp"
 #include "mtacc/workflows/recorded_decomposition.hpp"
 
 namespace mtacc::cli {
@@ -20,11 +19,7 @@ struct DecomposeCliOptions : MachineOptions {
 };
 
 void run(const DecomposeCliOptions& o) {
-  std::optional<DriftFrame> frame;
-  if (!o.driftFrame.empty()) frame = parseDriftFrame(o.driftFrame, InputLocation{"", 0, "--drift-frame"});
-  auto set = loadDecompositionSet(o.set);
-  if (frame) set.driftFrame = *frame;
-  const auto r = decomposeRecordedSet(loadMachineSetup(o.source), set);
+  const auto r = decomposeRecordedSet(loadMachineSetup(o.source), loadDecompositionSetWithDriftFrame(o.set, o.driftFrame, "--drift-frame"));
   const auto j = toJson(r, o.seriesPoints);
   std::string human = fmt::format("{} tests; motion errors fitted at {:g} mm/min (Legendre degree {} in the normalised {}), {} interpolation\n\n",
                                   r.tests.size(), j["reference_feed_mm_min"].get<double>(), r.set.degree, j["parameter"].get<std::string>(),

@@ -76,12 +76,7 @@ std::string predictionText(const ObservabilityResult& r) {
     const double u = toDisplay(p.uncertainty[static_cast<Eigen::Index>(a)], d);
     t += fmt::format("{:<22} {:>12.4f} {:>12.4f}  {}\n", p.columns.names[a], u, 2.0 * u, displayUnit(d));
   }
-  for (size_t a = 0; a < r.parameterCount; ++a)
-    for (size_t b = a + 1; b < r.parameterCount; ++b) {
-      const auto ia = static_cast<Eigen::Index>(a), ib = static_cast<Eigen::Index>(b);
-      const double c = p.covariance(ia, ib) / (p.uncertainty[ia] * p.uncertainty[ib]);
-      if (std::abs(c) > 0.9) t += fmt::format("  correlated: {} and {} ({:.3f})\n", p.columns.names[a], p.columns.names[b], c);
-    }
+  for (const auto& pair : strongCorrelations(p.columns.names, p.covariance, r.parameterCount)) t += "  correlated: " + pair + "\n";
   return t;
 }
 

@@ -336,10 +336,7 @@ PYBIND11_MODULE(_mtacc, mod) {
         return toPython(toJson(fitComponentFile(s, r)));
       })
       .def("decompose", [](const PythonMachine& s, const std::string& setFile, size_t seriesPoints, const std::string& driftFrame) {
-        std::optional<DriftFrame> frame;
-        if (!driftFrame.empty()) frame = parseDriftFrame(driftFrame, InputLocation{"", 0, "drift_frame"});
-        auto set = loadDecompositionSet(setFile);
-        if (frame) set.driftFrame = *frame;
+        const auto set = loadDecompositionSetWithDriftFrame(setFile, driftFrame, "drift_frame");
         RecordedDecomposition result;
         {
           py::gil_scoped_release release;

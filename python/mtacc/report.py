@@ -164,13 +164,13 @@ def cone_section(machine, monte_carlo=200):
     return out
 
 
-def plan_table(runs):
+def plan_table(runs, axis_names):
     """The plan for the operator: each run's instrument, poses, what it moves and where the balls are."""
     rows = []
     for r in runs:
         q = np.asarray(r["q"], float)
-        spread = q.max(axis=0) - q.min(axis=0) if len(q) else []
-        moves = ", ".join(f"{name} {q[:, k].min():.4g}..{q[:, k].max():.4g}" for k, name in enumerate(r["axes"]) if spread[k] > 1e-9)
+        spread = q.max(axis=0) - q.min(axis=0)
+        moves = ", ".join(f"{name} {q[:, k].min():.4g}..{q[:, k].max():.4g}" for k, name in enumerate(axis_names) if spread[k] > 1e-9)
         placement = r["target_mm"]
         rows.append([r["name"], r["instrument"], r["poses"], moves or "—",
                      "—" if placement is None else ", ".join(f"{v:.4g}" for v in placement),
@@ -200,8 +200,7 @@ def identification_section(machine, plan, obs, data=(), measured=()):
                     "was given, with 0.5 µm reading noise, and identified back holding every other error at its true "
                     "value; the identification shows what the plan can do, not what a machine measured. Give the "
                     "measured files with --data to identify from them.</p>")
-        described = [dict(r, axes=machine.axis_names) for r in runs]
-        out += "<h3>The plan</h3>" + plan_table(described)
+        out += "<h3>The plan</h3>" + plan_table(runs, machine.axis_names)
         rows = []
         for r, f in zip(runs, files):
             if r["instrument"] == "ballbar":
@@ -241,10 +240,7 @@ def identification_section(machine, plan, obs, data=(), measured=()):
     out += table(["parameter", "value", "u (k = 1)", "U (k = 2)", "unit"],
                  [[e["parameter"], f"{e['value']:.4f}", f"{e['standard_uncertainty']:.4f}", f"{2 * e['standard_uncertainty']:.4f}",
                    e["unit"]] for e in estimates])
-    names = [e["parameter"] for e in result["estimates"]]
-    n = len(estimates)
-    strong = [f"{names[a]} and {names[b]}: {result['correlation'][a][b]:.3f}" for a in range(n) for b in range(a + 1, n)
-              if abs(result["correlation"][a][b]) > 0.9]
+    strong = result["correlations_above_0_9"]
     out += "<p>Correlations above 0.9: " + (html.escape("; ".join(strong)) if strong else "none") + ".</p>"
     held = machine.errors
     out += ("<p>Held at their values, not identified: " +

@@ -199,14 +199,11 @@ Parameter findParameter(const Machine& machine, const ErrorModel& errors, const 
 }
 
 Parameter defineParameter(const Machine& machine, ErrorModel& errors, const std::string& name) {
-  ErrorModel defined = errors;
-  const auto names = defineNamedTerms(machine, defined, {name});
+  const auto names = defineNamedTerms(machine, errors, {name});
   if (names.size() != 1)
     throw InputError(InputLocation{"", 0, name}, "'" + name + "' names the two parts of a harmonic: give " + names[0] + " and " +
                                                      names[1] + " (or the function's 'harmonics:')");
-  const Parameter p = findParameter(machine, defined, names[0]);
-  errors = std::move(defined);
-  return p;
+  return findParameter(machine, errors, names[0]);
 }
 
 ErrorModel withParametersZero(const Machine& machine, const ErrorModel& shape) {

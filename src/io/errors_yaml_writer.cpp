@@ -60,22 +60,20 @@ std::string stiffnessBlock(const Machine& machine, const StiffnessError& s, Dime
   const double unit = valueDim == Dimension::Angle ? 1e-6 : 1e-3;
   out += fmt::format("unit: {}, positions: {}", valueDim == Dimension::Angle ? "urad" : "um",
                      list(s.positions, [&](double q) { return position(q, own); }));
-  auto row = [&](Eigen::Index i) {
-    std::vector<double> r;
-    for (Eigen::Index j = 0; j < s.values.cols(); ++j) r.push_back(s.values(i, j) / unit);
-    return r;
-  };
-  std::vector<Eigen::Index> rows;
-  for (Eigen::Index i = 0; i < s.values.rows(); ++i) rows.push_back(i);
   if (s.otherAxis >= 0) {
     const Axis& other = machine.axes[static_cast<size_t>(s.otherAxis)];
     out += fmt::format(", with: {}, with_positions: {}", other.name,
                        list(s.otherPositions, [&](double q) { return position(q, other.isRotary() ? Dimension::Angle : Dimension::Length); }));
-    out += ", values: " + list(rows, [&](Eigen::Index i) { return list(row(i), [](double v) { return fmt::format("{:.15g}", v); }); });
-  } else {
-    out += ", values: " + list(rows, [&](Eigen::Index i) { return fmt::format("{:.15g}", s.values(i, 0) / unit); });
   }
-  return out + "}";
+  // One value per position, or with another axis one row per position.
+  std::string rows;
+  for (Eigen::Index i = 0; i < s.values.rows(); ++i) {
+    std::string row;
+    for (Eigen::Index j = 0; j < s.values.cols(); ++j) row += fmt::format("{}{:.15g}", j ? ", " : "", s.values(i, j) / unit);
+    if (i) rows += ", ";
+    rows += s.otherAxis >= 0 ? "[" + row + "]" : row;
+  }
+  return out + ", values: [" + rows + "]}";
 }
 
 }  // namespace

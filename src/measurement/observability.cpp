@@ -206,12 +206,15 @@ IdentifiableColumns proposeIdentifiableColumns(const Eigen::MatrixXd& jacobian, 
   Eigen::MatrixXd kept(rows, static_cast<Eigen::Index>(out.kept.size())), dropped(rows, static_cast<Eigen::Index>(out.dropped.size()));
   for (size_t k = 0; k < out.kept.size(); ++k) kept.col(static_cast<Eigen::Index>(k)) = candidates.col(out.kept[k]);
   for (size_t d = 0; d < out.dropped.size(); ++d) dropped.col(static_cast<Eigen::Index>(d)) = candidates.col(out.dropped[d]);
-  // In the scaled columns; then back to the columns' own units (p_k / t_k stands for ... p_d / t_d).
+  // In the scaled columns, where below 1e-6 is rounding; then back to the columns' own units
+  // (p_k / t_k stands for ... p_d / t_d).
   out.standsFor = kept.cols() > 0 ? Eigen::MatrixXd(kept.colPivHouseholderQr().solve(dropped))
                                   : Eigen::MatrixXd::Zero(0, dropped.cols());
   for (Eigen::Index k = 0; k < out.standsFor.rows(); ++k)
-    for (Eigen::Index d = 0; d < out.standsFor.cols(); ++d)
-      out.standsFor(k, d) *= typical[out.kept[static_cast<size_t>(k)]] / typical[out.dropped[static_cast<size_t>(d)]];
+    for (Eigen::Index d = 0; d < out.standsFor.cols(); ++d) {
+      double& c = out.standsFor(k, d);
+      c = std::abs(c) > 1e-6 ? c * typical[out.kept[static_cast<size_t>(k)]] / typical[out.dropped[static_cast<size_t>(d)]] : 0.0;
+    }
   return out;
 }
 

@@ -1,6 +1,7 @@
 #include "mtacc/measurement/rtest_evaluation.hpp"
 
 #include <stdexcept>
+#include <utility>
 
 #include <Eigen/Geometry>
 
@@ -25,13 +26,10 @@ RTestEvaluation evaluateRTest(const KinematicModel& nominal, const MeasurementRu
   // The rotary axis that turns most (the test is about it); a linear axis only when none turns.
   RTestEvaluation e;
   const Eigen::VectorXd spread = run.q.colwise().maxCoeff() - run.q.colwise().minCoeff();
-  for (int k = 0; k < static_cast<int>(spread.size()); ++k) {
-    const bool rotary = m.axes[static_cast<size_t>(k)].isRotary();
-    if (!(spread[k] > 0.0)) continue;
-    if (e.movingAxis < 0 || (rotary && !m.axes[static_cast<size_t>(e.movingAxis)].isRotary()) ||
-        (rotary == m.axes[static_cast<size_t>(e.movingAxis)].isRotary() && spread[k] > spread[e.movingAxis]))
-      e.movingAxis = k;
-  }
+  // Ranked by (rotary, spread): any rotary axis that moves before every linear one.
+  auto rank = [&](int k) { return std::pair{m.axes[static_cast<size_t>(k)].isRotary(), spread[k]}; };
+  for (int k = 0; k < static_cast<int>(spread.size()); ++k)
+    if (spread[k] > 0.0 && (e.movingAxis < 0 || rank(k) > rank(e.movingAxis))) e.movingAxis = k;
   if (e.movingAxis < 0) throw std::invalid_argument(run.name + ": no axis moves over the run");
   e.position = run.q.col(e.movingAxis);
   e.displacement = run.readings;
@@ -63,8 +61,7 @@ RTestEvaluation evaluateRTest(const KinematicModel& nominal, const MeasurementRu
     if (i == 0) {
       about.direction = axial;
       about.radius = velocity.norm() / omega;
-      q[e.movingAxis] += kStep;
-      about.point = carrier(nominal, m, e.movingAxis, q.data()) * ball - about.radius * radial;
+      about.point = carrier(nominal, m, e.movingAxis, run.q.row(0).data()) * ball - about.radius * radial;
     }
   }
   about.range = columnRanges(about.components);

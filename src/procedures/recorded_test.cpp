@@ -44,7 +44,9 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
     alignment.offset = *processing.clockOffset;
   } else {
     const auto found = estimateClockOffset(command, encoder, processing.search);
-    alignment = {found.offset, true, found.rmsMisfit, 0, 0};
+    alignment.offset = found.offset;
+    alignment.estimated = true;
+    alignment.rmsMisfit = found.rmsMisfit;
     const double step = std::fmax(encoder.period, (processing.search.highest - processing.search.lowest) / 20000);
     alignment.atSearchLimit = found.offset - processing.search.lowest < step || processing.search.highest - found.offset < step;
   }

@@ -137,9 +137,7 @@ std::string IdentifiableSetProposal::standsFor(size_t k) const {
     const Parameter& h = held[d];
     const double c = coefficients(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(d)) * toDisplay(1.0, p.dimension) /
                      toDisplay(1.0, h.dimension);
-    // Terms below 1e-6 in the columns' typical sizes (1 um, 10 urad: problemColumns) are rounding.
-    const double typicalShare = std::abs(c) * (h.dimension == Dimension::Angle ? 10.0 : 1.0) / (p.dimension == Dimension::Angle ? 10.0 : 1.0);
-    if (!(typicalShare > 1e-6)) continue;
+    if (c == 0.0) continue;
     const std::string unit = p.dimension == h.dimension ? "" : fmt::format(" {}/{}", displayUnit(p.dimension), displayUnit(h.dimension));
     s += fmt::format(" {} {:.4g}{} {}", c < 0 ? "-" : "+", std::abs(c), unit, h.name);
   }
@@ -211,7 +209,7 @@ nlohmann::json toJson(const ObservabilityResult& r) {
   j["prediction"] = nullptr;
   if (r.prediction) {
     const auto& pr = *r.prediction;
-    nlohmann::json estimates = nlohmann::json::array(), correlation = nlohmann::json::array(), strong = nlohmann::json::array();
+    nlohmann::json estimates = nlohmann::json::array(), correlation = nlohmann::json::array();
     const Eigen::Index n = pr.uncertainty.size();
     for (Eigen::Index a = 0; a < n; ++a) {
       const auto d = pr.columns.dimensions[static_cast<size_t>(a)];
@@ -221,18 +219,24 @@ nlohmann::json toJson(const ObservabilityResult& r) {
                            {"unit", displayUnit(d)},
                            {"setup", static_cast<size_t>(a) >= r.parameterCount}});
       nlohmann::json row = nlohmann::json::array();
-      for (Eigen::Index b = 0; b < n; ++b) {
-        const double c = pr.covariance(a, b) / (pr.uncertainty[a] * pr.uncertainty[b]);
-        row.push_back(c);
-        if (b > a && std::abs(c) > 0.9)
-          strong.push_back(fmt::format("{} and {}: {:.3f}", pr.columns.names[static_cast<size_t>(a)], pr.columns.names[static_cast<size_t>(b)], c));
-      }
+      for (Eigen::Index b = 0; b < n; ++b) row.push_back(pr.covariance(a, b) / (pr.uncertainty[a] * pr.uncertainty[b]));
       correlation.push_back(row);
     }
     j["prediction"] = {{"noise_source", r.noiseSource}, {"estimates", estimates}, {"correlation", correlation},
-                       {"correlations_above_0_9", strong}};
+                       {"correlations_above_0_9", strongCorrelations(pr.columns.names, pr.covariance, static_cast<size_t>(n))}};
   }
   return j;
+}
+
+std::vector<std::string> strongCorrelations(const std::vector<std::string>& names, const Eigen::MatrixXd& covariance, size_t count) {
+  std::vector<std::string> out;
+  for (size_t a = 0; a < count; ++a)
+    for (size_t b = a + 1; b < count; ++b) {
+      const auto ia = static_cast<Eigen::Index>(a), ib = static_cast<Eigen::Index>(b);
+      const double c = covariance(ia, ib) / std::sqrt(covariance(ia, ia) * covariance(ib, ib));
+      if (std::abs(c) > 0.9) out.push_back(fmt::format("{} and {}: {:.3f}", names[a], names[b], c));
+    }
+  return out;
 }
 
 double correlationOf(const IdentificationResult& r, Eigen::Index a, Eigen::Index b) {
@@ -316,6 +320,7 @@ nlohmann::json toJson(const IdentificationOutcome& o) {
   }
   j["covariance"] = covariance;
   j["correlation"] = correlation;
+  j["correlations_above_0_9"] = strongCorrelations(r.columns.names, r.covariance, o.given.size());  // of the machine's parameters
   j["estimates"] = nlohmann::json::array();
   for (Eigen::Index k = 0; k < r.values.size(); ++k) {
     const auto d = r.columns.dimensions[static_cast<size_t>(k)];

@@ -39,6 +39,14 @@ AlignedTest alignedTest(const MachineSetup& setup, const DecompositionSet& set, 
 
 }  // namespace
 
+DecompositionSet loadDecompositionSetWithDriftFrame(const std::string& path, const std::string& driftFrame, const std::string& key) {
+  std::optional<DriftFrame> frame;
+  if (!driftFrame.empty()) frame = parseDriftFrame(driftFrame, InputLocation{"", 0, key});
+  auto set = loadDecompositionSet(path);
+  if (frame) set.driftFrame = *frame;
+  return set;
+}
+
 RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const DecompositionSet& set) {
   RecordedDecomposition out;
   out.set = set;

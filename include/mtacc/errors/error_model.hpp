@@ -82,7 +82,8 @@ std::vector<std::string> defineNamedTerms(const Machine& machine, ErrorModel& er
 // errors[name] = v): as findParameter, with a component-error term the errors do not define
 // (EXX.c1, ECC.h1c) added at zero first, as defineNamedTerms does for a test plan, so that a
 // name means the same term in a plan, an identification's result and an errors file. A harmonic
-// named without its part (ECC.h1, two parameters) is refused.
+// named without its part (ECC.h1, two parameters) is refused; `errors` then holds its two terms
+// (a caller that goes on after the refusal passes a copy).
 Parameter defineParameter(const Machine& machine, ErrorModel& errors, const std::string& name);
 
 // Every location parameter of the machine, then every parameter of the motion functions

@@ -51,7 +51,7 @@ ObservabilityReport analyseObservability(Eigen::MatrixXd jacobian, const std::ve
 // chosen by column-pivoted QR on the columns scaled by `typical`, after removing the span of the
 // columns from `firstAlwaysKept` on (set-up unknowns, estimated in every case). The estimate of
 // kept column k then stands for p_k + sum_d standsFor(k, d) p_d over the dropped columns d (held
-// at zero), in the columns' own units.
+// at zero), in the columns' own units; a coefficient below 1e-6 in the scaled columns is 0.
 struct IdentifiableColumns {
   std::vector<Eigen::Index> kept, dropped;  // among the columns before firstAlwaysKept, ascending
   Eigen::MatrixXd standsFor;                // kept x dropped

@@ -108,6 +108,9 @@ struct IdentificationOutcome {
 // and flags (quality.warnings) residuals that the stated noise does not explain and
 // parameters the data hardly determine.
 IdentificationOutcome identifyParameters(const MachineSetup& setup, const IdentificationRequest& request);
+// "A and B: 0.953" for each pair among the first `count` unknowns whose correlation exceeds
+// 0.9 in size (the pairs a report flags).
+std::vector<std::string> strongCorrelations(const std::vector<std::string>& names, const Eigen::MatrixXd& covariance, size_t count);
 // The correlation of estimates a and b (1 on the diagonal).
 double correlationOf(const IdentificationResult& result, Eigen::Index a, Eigen::Index b);
 nlohmann::json toJson(const IdentificationOutcome& outcome);

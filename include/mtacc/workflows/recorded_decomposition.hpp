@@ -29,6 +29,10 @@ struct RecordedDecomposition {
   std::vector<std::string> warnings;
 };
 
+// The set at `path` with its drift frame replaced by `driftFrame` ("machine" or "workpiece"; as
+// the set says when empty), which is checked before the set's files are read (an error names `key`).
+DecompositionSet loadDecompositionSetWithDriftFrame(const std::string& path, const std::string& driftFrame, const std::string& key);
+
 // The errors file's model is taken as the identified link errors (delta_l = its TCP minus the
 // nominal TCP at the encoder positions); without one, delta_l = 0 and the reference test's fit
 // holds all the quasi-static error. Throws InputError naming the set or signal file.
