@@ -7,15 +7,15 @@
 #include "cli_common.hpp"
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
-#include "mtacc/io/text_file.hpp"
 #include "mtacc/workflows/component_fit.hpp"
+#include "mtacc/workflows/identified_errors.hpp"
 
 namespace mtacc::cli {
 namespace {
 
 struct FitCliOptions : MachineOptions {
   ComponentFitRequest request;
-  std::string breaks, period, yamlOut;
+  std::string breaks, period, errorsOut;
 };
 
 void run(FitCliOptions& o) {
@@ -24,7 +24,7 @@ void run(FitCliOptions& o) {
   if (!o.period.empty()) o.request.period = parseNumber(o.period, "--period");
   const auto s = fitComponentFile(loadMachineSetup(o.source), o.request);
   const auto j = toJson(s);
-  if (!o.yamlOut.empty()) writeFileAtomically(o.yamlOut, "errors:\n" + s.yaml, "--yaml-out");
+  if (!o.errorsOut.empty()) writeIdentifiedErrors(o.errorsOut, *s.machine, s.errors, identificationRecord(s), "--errors-out");
   const std::string unit = j["unit"], posUnit = j["position_unit"];
   const auto& f = j["fit"];
   std::string human = fmt::format("Component {} ({}) of axis {} from {}: {} positions, {} runs each way\n", s.data.componentName,
@@ -57,7 +57,8 @@ void run(FitCliOptions& o) {
     human += fmt::format("\nRuns 1 to {} have not settled: their mean lies beyond {:g} robust standard deviations of the run means{}\n",
                          s.disturbances.unsettledRuns.size(), o.request.disturbanceThreshold,
                          o.request.removeDisturbed ? " (left out)" : " (--remove-disturbed leaves them out)");
-  human += "\n" + std::string(o.yamlOut.empty() ? "Error function (machine YAML, under errors:):\n" + s.yaml : "Error function written to " + o.yamlOut + "\n");
+  human += "\n" + std::string(o.errorsOut.empty() ? "Error function (machine YAML, under errors:):\n" + s.yaml
+                                                 : "The machine's errors with the fitted function written to " + o.errorsOut + "\n");
   emit(o, j, human, csv);
 }
 
@@ -77,7 +78,9 @@ void addFitCommand(CLI::App& app) {
   cmd->add_option("--disturbance-threshold", o->request.disturbanceThreshold,
                   "flag readings beyond this many robust standard deviations (default 5)");
   cmd->add_flag("--remove-disturbed", o->request.removeDisturbed, "leave the flagged readings out of the means");
-  cmd->add_option("--yaml-out", o->yamlOut, "write the fitted function as an errors file (YAML), atomically");
+  cmd->add_option("--errors-out", o->errorsOut,
+                  "write the machine's errors with the fitted function in place, its coefficients' covariance and the data's hash "
+                  "(an errors file that --errors reads), atomically");
   cmd->callback([o] { run(*o); });
 }
 

@@ -327,13 +327,16 @@ PYBIND11_MODULE(_mtacc, mod) {
       })
       .def("cone_preset_name", [](const PythonMachine& s) { return conePresetName(*s.machine); })
       .def("fit_component", [](const PythonMachine& s, const std::string& file, const std::vector<double>& breaks, int pieces, int degree,
-                               double significance, const py::object& period, double periodZero, double threshold, bool removeDisturbed) {
+                               double significance, const py::object& period, double periodZero, double threshold, bool removeDisturbed,
+                               const std::string& errorsOut) {
         ComponentFitRequest r{.file = file, .breaks = breaks, .pieces = pieces, .degree = degree, .significance = significance};
         if (!period.is_none()) r.period = period.cast<double>();
         r.periodZero = periodZero;
         r.disturbanceThreshold = threshold;
         r.removeDisturbed = removeDisturbed;
-        return toPython(toJson(fitComponentFile(s, r)));
+        const auto study = fitComponentFile(s, r);
+        if (!errorsOut.empty()) writeIdentifiedErrors(errorsOut, *study.machine, study.errors, identificationRecord(study), "errors_out");
+        return toPython(toJson(study));
       })
       .def("decompose", [](const PythonMachine& s, const std::string& setFile, size_t seriesPoints, const std::string& driftFrame) {
         const auto set = loadDecompositionSetWithDriftFrame(setFile, driftFrame, "drift_frame");

@@ -113,6 +113,10 @@ ComponentFitStudy fitComponentFile(const MachineSetup& setup, const ComponentFit
   }
   std::vector<PiecewiseTerm> terms{s.fit.trend};
   if (s.fit.periodic) terms.push_back(*s.fit.periodic);
+  s.errors = setup.errors;
+  ErrorFunction& fitted = s.errors.axes[static_cast<size_t>(s.data.component.axis)].motion[static_cast<size_t>(component)];
+  fitted = ErrorFunction();
+  for (const auto& term : terms) fitted.add(term);
   s.yaml = fmt::format("  # fitted by mtacc from {}: {} positions x {} runs each way, residual {:.4g} {}\n", r.file, runs.positions.size(),
                        runs.forward.cols(), toDisplay(s.fit.residualStd, component < 3 ? Dimension::Length : Dimension::Angle),
                        displayUnit(component < 3 ? Dimension::Length : Dimension::Angle)) +

@@ -20,15 +20,24 @@ namespace {
 std::string quoted(const std::string& s) { return nlohmann::json(s).dump(); }
 
 std::string quantity(double v, Dimension d) { return fmt::format("{:.15g} {}", toDisplay(v, d), displayUnit(d)); }
+std::string quantity(double v, const EstimateUnit& u) { return fmt::format("{:.15g} {}", v * u.scale, u.unit); }
+
+std::vector<EstimateUnit> unitsOf(const std::vector<Dimension>& dimensions) {
+  std::vector<EstimateUnit> units;
+  for (const Dimension d : dimensions) units.push_back(EstimateUnit::of(d));
+  return units;
+}
 
 std::string optionalNumber(const std::optional<double>& v) { return v ? fmt::format("{:.15g}", *v) : "null"; }
 
 }  // namespace
 
+EstimateUnit EstimateUnit::of(Dimension d) { return {toDisplay(1.0, d), displayUnit(d)}; }
+
 IdentificationRecord identificationRecord(const IdentificationOutcome& outcome) {
   const IdentificationResult& r = outcome.result;
   IdentificationRecord record{outcome.command, outcome.plan, outcome.dataFiles, {}, {}, outcome.held, r.columns.names,
-                              r.columns.dimensions, r.values, r.uncertainty, r.covariance};
+                              unitsOf(r.columns.dimensions), r.values, r.uncertainty, r.covariance};
   const auto& q = outcome.quality;
   record.fit = {{"readings", std::to_string(r.readings)},
                 {"degrees_of_freedom", std::to_string(r.degreesOfFreedom)},
@@ -47,8 +56,8 @@ IdentificationRecord identificationRecord(const PlateIdentificationStudy& s) {
   const PlateIdentification& r = s.result;
   IdentificationRecord record{"plate-identify", "", s.files, {}, {}, {}, r.names, {}, r.values, r.uncertainty, r.covariance};
   for (size_t k = 0; k < r.names.size(); ++k) {
-    record.dimensions.push_back(k < s.parameters.size() ? s.parameters[k].dimension
-                                                        : r.names[k].ends_with(".rot") ? Dimension::Angle : Dimension::Length);
+    record.units.push_back(EstimateUnit::of(k < s.parameters.size() ? s.parameters[k].dimension
+                                            : r.names[k].ends_with(".rot") ? Dimension::Angle : Dimension::Length));
     if (!r.determined[k]) record.uncertainty[static_cast<Eigen::Index>(k)] = std::nan("");
   }
   record.fit = {{"readings", std::to_string(r.readings)},
@@ -56,6 +65,47 @@ IdentificationRecord identificationRecord(const PlateIdentificationStudy& s) {
                 {s.weighted ? "sigma_over_probe_noise" : "sigma", s.weighted ? fmt::format("{:.15g}", r.sigma)
                                                                             : fmt::format("{:.15g} um", r.sigma * 1e3)}};
   record.heldAt = "zero: the plates identify the linear axes' functions and squareness alone";
+  return record;
+}
+
+IdentificationRecord identificationRecord(const ComponentFitStudy& s) {
+  const auto& c = s.data.component;
+  const Machine& machine = *s.machine;
+  const bool rotary = machine.axes[static_cast<size_t>(c.axis)].isRotary();
+  const Dimension valueDimension = c.component < 3 ? Dimension::Length : Dimension::Angle;
+  const std::string name = motionErrorName(machine, c.axis, c.component);
+  IdentificationRecord record{"fit", "", {s.data.file}, {}, "the machine file's or --errors' values: fit determines " + name + " alone", {}, {}, {}, {}, {}, {}};
+  // The fit's parameters are the trend's coefficients and the periodic term's free parameters;
+  // the function's are the trend's and the periodic term's coefficients (periodicMap * free).
+  const auto trend = static_cast<Eigen::Index>(s.fit.trend.coefficients.size());
+  const Eigen::Index periodic = s.fit.periodic ? s.fit.periodicMap.rows() : 0;
+  Eigen::MatrixXd toCoefficients = Eigen::MatrixXd::Zero(trend + periodic, s.fit.covariance.rows());
+  toCoefficients.topLeftCorner(trend, trend).setIdentity();
+  if (periodic) toCoefficients.bottomRightCorner(periodic, s.fit.periodicMap.cols()) = s.fit.periodicMap;
+  record.covariance = toCoefficients * s.fit.covariance * toCoefficients.transpose();
+  record.uncertainty = record.covariance.diagonal().cwiseSqrt();
+  record.values.resize(trend + periodic);
+  const ErrorFunction& fitted = s.errors.axes[static_cast<size_t>(c.axis)].motion[static_cast<size_t>(c.component)];
+  const auto suffixes = fitted.parameterSuffixes();
+  const double per = rotary ? kDeg : 1.0;
+  const EstimateUnit value = EstimateUnit::of(valueDimension);
+  Eigen::Index k = 0;
+  for (const PiecewiseTerm* term : {&s.fit.trend, s.fit.periodic ? &*s.fit.periodic : nullptr}) {
+    if (!term) continue;
+    for (const auto& coefficient : term->coefficients) {
+      record.values[k] = coefficient.value;
+      record.names.push_back(name + "." + suffixes[static_cast<size_t>(k)]);
+      const std::string power = coefficient.power == 0 ? "" : coefficient.power == 1 ? (rotary ? "/deg" : "/mm") : (rotary ? "/deg^2" : "/mm^2");
+      record.units.push_back({value.scale * std::pow(per, coefficient.power), value.unit + power});
+      ++k;
+    }
+  }
+  const Dimension display = valueDimension;
+  record.fit = {{"positions", std::to_string(s.curve.positions.size())},
+                {"runs_each_way", std::to_string(s.data.runs.forward.cols())},
+                {"degrees_of_freedom", std::to_string(s.fit.degreesOfFreedom)},
+                {"residual_std", quantity(s.fit.residualStd, display)},
+                {"removed_terms", s.fit.removed.empty() ? "[]" : "[" + fmt::format("{}", fmt::join(s.fit.removed, ", ")) + "]"}};
   return record;
 }
 
@@ -83,17 +133,16 @@ std::string identifiedErrorsYaml(const Machine& machine, const ErrorModel& error
   }
   y += "  estimates:  # the machine's parameters, then the set-up unknowns of each run or placement\n";
   for (Eigen::Index k = 0; k < record.values.size(); ++k) {
-    const auto d = record.dimensions[static_cast<size_t>(k)];
+    const auto& d = record.units[static_cast<size_t>(k)];
     const double u = record.uncertainty[k];
     y += fmt::format("    - {{parameter: {}, value: {}, standard_uncertainty: {}}}\n", quoted(record.names[static_cast<size_t>(k)]),
                      quantity(record.values[k], d), std::isnan(u) ? std::string("null") : quantity(u, d));
   }
-  y += "  covariance:  # of the estimates in their order, in um and urad (um^2, um urad, urad^2)\n";
+  y += "  covariance:  # of the estimates in their order, in the products of their units (um^2, um urad, urad^2, ...)\n";
   for (Eigen::Index a = 0; a < record.values.size(); ++a) {
     y += "    - [";
     for (Eigen::Index b = 0; b < record.values.size(); ++b) {
-      const double c = toDisplay(toDisplay(record.covariance(a, b), record.dimensions[static_cast<size_t>(a)]),
-                                 record.dimensions[static_cast<size_t>(b)]);
+      const double c = record.covariance(a, b) * record.units[static_cast<size_t>(a)].scale * record.units[static_cast<size_t>(b)].scale;
       y += (b ? ", " : "") + (std::isfinite(c) ? fmt::format("{:.15g}", c) : std::string("null"));  // null: not determined
     }
     y += "]\n";

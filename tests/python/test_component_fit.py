@@ -39,6 +39,63 @@ def test_fitted_yaml_is_the_machines_error(tmp_path):
     assert m.tcp_errors(q)[:, 3] == pytest.approx(-np.array(r["fit"]["grid_value"]), abs=1e-6)
 
 
+def _coefficient_basis(name, q, trend_breaks, periodic):
+    # The basis of a fitted coefficient `k<i>c<p>` (file-formats.md, "Component runs"): u^p for
+    # i = 0, else (u - t_i)_+^p; u is the position clamped to the trend's breaks, or the position
+    # modulo the period from the periodic term's zero (its breaks split the period in quarters).
+    knot, power = (int(x) for x in name.split(".k")[1].split("#")[0].split("c"))
+    if "#" in name:
+        period, zero = periodic
+        u, breaks = np.mod(q - zero, period), [period * k / 4 for k in range(5)]
+    else:
+        u, breaks = np.clip(q, trend_breaks[0], trend_breaks[-1]), trend_breaks
+    v = u if knot == 0 else np.maximum(u - breaks[knot], 0.0)
+    return v ** power
+
+
+@pytest.mark.parametrize("data, options", [("maho-xrx.csv", {"breaks": XRX_BREAKS}), ("maho-xtx.csv", {"pieces": 7, "period": 39.6})])
+def test_the_fit_writes_the_machines_errors_with_its_record(cli, tmp_path, data, options):
+    # Issue 44: `fit --errors-out` writes the form identify writes. The machine's other errors are
+    # kept, the component is the fitted function, and the record's covariance of the coefficients
+    # gives the fit's own standard uncertainty at every position (through the periodic term's map
+    # from its free parameters to its coefficients where there is one).
+    import hashlib
+    import yaml
+    m = mtacc.Machine("maho")
+    path = tmp_path / "fitted.yaml"
+    r = m.fit_component(DATA / data, errors_out=path, **options)
+    args = ["--breaks", ",".join(map(str, XRX_BREAKS))] if "breaks" in options else ["--pieces", "7", "--period", "39.6"]
+    subprocess.run([cli, "fit", "maho", str(DATA / data), *args, "--errors-out", str(tmp_path / "cli.yaml")], check=True, capture_output=True)
+    strip = lambda text: [line for line in text.splitlines() if "date:" not in line]
+    assert strip((tmp_path / "cli.yaml").read_text()) == strip(path.read_text())
+    assert subprocess.run([cli, "check", "maho", "--errors", str(path)], capture_output=True).returncode == 0
+
+    fitted = dict(mtacc.Machine("maho", errors=path).errors)
+    alone = tmp_path / "alone.yaml"
+    alone.write_text("errors:\n" + r["yaml"])
+    component = r["iso_name"] + "."
+    assert {k: v for k, v in fitted.items() if k.startswith(component)} == pytest.approx(dict(mtacc.Machine("maho", errors=alone).errors))
+    assert {k: v for k, v in fitted.items() if not k.startswith(component)} == pytest.approx(
+        {k: v for k, v in m.errors.items() if not k.startswith(component)}, rel=1e-12, abs=1e-15)
+    record = yaml.safe_load(path.read_text())["identification"]
+    assert record["by"].endswith(" fit") and record["held"] == {}
+    assert record["data"][0]["sha256"] == hashlib.sha256((DATA / data).read_bytes()).hexdigest()
+    assert record["removed_terms"] == r["fit"]["removed"]
+    estimates = record["estimates"]
+    assert all(e["parameter"].startswith(r["iso_name"] + ".k") for e in estimates)
+    covariance = np.array(record["covariance"], dtype=float)
+    scale = [float(e["standard_uncertainty"].split()[0]) for e in estimates]
+    assert np.sqrt(np.diag(covariance)) == pytest.approx(scale, rel=1e-12)
+    periodic = (r["fit"]["periodic"], 0.0) if r["fit"]["periodic"] else None
+    # The units: the coefficient of u^p in um (or urad) per mm^p.
+    x = np.array(r["fit"]["grid"])
+    basis = np.array([_coefficient_basis(e["parameter"], x, r["fit"]["breaks"], periodic) for e in estimates])
+    values = np.array([float(e["value"].split()[0]) for e in estimates])
+    assert values @ basis == pytest.approx(r["fit"]["grid_value"], abs=1e-9 * max(1.0, np.abs(r["fit"]["grid_value"]).max()))
+    # 15 digits a covariance entry; the quadratic form over u^2 up to 700^2 mm^2 cancels about 7 of them.
+    assert np.sqrt(np.einsum("ip,ij,jp->p", basis, covariance, basis)) == pytest.approx(r["fit"]["grid_uncertainty"], rel=1e-6)
+
+
 def test_simulated_runs_round_trip(cli, tmp_path):
     out = tmp_path / "ztz.csv"
     subprocess.run([cli, "simulate", "component", "maho", "--component", "ztz", "--noise", "0.3um", "--runs", "5", "-o", str(out)],

@@ -3,7 +3,7 @@
 // ch. 4.2 and 5.2): read the runs, apply the corrections the file asks for (scale temperature,
 // Abbe offset with the axis's rotation errors from the machine's error model), flag disturbed
 // readings, average forward and backward over the runs, fit the C1 piecewise polynomial with
-// stepwise removal (and a periodic term), and write it as the machine YAML's `errors:` entry.
+// stepwise removal (and a periodic term), and put it in the machine's error model.
 #include <nlohmann/json.hpp>
 
 #include <optional>
@@ -36,7 +36,8 @@ struct ComponentFitStudy {
   ComponentCurve curve;
   Disturbances disturbances;
   ComponentFit fit;
-  std::string yaml;  // the `errors:` entry of the fitted function
+  ErrorModel errors;  // the machine's errors (as given) with the fitted function in place of the component's
+  std::string yaml;   // the `errors:` entry of the fitted function
 };
 
 // Throws InputError naming the file (its line and key) or the request's key ("breaks", "pieces",

@@ -6,14 +6,23 @@
 #include <utility>
 #include <vector>
 
+#include "mtacc/workflows/component_fit.hpp"
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/plates.hpp"
 
 namespace mtacc {
 
+// How an estimate is written: its value in mtacc's units (mm, rad, or a function coefficient in
+// mm or rad per mm^k or rad^k) times `scale` in `unit` ("um", "urad", "um/mm^2").
+struct EstimateUnit {
+  double scale = 1.0;
+  std::string unit;
+  static EstimateUnit of(Dimension d);
+};
+
 // What produced an identified model, as its file keeps it under `identification:`.
 struct IdentificationRecord {
-  std::string command;                 // "identify", "cubic-identify", "plate-identify"
+  std::string command;                 // "identify", "cubic-identify", "plate-identify", "fit"
   std::string plan;                    // the test plan or test piece; empty: none
   std::vector<std::string> dataFiles;  // each recorded with its SHA-256
   // The fit's statistics, each a key and its YAML value with its unit ("sigma", "0.31 um").
@@ -23,12 +32,15 @@ struct IdentificationRecord {
   // The estimates (machine parameters, then set-up unknowns), mm or rad; an uncertainty that is
   // NaN marks an estimate the data did not determine.
   std::vector<std::string> names;
-  std::vector<Dimension> dimensions;
+  std::vector<EstimateUnit> units;
   Eigen::VectorXd values, uncertainty;
   Eigen::MatrixXd covariance;
 };
 IdentificationRecord identificationRecord(const IdentificationOutcome& outcome);
 IdentificationRecord identificationRecord(const PlateIdentificationStudy& study);
+// A fitted component function: its coefficients (the terms 1, u, u^2 and (u - t_i)^2 at the
+// interior breaks, then the periodic term's), named like identify's (`EXX.k2c2`).
+IdentificationRecord identificationRecord(const ComponentFitStudy& study);
 
 // `errors` as an errors file (every component term in the form whose parameter names identify
 // uses), and under `identification:` the record with mtacc's version and the date.
