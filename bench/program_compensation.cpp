@@ -67,8 +67,8 @@ int main(int argc, char** argv) {
   const bool check = bench::agreementCheckOnly(argc, argv);
   const int lines = check ? 20'000 : 1'000'000, repeats = check ? 1 : 3, gridNodes = check ? 20 : 100;
   const auto machine = std::make_shared<const Machine>(loadMachine("tilting-table"));
-  const MachineSetup location{machine, parseErrors(*machine, kLocationErrors, "bench")};
-  const MachineSetup full{machine, loadMachineErrors(*machine)};
+  const MachineSetup location{machine, parseErrors(*machine, kLocationErrors, "bench"), std::nullopt};
+  const MachineSetup full{machine, loadMachineErrors(*machine), std::nullopt};
   const std::string text = program(lines);
   GcodeProgram parsed;
   const double firstRead = seconds([&] { parsed = parseGcodeProgram(text, "bench.nc", *machine); });

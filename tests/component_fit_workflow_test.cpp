@@ -82,7 +82,7 @@ TEST_F(ComponentFitWorkflow, TheAbbeCorrectionNeedsTheRotations) {
   sim.output = path("ztz.csv");
   sim.abbeOffset = Vec3(30, 0, 0);
   simulateComponentFile(setup_, sim);
-  MachineSetup bare{setup_.machine, ErrorModel::zero(*setup_.machine)};
+  MachineSetup bare{setup_.machine, ErrorModel::zero(*setup_.machine), std::nullopt};
   ComponentFitRequest request;
   request.file = sim.output;
   const auto e = test::thrown<InputError>([&] { fitComponentFile(bare, request); });

@@ -41,7 +41,7 @@ std::string errorsYaml(const std::vector<std::pair<int, double>>& errors) {
 MachineSetup tiltingTable(WorkpieceAlignment alignment, const std::string& errors) {
   auto machine = std::make_shared<Machine>(loadMachine("tilting-table"));
   machine->alignment = alignment;
-  return {machine, parseErrors(*machine, errors, "seed001 errors")};
+  return {machine, parseErrors(*machine, errors, "seed001 errors"), std::nullopt};
 }
 
 CubicTestStudy study(WorkpieceAlignment alignment, const std::string& errors, double grid, double inset = 1.0,

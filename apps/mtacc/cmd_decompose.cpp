@@ -52,6 +52,15 @@ void run(const DecomposeCliOptions& o) {
   human += "\nshares: eq. 21 over |c| + |qs| + |d| (as printed), then the five-way split over its own five norms (Table 1, erratum E1)\n";
   human += "offset: the command sample stamped s belongs at encoder time s + offset; the mean of the dynamic error is booked as drift,\n"
            "and only the sum of link and motion errors is fixed by the reference test\n";
+  if (!j["link_uncertainty"].is_null()) {
+    human += fmt::format("link errors' standard uncertainty (k = 1), from the covariance of the errors file's {} identified parameters:\n",
+                         j["link_uncertainty"]["parameters"].size());
+    for (const auto& t : j["tests"]) {
+      const auto max = t["link_uncertainty_um"]["max"].get<std::vector<double>>(), rms = t["link_uncertainty_um"]["rms"].get<std::vector<double>>();
+      human += fmt::format("{:>9.0f} mm/min: max {:.3f} {:.3f} {:.3f} um, RMS {:.3f} {:.3f} {:.3f} um\n", t["feed_mm_min"].get<double>(), max[0],
+                           max[1], max[2], rms[0], rms[1], rms[2]);
+    }
+  }
   for (const auto& [direction, law] : j["dynamic_rms_power_law"].items())
     human += fmt::format("dynamic RMS {} = {:.4g} um * F^{:.3f} (F in mm/min; largest misfit {:.1f} %)\n", direction, law["kappa_um"].get<double>(),
                          law["exponent"].get<double>(), 100 * law["largest_relative_misfit"].get<double>());

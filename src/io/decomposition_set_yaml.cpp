@@ -34,7 +34,7 @@ DecompositionSet parseDecompositionSet(const std::string& text, const std::strin
   const auto root = yamlin::loadText(text, source);
   if (!yamlin::isMap(root)) ctx.fail(root, "", "expected a mapping with tests: [{feed, command, encoder, instrument}, ...]");
   yamlin::rejectUnknownKeys(ctx, root, "",
-                            {"description", "ball", "nc_rate_hz", "instrument_rate_hz", "interpolation", "clock_offset_ms", "search_ms",
+                            {"description", "ball", "nc_rate_hz", "instrument_rate_hz", "interpolation", "clock_offset_ms", "largest_lag_ms", "search_ms",
                              "reference_feed", "degree", "parameter", "drift_frame", "tests"});
   DecompositionSet set;
   set.file = source;
@@ -50,6 +50,11 @@ DecompositionSet parseDecompositionSet(const std::string& text, const std::strin
     const double ms = yamlin::number(ctx, node, "clock_offset_ms");
     if (!(std::abs(ms) <= 1e4)) ctx.fail(node, "clock_offset_ms", "must lie within +-10000 ms");
     set.clockOffset = ms * 1e-3;
+  }
+  if (const auto node = root["largest_lag_ms"]) {
+    const double ms = yamlin::number(ctx, node, "largest_lag_ms");
+    if (!(ms >= 0.0 && ms <= 1e4)) ctx.fail(node, "largest_lag_ms", "must lie within 0 to 10000 ms");
+    set.largestLag = ms * 1e-3;
   }
   if (const auto node = root["search_ms"]) {
     if (!yamlin::isSequence(node) || node.size() != 2) ctx.fail(node, "search_ms", "expected [lowest, highest] in ms");

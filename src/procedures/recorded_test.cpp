@@ -42,6 +42,11 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
   auto& alignment = out.alignment;
   if (processing.clockOffset) {
     alignment.offset = *processing.clockOffset;
+    try {
+      alignment.tracesOffset = estimateClockOffset(command, encoder, processing.search).offset;
+    } catch (const std::invalid_argument&) {
+      // The stated offset is used as given; the traces cannot say whether it is right.
+    }
   } else {
     const auto found = estimateClockOffset(command, encoder, processing.search);
     alignment.offset = found.offset;
@@ -100,6 +105,7 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
     test.link[i] = (withErrors.row(k) - atEncoder.row(k)).transpose();
     test.measured[i] = Vec3(instrument.channels[0][used[i]], instrument.channels[1][used[i]], instrument.channels[2][used[i]]);
   }
+  out.encoderPoses = encoderQ;
   return out;
 }
 

@@ -106,7 +106,7 @@ std::vector<std::string> locationErrorsActingAlike(const MachineSetup& setup, co
 const char* axisTypeName(AxisType t) { return t == AxisType::Linear ? "linear" : t == AxisType::Rotary ? "rotary" : "spindle"; }
 
 MachineCheck checkMachine(const MachineSetup& setup) {
-  MachineCheck c{setup, parameterCatalogue(*setup.machine, setup.errors), nonZeroParameters(*setup.machine, setup.errors), 0, {}, {}};
+  MachineCheck c{setup, parameterCatalogue(*setup.machine, setup.errors), nonZeroParameters(*setup.machine, setup.errors), 0, {}, {}, {}};
   for (const auto& p : c.parameters) c.locationCount += p.kind == ParameterKind::Location ? 1 : 0;
   const Machine& m = *setup.machine;
   for (int a = 0; a < static_cast<int>(m.axes.size()); ++a)

@@ -116,7 +116,8 @@ ComponentFitStudy fitComponentFile(const MachineSetup& setup, const ComponentFit
   s.errors = setup.errors;
   ErrorFunction& fitted = s.errors.axes[static_cast<size_t>(s.data.component.axis)].motion[static_cast<size_t>(component)];
   fitted = ErrorFunction();
-  for (const auto& term : terms) fitted.add(term);
+  // In the form the errors file keeps (and reads back): every interval's polynomial.
+  for (const auto& term : terms) fitted.add(piecewiseFromIntervals(term.breaks, term.intervals(), term.period, term.zero));
   s.yaml = fmt::format("  # fitted by mtacc from {}: {} positions x {} runs each way, residual {:.4g} {}\n", r.file, runs.positions.size(),
                        runs.forward.cols(), toDisplay(s.fit.residualStd, component < 3 ? Dimension::Length : Dimension::Angle),
                        displayUnit(component < 3 ? Dimension::Length : Dimension::Angle)) +

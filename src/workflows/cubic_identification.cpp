@@ -14,7 +14,7 @@ IdentificationOutcome identifyFromZones(const MachineSetup& setup, const CubicTe
                                         const CubicIdentificationRequest& request) {
   auto machine = std::make_shared<Machine>(*setup.machine);
   machine->alignment = WorkpieceAlignment::Machine;
-  const MachineSetup aligned{machine, setup.errors};
+  const MachineSetup aligned{machine, setup.errors, setup.covariance};
   const bool slopes = std::all_of(results.zones.begin(), results.zones.end(), [](const auto& z) { return z.slopeX.has_value(); });
   std::vector<MeasurementRun> all;
   try {

@@ -148,7 +148,7 @@ ObservabilityResult planObservability(const MachineSetup& setup, const Identific
   if (request.noise && !(*request.noise >= 1e-6 && *request.noise <= 1.0))
     throw InputError(InputLocation{"", 0, "noise"}, "must be from 1 nm to 1 mm");
   auto p = buildProblem(setup, request, true);
-  ObservabilityResult out{setup.machine, p.problem.runs.size(), countReadings(p.problem), planObservability(p.problem, request.threads)};
+  ObservabilityResult out{setup.machine, p.problem.runs.size(), countReadings(p.problem), planObservability(p.problem, request.threads), std::nullopt, std::nullopt, "", 0};
   IdentificationProblem determinable = p.problem;
   if (!out.report.identifiable()) {
     const auto columns = proposeIdentifiableSet(p.problem, request.threads);

@@ -3,6 +3,7 @@
 #include <fmt/chrono.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -31,8 +32,6 @@ std::vector<EstimateUnit> unitsOf(const std::vector<Dimension>& dimensions) {
 std::string optionalNumber(const std::optional<double>& v) { return v ? fmt::format("{:.15g}", *v) : "null"; }
 
 }  // namespace
-
-EstimateUnit EstimateUnit::of(Dimension d) { return {toDisplay(1.0, d), displayUnit(d)}; }
 
 IdentificationRecord identificationRecord(const IdentificationOutcome& outcome) {
   const IdentificationResult& r = outcome.result;
@@ -85,26 +84,28 @@ IdentificationRecord identificationRecord(const ComponentFitStudy& s) {
   record.covariance = toCoefficients * s.fit.covariance * toCoefficients.transpose();
   record.uncertainty = record.covariance.diagonal().cwiseSqrt();
   record.values.resize(trend + periodic);
-  const ErrorFunction& fitted = s.errors.axes[static_cast<size_t>(c.axis)].motion[static_cast<size_t>(c.component)];
-  const auto suffixes = fitted.parameterSuffixes();
-  const double per = rotary ? kDeg : 1.0;
-  const EstimateUnit value = EstimateUnit::of(valueDimension);
+  // Each coefficient named as the written function names the same basis function (its terms
+  // hold every power at every interior break; the fit's are among them).
+  const ErrorFunction& written = s.errors.axes[static_cast<size_t>(c.axis)].motion[static_cast<size_t>(c.component)];
+  const auto suffixes = written.parameterSuffixes();
   Eigen::Index k = 0;
-  for (const PiecewiseTerm* term : {&s.fit.trend, s.fit.periodic ? &*s.fit.periodic : nullptr}) {
-    if (!term) continue;
-    for (const auto& coefficient : term->coefficients) {
+  size_t offset = 0, term = 0;
+  for (const PiecewiseTerm* fitted : {&s.fit.trend, s.fit.periodic ? &*s.fit.periodic : nullptr}) {
+    if (!fitted) continue;
+    const auto& form = std::get<PiecewiseTerm>(written.terms()[term++]).coefficients;
+    for (const auto& coefficient : fitted->coefficients) {
+      const auto same = std::find_if(form.begin(), form.end(), [&](const auto& w) { return w.knot == coefficient.knot && w.power == coefficient.power; });
       record.values[k] = coefficient.value;
-      record.names.push_back(name + "." + suffixes[static_cast<size_t>(k)]);
-      const std::string power = coefficient.power == 0 ? "" : coefficient.power == 1 ? (rotary ? "/deg" : "/mm") : (rotary ? "/deg^2" : "/mm^2");
-      record.units.push_back({value.scale * std::pow(per, coefficient.power), value.unit + power});
+      record.names.push_back(name + "." + suffixes[offset + static_cast<size_t>(same - form.begin())]);
+      record.units.push_back(EstimateUnit::coefficient(valueDimension, rotary, coefficient.power));
       ++k;
     }
+    offset += form.size();
   }
-  const Dimension display = valueDimension;
   record.fit = {{"positions", std::to_string(s.curve.positions.size())},
                 {"runs_each_way", std::to_string(s.data.runs.forward.cols())},
                 {"degrees_of_freedom", std::to_string(s.fit.degreesOfFreedom)},
-                {"residual_std", quantity(s.fit.residualStd, display)},
+                {"residual_std", quantity(s.fit.residualStd, valueDimension)},
                 {"removed_terms", s.fit.removed.empty() ? "[]" : "[" + fmt::format("{}", fmt::join(s.fit.removed, ", ")) + "]"}};
   return record;
 }

@@ -32,7 +32,8 @@ MachineSetup loadMachineSetup(const MachineSource& source) {
       throw InputError(InputLocation{source.thermalFile, 0, "thermal"}, e.what());
     }
   }
-  return {machine, std::move(errors)};
+  auto covariance = source.errorsFile.empty() ? std::nullopt : readParameterCovariance(*machine, errors, source.errorsFile);
+  return {machine, std::move(errors), std::move(covariance)};
 }
 
 std::vector<Parameter> findParameters(const MachineSetup& setup, const std::vector<std::string>& names,
@@ -50,7 +51,7 @@ std::vector<Parameter> findPlanParameters(const std::shared_ptr<const Machine>& 
                                           std::vector<std::string>& names, const InputLocation& namedAt) {
   names = defineNamedTerms(*machine, shape, names);
   try {
-    return findParameters(MachineSetup{machine, shape}, names, namedAt);
+    return findParameters(MachineSetup{machine, shape, std::nullopt}, names, namedAt);
   } catch (const InputError& e) {
     throw InputError(e.where(), e.reason() +
                                     "; a test plan may also name a component-error term the errors do not define: "

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "mtacc/io/recorded_signal.hpp"
+#include "mtacc/kinematics/jacobian.hpp"
 
 namespace mtacc {
 
@@ -37,6 +38,20 @@ AlignedTest alignedTest(const MachineSetup& setup, const DecompositionSet& set, 
   }
 }
 
+// The standard uncertainty of delta_l at each pose: J Sigma J^T's diagonal, J the TCP's
+// derivative (workpiece frame) with respect to the parameters whose covariance is known.
+std::vector<Vec3> linkUncertainty(const MachineSetup& setup, const JointMatrix& poses) {
+  const auto& c = *setup.covariance;
+  const KinematicModel model = compile(setup.machine, setup.errors, c.parameters);
+  KinematicData data;
+  std::vector<Vec3> out(static_cast<size_t>(poses.rows()));
+  for (Eigen::Index i = 0; i < poses.rows(); ++i) {
+    const auto& j = pointJacobian(model, poses.row(i).data(), nullptr, Vec3::Zero(), data).jacobian;
+    out[static_cast<size_t>(i)] = (j * c.covariance * j.transpose()).diagonal().cwiseMax(0.0).cwiseSqrt();
+  }
+  return out;
+}
+
 }  // namespace
 
 DecompositionSet loadDecompositionSetWithDriftFrame(const std::string& path, const std::string& driftFrame, const std::string& key) {
@@ -50,6 +65,10 @@ DecompositionSet loadDecompositionSetWithDriftFrame(const std::string& path, con
 RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const DecompositionSet& set) {
   RecordedDecomposition out;
   out.set = set;
+  if (setup.covariance) {
+    for (const auto& p : setup.covariance->parameters) out.linkParameters.push_back(p.name);
+    out.linkLeftOut = setup.covariance->leftOut;
+  }
   std::vector<DecompositionTest> tests;
   for (const auto& recorded : set.tests) {
     auto aligned = alignedTest(setup, set, recorded);
@@ -62,6 +81,16 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
           "{} mm/min: the clock offset estimated, {:.3f} ms, lies at the end of the search window [{:g}, {:g}] ms: the best offset "
           "may lie beyond it, and the contouring error it sets is then wrong; widen search_ms or state clock_offset_ms",
           recorded.feed, a.offset * 1e3, set.searchLowest * 1e3, set.searchHighest * 1e3));
+    if (a.tracesOffset) {
+      constexpr double kLeadAllowed = 1e-3;  // s: the encoder cannot lead the command; 1 ms for the estimate's own scatter
+      const double lag = *a.tracesOffset - a.offset;
+      if (lag < -kLeadAllowed || lag > set.largestLag)
+        out.warnings.push_back(fmt::format(
+            "{} mm/min: the command and encoder traces line up best at {:.3f} ms, {:.3f} ms {} the stated clock_offset_ms {:.3f}: {}; "
+            "the stated offset is likely wrong, and the contouring error it sets with it (leave clock_offset_ms out to estimate it)",
+            recorded.feed, *a.tracesOffset * 1e3, std::abs(lag) * 1e3, lag < 0 ? "before" : "after", a.offset * 1e3,
+            lag < 0 ? "the encoder would lead the command" : fmt::format("more servo lag than largest_lag_ms ({:g} ms) allows", set.largestLag * 1e3)));
+    }
     if (!a.instrumentSpikes.empty())
       out.warnings.push_back(fmt::format(
           "{} mm/min: {} instrument sample(s) of {} stand out from their neighbours by more than 8 robust standard deviations "
@@ -69,6 +98,7 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
           recorded.feed, a.instrumentSpikes.size(), recorded.instrument,
           fmt::join(a.instrumentSpikes.begin(), a.instrumentSpikes.begin() + static_cast<std::ptrdiff_t>(std::min<size_t>(5, a.instrumentSpikes.size())), ", "),
           a.instrumentSpikes.size() > 5 ? ", ..." : ""));
+    if (setup.covariance) out.linkUncertainty.push_back(directionStatistics(linkUncertainty(setup, aligned.encoderPoses)));
     tests.push_back(std::move(aligned.test));
     out.alignment.push_back(aligned.alignment);
   }
@@ -138,6 +168,7 @@ nlohmann::json toJson(const RecordedDecomposition& r, size_t seriesPoints) {
         {"samples_used", a.samplesUsed},
         {"first_sample_used", a.firstSampleUsed},
         {"clock_offset_at_search_limit", a.atSearchLimit},
+        {"clock_offset_traces_ms", a.tracesOffset ? nlohmann::json(*a.tracesOffset * 1e3) : nlohmann::json(nullptr)},
         {"instrument_spikes", a.instrumentSpikes},
         {"drift_um", um(r.tests[k].drift)},
         {"shares_percent",
@@ -150,8 +181,12 @@ nlohmann::json toJson(const RecordedDecomposition& r, size_t seriesPoints) {
         {"dynamic_max_um", um(r.dynamic[k].maximum)},
         {"dynamic_rms_um", um(r.dynamic[k].rms)},
     });
+    if (!r.linkUncertainty.empty())
+      j["tests"].back()["link_uncertainty_um"] = {{"max", um(r.linkUncertainty[k].maximum)}, {"rms", um(r.linkUncertainty[k].rms)}};
     if (seriesPoints > 0) j["tests"].back()["series"] = seriesJson(r.tests[k], r.pathFraction[k], seriesPoints);
   }
+  j["link_uncertainty"] = r.linkUncertainty.empty() ? nlohmann::json(nullptr)
+                                                    : nlohmann::json{{"k", 1}, {"parameters", r.linkParameters}, {"left_out", r.linkLeftOut}};
   j["warnings"] = r.warnings;
   j["drift_frame"] = r.set.driftFrame == DriftFrame::Machine ? "machine" : "workpiece";
   j["dynamic_rms_power_law"] = nlohmann::json::object();

@@ -171,6 +171,34 @@ def test_a_result_that_cannot_be_trusted_is_flagged(cli, tmp_path):
     assert any("stand out from their neighbours" in w and "2000" in w for w in spiked["warnings"])
 
 
+def test_a_stated_clock_offset_is_checked_against_the_traces(cli, tmp_path):
+    # Issue 44: the command clock is 18 ms off; with the servo lag a pure delay explains the traces
+    # line up at 18.25 ms (first test above). Stated right, no warning; stated 60 ms (the encoder
+    # would lead the command) or -40 ms (58 ms of lag, beyond the default 50 ms), a warning per
+    # test naming both offsets; largest_lag_ms: 70 accepts the -40 ms.
+    simulated = run(cli, "simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", "1000,3240",
+                    "--noise", "0.2um", "-o", str(tmp_path))
+    set_file = pathlib.Path(simulated["set"])
+    original = set_file.read_text()
+
+    def decompose(extra):
+        set_file.write_text(extra + original)
+        return run(cli, "decompose", "inclined-a-table", str(set_file))
+
+    right = decompose("clock_offset_ms: 18\n")
+    assert right["warnings"] == []
+    assert [t["clock_offset_traces_ms"] for t in right["tests"]] == pytest.approx([18.25, 18.25], abs=0.05)
+    assert all(not t["clock_offset_estimated"] and t["clock_offset_ms"] == pytest.approx(18, abs=1e-12) for t in right["tests"])
+    ahead = decompose("clock_offset_ms: 60\n")["warnings"]
+    assert len(ahead) == 2 and all("the encoder would lead the command" in w and "60.000" in w for w in ahead)
+    behind = decompose("clock_offset_ms: -40\n")["warnings"]
+    assert len(behind) == 2 and all("more servo lag than largest_lag_ms (50 ms) allows" in w for w in behind)
+    assert decompose("clock_offset_ms: -40\nlargest_lag_ms: 70\n")["warnings"] == []
+    assert run(cli, "decompose", "inclined-a-table", str(set_file))["tests"][0]["clock_offset_traces_ms"] is not None
+    set_file.write_text(original)
+    assert run(cli, "decompose", "inclined-a-table", str(set_file))["tests"][0]["clock_offset_traces_ms"] is None
+
+
 def test_the_drift_is_taken_in_the_frame_it_is_constant_in(cli, tmp_path):
     # Issue 44: seed 004 keeps the thermal drift constant in the machine frame (the structure
     # warms while the A-C table turns under it). The virtual machine records it so, noise free;
@@ -179,22 +207,106 @@ def test_the_drift_is_taken_in_the_frame_it_is_constant_in(cli, tmp_path):
     # the turning drift as dynamic error.
     import csv
     import numpy as np
-    simulated = run(cli, "simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", "1000,3240,10498",
+    from numpy.polynomial import legendre
+    feeds = (1000, 3240, 10498)
+    simulated = run(cli, "simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", ",".join(map(str, feeds)),
                     "--structure", "wcayfxzt-compact", "--noise", "0um", "-o", str(tmp_path))
-    with open(tmp_path / "f10498-truth.csv") as f:
-        truth = np.array([[float(r[f"dynamic_{c}_um"]) for c in "xyz"] for r in csv.DictReader(f)])
-    error = {}
+
+    def true_dynamic(feed, test):
+        with open(tmp_path / f"f{feed}-truth.csv") as f:
+            truth = np.array([[float(r[f"dynamic_{c}_um"]) for c in "xyz"] for r in csv.DictReader(f)])
+        first = test["first_sample_used"]
+        return truth[first:first + len(test["series"]["u"])]
+
+    def relative_rms(recovered, expected):
+        expected = expected - expected.mean(axis=0)
+        return np.sqrt(np.mean(np.sum((recovered - expected) ** 2, axis=1)) / np.mean(np.sum(expected ** 2, axis=1)))
+
+    error, method = {}, {}
     for frame in ("machine", "workpiece"):
         result = run(cli, "decompose", "inclined-a-table", simulated["set"], "--series", "10000000", "--drift-frame", frame)
         assert result["drift_frame"] == frame
-        top = result["tests"][-1]
+        reference, top = result["tests"][0], result["tests"][-1]
         recovered = np.array([top["series"]["dynamic_um"][c] for c in "xyz"]).T
-        first = top["first_sample_used"]
-        expected = truth[first:first + len(recovered)]
-        expected = expected - expected.mean(axis=0)
-        error[frame] = np.sqrt(np.mean(np.sum((recovered - expected) ** 2, axis=1)) / np.mean(np.sum(expected ** 2, axis=1)))
+        expected = true_dynamic(feeds[-1], top)
+        error[frame] = relative_rms(recovered, expected)
+        # Eq. 16 takes the reference test's dynamic error for motion error: its degree-20 fit along
+        # u is carried to every feed. Against the truth less that part, what is left is the
+        # decomposition's own error, the drift's frame included.
+        u_reference, u_top = (2 * np.asarray(t["series"]["u"]) - 1 for t in (reference, top))
+        carried = np.array([legendre.legval(u_top, legendre.legfit(u_reference, column, 20))
+                            for column in true_dynamic(feeds[0], reference).T]).T
+        method[frame] = relative_rms(recovered, expected - carried)
         if frame == "machine":
             assert top["drift_um"] == pytest.approx([0.8, 0.5, 0.7], abs=0.03)  # 2 x (0.4, 0.25, 0.35) um
-    # Measured: 9.4 % against 22.9 %. What is left in the machine frame is the method's own:
-    # the reference test's dynamic error is fitted as motion error and carried to every feed.
+    # Measured: 9.4 % against 22.8 % of the truth; 3.6 % against 21.4 % of the truth less the
+    # reference test's carried dynamic error (part of the 3.6 %: the truth's mean is removed here
+    # in the workpiece frame, the method's in the machine frame). The issue's 6 % against the truth
+    # is not met on this virtual machine: its reference test at 1000 mm/min has a dynamic error
+    # (0.04 um RMS, at the 17 block junctions whose accelerations scale with the feed) that eq. 16
+    # books as motion error.
     assert error["machine"] < 0.5 * error["workpiece"]
+    assert method["machine"] < 0.05 < 0.1 < method["workpiece"]
+
+
+LINK_PLAN = """name: Inclined A-C table, R-test about C at A = 0 and 90 deg and about A
+parameters: [C0Y, A0Z, B0Z, B0A, C0A, A0C, B0C, Y0C]
+runs:
+  - name: rtest-C-A0
+    sphere: {axis: C, from: 0 deg, to: 330 deg, points: 12, spheres: [[70 mm, 40 mm, 60 mm], [-50 mm, 20 mm, 120 mm]]}
+    estimate: [xW, yW, zW]
+  - name: rtest-C-A90
+    sphere: {axis: C, from: 0 deg, to: 330 deg, points: 12, spheres: [[70 mm, 40 mm, 60 mm], [-50 mm, 20 mm, 120 mm]], pose: {A: 90 deg}}
+    estimate: [xW, yW, zW]
+  - name: rtest-A
+    sphere: {axis: A, from: 0 deg, to: 180 deg, points: 10, spheres: [[70 mm, 40 mm, 60 mm], [-50 mm, 20 mm, 120 mm]]}
+    estimate: [xW, yW, zW]
+"""
+LINK_TRUTH = "errors:\n  C0Y: 25 urad\n  A0Z: -15 urad\n  B0Z: 20 urad\n  B0A: -50 urad\n  C0A: 70 urad\n  A0C: 40 urad\n  B0C: -35 urad\n  Y0C: 15 um\n"
+
+
+def test_the_link_errors_come_with_their_uncertainty(cli, tmp_path):
+    # Issue 44: the link errors identified from R-test runs (seed 004's eqs. 13-15), written with
+    # identify --errors-out, give decompose their standard uncertainty along each test. Checked
+    # against the record's covariance carried through a Jacobian taken here by finite differences
+    # of the Python module's TCP errors at the encoder's recorded positions (every 3 ms, where
+    # decompose takes every instrument sample: the maxima and RMS agree to the sampling).
+    import numpy as np
+    import yaml
+    import mtacc
+    (tmp_path / "plan.yaml").write_text(LINK_PLAN)
+    (tmp_path / "truth.yaml").write_text(LINK_TRUTH)
+    subprocess.run([cli, "simulate", "plan", "inclined-a-table", "--plan", str(tmp_path / "plan.yaml"), "--errors", str(tmp_path / "truth.yaml"),
+                    "--noise", "0.3um", "-o", str(tmp_path / "runs")], check=True, capture_output=True)
+    identified = tmp_path / "identified.yaml"
+    subprocess.run([cli, "identify", "inclined-a-table", "--plan", str(tmp_path / "plan.yaml"), "--data",
+                    *map(str, sorted((tmp_path / "runs").glob("*.csv"))), "--from-nominal", "--errors-out", str(identified)],
+                   check=True, capture_output=True)
+    simulated = run(cli, "simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", "1000,5832",
+                    "--errors", str(tmp_path / "truth.yaml"), "--noise", "0.2um", "-o", str(tmp_path / "signals"))
+    result = run(cli, "decompose", "inclined-a-table", simulated["set"], "--errors", str(identified))
+    assert result["link_uncertainty"]["parameters"] == ["C0Y", "A0Z", "B0Z", "B0A", "C0A", "A0C", "B0C", "Y0C"]
+    assert all(name.endswith(("xW", "yW", "zW")) for name in result["link_uncertainty"]["left_out"])
+    assert run(cli, "decompose", "inclined-a-table", simulated["set"])["link_uncertainty"] is None
+
+    record = yaml.safe_load(identified.read_text())["identification"]
+    names = [e["parameter"] for e in record["estimates"]][:8]
+    covariance = np.array(record["covariance"], dtype=float)[:8, :8]  # um and urad
+    machine = mtacc.Machine("inclined-a-table", errors=identified)
+    for feed, test in zip((1000, 5832), result["tests"]):
+        with open(tmp_path / "signals" / f"f{feed}-encoder.csv") as f:
+            rows = [line for line in f if not line.startswith("#")]
+        encoder = np.loadtxt(rows[1:], delimiter=",")[:, 1:]
+        poses = encoder[np.any(np.abs(encoder - encoder[0]) > 1e-9, axis=1) | np.any(np.abs(encoder - encoder[-1]) > 1e-9, axis=1)]
+        base = machine.tcp_errors(poses)[:, :3]
+        jacobian = []
+        for name in names:
+            value = machine.errors[name]
+            step = 1e-3 if machine.errors.unit(name) == "mm" else 1e-6  # 1 um, 1 urad
+            machine.errors[name] = value + step
+            jacobian.append(machine.tcp_errors(poses)[:, :3] - base)  # um per um or urad: the step is one of either
+            machine.errors[name] = value
+        jacobian = np.stack(jacobian, axis=2)  # poses x 3 x parameters
+        u = np.sqrt(np.einsum("ndp,pq,ndq->nd", jacobian, covariance, jacobian))
+        assert test["link_uncertainty_um"]["max"] == pytest.approx(u.max(axis=0), rel=0.02)
+        assert test["link_uncertainty_um"]["rms"] == pytest.approx(np.sqrt(np.mean(u ** 2, axis=0)), rel=0.02)

@@ -28,6 +28,10 @@ struct DecompositionSet {
   double instrumentPeriod = 0.0;            // s; 0: as recorded
   Interpolation interpolation = Interpolation::CubicSpline;
   std::optional<double> clockOffset;        // s; estimated per test when absent
+  // s: the most servo lag the traces may show beyond a stated clock offset (where they line up
+  // best is the offset plus the lag a pure delay explains; 50 ms is a loop of Kv = 20/s without
+  // feed-forward); beyond it, or with the encoder ahead of the command, the offset is doubted.
+  double largestLag = 0.05;
   double searchLowest = -0.1, searchHighest = 0.1;  // s
   int referenceTest = 0;                    // index into tests: the given reference feed, else the lowest
   int degree = 20;

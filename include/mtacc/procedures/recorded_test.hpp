@@ -4,6 +4,7 @@
 // nominal direct kinematics, and the link errors of the identified model along the encoder path.
 #include <optional>
 
+#include "mtacc/core/joint_matrix.hpp"
 #include "mtacc/core/parallel.hpp"
 #include "mtacc/kinematics/kinematic_model.hpp"
 #include "mtacc/procedures/error_decomposition.hpp"
@@ -21,6 +22,9 @@ struct TestAlignment {
   // further beyond it, and the offset (with the contouring error it sets) cannot be trusted.
   bool atSearchLimit = false;
   std::vector<size_t> instrumentSpikes;  // instrument samples that stand out from their neighbours (spikeSamples)
+  // With a stated offset: where the traces line up best in the search window (the offset plus
+  // the servo lag a pure delay explains); absent when they cannot be lined up there.
+  std::optional<double> tracesOffset;
 };
 
 struct RecordedSignals {
@@ -39,6 +43,7 @@ struct SignalProcessing {
 struct AlignedTest {
   DecompositionTest test;
   TestAlignment alignment;
+  JointMatrix encoderPoses;  // the encoder positions at the test's samples (mm, rad), a row each
 };
 
 // The test runs from the command's departure (its last sample at rest at the start) to its

@@ -6,19 +6,12 @@
 #include <utility>
 #include <vector>
 
+#include "mtacc/io/identification_record.hpp"
 #include "mtacc/workflows/component_fit.hpp"
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/plates.hpp"
 
 namespace mtacc {
-
-// How an estimate is written: its value in mtacc's units (mm, rad, or a function coefficient in
-// mm or rad per mm^k or rad^k) times `scale` in `unit` ("um", "urad", "um/mm^2").
-struct EstimateUnit {
-  double scale = 1.0;
-  std::string unit;
-  static EstimateUnit of(Dimension d);
-};
 
 // What produced an identified model, as its file keeps it under `identification:`.
 struct IdentificationRecord {

@@ -11,6 +11,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/errors/error_model.hpp"
+#include "mtacc/io/identification_record.hpp"
 #include "mtacc/kinematics/kinematic_model.hpp"
 #include "mtacc/machine/machine.hpp"
 
@@ -27,6 +28,9 @@ struct MachineSource {
 struct MachineSetup {
   std::shared_ptr<const Machine> machine;
   ErrorModel errors;
+  // What an identified errors file keeps of its estimates' covariance (docs/file-formats.md,
+  // "Identified errors"); absent for errors that no identification wrote.
+  std::optional<ParameterCovariance> covariance;
 
   KinematicModel nominal() const { return compileNominal(machine); }
   KinematicModel actual() const { return compile(machine, errors); }

@@ -22,6 +22,11 @@ struct RecordedDecomposition {
   std::vector<std::vector<double>> pathFraction;  // per test and sample: u, the encoder path travelled over its whole (Figs 9-10's abscissa)
   std::vector<DecompositionShares> shares;
   std::vector<DirectionStatistics> contouring, quasiStatic, dynamic;
+  // With an identified errors file: the standard uncertainty (k = 1) of delta_l per test (its
+  // maximum and RMS along the path, per direction), propagated from the record's covariance of
+  // the parameters named in `linkParameters`; empty without a record.
+  std::vector<DirectionStatistics> linkUncertainty;
+  std::vector<std::string> linkParameters, linkLeftOut;
   // delta_d RMS against feed per direction (eq. 23); absent for fewer than two feeds or a zero RMS
   std::array<std::optional<PowerLaw>, 3> dynamicLaw;
   // What makes a result doubtful: a clock offset estimated at its search limit, spikes in an
@@ -35,7 +40,8 @@ DecompositionSet loadDecompositionSetWithDriftFrame(const std::string& path, con
 
 // The errors file's model is taken as the identified link errors (delta_l = its TCP minus the
 // nominal TCP at the encoder positions); without one, delta_l = 0 and the reference test's fit
-// holds all the quasi-static error. Throws InputError naming the set or signal file.
+// holds all the quasi-static error. With the covariance of an identified errors file (setup's),
+// delta_l's uncertainty along each test. Throws InputError naming the set or signal file.
 RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const DecompositionSet& set);
 // Lengths in um, offsets in ms, shares in %. With seriesPoints > 0, each test also holds its
 // contributions along u ("series"): every k-th sample, k chosen for at most seriesPoints.
