@@ -428,8 +428,15 @@ def decomposition_section(result):
     out = ("<h2>Error decomposition (seed 004)</h2><p>The tool relative to the workpiece measured along one trajectory at "
            f"{len(tests)} feeds, split into servo contouring (c), link (l), motion (m), thermal drift (td) and dynamic (d) "
            f"errors; motion errors fitted on the {result['reference_feed_mm_min']:g} mm/min test (Legendre degree "
-           f"{result['degree']} in the normalised {result['parameter']}), {result['interpolation']} resampling. The mean of the dynamic error is booked as drift, and "
-           "only the sum of link and motion errors is fixed by the reference test.</p>")
+           f"{result['degree']} in the normalised {result['parameter']}"
+           + (f"; {result['reference_samples_left_out']} samples where its axes accelerate left out" if result["reference_samples_left_out"] else
+              "; every sample")
+           + f"), {result['interpolation']} resampling, the drift constant in the {result['drift_frame']} frame. The mean of the dynamic error is "
+           "booked as drift, and only the sum of link and motion errors is fixed by the reference test.</p>")
+    if result.get("link_uncertainty"):
+        worst = [max(t["link_uncertainty_um"]["max"][d] for t in tests) for d in range(3)]
+        out += (f"<p>Link errors from an identification ({len(result['link_uncertainty']['parameters'])} parameters): their standard "
+                f"uncertainty along the path is at most {worst[0]:.3f}, {worst[1]:.3f}, {worst[2]:.3f} um in x, y, z (k = 1).</p>")
     out += figure(plots.decomposition_over_feeds(result), "Shares, largest errors and dynamic RMS over the feeds")
     slowest, fastest = min(tests, key=lambda t: t["feed_mm_min"]), max(tests, key=lambda t: t["feed_mm_min"])
     for t in [slowest] if slowest is fastest else [slowest, fastest]:

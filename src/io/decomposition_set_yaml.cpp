@@ -35,7 +35,7 @@ DecompositionSet parseDecompositionSet(const std::string& text, const std::strin
   if (!yamlin::isMap(root)) ctx.fail(root, "", "expected a mapping with tests: [{feed, command, encoder, instrument}, ...]");
   yamlin::rejectUnknownKeys(ctx, root, "",
                             {"description", "ball", "nc_rate_hz", "instrument_rate_hz", "interpolation", "clock_offset_ms", "largest_lag_ms", "search_ms",
-                             "reference_feed", "degree", "parameter", "drift_frame", "tests"});
+                             "reference_feed", "degree", "parameter", "drift_frame", "reference_fit", "tests"});
   DecompositionSet set;
   set.file = source;
   if (root["ball"]) set.ball = yamlin::lengthVector(ctx, root["ball"], "ball");
@@ -68,6 +68,12 @@ DecompositionSet parseDecompositionSet(const std::string& text, const std::strin
     const auto kind = yamlin::scalar(ctx, node, "parameter");
     if (kind != "path" && kind != "time") ctx.fail(node, "parameter", "expected path or time (the paper's)");
     set.parameter = kind == "path" ? MotionParameter::Path : MotionParameter::Time;
+  }
+  if (const auto node = root["reference_fit"]) {
+    const auto kind = yamlin::scalar(ctx, node, "reference_fit");
+    if (kind != "steady" && kind != "all")
+      ctx.fail(node, "reference_fit", "expected steady (the reference's samples where its axes accelerate left out of the motion-error fit) or all (the paper's)");
+    set.referenceFit = kind == "steady" ? ReferenceFit::Steady : ReferenceFit::All;
   }
   if (const auto node = root["drift_frame"])
     set.driftFrame = parseDriftFrame(yamlin::scalar(ctx, node, "drift_frame"), ctx.at(node, "drift_frame"));

@@ -13,7 +13,8 @@ namespace {
 void check(const DecompositionTest& t, size_t index, MotionParameter parameter) {
   const size_t n = t.time.size();
   if (n < 2) throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): {} samples, at least 2 needed", index, t.feed, n));
-  if (t.measured.size() != n || t.encoder.size() != n || t.nominal.size() != n || t.link.size() != n)
+  if (t.measured.size() != n || t.encoder.size() != n || t.nominal.size() != n || t.link.size() != n ||
+      (!t.acceleration.empty() && t.acceleration.size() != n))
     throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): its series have different lengths", index, t.feed));
   for (size_t i = 1; i < n; ++i)
     if (!(t.time[i] > t.time[i - 1]))
@@ -52,12 +53,28 @@ Eigen::MatrixXd beyondLink(const DecompositionTest& t) {
   return r;
 }
 
+// The reference samples the motion errors are fitted to.
+std::vector<Eigen::Index> fittedSamples(const DecompositionTest& t, const DecompositionOptions& o) {
+  const auto& a = t.acceleration;
+  const bool steady = o.referenceFit == ReferenceFit::Steady && !a.empty();
+  const double limit = steady ? o.steadyShare * *std::max_element(a.begin(), a.end()) : 0.0;
+  std::vector<Eigen::Index> kept, all;
+  for (size_t i = 0; i < t.time.size(); ++i) {
+    all.push_back(static_cast<Eigen::Index>(i));
+    if (!steady || a[i] <= limit) kept.push_back(static_cast<Eigen::Index>(i));
+  }
+  // A reference that accelerates throughout has no steady part to leave the rest out for.
+  return 2 * kept.size() >= all.size() && kept.size() >= static_cast<size_t>(o.degree) + 2 ? kept : all;
+}
+
 }  // namespace
 
 std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>& tests, const DecompositionOptions& o) {
   if (o.referenceTest < 0 || o.referenceTest >= static_cast<int>(tests.size()))
     throw std::invalid_argument(fmt::format("reference test {} of {} tests", o.referenceTest, tests.size()));
   if (o.degree < 0 || o.degree > 60) throw std::invalid_argument(fmt::format("motion-error degree {}: give 0 to 60", o.degree));
+  if (!(o.steadyShare > 0.0 && o.steadyShare <= 1.0))
+    throw std::invalid_argument(fmt::format("steady share {:g}: give a share of the largest acceleration above 0 and at most 1", o.steadyShare));
   for (size_t k = 0; k < tests.size(); ++k) check(tests[k], k, o.parameter);
   const DecompositionTest& reference = tests[static_cast<size_t>(o.referenceTest)];
   if (reference.time.size() < static_cast<size_t>(o.degree) + 2)
@@ -65,7 +82,9 @@ std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>
                                             reference.time.size(), o.degree, o.degree + 1));
   // Eqs. 16-17: in the reference test everything beyond the link errors is motion error, up to
   // the dynamic residue the fit leaves; the fit's coefficients carry delta_m to the other tests.
-  const Eigen::MatrixXd coefficients = legendreBasis(reference, o.parameter, o.degree).householderQr().solve(beyondLink(reference));
+  const auto fitted = fittedSamples(reference, o);
+  const Eigen::MatrixXd basis = legendreBasis(reference, o.parameter, o.degree), beyond = beyondLink(reference);
+  const Eigen::MatrixXd coefficients = basis(fitted, Eigen::all).householderQr().solve(beyond(fitted, Eigen::all));
   std::vector<DecomposedTest> out;
   out.reserve(tests.size());
   for (size_t k = 0; k < tests.size(); ++k) {
@@ -87,6 +106,7 @@ std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>
     for (size_t i = 0; i < n; ++i) sum += toDriftFrame(i) * rest.row(static_cast<Eigen::Index>(i)).transpose();
     d.drift = static_cast<int>(k) == o.referenceTest ? Vec3::Zero() : Vec3(sum / static_cast<double>(n));
     d.driftAlong.resize(n);
+    if (static_cast<int>(k) == o.referenceTest) d.leftOutOfFit = n - fitted.size();
     for (size_t i = 0; i < n; ++i) {
       const auto row = static_cast<Eigen::Index>(i);
       d.contouring[i] = t.encoder[i] - t.nominal[i];

@@ -33,6 +33,33 @@ std::pair<double, double> motionSpan(const SampledTrace& command) {
   return {command.start + command.period * static_cast<double>(departure), command.start + command.period * static_cast<double>(arrival)};
 }
 
+// The norm over the axes of their acceleration (file units: mm and deg per s^2), by central
+// differences on the trace's own samples, interpolated linearly at the given times.
+std::vector<double> axisAcceleration(const SampledTrace& trace, const std::vector<double>& fileScale, const std::vector<double>& times) {
+  const size_t m = trace.samples();
+  std::vector<double> square(m, 0.0);
+  for (size_t a = 0; a < trace.channels.size(); ++a) {
+    const auto& x = trace.channels[a];
+    for (size_t k = 1; k + 1 < m; ++k) {
+      const double second = (x[k + 1] - 2.0 * x[k] + x[k - 1]) / (trace.period * trace.period) * fileScale[a];
+      square[k] += second * second;
+    }
+  }
+  if (m >= 3) {
+    square.front() = square[1];
+    square.back() = square[m - 2];
+  }
+  std::vector<double> out;
+  out.reserve(times.size());
+  for (const double t : times) {
+    const double at = std::clamp((t - trace.start) / trace.period, 0.0, static_cast<double>(m - 1));
+    const auto k = std::min(static_cast<size_t>(at), m >= 2 ? m - 2 : 0);
+    const double w = at - static_cast<double>(k);
+    out.push_back(std::sqrt(m >= 2 ? (1.0 - w) * square[k] + w * square[k + 1] : square[0]));
+  }
+  return out;
+}
+
 }  // namespace
 
 AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicModel& identified, const RecordedSignals& signals,
@@ -83,6 +110,7 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
   const size_t n = used.size();
   std::vector<double> fileScale;  // FGROUP: the path in mm and deg
   for (long a = 0; a < encoderQ.cols(); ++a) fileScale.push_back(1.0 / nominal.machine->axes[static_cast<size_t>(a)].fileUnit());
+  test.acceleration = axisAcceleration(encoder, fileScale, test.time);
   test.path.assign(n, 0.0);
   for (size_t i = 1; i < n; ++i) {
     double square = 0.0;

@@ -103,7 +103,7 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
     out.alignment.push_back(aligned.alignment);
   }
   try {
-    out.tests = decomposeErrors(tests, {set.referenceTest, set.degree, set.parameter, set.driftFrame});
+    out.tests = decomposeErrors(tests, {set.referenceTest, set.degree, set.parameter, set.driftFrame, set.referenceFit});
   } catch (const std::invalid_argument& e) {
     throw InputError({set.file, set.tests[static_cast<size_t>(set.referenceTest)].line, fmt::format("tests[{}]", set.referenceTest)}, e.what());
   }
@@ -155,6 +155,8 @@ nlohmann::json toJson(const RecordedDecomposition& r, size_t seriesPoints) {
   j["degree"] = r.set.degree;
   j["parameter"] = r.set.parameter == MotionParameter::Path ? "path" : "time";
   j["interpolation"] = r.set.interpolation == Interpolation::CubicSpline ? "cubic" : "linear";
+  j["reference_fit"] = r.set.referenceFit == ReferenceFit::Steady ? "steady" : "all";
+  j["reference_samples_left_out"] = r.tests[static_cast<size_t>(r.set.referenceTest)].leftOutOfFit;
   j["tests"] = nlohmann::json::array();
   for (size_t k = 0; k < r.tests.size(); ++k) {
     const auto& a = r.alignment[k];

@@ -130,13 +130,15 @@ def test_the_series_along_the_path_are_the_contributions_of_every_kth_sample(cli
         full = e["series"]
         assert full["stride"] == 1 and len(full["u"]) == t["samples_used"] and full["u"][-1] == pytest.approx(1, abs=1e-15)
         assert full["u"][::series["stride"]] == series["u"]
-        # Every sample: the stated maxima, RMS and the zero mean of the dynamic error (V2) are those of the series.
+        # Every sample: the stated maxima, RMS and the zero mean of the dynamic error (V2) are those
+        # of the series. The reference test, fitted on its steady samples, keeps the mean of its
+        # dynamic error where its axes accelerate.
         for d, direction in enumerate("xyz"):
             assert np.max(np.abs(full["contouring_um"][direction])) == pytest.approx(t["contouring_max_um"][d], rel=1e-12)
             dynamic = np.array(full["dynamic_um"][direction])
             assert np.max(np.abs(dynamic)) == pytest.approx(t["dynamic_max_um"][d], rel=1e-12)
             assert np.sqrt(np.mean(dynamic ** 2)) == pytest.approx(t["dynamic_rms_um"][d], rel=1e-9)
-            assert abs(np.mean(dynamic)) < 1e-9
+            assert abs(np.mean(dynamic)) < 1e-9 or t is plain["tests"][0]
 
 
 def test_a_result_that_cannot_be_trusted_is_flagged(cli, tmp_path):
@@ -202,51 +204,40 @@ def test_a_stated_clock_offset_is_checked_against_the_traces(cli, tmp_path):
 def test_the_drift_is_taken_in_the_frame_it_is_constant_in(cli, tmp_path):
     # Issue 44: seed 004 keeps the thermal drift constant in the machine frame (the structure
     # warms while the A-C table turns under it). The virtual machine records it so, noise free;
-    # decomposed in the machine frame, the drift is the injected one and the dynamic error is
-    # recovered far better than with the drift taken constant in the workpiece frame, which books
-    # the turning drift as dynamic error.
+    # decomposed in the machine frame, the drift is the injected one and the top feed's dynamic
+    # error is recovered within 6 % RMS; with the drift taken constant in the workpiece frame the
+    # turning drift is booked as dynamic error. The paper's fit of the motion errors to every
+    # reference sample (reference_fit: all) carries the reference test's own dynamic error, at its
+    # start, end and block junctions, to every feed.
     import csv
     import numpy as np
-    from numpy.polynomial import legendre
-    feeds = (1000, 3240, 10498)
-    simulated = run(cli, "simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", ",".join(map(str, feeds)),
+    simulated = run(cli, "simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", "1000,3240,10498",
                     "--structure", "wcayfxzt-compact", "--noise", "0um", "-o", str(tmp_path))
-
-    def true_dynamic(feed, test):
-        with open(tmp_path / f"f{feed}-truth.csv") as f:
-            truth = np.array([[float(r[f"dynamic_{c}_um"]) for c in "xyz"] for r in csv.DictReader(f)])
-        first = test["first_sample_used"]
-        return truth[first:first + len(test["series"]["u"])]
-
-    def relative_rms(recovered, expected):
-        expected = expected - expected.mean(axis=0)
-        return np.sqrt(np.mean(np.sum((recovered - expected) ** 2, axis=1)) / np.mean(np.sum(expected ** 2, axis=1)))
-
-    error, method = {}, {}
-    for frame in ("machine", "workpiece"):
-        result = run(cli, "decompose", "inclined-a-table", simulated["set"], "--series", "10000000", "--drift-frame", frame)
-        assert result["drift_frame"] == frame
-        reference, top = result["tests"][0], result["tests"][-1]
-        recovered = np.array([top["series"]["dynamic_um"][c] for c in "xyz"]).T
-        expected = true_dynamic(feeds[-1], top)
-        error[frame] = relative_rms(recovered, expected)
-        # Eq. 16 takes the reference test's dynamic error for motion error: its degree-20 fit along
-        # u is carried to every feed. Against the truth less that part, what is left is the
-        # decomposition's own error, the drift's frame included.
-        u_reference, u_top = (2 * np.asarray(t["series"]["u"]) - 1 for t in (reference, top))
-        carried = np.array([legendre.legval(u_top, legendre.legfit(u_reference, column, 20))
-                            for column in true_dynamic(feeds[0], reference).T]).T
-        method[frame] = relative_rms(recovered, expected - carried)
-        if frame == "machine":
-            assert top["drift_um"] == pytest.approx([0.8, 0.5, 0.7], abs=0.03)  # 2 x (0.4, 0.25, 0.35) um
-    # Measured: 9.4 % against 22.8 % of the truth; 3.6 % against 21.4 % of the truth less the
-    # reference test's carried dynamic error (part of the 3.6 %: the truth's mean is removed here
-    # in the workpiece frame, the method's in the machine frame). The issue's 6 % against the truth
-    # is not met on this virtual machine: its reference test at 1000 mm/min has a dynamic error
-    # (0.04 um RMS, at the 17 block junctions whose accelerations scale with the feed) that eq. 16
-    # books as motion error.
-    assert error["machine"] < 0.5 * error["workpiece"]
-    assert method["machine"] < 0.05 < 0.1 < method["workpiece"]
+    with open(tmp_path / "f10498-truth.csv") as f:
+        truth = np.array([[float(r[f"dynamic_{c}_um"]) for c in "xyz"] for r in csv.DictReader(f)])
+    set_file = pathlib.Path(simulated["set"])
+    original = set_file.read_text()
+    error = {}
+    for fit in ("steady", "all"):
+        set_file.write_text(f"reference_fit: {fit}\n" + original)
+        for frame in ("machine", "workpiece"):
+            result = run(cli, "decompose", "inclined-a-table", str(set_file), "--series", "10000000", "--drift-frame", frame)
+            assert result["drift_frame"] == frame and result["reference_fit"] == fit
+            assert (result["reference_samples_left_out"] > 0) == (fit == "steady")
+            top = result["tests"][-1]
+            recovered = np.array([top["series"]["dynamic_um"][c] for c in "xyz"]).T
+            first = top["first_sample_used"]
+            expected = truth[first:first + len(recovered)]
+            expected = expected - expected.mean(axis=0)
+            error[fit, frame] = np.sqrt(np.mean(np.sum((recovered - expected) ** 2, axis=1)) / np.mean(np.sum(expected ** 2, axis=1)))
+            if frame == "machine":
+                assert top["drift_um"] == pytest.approx([0.8, 0.5, 0.7], abs=0.03)  # 2 x (0.4, 0.25, 0.35) um
+    set_file.write_text(original)
+    assert run(cli, "decompose", "inclined-a-table", str(set_file))["reference_fit"] == "steady"
+    # Measured: 3.6 % (steady, machine), 20.6 % (steady, workpiece); the paper's fit 9.4 % and 22.9 %.
+    assert error["steady", "machine"] < 0.06
+    assert error["steady", "workpiece"] > 3 * error["steady", "machine"]
+    assert error["all", "machine"] > 2 * error["steady", "machine"]
 
 
 LINK_PLAN = """name: Inclined A-C table, R-test about C at A = 0 and 90 deg and about A
@@ -288,6 +279,9 @@ def test_the_link_errors_come_with_their_uncertainty(cli, tmp_path):
     assert result["link_uncertainty"]["parameters"] == ["C0Y", "A0Z", "B0Z", "B0A", "C0A", "A0C", "B0C", "Y0C"]
     assert all(name.endswith(("xW", "yW", "zW")) for name in result["link_uncertainty"]["left_out"])
     assert run(cli, "decompose", "inclined-a-table", simulated["set"])["link_uncertainty"] is None
+    from mtacc import report
+    worst = max(t["link_uncertainty_um"]["max"][1] for t in result["tests"])
+    assert f"uncertainty along the path is at most" in report.decomposition_section(result) and f"{worst:.3f}" in report.decomposition_section(result)
 
     record = yaml.safe_load(identified.read_text())["identification"]
     names = [e["parameter"] for e in record["estimates"]][:8]

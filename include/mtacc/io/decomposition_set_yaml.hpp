@@ -37,6 +37,7 @@ struct DecompositionSet {
   int degree = 20;
   MotionParameter parameter = MotionParameter::Path;
   DriftFrame driftFrame = DriftFrame::Machine;
+  ReferenceFit referenceFit = ReferenceFit::Steady;
 };
 // "machine" or "workpiece" (drift_frame:, decompose --drift-frame); throws InputError at `key`.
 DriftFrame parseDriftFrame(const std::string& text, const InputLocation& key);

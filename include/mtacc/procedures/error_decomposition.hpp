@@ -21,6 +21,9 @@ struct DecompositionTest {
   // The workpiece frame's rotation in the machine frame at each sample (the nominal machine at
   // the encoder positions), for a drift constant in the machine frame; empty: the identity.
   std::vector<Mat3> workpieceRotation;
+  // The axes' acceleration at each sample (the norm over the axes, FGROUP: mm and deg per s^2),
+  // for ReferenceFit::Steady; empty: not known, every sample fitted.
+  std::vector<double> acceleration;
 };
 
 // Where the thermal drift is constant over a test (eq. 19): in the machine frame, as seed 004
@@ -34,11 +37,22 @@ enum class DriftFrame { Machine, Workpiece };
 // the slow-downs at corners take a different share of each test).
 enum class MotionParameter { Time, Path };
 
+// Which samples of the reference test the motion errors are fitted to (eq. 17). Seed 004 fits
+// them all, taking the reference's dynamic error for negligible; it is so "except locally at the
+// start, the end and sharp corners" (L237), where the axes accelerate as hard at the low feed as
+// at the others, and the fit carries what it finds there to every feed. Steady leaves out the
+// samples where the axes accelerate beyond `steadyShare` of the reference test's largest
+// acceleration (the fit still spans them: the motion errors are smooth in the path); where that
+// would leave out half the samples or more (a reference accelerating throughout), it fits all.
+enum class ReferenceFit { Steady, All };
+
 struct DecompositionOptions {
   int referenceTest = 0;  // the slow test whose error beyond the link errors is all motion error (eq. 16)
   int degree = 20;        // of the Legendre fit of the motion errors in the normalised parameter (eq. 17, O5, O6)
   MotionParameter parameter = MotionParameter::Path;
   DriftFrame driftFrame = DriftFrame::Machine;
+  ReferenceFit referenceFit = ReferenceFit::Steady;
+  double steadyShare = 0.05;
 };
 
 struct DecomposedTest {
@@ -48,7 +62,8 @@ struct DecomposedTest {
   std::vector<Vec3> motion;      // delta_m: the reference test's fit at this test's normalised parameter
   Vec3 drift = Vec3::Zero();     // td (eq. 18), constant in the drift frame (eq. 19); 0 in the reference test
   std::vector<Vec3> driftAlong;  // the same at each sample in the workpiece frame
-  std::vector<Vec3> dynamic;     // delta_d = chi - chi_enc - delta_qs (eq. 20); zero mean (in the drift frame) by construction
+  std::vector<Vec3> dynamic;     // delta_d = chi - chi_enc - delta_qs (eq. 20); zero mean (in the drift frame) by construction but in a steady-fitted reference
+  size_t leftOutOfFit = 0;       // in the reference test: the samples the motion errors were not fitted to (ReferenceFit::Steady)
 
   Vec3 quasiStatic(size_t i) const { return link[i] + motion[i] + driftAlong[i]; }  // delta_qs (eq. 12)
 };
