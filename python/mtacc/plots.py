@@ -362,6 +362,31 @@ def identified_values(result, truth=None):
     return fig
 
 
+def plan_runs(runs, axis_names):
+    """What the operator will see the machine do: each run's axis positions over its poses (mm
+    for linear, degrees for rotary axes; an axis that does not move is left out), one panel per
+    run, titled with its instrument and where its sphere or work ball is placed."""
+    cols = min(3, len(runs))
+    rows = (len(runs) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 2.4 * rows), squeeze=False)
+    for ax, r in zip(axes.flat, runs):
+        q = np.asarray(r["q"], float)
+        for k, name in enumerate(axis_names):
+            if np.ptp(q[:, k]) > 1e-9:
+                ax.plot(np.arange(1, len(q) + 1), q[:, k], ".-", lw=0.8, ms=3, label=name, color=f"C{k}")  # an axis keeps its colour
+        placed = "" if r["target_mm"] is None else " at (" + ", ".join(f"{v:.4g}" for v in r["target_mm"]) + ") mm"
+        ax.set_title(f"{r['name']}: {r['instrument']}{placed}", fontsize=8)
+        ax.set_xlabel("pose", fontsize=7)
+        ax.tick_params(labelsize=7)
+        if ax.lines:
+            ax.legend(fontsize=6)
+    for ax in axes.flat[len(runs):]:
+        ax.set_visible(False)
+    axes[0][0].set_ylabel("position [mm, °]")
+    fig.tight_layout()
+    return fig
+
+
 def run_residuals(result):
     """Each run's residuals (reading minus model at the estimates) along its poses, one panel per
     run, with the run's RMS; a run whose residuals stand out is where the model misses."""

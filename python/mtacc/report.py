@@ -201,6 +201,7 @@ def identification_section(machine, plan, obs, data=(), measured=()):
                     "value; the identification shows what the plan can do, not what a machine measured. Give the "
                     "measured files with --data to identify from them.</p>")
         out += "<h3>The plan</h3>" + plan_table(runs, machine.axis_names)
+        out += figure(plots.plan_runs(runs, machine.axis_names), "Each run's axis positions over its poses, as the machine will move")
         rows = []
         for r, f in zip(runs, files):
             if r["instrument"] == "ballbar":

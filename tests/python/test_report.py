@@ -79,7 +79,7 @@ def test_report_identifies_from_measured_files(tmp_path, artifacts):
     assert len(runs) == len(files)
     worst = sorted(runs, key=lambda r: -float(r[1]))[:2]
     assert {name for name, _ in worst} == {"rtest-B-1", "rtest-B-2"}
-    assert "Residuals of each run" in text and "The plan</h3>" in text
+    assert "Residuals of each run" in text and "The plan</h3>" in text and "as the machine will move" in text
     model = tmp_path / "out" / "tilting-table-identified.yaml"
     assert "identification:" in model.read_text()
     assert mtacc.Machine("tilting-table", errors=model).errors  # reads back as an errors file
