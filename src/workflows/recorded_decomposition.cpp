@@ -81,6 +81,12 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
           "{} mm/min: the clock offset estimated, {:.3f} ms, lies at the end of the search window [{:g}, {:g}] ms: the best offset "
           "may lie beyond it, and the contouring error it sets is then wrong; widen search_ms or state clock_offset_ms",
           recorded.feed, a.offset * 1e3, set.searchLowest * 1e3, set.searchHighest * 1e3));
+    constexpr double kWorstMisfit = 0.01;  // of the axes' spreads: 1e-5 to 4e-4 where command and encoder are of one run
+    if (a.estimated && !a.atSearchLimit && a.rmsMisfit > kWorstMisfit)
+      out.warnings.push_back(fmt::format(
+          "{} mm/min: the command and encoder traces do not line up at any offset of the search window: at the best, {:.3f} ms, they differ by {:.2g} % of the "
+          "axes' spread (RMS), where one run's traces differ by hundredths of a percent; are they of the same run and program?",
+          recorded.feed, a.offset * 1e3, a.rmsMisfit * 100));
     if (a.tracesOffset) {
       constexpr double kLeadAllowed = 1e-3;  // s: the encoder cannot lead the command; 1 ms for the estimate's own scatter
       const double lag = *a.tracesOffset - a.offset;

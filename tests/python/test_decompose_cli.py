@@ -152,6 +152,7 @@ def test_a_result_that_cannot_be_trusted_is_flagged(cli, tmp_path):
     result = json.loads(out.stdout)
     assert all(t["clock_offset_at_search_limit"] for t in result["tests"])
     assert sum("lies at the end of the search window" in w for w in result["warnings"]) == 2
+    assert not any("do not line up" in w for w in result["warnings"])  # 150 ms off, yet the same run
     assert "mtacc: warning:" in out.stderr
     strict = subprocess.run([cli, "decompose", "inclined-a-table", simulated["set"], "--strict"], capture_output=True, text=True)
     assert strict.returncode == 4
@@ -160,7 +161,8 @@ def test_a_result_that_cannot_be_trusted_is_flagged(cli, tmp_path):
                 "--noise", "0.2um", "-o", str(tmp_path / "clean"))
     assert run(cli, "decompose", "inclined-a-table", clean["set"])["warnings"] == []
     instrument = [tmp_path / "clean" / "f1000-instrument.csv"]
-    lines = instrument[0].read_text().splitlines()
+    instrument_text = instrument[0].read_text()
+    lines = instrument_text.splitlines()
     header = next(i for i, line in enumerate(lines) if not line.startswith("#"))
     row = header + 1 + 2000
     cells = lines[row].split(",")
@@ -171,6 +173,23 @@ def test_a_result_that_cannot_be_trusted_is_flagged(cli, tmp_path):
     flagged = [t for t in spiked["tests"] if t["instrument_spikes"]]
     assert len(flagged) == 1 and flagged[0]["instrument_spikes"] == [2000]
     assert any("stand out from their neighbours" in w and "2000" in w for w in spiked["warnings"])
+
+    # The 3240 mm/min command with its A axis 1.5 times what was commanded (a wrong unit or an
+    # axis of another program): no offset lines the traces up.
+    command = tmp_path / "clean" / "f3240-command.csv"
+    lines = command.read_text().splitlines()
+    header = next(i for i, line in enumerate(lines) if not line.startswith("#"))
+    assert lines[header].split(",")[4] == "A"
+    for i in range(header + 1, len(lines)):
+        cells = lines[i].split(",")
+        cells[4] = repr(1.5 * float(cells[4]))
+        lines[i] = ",".join(cells)
+    command.write_text("\n".join(lines) + "\n")
+    (tmp_path / "clean" / "f1000-instrument.csv").write_text(instrument_text)
+    mismatched = run(cli, "decompose", "inclined-a-table", clean["set"])
+    assert [t["alignment_rms_misfit"] > 0.01 for t in mismatched["tests"]] == [False, True]
+    assert [w for w in mismatched["warnings"] if "do not line up at any offset of the search window" in w][0].startswith("3240 mm/min")
+    assert len(mismatched["warnings"]) == 1
 
 
 def test_a_stated_clock_offset_is_checked_against_the_traces(cli, tmp_path):
