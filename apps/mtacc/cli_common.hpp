@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <string>
 
 #include "mtacc/workflows/identification.hpp"
@@ -45,6 +46,10 @@ std::string poseCsvHeader(const Machine& m);
 // `errorsOut` the identified errors file written there; warnings on stderr, and StrictFailure
 // after them when `strict`.
 void emitIdentification(const MachineOptions& o, const IdentificationOutcome& out, bool strict, const std::string& errorsOut);
+// --tool-length: the lengths of the tools a program names by G43 H<n> ("1=0,2=35.5", mm beyond
+// the machine file's tool), and its text parsed.
+void addToolLengthOption(CLI::App& cmd, std::string& toolLengths);
+std::map<int, double> parseToolLengths(const std::string& text);
 // --errors-out of identify and cubic-identify.
 void addErrorsOutOption(CLI::App& cmd, std::string& errorsOut);
 
@@ -63,6 +68,7 @@ void addFitCommand(CLI::App& app);            // fit (seed 003 component fits)
 void addPlateCommand(CLI::App& app);          // plate (seed 003 hole plates)
 void addStiffnessCommand(CLI::App& app);      // stiffness (seed 003 finite stiffness)
 void addCompensateCommand(CLI::App& app);     // compensate (compensated programs)
+void addDeviationCommand(CLI::App& app);      // deviation (a program on a model, against its intended path)
 void addIdentifyCommands(CLI::App& app);      // identify, observability
 void addCubicCommands(CLI::App& app);         // cubic, cubic-identify
 void addDynamicsCommand(CLI::App& app);       // dynamics modes | frf | accel | map

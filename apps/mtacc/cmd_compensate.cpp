@@ -21,7 +21,7 @@ namespace mtacc::cli {
 namespace {
 
 struct CompensateOptions : MachineOptions {
-  std::string program, gcode, toolLengths;
+  std::string program, gcode, toolLengths, checkErrors;
   std::string tables, nodes = "21,21,21", pose, checkProgram;
   int functions = 9, linuxcncType = 1;
   double everySeconds = 0.0;  // tables: 0 once; else rewritten each period
@@ -119,10 +119,10 @@ void run(const CompensateOptions& o) {
   if (o.gcode.empty()) throw InputError({"", 0, "--gcode"}, "give the file to write the compensated program to (--gcode OUT.nc)");
   ProgramCompensationRequest request;
   request.programFile = o.program;
-  for (const auto& a : parseAssignments(o.toolLengths, "--tool-length"))
-    request.toolLengths[parseCount(a.name, "--tool-length", 0, 9999)] = parseNumber(a.value, "--tool-length " + a.name);
+  request.toolLengths = parseToolLengths(o.toolLengths);
   request.options.tolerance = o.toleranceUm * 1e-3;
   request.options.directionTolerance = o.directionToleranceUrad * 1e-6;
+  request.checkErrorsFile = o.checkErrors;
   const auto r = compensateProgramFile(loadMachineSetup(o.source), request);
   writeFileAtomically(o.gcode, r.gcode, "--gcode");
   const auto j = toJson(r);
@@ -139,6 +139,14 @@ void run(const CompensateOptions& o) {
                        d.before.rmsPosition * 1e3, d.before.maxDirection * 1e6);
   human += fmt::format("  compensated  largest {:9.3f} um  rms {:9.3f} um  tool direction {:9.3f} urad\n", d.after.maxPosition * 1e3,
                        d.after.rmsPosition * 1e3, d.after.maxDirection * 1e6);
+  if (r.check) {
+    const auto& k = r.check->deviation;
+    human += fmt::format("the same on the errors of {} (--check-errors):\n", r.check->errorsFile);
+    human += fmt::format("  as written   largest {:9.3f} um  rms {:9.3f} um  tool direction {:9.3f} urad\n", k.before.maxPosition * 1e3,
+                         k.before.rmsPosition * 1e3, k.before.maxDirection * 1e6);
+    human += fmt::format("  compensated  largest {:9.3f} um  rms {:9.3f} um  tool direction {:9.3f} urad\n", k.after.maxPosition * 1e3,
+                         k.after.rmsPosition * 1e3, k.after.maxDirection * 1e6);
+  }
   if (c.singular > 0)
     human += fmt::format("{} points near a singular orientation (first at line {}): their position is corrected, their direction not\n",
                          c.singular, c.firstProblemLine);
@@ -158,13 +166,16 @@ void addCompensateCommand(CLI::App& app) {
   addMachineOptions(*cmd, *o);
   cmd->add_option("--program", o->program, "the G-code program to compensate (axis positions in mm and deg)");
   cmd->add_option("--gcode", o->gcode, "write the compensated program to FILE");
-  cmd->add_option("--tool-length", o->toolLengths, "lengths of the tools named by G43 H<n>, e.g. 1=0,2=35.5 (mm beyond the machine's tool)");
+  addToolLengthOption(*cmd, o->toolLengths);
   cmd->add_option("--tolerance", o->toleranceUm, "TCP deviation allowed between written points, arc chords included [um]")
       ->capture_default_str()
       ->check(CLI::Range(0.01, 1000.0));
   cmd->add_option("--direction-tolerance", o->directionToleranceUrad, "tool direction deviation allowed between written points [urad]")
       ->capture_default_str()
       ->check(CLI::Range(0.01, 10000.0));
+  cmd->add_option("--check-errors", o->checkErrors,
+                  "program: also run the program, as written and compensated, on this errors file's machine (the machine as measured "
+                  "again, or a simulation's truth)");
   cmd->add_option("--tables", o->tables, "write the correction grid, its one-axis functions and the controllers' files (Siemens, HEIDENHAIN, LinuxCNC, TwinCAT/ISG) to DIR");
   cmd->add_option("--check-program", o->checkProgram, "tables: also check each table along this program's feed moves (G-code)");
   cmd->add_option("--nodes", o->nodes, "tables: nodes along X, Y, Z over their travel")->capture_default_str();

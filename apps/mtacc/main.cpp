@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
   mtacc::cli::addPlateCommand(app);
   mtacc::cli::addStiffnessCommand(app);
   mtacc::cli::addCompensateCommand(app);
+  mtacc::cli::addDeviationCommand(app);
   mtacc::cli::addIdentifyCommands(app);
   mtacc::cli::addDynamicsCommand(app);
   mtacc::cli::addDecomposeCommand(app);

@@ -24,6 +24,7 @@
 #include "mtacc/workflows/dynamics.hpp"
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/identified_errors.hpp"
+#include "mtacc/workflows/program_deviation.hpp"
 #include "mtacc/workflows/kinematics_batch.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
 #include "mtacc/workflows/plates.hpp"
@@ -399,12 +400,23 @@ PYBIND11_MODULE(_mtacc, mod) {
              for (const auto& [name, content] : r.files) j["contents"][name] = content;
              return toPython(j);
            })
+      .def("deviation",
+           [](const PythonMachine& s, const std::string& program, const std::string& intended, const std::map<int, double>& toolLengths,
+              double step) {
+             ProgramDeviationResult r;
+             {
+               py::gil_scoped_release release;
+               r = programDeviationFile(s, {program, intended, toolLengths, {step}});
+             }
+             return toPython(toJson(r));
+           })
       .def("compensate_program",
            [](const PythonMachine& s, const std::string& path, const std::map<int, double>& toolLengths, std::optional<double> tolerance,
-              std::optional<double> directionTolerance) {
+              std::optional<double> directionTolerance, const std::string& checkErrors) {
              ProgramCompensationRequest request;
              request.programFile = path;
              request.toolLengths = toolLengths;
+             request.checkErrorsFile = checkErrors;
              if (tolerance) request.options.tolerance = *tolerance;
              if (directionTolerance) request.options.directionTolerance = *directionTolerance;
              ProgramCompensationResult r;

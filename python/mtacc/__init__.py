@@ -355,17 +355,26 @@ class Machine:
         changes alone and added by them, as `mtacc stiffness --json` (values in um or urad)."""
         return self._core.stiffness(int(samples))
 
-    def compensate_program(self, path, tool_lengths=None, tolerance=None, direction_tolerance=None):
+    def compensate_program(self, path, tool_lengths=None, tolerance=None, direction_tolerance=None, check_errors=None):
         """The axis program (G-code) at `path` compensated for this machine's errors, as `mtacc compensate
         --json`, plus "gcode", the compensated program's text. tool_lengths: {H number: mm beyond the
         machine's tool} for G43 H<n>; tolerance (um) and direction_tolerance (urad): the deviation allowed
         between written points (default 0.1 um and 5 urad). "deviation_before" and "deviation_after": the
         TCP deviation from the program's nominal path on the machine with its errors, as written and
-        compensated."""
+        compensated; check_errors: an errors file of this machine (as measured again, or a simulation's
+        truth) both are also run on ("check")."""
         lengths = {int(k): float(v) for k, v in (tool_lengths or {}).items()}
         mm = None if tolerance is None else float(tolerance) * 1e-3
         rad = None if direction_tolerance is None else float(direction_tolerance) * 1e-6
-        return self._core.compensate_program(str(path), lengths, mm, rad)
+        return self._core.compensate_program(str(path), lengths, mm, rad, _text(check_errors))
+
+    def deviation(self, program, intended=None, tool_lengths=None, step=0.5):
+        """The program (G-code) run on this machine with its errors, against the nominal path of
+        `intended` (another program, at its closest point) or its own, as `mtacc deviation --json`:
+        largest and RMS TCP deviation (um), tool direction (urad), per feed block ("blocks", by line),
+        sampled every `step` mm of nominal TCP path (at least 4 a block)."""
+        lengths = {int(k): float(v) for k, v in (tool_lengths or {}).items()}
+        return self._core.deviation(str(program), _text(intended), lengths, float(step))
 
     def compensation_tables(self, nodes=(21, 21, 21), pose=None, functions=9, linuxcnc_type=1, check_program=None):
         """Controller tables for this machine, as `mtacc compensate --tables --json`: the correction grid

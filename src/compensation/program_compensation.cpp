@@ -11,40 +11,13 @@
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/forward.hpp"
+#include "tool_models.hpp"
 
 namespace mtacc {
 namespace {
 
 // How far along a move (in s) its direction of motion is taken just before or after a point.
 constexpr double kSide = 1e-9;
-
-struct Models {
-  KinematicModel actual, nominal;
-};
-
-// The machine with the tool of the given length (mm beyond the machine file's TCP, along the tool).
-// The machine and its errors with the tool of each length met, compiled once.
-class ToolModels {
- public:
-  ToolModels(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors) : machine_(machine), errors_(errors) {}
-  const Models& operator()(double toolLength) {
-    if (last_ != nullptr && last_->first == toolLength) return last_->second;  // a tool stays for many lines
-    auto it = cache_.find(toolLength);
-    if (it == cache_.end()) {
-      auto machine = std::make_shared<Machine>(*machine_);
-      machine->toolOffset -= toolLength * machine->toolDirection;
-      it = cache_.emplace(toolLength, Models{compile(machine, errors_), compileNominal(machine)}).first;
-    }
-    last_ = &*it;
-    return it->second;
-  }
-
- private:
-  std::shared_ptr<const Machine> machine_;
-  const ErrorModel& errors_;
-  std::map<double, Models> cache_;
-  const std::pair<const double, Models>* last_ = nullptr;  // the entry asked for last (map entries stay in place)
-};
 
 void lerp(const AxisPositions& a, const AxisPositions& b, double t, std::vector<double>& q) {
   q.resize(a.size());
@@ -283,7 +256,11 @@ std::string compensatedGcode(const Machine& m, const GcodeProgram& program, cons
   size_t line = 0;
   if (!program.lines.empty() && program.lines.front().kept.size() == 1 && program.lines.front().kept.front().starts_with('%'))
     g += program.lines[line++].kept.front() + "\n";
-  for (const auto& h : splitList(header, '\n')) fmt::format_to(out, "({})\n", h);
+  for (auto h : splitList(header, '\n')) {
+    std::replace(h.begin(), h.end(), '(', '[');  // a comment ends at the first ')': the machine's name may hold parentheses
+    std::replace(h.begin(), h.end(), ')', ']');
+    fmt::format_to(out, "({})\n", h);
+  }
   g += "G21 G90\n";
   size_t point = 1;  // points[0] is the start, not written
   double feed = -1.0;

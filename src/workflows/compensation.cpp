@@ -10,6 +10,7 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/compensation/heidenhain_tables.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/io/text_file.hpp"
 
 namespace mtacc {
@@ -21,7 +22,7 @@ ProgramCompensationResult compensateProgramFile(const MachineSetup& setup, const
   if (!(o.directionTolerance > 0 && o.directionTolerance <= 0.01))
     throw InputError({"", 0, "direction_tolerance"},
                      fmt::format("the direction tolerance must lie in (0, 10000] urad, not {} urad", o.directionTolerance * 1e6));
-  ProgramCompensationResult r{setup, {}, {}, {}, {}};
+  ProgramCompensationResult r{setup, {}, {}, {}, std::nullopt, {}};
   r.program = readGcodeProgram(request.programFile, *setup.machine, {{}, request.toolLengths});
   if (r.program.moves.empty()) throw InputError({request.programFile, static_cast<int>(r.program.lines.size()), "program"},
                      "the program ends without moving an axis: nothing to compensate");
@@ -30,6 +31,9 @@ ProgramCompensationResult compensateProgramFile(const MachineSetup& setup, const
     throw InputError({request.programFile, r.compensated.travelViolationLine, "travel"},
                      "the compensated commands leave the travel: " + r.compensated.travelViolation);
   r.deviation = programDeviation(setup.machine, setup.errors, r.program, r.compensated.points);
+  if (!request.checkErrorsFile.empty())
+    r.check = ProgramCompensationResult::Check{request.checkErrorsFile,
+               programDeviation(setup.machine, loadErrors(*setup.machine, request.checkErrorsFile), r.program, r.compensated.points)};
   const auto& d = r.deviation;
   const std::string header = fmt::format(
       "mtacc: {} compensated for {} and its errors ({} non-zero parameters)\n"
@@ -63,7 +67,10 @@ nlohmann::json toJson(const ProgramCompensationResult& r) {
           {"singular", c.singular},
           {"first_problem_line", c.firstProblemLine},
           {"deviation_before", deviation(r.deviation.before)},
-          {"deviation_after", deviation(r.deviation.after)}};
+          {"deviation_after", deviation(r.deviation.after)},
+          {"check", r.check ? nlohmann::json{{"errors", r.check->errorsFile}, {"deviation_before", deviation(r.check->deviation.before)},
+                                             {"deviation_after", deviation(r.check->deviation.after)}}
+                            : nlohmann::json(nullptr)}};
 }
 
 namespace {

@@ -22,6 +22,9 @@ struct ProgramCompensationRequest {
   std::string programFile;
   std::map<int, double> toolLengths;  // G43 H<n>: mm beyond the machine file's tool
   ProgramCompensationOptions options;
+  // An errors file of the same machine (e.g. as measured again, or a simulation's truth) the
+  // program, as written and compensated, is also run on; "" for none.
+  std::string checkErrorsFile;
 };
 
 struct ProgramCompensationResult {
@@ -29,6 +32,11 @@ struct ProgramCompensationResult {
   GcodeProgram program;
   CompensatedProgram compensated;
   ProgramDeviation deviation;  // the program as written and compensated, on the machine with its errors
+  struct Check {
+    std::string errorsFile;
+    ProgramDeviation deviation;  // the same on that file's errors
+  };
+  std::optional<Check> check;
   std::string gcode;  // the compensated program
 };
 

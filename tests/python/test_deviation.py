@@ -1,0 +1,101 @@
+"""Issue 45, part 1: a program evaluated on any error model (`mtacc deviation`, Python
+Machine.deviation) and a compensation checked against a model other than the one that made it
+(`compensate --check-errors`)."""
+import json
+import re
+import subprocess
+
+import numpy as np
+import pytest
+
+import mtacc
+
+ERRORS = """errors:
+  X0C: 6 um
+  Y0C: -4 um
+  A0C: 25 urad
+  B0C: -15 urad
+  Z0B: 8 um
+  C0B: 20 urad
+  EXX: {linear: {over: 200 mm, value: 4 um}}
+  EYB: {linear: {over: 90 deg, value: 3 um}}
+"""
+
+
+def run(cli, *args):
+    return json.loads(subprocess.run([cli, *args, "--json"], check=True, capture_output=True, text=True).stdout)
+
+
+
+
+def axis_program(path):
+    """Each G1 line's axis positions (mm, deg) from a program that writes every axis on every line."""
+    rows = []
+    for line in path.read_text().splitlines():
+        words = dict(re.findall(r"([XYZBC])(-?[\d.]+)", line))
+        if re.search(r"\bG0?1\b", line) and len(words) == 5:
+            rows.append([float(words[a]) for a in "XYZBC"])
+    return np.array(rows)
+
+
+def test_a_program_on_a_model_is_what_the_python_model_gives_block_by_block(cli, tmp_path):
+    # The cone program on the tilting table with errors, against its own nominal path: each
+    # block's largest TCP deviation is the largest of the Python module's TCP errors at the same
+    # places (a step of 100 mm takes 4 samples a block, at 1/8, 3/8, 5/8, 7/8 of it), with the
+    # axes' directions of motion for the reversal errors.
+    (tmp_path / "errors.yaml").write_text(ERRORS)
+    subprocess.run([cli, "cone", "tilting-table", "--gcode", str(tmp_path / "cone.nc")], check=True, capture_output=True)
+    result = run(cli, "deviation", "tilting-table", "--program", str(tmp_path / "cone.nc"), "--errors", str(tmp_path / "errors.yaml"),
+                 "--step", "100")
+    machine = mtacc.Machine("tilting-table", errors=tmp_path / "errors.yaml")
+    assert machine.deviation(tmp_path / "cone.nc", step=100) == result
+    q = axis_program(tmp_path / "cone.nc")
+    blocks = {b["line"]: b for b in result["blocks"]}
+    lines = [i + 1 for i, line in enumerate((tmp_path / "cone.nc").read_text().splitlines()) if re.search(r"\bG0?1\b", line)]
+    held = np.sign(q[1] - q[0]).astype(int)
+    names = list(machine.axis_names)
+    order = [names.index(a) for a in "XYZBC"]
+    compared = 0
+    for k in range(1, len(q)):
+        step = q[k] - q[k - 1]
+        held = np.where(np.abs(step) > 0, np.sign(step), held).astype(int)
+        s = np.array([0.125, 0.375, 0.625, 0.875])[:, None]
+        poses = np.zeros((4, len(names)))
+        poses[:, order] = q[k - 1] + s * step
+        directions = np.zeros((4, len(names)), dtype=int)
+        directions[:, order] = held
+        error = np.linalg.norm(machine.tcp_errors(poses, directions=directions)[:, :3], axis=1)
+        assert blocks[lines[k]]["max_position_um"] == pytest.approx(error.max(), rel=1e-9, abs=1e-9)
+        compared += 1
+    assert compared == len(q) - 1 and result["samples"] == 4 * len(result["blocks"])
+    assert result["max_position_um"] > 5
+
+
+def test_a_compensation_is_checked_on_the_machine_it_runs_on(cli, tmp_path):
+    # The program compensated with a model that misses the truth's EXX and Z0B, checked on the
+    # truth two ways: compensate --check-errors (the written points at their place on each move)
+    # and deviation --intended (the compensated program's path against the program's, at the
+    # closest point). Both see what the model missed; on the model itself almost nothing is left.
+    (tmp_path / "truth.yaml").write_text(ERRORS)
+    (tmp_path / "model.yaml").write_text("\n".join(line for line in ERRORS.splitlines() if "EXX" not in line and "Z0B" not in line) + "\n")
+    subprocess.run([cli, "cone", "tilting-table", "--gcode", str(tmp_path / "cone.nc")], check=True, capture_output=True)
+    compensated = run(cli, "compensate", "tilting-table", "--errors", str(tmp_path / "model.yaml"), "--program", str(tmp_path / "cone.nc"),
+                      "--gcode", str(tmp_path / "compensated.nc"), "--check-errors", str(tmp_path / "truth.yaml"))
+    check = compensated["check"]
+    assert check["errors"] == str(tmp_path / "truth.yaml")
+    assert compensated["deviation_after"]["max_position_um"] < 0.01
+    assert check["deviation_after"]["max_position_um"] > 2  # the missed EXX and Z0B
+    on_truth = run(cli, "deviation", "tilting-table", "--errors", str(tmp_path / "truth.yaml"), "--program", str(tmp_path / "compensated.nc"),
+                   "--intended", str(tmp_path / "cone.nc"))
+    on_model = run(cli, "deviation", "tilting-table", "--errors", str(tmp_path / "model.yaml"), "--program", str(tmp_path / "compensated.nc"),
+                   "--intended", str(tmp_path / "cone.nc"))
+    # The closest point is never farther than the same place on the move; the written program's
+    # 10 nm and 1e-5 deg rounding adds a few hundredths of a micrometre.
+    assert on_truth["max_position_um"] <= check["deviation_after"]["max_position_um"] + 0.05
+    assert on_truth["max_position_um"] > 0.5 * check["deviation_after"]["max_position_um"]
+    assert on_model["max_position_um"] < 0.05
+    assert on_model["instant_blocks"] == on_truth["instant_blocks"]
+    # The missed errors' own effect: the uncompensated program on a machine with only them.
+    (tmp_path / "missed.yaml").write_text("errors:\n  Z0B: 8 um\n  EXX: {linear: {over: 200 mm, value: 4 um}}\n")
+    missed = run(cli, "deviation", "tilting-table", "--errors", str(tmp_path / "missed.yaml"), "--program", str(tmp_path / "cone.nc"))
+    assert on_truth["max_position_um"] == pytest.approx(missed["max_position_um"], rel=0.1)
