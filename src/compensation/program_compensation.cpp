@@ -29,6 +29,7 @@ class Compensator {
   Compensator(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
               const ProgramCompensationOptions& options)
       : models_(machine, errors), program_(program), o_(options) {
+    for (int k = 0; k < machine->commandedCount(); ++k) rotary_.push_back(machine->axes[static_cast<size_t>(k)].isRotary());
     out_.largestCorrection.assign(static_cast<size_t>(machine->commandedCount()), 0.0);
     correction_.assign(out_.largestCorrection.size(), 0.0);
     previousCorrection_ = correction_;
@@ -123,7 +124,7 @@ class Compensator {
     double from = 0.0;
     after_ = lastMotion_;
     move.heldMotion(std::min(kSide, 0.5), after_);
-    if (after_ != lastMotion_) out_.points.push_back(solve(index, move, 0.0, after_));
+    if (after_ != lastMotion_) pushStep(solve(index, move, 0.0, after_));
     for (const double to : ends_) {
       // Arcs start as chords within the tolerance (sagitta r (1 - cos(angle / 2))), then halve.
       int pieces = 1;
@@ -144,14 +145,26 @@ class Compensator {
       if (to < 1.0) {
         after_ = before_;
         move.heldMotion(to + std::min(kSide, 0.5 * (1.0 - to)), after_);
-        out_.points.push_back(solve(index, move, to, after_));
+        pushStep(solve(index, move, to, after_));
         lastMotion_ = after_;
       }
       from = to;
     }
   }
 
+  // A step at a reversal is written only where the reversal errors move the commands by what
+  // the program's five decimals (mm, deg) show: without them it would be a block of no length.
+  void pushStep(CompensatedPoint step) {
+    const auto& last = out_.points.back().q;
+    for (size_t k = 0; k < step.q.size(); ++k)
+      if (std::abs(step.q[k] - last[k]) >= 0.5e-5 * (rotary_[k] ? kDeg : 1.0)) {
+        out_.points.push_back(std::move(step));
+        return;
+      }
+  }
+
   ToolModels models_;
+  std::vector<bool> rotary_;  // per commanded axis
   const GcodeProgram& program_;
   const ProgramCompensationOptions& o_;
   CompensatedProgram out_;

@@ -99,3 +99,23 @@ def test_a_compensation_is_checked_on_the_machine_it_runs_on(cli, tmp_path):
     (tmp_path / "missed.yaml").write_text("errors:\n  Z0B: 8 um\n  EXX: {linear: {over: 200 mm, value: 4 um}}\n")
     missed = run(cli, "deviation", "tilting-table", "--errors", str(tmp_path / "missed.yaml"), "--program", str(tmp_path / "cone.nc"))
     assert on_truth["max_position_um"] == pytest.approx(missed["max_position_um"], rel=0.1)
+
+
+def test_a_machine_without_reversal_errors_gets_no_steps(cli, tmp_path):
+    # Issue 45, part 5: a step is written where an axis reverses only when the reversal errors
+    # move the commands; without them the compensated program has one line per block, each with
+    # its N number and its own end point, and no block of no length.
+    (tmp_path / "location.yaml").write_text("errors:\n  X0C: 6 um\n  Y0C: -4 um\n  A0C: 25 urad\n")
+    (tmp_path / "reversal.yaml").write_text("errors:\n  X0C: 6 um\n  EXX: {reversal: 3 um}\n")
+    subprocess.run([cli, "cone", "tilting-table", "--gcode", str(tmp_path / "cone.nc")], check=True, capture_output=True)
+    motion = lambda path: [line for line in path.read_text().splitlines() if re.search(r"\bG0?1\b", line)]
+    for errors, steps in (("location", False), ("reversal", True)):
+        out = tmp_path / f"{errors}.nc"
+        subprocess.run([cli, "compensate", "tilting-table", "--errors", str(tmp_path / f"{errors}.yaml"), "--program", str(tmp_path / "cone.nc"),
+                        "--gcode", str(out)], check=True, capture_output=True)
+        written = motion(out)
+        axes = [re.sub(r"^N\d+ |F\d+", "", line).strip() for line in written]
+        assert all(a != b for a, b in zip(axes, axes[1:]))  # no block of no length
+        numbers = [line.split()[0] for line in written if line.startswith("N")]
+        assert numbers == [line.split()[0] for line in motion(tmp_path / "cone.nc")]
+        assert (len(written) > len(numbers)) == steps
