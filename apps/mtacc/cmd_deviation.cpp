@@ -29,6 +29,11 @@ void run(DeviationOptions& o) {
                        d.instantBlocks ? fmt::format(" ({} blocks of under 10 um passed in an instant, not sampled)", d.instantBlocks) : "");
   human += fmt::format("  TCP deviation   largest {:9.3f} um   rms {:9.3f} um\n", d.total.maxPosition * 1e3, d.total.rmsPosition * 1e3);
   human += fmt::format("  tool direction  largest {:9.3f} urad\n", d.total.maxDirection * 1e6);
+  if (!j["uncertainty_k2_max_um"].is_null()) {
+    const auto u = j["uncertainty_k2_max_um"].get<std::vector<double>>();
+    human += fmt::format("  what the model does not know of the TCP (k = 2, from its identification's covariance), largest: "
+                         "{:.3f} {:.3f} {:.3f} um (x y z)\n", u[0], u[1], u[2]);
+  }
   human += "  largest at lines:";
   for (const auto& line : j["worst_blocks"]) human += fmt::format(" {}", line.get<int>());
   human += "\n";

@@ -25,6 +25,7 @@
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/identified_errors.hpp"
 #include "mtacc/workflows/program_deviation.hpp"
+#include "mtacc/workflows/tcp_uncertainty.hpp"
 #include "mtacc/workflows/kinematics_batch.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
 #include "mtacc/workflows/plates.hpp"
@@ -399,6 +400,18 @@ PYBIND11_MODULE(_mtacc, mod) {
              j["contents"] = nlohmann::json::object();
              for (const auto& [name, content] : r.files) j["contents"][name] = content;
              return toPython(j);
+           })
+      .def("tcp_uncertainty",
+           [](const PythonMachine& s, const Array& q) {
+             const auto poses = joints(*s.machine, q);
+             std::vector<Vec3> u;
+             {
+               py::gil_scoped_release release;
+               u = tcpUncertainty(s, poses);
+             }
+             Eigen::MatrixXd out(static_cast<Eigen::Index>(u.size()), 3);
+             for (size_t i = 0; i < u.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = u[i].transpose();
+             return toArray(out, 1e3);
            })
       .def("deviation",
            [](const PythonMachine& s, const std::string& program, const std::string& intended, const std::map<int, double>& toolLengths,

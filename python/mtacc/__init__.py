@@ -368,6 +368,13 @@ class Machine:
         rad = None if direction_tolerance is None else float(direction_tolerance) * 1e-6
         return self._core.compensate_program(str(path), lengths, mm, rad, _text(check_errors))
 
+    def tcp_uncertainty(self, q):
+        """(n, 3): the standard uncertainty (k = 1) of the TCP position [um] along x, y, z of the workpiece
+        frame that this model's identification leaves (its errors file's covariance, first order
+        through the parameter Jacobian): after compensating with it, what is not known of the residual.
+        q: one pose (axes,) or many (n, axes) [mm, deg]. Raises InputError for errors no identification wrote."""
+        return self._core.tcp_uncertainty(self._q(q))
+
     def deviation(self, program, intended=None, tool_lengths=None, step=0.5):
         """The program (G-code) run on this machine with its errors, against the nominal path of
         `intended` (another program, at its closest point) or its own, as `mtacc deviation --json`:

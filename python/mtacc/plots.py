@@ -131,6 +131,26 @@ def volumetric_error_map(machine, plane=("X", "Y"), fixed=None, samples=41, retu
     return fig, {"u": u, "v": v, "errors": err.reshape(shape + (6,)), "magnitude": magnitude, "pose": pose}
 
 
+def uncertainty_map(machine, plane=("X", "Y"), fixed=None, samples=31):
+    """What an identified model does not know of the TCP over a plane of two linear axes (as
+    volumetric_error_map): the k = 2 uncertainty 2 sqrt(u_x² + u_y² + u_z²) [µm] its
+    identification's covariance leaves (Machine.tcp_uncertainty), which after compensating with
+    the model bounds the residual."""
+    q, u, v, base = _plane_grid(machine, plane, fixed, samples)
+    names = machine.axis_names
+    i, j = names.index(plane[0]), names.index(plane[1])
+    k2 = 2 * np.linalg.norm(machine.tcp_uncertainty(q), axis=1).reshape(len(v), len(u))
+    fig, ax = plt.subplots(figsize=(6.4, 5.0))
+    mesh = ax.imshow(k2, origin="lower", extent=(u[0], u[-1], v[0], v[-1]), cmap="magma", interpolation="bilinear", aspect="equal")
+    fig.colorbar(mesh, ax=ax, label="TCP uncertainty, k = 2 [µm]")
+    others = ", ".join(f"{n}={b:g}" for k, (n, b) in enumerate(zip(names, base)) if k not in (i, j))
+    ax.set_title(f"Uncertainty of the compensated TCP over {plane[0]}-{plane[1]} ({others})", fontsize=9)
+    ax.set_xlabel(f"{plane[0]} [mm]")
+    ax.set_ylabel(f"{plane[1]} [mm]")
+    fig.tight_layout()
+    return fig
+
+
 def _relative_errors(machine, plane, fixed, reference, samples):
     """TCP errors over a plane grid minus the error at `reference` (the two axes; default their
     travel start): (errors, u, v, base, reference pose)."""

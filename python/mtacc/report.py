@@ -634,8 +634,20 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
         angle = 30.0 if tilt["travel"][0] <= 30.0 <= tilt["travel"][1] else tilt["travel"][0]
         maps += figure(plots.volumetric_error_map(machine, ("X", "Y"), fixed={tilt["name"]: angle}),
                        f'TCP position error over the X-Y plane with {tilt["name"]} = {angle:g}°')
-    step("volumetric error maps")
     parts.append("<h2>Volumetric error maps</h2>" + maps)
+    try:
+        machine.tcp_uncertainty([0.0] * len(machine.axis_names))
+        known = True
+    except InputError:  # errors that no identification wrote: no covariance
+        known = False
+    if known and {"X", "Y"} <= set(linear):
+        parts.append("<h2>What the identified model does not know</h2><p>The covariance of the identified parameters (the errors "
+                     "file's record) carried to the TCP, first order: after compensating with this model, the residual lies "
+                     "within this k = 2 bound at about 95 % of the positions (tests/python/test_compensation_uncertainty.py).</p>"
+                     + figure(plots.uncertainty_map(machine, ("X", "Y")), "k = 2 uncertainty of the TCP over the X-Y plane")
+                     + (figure(plots.uncertainty_map(machine, ("X", "Z")), "k = 2 uncertainty of the TCP over the X-Z plane")
+                        if "Z" in linear else ""))
+    step("volumetric error maps")
     parts.append(circle_test(machine))
     step("circular test")
     parameters = set(machine.errors.names())

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "mtacc/workflows/tcp_uncertainty.hpp"
+
 namespace mtacc {
 namespace {
 
@@ -18,12 +20,22 @@ GcodeProgram programWithFeedMoves(const std::string& file, const Machine& machin
 }  // namespace
 
 ProgramDeviationResult programDeviationFile(const MachineSetup& setup, const ProgramDeviationRequest& request) {
-  ProgramDeviationResult r{setup, programWithFeedMoves(request.programFile, *setup.machine, request.toolLengths), std::nullopt, {}};
+  ProgramDeviationResult r{setup, programWithFeedMoves(request.programFile, *setup.machine, request.toolLengths), std::nullopt, {}, {}};
   if (!request.intendedFile.empty()) r.intended = programWithFeedMoves(request.intendedFile, *setup.machine, request.toolLengths);
   try {
     r.deviation = programPathDeviation(setup.machine, setup.errors, r.program, r.intended ? &*r.intended : nullptr, request.options);
   } catch (const std::invalid_argument& e) {  // both programs have feed moves: the step is what is wrong
     throw InputError({"", 0, "step"}, fmt::format("{}, not {:g} mm", e.what(), request.options.step));
+  }
+  if (setup.covariance) {
+    std::map<int, const GcodeMove*> byLine;
+    for (const auto& m : r.program.moves) byLine[m.line] = &m;
+    JointMatrix ends(static_cast<Eigen::Index>(r.deviation.blocks.size()), setup.machine->commandedCount());
+    for (size_t b = 0; b < r.deviation.blocks.size(); ++b) {
+      const auto& to = byLine.at(r.deviation.blocks[b].line)->to;
+      for (size_t k = 0; k < to.size(); ++k) ends(static_cast<Eigen::Index>(b), static_cast<Eigen::Index>(k)) = to[k];
+    }
+    r.uncertainty = tcpUncertainty(setup, ends);
   }
   if (r.deviation.total.samples == 0)
     throw InputError({request.programFile, static_cast<int>(r.program.lines.size()), "program"},
@@ -33,9 +45,17 @@ ProgramDeviationResult programDeviationFile(const MachineSetup& setup, const Pro
 
 nlohmann::json toJson(const ProgramDeviationResult& r) {
   const auto& d = r.deviation;
+  const auto k2 = [](const Vec3& u) { return nlohmann::json::array({2e3 * u.x(), 2e3 * u.y(), 2e3 * u.z()}); };
   nlohmann::json blocks = nlohmann::json::array();
-  for (const auto& b : d.blocks)
+  Vec3 largest = Vec3::Zero();
+  for (size_t k = 0; k < d.blocks.size(); ++k) {
+    const auto& b = d.blocks[k];
     blocks.push_back({{"line", b.line}, {"max_position_um", b.maxPosition * 1e3}, {"max_direction_urad", b.maxDirection * 1e6}, {"samples", b.samples}});
+    if (!r.uncertainty.empty()) {
+      blocks.back()["uncertainty_k2_um"] = k2(r.uncertainty[k]);
+      largest = largest.cwiseMax(r.uncertainty[k]);
+    }
+  }
   std::vector<const BlockDeviation*> worst;
   for (const auto& b : d.blocks) worst.push_back(&b);
   std::sort(worst.begin(), worst.end(), [](const auto* a, const auto* b) { return a->maxPosition > b->maxPosition; });
@@ -52,6 +72,7 @@ nlohmann::json toJson(const ProgramDeviationResult& r) {
           {"max_direction_urad", d.total.maxDirection * 1e6},
           {"intended_length_mm", r.intended ? nlohmann::json(d.intendedLength) : nlohmann::json(nullptr)},
           {"worst_blocks", worstLines},
+          {"uncertainty_k2_max_um", r.uncertainty.empty() ? nlohmann::json(nullptr) : k2(largest)},
           {"blocks", blocks}};
 }
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "mtacc/io/recorded_signal.hpp"
-#include "mtacc/kinematics/jacobian.hpp"
+#include "mtacc/workflows/tcp_uncertainty.hpp"
 
 namespace mtacc {
 
@@ -36,20 +36,6 @@ AlignedTest alignedTest(const MachineSetup& setup, const DecompositionSet& set, 
     throw InputError({offset ? recorded.encoder : recorded.instrument, offset ? encoderFile.headerLine : instrumentFile.headerLine, "time_s"},
                      e.what());
   }
-}
-
-// The standard uncertainty of delta_l at each pose: J Sigma J^T's diagonal, J the TCP's
-// derivative (workpiece frame) with respect to the parameters whose covariance is known.
-std::vector<Vec3> linkUncertainty(const MachineSetup& setup, const JointMatrix& poses) {
-  const auto& c = *setup.covariance;
-  const KinematicModel model = compile(setup.machine, setup.errors, c.parameters);
-  KinematicData data;
-  std::vector<Vec3> out(static_cast<size_t>(poses.rows()));
-  for (Eigen::Index i = 0; i < poses.rows(); ++i) {
-    const auto& j = pointJacobian(model, poses.row(i).data(), nullptr, Vec3::Zero(), data).jacobian;
-    out[static_cast<size_t>(i)] = (j * c.covariance * j.transpose()).diagonal().cwiseMax(0.0).cwiseSqrt();
-  }
-  return out;
 }
 
 }  // namespace
@@ -104,7 +90,7 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
           recorded.feed, a.instrumentSpikes.size(), recorded.instrument,
           fmt::join(a.instrumentSpikes.begin(), a.instrumentSpikes.begin() + static_cast<std::ptrdiff_t>(std::min<size_t>(5, a.instrumentSpikes.size())), ", "),
           a.instrumentSpikes.size() > 5 ? ", ..." : ""));
-    if (setup.covariance) out.linkUncertainty.push_back(directionStatistics(linkUncertainty(setup, aligned.encoderPoses)));
+    if (setup.covariance) out.linkUncertainty.push_back(directionStatistics(tcpUncertainty(setup, aligned.encoderPoses)));
     tests.push_back(std::move(aligned.test));
     out.alignment.push_back(aligned.alignment);
   }

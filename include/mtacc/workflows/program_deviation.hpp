@@ -26,12 +26,16 @@ struct ProgramDeviationResult {
   GcodeProgram program;
   std::optional<GcodeProgram> intended;
   ProgramPathDeviation deviation;
+  // With an identified errors file: at each sampled block's end, the standard uncertainty (k = 1,
+  // mm, x y z) of the TCP the model gives, which after compensating with it is what is not known
+  // of the residual; empty otherwise.
+  std::vector<Vec3> uncertainty;
 };
 
 // Throws InputError naming the file and line of bad G-code, a program without feed moves, or
 // the option ("step") out of range.
 ProgramDeviationResult programDeviationFile(const MachineSetup& setup, const ProgramDeviationRequest& request);
-// um and urad; blocks by line, the worst first among `worstBlocks`.
+// um and urad; blocks by line, the worst first among `worst_blocks`; the uncertainty with k = 2.
 nlohmann::json toJson(const ProgramDeviationResult& result);
 
 }  // namespace mtacc
