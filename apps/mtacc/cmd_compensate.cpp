@@ -146,6 +146,8 @@ void run(const CompensateOptions& o) {
                          k.before.rmsPosition * 1e3, k.before.maxDirection * 1e6);
     human += fmt::format("  compensated  largest {:9.3f} um  rms {:9.3f} um  tool direction {:9.3f} urad\n", k.after.maxPosition * 1e3,
                          k.after.rmsPosition * 1e3, k.after.maxDirection * 1e6);
+    if (!r.check->notInModel.empty())
+      human += fmt::format("  not in the compensating model: {}\n", fmt::join(r.check->notInModel, " "));
   }
   if (c.singular > 0)
     human += fmt::format("{} points near a singular orientation (first at line {}): their position is corrected, their direction not\n",

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iterator>
+#include <set>
 #include <thread>
 
 #include "mtacc/core/input_error.hpp"
@@ -31,9 +32,14 @@ ProgramCompensationResult compensateProgramFile(const MachineSetup& setup, const
     throw InputError({request.programFile, r.compensated.travelViolationLine, "travel"},
                      "the compensated commands leave the travel: " + r.compensated.travelViolation);
   r.deviation = programDeviation(setup.machine, setup.errors, r.program, r.compensated.points);
-  if (!request.checkErrorsFile.empty())
-    r.check = ProgramCompensationResult::Check{request.checkErrorsFile,
-               programDeviation(setup.machine, loadErrors(*setup.machine, request.checkErrorsFile), r.program, r.compensated.points)};
+  if (!request.checkErrorsFile.empty()) {
+    const ErrorModel other = loadErrors(*setup.machine, request.checkErrorsFile);
+    r.check = ProgramCompensationResult::Check{request.checkErrorsFile, programDeviation(setup.machine, other, r.program, r.compensated.points), {}};
+    std::set<std::string> modelled;
+    for (const auto& p : nonZeroParameters(*setup.machine, setup.errors)) modelled.insert(p.name);
+    for (const auto& p : nonZeroParameters(*setup.machine, other))
+      if (!modelled.contains(p.name)) r.check->notInModel.push_back(p.name);
+  }
   const auto& d = r.deviation;
   const std::string header = fmt::format(
       "mtacc: {} compensated for {} and its errors ({} non-zero parameters)\n"
@@ -69,7 +75,7 @@ nlohmann::json toJson(const ProgramCompensationResult& r) {
           {"deviation_before", deviation(r.deviation.before)},
           {"deviation_after", deviation(r.deviation.after)},
           {"check", r.check ? nlohmann::json{{"errors", r.check->errorsFile}, {"deviation_before", deviation(r.check->deviation.before)},
-                                             {"deviation_after", deviation(r.check->deviation.after)}}
+                                             {"deviation_after", deviation(r.check->deviation.after)}, {"not_in_model", r.check->notInModel}}
                             : nlohmann::json(nullptr)}};
 }
 

@@ -34,7 +34,8 @@ struct ProgramCompensationResult {
   ProgramDeviation deviation;  // the program as written and compensated, on the machine with its errors
   struct Check {
     std::string errorsFile;
-    ProgramDeviation deviation;  // the same on that file's errors
+    ProgramDeviation deviation;       // the same on that file's errors
+    std::vector<std::string> notInModel;  // its non-zero errors that the compensating model holds at zero
   };
   std::optional<Check> check;
   std::string gcode;  // the compensated program
