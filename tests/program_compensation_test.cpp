@@ -183,6 +183,17 @@ TEST(ProgramCompensation, AnAxisStandingKeepsTheSideItLastMovedTo) {
   EXPECT_NEAR(std::abs(solvedWith({0, 1, 0}) - solvedWith({1, 1, 0})), 1e-3, 1e-6);
 }
 
+// Issue 47: block numbers as far as SINUMERIK and HEIDENHAIN count them (2^31 - 1), kept as
+// written on the compensated block's line.
+TEST(GcodeReader, BlockNumbersRunAsFarAsTheControllersCount) {
+  const auto setup = bundledSetup("three-axis-vertical");
+  const auto p = parseGcodeProgram("N99990 G0 X10 Y10 Z50\nN100010 G1 X20 F300\nN2147483647 G1 X30\n", "numbered.nc", *setup.machine);
+  const std::string out = compensatedGcode(*setup.machine, p, compensateProgram(setup.machine, setup.errors, p), "header");
+  for (const char* number : {"\nN99990 G0 X", "\nN100010 G1 X", "\nN2147483647 G1 X"}) EXPECT_NE(out.find(number), std::string::npos) << out;
+  EXPECT_THROW(parseGcodeProgram("N2147483648 G0 X10\n", "numbered.nc", *setup.machine), InputError);
+  EXPECT_THROW(parseGcodeProgram("G0 X100001\n", "numbered.nc", *setup.machine), InputError);  // an axis word keeps its bound
+}
+
 TEST(GcodeReader, KeptWordsAndCommentsStayInPlace) {
   const auto setup = bundledSetup("three-axis-vertical");
   const auto p = parseGcodeProgram("%\nO100 (part 7)\nN10 G0 X10 Y10 Z10 M3 S1000\nN20 G1 X20 F300 M30 ; end\n%\n", "kept.nc", *setup.machine);

@@ -20,6 +20,7 @@ namespace {
 
 constexpr double kInch = 25.4;        // mm
 constexpr double kLargestWord = 1e5;  // mm, deg or mm/min: beyond any machine's travel or feed
+constexpr double kLargestNumber = 2147483647.0;  // N and O words
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 struct Word {
@@ -120,7 +121,9 @@ class LineReader {
         const std::string_view number = text.substr(j, length);
         if (!value || !std::isfinite(*value))
           fail(std::string(1, letter), fmt::format("'{}' is not a word: a letter must be followed by a number", text.substr(i, std::max(end, i + 1) - i)));
-        if (std::abs(*value) > kLargestWord) fail(std::string(1, letter), fmt::format("{}{} is beyond {:g}", letter, number, kLargestWord));
+        // Block and program numbers run as far as the controllers count (SINUMERIK, HEIDENHAIN: 2^31 - 1).
+        const double largest = letter == 'N' || letter == 'O' ? kLargestNumber : kLargestWord;
+        if (std::abs(*value) > largest) fail(std::string(1, letter), fmt::format("{}{} is beyond {:.15g}", letter, number, largest));
         out.push_back({false, text.substr(i, end - i), {letter, *value, text.substr(i, end - i)}});
         i = end;
       } else {
