@@ -124,3 +124,22 @@ def test_check_warns_of_a_head_without_its_spindle(cli, tmp_path):
                      "  Z: {direction: [0, 0, 1], travel: [-200 mm, 600 mm]}\n"
                      "  C: {direction: [0, 0, 1], location: [0 mm, 0 mm, 0 mm], travel: continuous}\n")
     assert json.loads(run(cli, "check", along, "--json"))["warnings"] == []
+
+
+def test_degrees_of_freedom_and_sigma_on_a_small_problem(tmp_path):
+    # Issue 52: with readings ~ 2 x unknowns the degrees of freedom (readings less unknowns) and
+    # sigma (the residuals' sum of squares over them) show. 6 poses x 3 directions = 18 readings;
+    # 4 parameters and the sphere's 3 set-up unknowns.
+    import numpy as np
+    (tmp_path / "small.yaml").write_text(
+        "name: one sphere, six C positions\nparameters: [X0C, Y0C, A0C, B0C]\nruns:\n"
+        "  - name: c\n    sphere: {axis: C, from: 0 deg, to: 300 deg, points: 6, spheres: [[120 mm, 0 mm, 60 mm]]}\n"
+        "    estimate: [xW, yW, zW]\n")
+    m = mtacc.Machine("tilting-table")
+    m.simulate(tmp_path / "small.yaml", noise="0.5 um", seed=3, output_dir=tmp_path / "runs")
+    r = m.identify(sorted((tmp_path / "runs").glob("*.csv")), plan=tmp_path / "small.yaml")
+    assert r["readings"] == 18 and len(r["estimates"]) == 7
+    assert r["degrees_of_freedom"] == 11
+    squares = sum(float(np.sum(np.square(run["residuals_um"]))) for run in r["run_residuals"])
+    assert r["sigma_um"] == pytest.approx(np.sqrt(squares / 11), rel=1e-9)
+    assert r["quality"]["chi_square"] == pytest.approx(squares / 0.5 ** 2, rel=1e-9)
