@@ -64,6 +64,8 @@ void emitTables(const CompensateOptions& o, const CompensationTablesResult& r) {
                                                         : "TwinCAT/ISG volumetric model";
     human += fmt::format("  {:<30} {:9.3f} ({:.3f})   carries {}\n", label, res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
                          t["carries"].get<std::string>());
+    if (t.contains("not_carried"))
+      for (const auto& left : t["not_carried"]) human += fmt::format("  {:<30} not carried: {}\n", "", left.get<std::string>());
     if (t.contains("along_program"))
       human += fmt::format("  {:<30} {:9.3f} ({:.3f})   along {} (uncorrected {:.3f})\n", "", t["along_program"]["after_max_um"].get<double>(),
                            t["along_program"]["after_rms_um"].get<double>(), o.checkProgram, t["along_program"]["before_max_um"].get<double>());

@@ -400,8 +400,9 @@ def compensation_section(result):
            "and the error a controller applying each table leaves, over the nodes and the midpoints between them "
            "(`mtacc compensate --tables` writes the files).</p>")
     out += figure(plots.compensation_residuals(result), "TCP position error left by each table")
-    out += table(["table", "largest [µm]", "RMS [µm]", "carries"],
-                 [[t["format"], f"{t['residual']['after_max_um']:.3f}", f"{t['residual']['after_rms_um']:.3f}", t["carries"]]
+    out += table(["table", "largest [µm]", "RMS [µm]", "carries", "not carried"],
+                 [[t["format"], f"{t['residual']['after_max_um']:.3f}", f"{t['residual']['after_rms_um']:.3f}", t["carries"],
+                   "; ".join(t.get("not_carried", [])) or "—"]
                   for t in result["tables"]], left=1)
     return out
 

@@ -53,7 +53,13 @@ std::vector<std::string> notCarried(const Machine& m, const ErrorModel& errors) 
         if (std::holds_alternative<ReversalTerm>(term) && std::get<ReversalTerm>(term).width != 0.0)
           reversal += (reversal.empty() ? "" : ", ") + motionErrorName(m, static_cast<int>(a), c);
     }
-    if (!m.axes[a].commanded() && moves) left.push_back(fmt::format("the errors of the spindle {}", m.axes[a].name));
+    if (!m.axes[a].commanded() && moves) {
+      std::vector<std::string> names;
+      for (const auto& p : nonZeroParameters(m, errors))
+        if (p.axis == static_cast<int>(a)) names.push_back(p.name);
+      left.push_back(fmt::format("the errors of the spindle {} ({}): the controller's chain ends at the last commanded axis",
+                                 m.axes[a].name, fmt::join(names, ", ")));
+    }
   }
   if (!reversal.empty()) left.push_back("the reversal terms of " + reversal + " (the tables have no direction of motion)");
   if (!errors.stiffness.empty())

@@ -175,3 +175,19 @@ def test_a_compensation_from_an_identified_model_holds_on_the_truth(cli, tmp_pat
     # Measured: 0.87 um left of 15.9 (k = 2 0.72 um, EXX 0.52 um) on the swivel head, 1.20 of 26.9 (0.98, 0.70) on the
     # double pivot head.
     assert left < 0.1 * check["deviation_before"]["max_position_um"]
+
+
+def test_what_a_controller_table_cannot_carry_is_named_where_its_residual_is_shown(cli, tmp_path):
+    # Issue 45: the TwinCAT/ISG model's chain ends at the last commanded axis, so a swivel head's
+    # spindle errors (the pivot length Z0C1) are left: said in the CLI table, the JSON and the report,
+    # not only inside isg-volcomp.csv; the residual is exactly that error.
+    from mtacc import report
+    (tmp_path / "head.yaml").write_text("errors:\n  X0B: 8 um\n  Z0C1: 15 um\n  A0B: 20 urad\n")
+    out = subprocess.run([cli, "compensate", "swivel-head-table", "--errors", str(tmp_path / "head.yaml"), "--tables", str(tmp_path / "t")],
+                         check=True, capture_output=True, text=True).stdout
+    assert "not carried: the errors of the spindle C1 (Z0C1)" in out
+    tables = mtacc.Machine("swivel-head-table", errors=tmp_path / "head.yaml").compensation_tables(nodes=(5, 5, 5))
+    isg = next(t for t in tables["tables"] if t["format"] == "isg-volumetric")
+    assert any("Z0C1" in left for left in isg["not_carried"])
+    assert isg["residual"]["after_max_um"] == pytest.approx(15.0, abs=1e-6)
+    assert "the errors of the spindle C1 (Z0C1)" in report.compensation_section(tables)
