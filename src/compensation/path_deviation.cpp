@@ -69,7 +69,6 @@ IntendedPath sampledPath(ToolModels& models, const GcodeProgram& program, double
 struct Closest {
   double distance = std::numeric_limits<double>::infinity();
   size_t chord = 0;
-  double t = 0.0;
 };
 
 Closest closestOnChords(const IntendedPath& path, const Vec3& x, size_t from, size_t to) {
@@ -79,14 +78,14 @@ Closest closestOnChords(const IntendedPath& path, const Vec3& x, size_t from, si
     const double squared = d.squaredNorm();
     const double t = squared > 0.0 ? std::clamp((x - a).dot(d) / squared, 0.0, 1.0) : 0.0;
     const double distance = (a + t * d - x).norm();
-    if (distance < best.distance) best = {distance, j, t};
+    if (distance < best.distance) best = {distance, j};
   }
   return best;
 }
 
-// The nearest point to x on the intended move between the ends of chord j (a chord's sagitta,
-// step^2 / 8R, would be counted as deviation): golden-section search on the distance over the
-// move's s, with the chord's nearest point's side as the start.
+// The nearest point to x on the intended move about chord j (a chord's sagitta, step^2 / 8R,
+// would be counted as deviation): golden-section search on the distance over the move's s, from
+// half a chord before its start to half a chord past its end.
 ToolPoint nearestOnMove(ToolModels& models, const IntendedPath& path, size_t j, const Vec3& x, std::vector<double>& q) {
   const GcodeMove& move = *path.moves[j + 1];
   const KinematicModel& nominal = models(move.toolLength).nominal;
