@@ -18,6 +18,7 @@
 #include "mtacc/io/cone_program.hpp"
 #include "mtacc/io/cubic_program.hpp"
 #include "mtacc/io/cubic_test_yaml.hpp"
+#include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/kinematics/inverse_with_errors.hpp"
 #include "mtacc/procedures/cone.hpp"
@@ -192,6 +193,21 @@ TEST(GcodeReader, BlockNumbersRunAsFarAsTheControllersCount) {
   for (const char* number : {"\nN99990 G0 X", "\nN100010 G1 X", "\nN2147483647 G1 X"}) EXPECT_NE(out.find(number), std::string::npos) << out;
   EXPECT_THROW(parseGcodeProgram("N2147483648 G0 X10\n", "numbered.nc", *setup.machine), InputError);
   EXPECT_THROW(parseGcodeProgram("G0 X100001\n", "numbered.nc", *setup.machine), InputError);  // an axis word keeps its bound
+}
+
+// Issue 52: the travel check of the compensated commands, stated directly (the corpus has a
+// case too). X's zero offset of -5 um moves every X command +5 um: a move ending at X's upper
+// limit (600 mm) is written beyond it, and the first such point's line is named; 5 um short of
+// the limit it stays inside.
+TEST(ProgramCompensation, ACompensatedCommandBeyondTravelIsFoundWithItsLine) {
+  const auto machine = test::bundled("three-axis-vertical");
+  const ErrorModel errors = parseErrors(*machine, "errors:\n  X0X: -5 um\n", "offset.yaml", ErrorsKey::Required);
+  const auto beyond = parseGcodeProgram("G0 X100 Y100 Z50\nG1 X300 F500\nG1 X600\n", "limit.nc", *machine);
+  const CompensatedProgram c = compensateProgram(machine, errors, beyond);
+  EXPECT_NE(c.travelViolation.find("X"), std::string::npos) << c.travelViolation;
+  EXPECT_EQ(c.travelViolationLine, 3);
+  const auto inside = parseGcodeProgram("G0 X100 Y100 Z50\nG1 X300 F500\nG1 X599.994\n", "limit.nc", *machine);
+  EXPECT_EQ(compensateProgram(machine, errors, inside).travelViolation, "");
 }
 
 TEST(GcodeReader, KeptWordsAndCommentsStayInPlace) {
