@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "mtacc/compensation/correction_tables.hpp"
+#include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/io/cone_program.hpp"
 #include "mtacc/io/gcode_program.hpp"
@@ -147,8 +148,9 @@ TEST(LinuxcncCompFile, TripletsWithinTheLimitAndTheControllerInterpolatesThem) {
   const OneAxisReduction r = reduceToOneAxisFunctions(grid, 9);
   const auto own = std::find_if(r.functions.begin(), r.functions.end(), [](const AxisFunction& f) { return f.input == 0 && f.output == 0; });
   ASSERT_NE(own, r.functions.end());
+  const ReversalTrims reversal = reversalTrims(setup.machine, setup.errors, grid, 0);
   for (int type : {0, 1}) {
-    std::istringstream file(linuxcncCompFile(*own, type));
+    std::istringstream file(linuxcncCompFile(*own, reversal, type));
     std::vector<std::array<double, 3>> triplets;
     std::string line;
     while (std::getline(file, line)) {
@@ -171,15 +173,65 @@ TEST(LinuxcncCompFile, TripletsWithinTheLimitAndTheControllerInterpolatesThem) {
       const auto upper = std::upper_bound(triplets.begin(), triplets.end(), p, [](double v, const auto& t) { return v < t[0]; });
       const auto& b = *std::min(upper, triplets.end() - 1);
       const auto& a = *(&b - 1);
-      const double trimA = type == 1 ? a[1] : a[1] - a[0], trimB = type == 1 ? b[1] : b[1] - b[0];
+      // The mean of the forward and reverse trims: the machine's EXX reversal (2 um) is symmetric.
+      const double trimA = (type == 1 ? a[1] + a[2] : a[1] + a[2] - 2 * a[0]) / 2, trimB = (type == 1 ? b[1] + b[2] : b[1] + b[2] - 2 * b[0]) / 2;
       const double trim = trimA + (p - a[0]) / (b[0] - a[0]) * (trimB - trimA);
       EXPECT_NEAR(trim, own->at(p), 2e-7);  // the file's 6 and 7 decimals
     }
+    // Issue 46: the forward and reverse columns differ by the reversal. EXX is +1 um moving
+    // forward; X carries the table, so the tool lands 1 um back on the workpiece and the forward
+    // correction is the larger.
+    for (const auto& t : triplets) EXPECT_NEAR(t[1] - t[2], 2e-3, 2e-7) << t[0];
   }
   AxisFunction tooLong = *own;
   tooLong.positions.resize(257, 0.0);
   tooLong.values.resize(257, 0.0);
-  EXPECT_NE(test::thrown<InputError>([&] { linuxcncCompFile(tooLong, 1); })->reason().find("at most 256"), std::string::npos);
+  EXPECT_NE(test::thrown<InputError>([&] { linuxcncCompFile(tooLong, reversal, 1); })->reason().find("at most 256"), std::string::npos);
+}
+
+// Issue 46's acceptance: a machine whose only errors are each axis's positioning error with a
+// reversal. Its LinuxCNC trims applied as LinuxCNC's motion controller applies them (the forward
+// column moving forward, the reverse column moving backward, linear between the entries) put the
+// TCP where the nominal machine puts it, moving either way, between the nodes too.
+TEST(LinuxcncCompFile, ForwardAndReverseTrimsCorrectTheReversalMovingEachWay) {
+  const auto machine = test::bundled("three-axis-vertical");
+  const ErrorModel errors = parseErrors(*machine,
+                                        "errors:\n  EXX: {linear: {value: 4 um, over: 600 mm}, reversal: 3 um}\n"
+                                        "  EYY: {reversal: 2 um}\n  EZZ: {linear: {value: -2 um, over: 500 mm}, reversal: 1.5 um}\n",
+                                        "reversals.yaml", ErrorsKey::Required);
+  const CorrectionGrid grid = correctionGrid(machine, errors, {{31, 21, 26}, {}});
+  OneAxisReduction own = reduceToOneAxisFunctions(grid, 9);
+  std::erase_if(own.functions, [](const AxisFunction& f) { return f.input != f.output; });
+  ASSERT_EQ(own.functions.size(), 3u);
+  std::array<std::vector<std::array<double, 3>>, 3> tables;
+  for (const auto& f : own.functions) {
+    std::istringstream file(linuxcncCompFile(f, reversalTrims(machine, errors, grid, f.input), 1));
+    std::array<double, 3> t{};
+    while (file >> t[0] >> t[1] >> t[2]) tables[static_cast<size_t>(f.input)].push_back(t);
+  }
+  auto trim = [&](int axis, double p, int direction) {
+    const auto& rows = tables[static_cast<size_t>(axis)];
+    const auto upper = std::upper_bound(rows.begin(), rows.end(), p, [](double v, const auto& t) { return v < t[0]; });
+    const auto& b = *std::min(upper, rows.end() - 1);
+    const auto& a = *(&b - 1);
+    const size_t column = direction > 0 ? 1 : 2;
+    return a[column] + (p - a[0]) / (b[0] - a[0]) * (b[column] - a[column]);
+  };
+  const KinematicModel actual = compile(machine, errors), nominal = compileNominal(machine);
+  std::mt19937 rng(5);
+  double largest = 0.0;
+  for (int s = 0; s < 300; ++s) {
+    std::vector<double> q(3), commanded(3);
+    std::vector<int> motion(3);
+    for (int a = 0; a < 3; ++a) {
+      q[static_cast<size_t>(a)] = std::uniform_real_distribution<double>(grid.node(a, 0), grid.node(a, grid.counts[static_cast<size_t>(a)] - 1))(rng);
+      motion[static_cast<size_t>(a)] = rng() % 2 ? 1 : -1;
+      commanded[static_cast<size_t>(a)] = q[static_cast<size_t>(a)] + trim(a, q[static_cast<size_t>(a)], motion[static_cast<size_t>(a)]);
+    }
+    largest = std::max(largest, (toolPoint(actual, commanded.data(), motion.data()).position - toolPoint(nominal, q.data()).position).norm());
+  }
+  RecordProperty("largest_um", std::to_string(largest * 1e3));
+  EXPECT_LT(largest, 1e-5);  // 0.01 um: the file's 7 decimals and the linear interpolation of a linear error
 }
 
 // Siemens CEC (840D sl function manual K3): per table $AN_CEC_INPUT_AXIS, _OUTPUT_AXIS, _STEP, _MIN,

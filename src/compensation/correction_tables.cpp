@@ -281,7 +281,30 @@ std::string correctionGridCsv(const Machine& machine, const CorrectionGrid& g) {
   return out;
 }
 
-std::string linuxcncCompFile(const AxisFunction& f, int type) {
+ReversalTrims reversalTrims(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& g, int axis) {
+  const KinematicModel actual = compile(machine, errors), nominal = compileNominal(machine);
+  const auto options = positionCorrectionOptions();
+  const auto own = static_cast<size_t>(g.axes[static_cast<size_t>(axis)]);
+  std::vector<double> q = g.pose;
+  for (int a = 0; a < 3; ++a) q[static_cast<size_t>(g.axes[static_cast<size_t>(a)])] = g.node(a, g.counts[static_cast<size_t>(a)] / 2);
+  std::vector<int> motion(q.size(), 0);
+  ErrorIkJacobian jacobian;
+  ReversalTrims out;
+  for (int n = 0; n < g.counts[static_cast<size_t>(axis)]; ++n) {
+    q[own] = g.node(axis, n);
+    const ToolPoint wanted = toolPoint(nominal, q.data());
+    auto corrected = [&](int direction) {
+      motion[own] = direction;
+      return refineWithErrors(actual, wanted.position, wanted.direction, q, options, jacobian, false, motion.data()).q[own];
+    };
+    const double standing = corrected(0);
+    out.forward.push_back(corrected(1) - standing);
+    out.reverse.push_back(corrected(-1) - standing);
+  }
+  return out;
+}
+
+std::string linuxcncCompFile(const AxisFunction& f, const ReversalTrims& reversal, int type) {
   if (f.input != f.output) throw InputError({"", 0, "table"}, "a LinuxCNC COMP_FILE holds an axis's correction as a function of its own command");
   if (static_cast<int>(f.positions.size()) > kLinuxcncLines)
     throw InputError({"", 0, "nodes"}, fmt::format("LinuxCNC takes at most {} lines per joint, not {}", kLinuxcncLines, f.positions.size()));
@@ -290,9 +313,9 @@ std::string linuxcncCompFile(const AxisFunction& f, int type) {
   std::string out;
   auto it = std::back_inserter(out);
   for (size_t n = 0; n < f.positions.size(); ++n) {
-    const double p = f.positions[n], trim = f.values[n];
-    if (type == 1) fmt::format_to(it, "{:.6f} {:.7f} {:.7f}\n", p, trim, trim);
-    else fmt::format_to(it, "{:.6f} {:.7f} {:.7f}\n", p, p + trim, p + trim);
+    const double p = f.positions[n], forward = f.values[n] + reversal.forward[n], reverse = f.values[n] + reversal.reverse[n];
+    if (type == 1) fmt::format_to(it, "{:.6f} {:.7f} {:.7f}\n", p, forward, reverse);
+    else fmt::format_to(it, "{:.6f} {:.7f} {:.7f}\n", p, p + forward, p + reverse);
   }
   return out;
 }

@@ -156,7 +156,8 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   r.files.emplace_back("siemens-lec.ini", siemensLecTables(r.ownAxes.functions));
   const char* names[3] = {"X", "Y", "Z"};
   for (const auto& f : r.ownAxes.functions)
-    r.files.emplace_back(fmt::format("linuxcnc-{}.comp", names[f.input]), linuxcncCompFile(f, request.linuxcncType));
+    r.files.emplace_back(fmt::format("linuxcnc-{}.comp", names[f.input]),
+                         linuxcncCompFile(f, reversalTrims(m, setup.errors, r.grid, f.input), request.linuxcncType));
   for (auto& file : heidenhainTables(r.oneAxis)) r.files.push_back(std::move(file));
   if (r.isg) {
     r.files.emplace_back("isg-volcomp.csv", isgCsv(*m, *r.isg));
@@ -199,7 +200,7 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
              {"carries", "each axis's correction of its own command (as LinuxCNC's); not the cross-axis terms"},
              {"residual", residualJson(r.ownAxesResidual)}},
             {{"format", "linuxcnc"}, {"files", "linuxcnc-X.comp, linuxcnc-Y.comp, linuxcnc-Z.comp"},
-             {"carries", "each axis's correction of its own command; not the cross-axis terms (squareness, straightness)"},
+             {"carries", "each axis's correction of its own command, moving forward and backward (its reversal); not the cross-axis terms (squareness, straightness)"},
              {"residual", residualJson(r.ownAxesResidual)}},
             {{"format", "heidenhain"}, {"files", heidenhainFiles},
              {"carries", "the one-axis functions above, one compensation-value table per input axis with a column per output axis"},

@@ -104,10 +104,20 @@ TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, 
 // The file forms, each stating its units, grid and what it cannot carry in its header.
 // Generic grid: CSV "x_mm,y_mm,z_mm,dx_mm,dy_mm,dz_mm", '#' comment lines first.
 std::string correctionGridCsv(const Machine& machine, const CorrectionGrid& grid);
+// What the reversal errors add to an axis's own correction with it moving forward and backward
+// (mm, at its grid nodes; the other two linear axes at their middle nodes, standing): the
+// corrections solved with the axis moving each way less the one solved standing.
+struct ReversalTrims {
+  std::vector<double> forward, reverse;
+};
+ReversalTrims reversalTrims(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid, int axis);
+
 // LinuxCNC [JOINT_n] COMP_FILE: "nominal forward reverse" per line (COMP_FILE_TYPE 1: trims,
 // the correction added to the command; 0: the positions nominal + trim), at most 256 lines.
-// From the function of the axis's own command; throws when it has more than 256 nodes.
-std::string linuxcncCompFile(const AxisFunction& function, int type);
+// From the function of the axis's own command and its reversal trims (LinuxCNC applies the
+// forward column moving forward, the reverse column moving backward); throws when it has more
+// than 256 nodes.
+std::string linuxcncCompFile(const AxisFunction& function, const ReversalTrims& reversal, int type);
 
 // Siemens SINUMERIK CEC (sag and angularity compensation) tables as the INI part program
 // %_N_NC_CEC_INI: one table per one-axis function, $AN_CEC_INPUT_AXIS / _OUTPUT_AXIS named by the
