@@ -73,16 +73,21 @@ void emitTables(const CompensateOptions& o, const CompensationTablesResult& r) {
                        res["before_max_um"].get<double>(), res["before_rms_um"].get<double>());
   }
   if (!r.isg) human += fmt::format("TwinCAT/ISG volumetric model: none, {}\n", r.isgNotApplicable);
-  if (r.trt) {
-    const auto& t = r.trt->actual;
-    const auto& res = r.trt->residual;
-    human += fmt::format("LinuxCNC {} parameters in linuxcnc-trt.hal, over {} poses of the table, um:  largest (rms)\n", t.kinsName(), res.samples);
+  if (r.kins) {
+    const auto& k = j["linuxcnc_kins"];
+    const auto& res = r.kins->residual;
+    human += fmt::format("LinuxCNC {} parameters in linuxcnc-kins.hal, over {} poses of the rotary axes, um:  largest (rms)\n", r.kins->actual.name(),
+                         res.samples);
     human += fmt::format("  {:<30} {:9.3f} ({:.3f})\n", "nominal parameters", res.beforeMax * 1e3, res.beforeRms * 1e3);
     human += fmt::format("  {:<30} {:9.3f} ({:.3f})   carries {}\n", "fitted parameters", res.afterMax * 1e3, res.afterRms * 1e3,
-                         j["linuxcnc_trt"]["carries"].get<std::string>());
-    csv += fmt::format("linuxcnc-trt,{},{},{},{}\n", res.afterMax * 1e3, res.afterRms * 1e3, res.beforeMax * 1e3, res.beforeRms * 1e3);
+                         k["carries"].get<std::string>());
+    for (const auto& left : r.kins->notCarried) human += fmt::format("  {:<30} not carried: {}\n", "", left);
+    if (k.contains("along_program"))
+      human += fmt::format("  {:<30} {:9.3f} ({:.3f})   along {} (uncorrected {:.3f})\n", "", r.kinsAlong.afterMax * 1e3, r.kinsAlong.afterRms * 1e3,
+                           o.checkProgram, r.kinsAlong.beforeMax * 1e3);
+    csv += fmt::format("linuxcnc-kins,{},{},{},{}\n", res.afterMax * 1e3, res.afterRms * 1e3, res.beforeMax * 1e3, res.beforeRms * 1e3);
   } else {
-    human += fmt::format("LinuxCNC trt kinematics parameters: none, {}\n", r.trtNotApplicable);
+    human += fmt::format("LinuxCNC kinematics parameters: none, {}\n", r.kinsNotApplicable);
   }
   emit(o, j, human, csv);
 }

@@ -400,10 +400,13 @@ def compensation_section(result):
            "and the error a controller applying each table leaves, over the nodes and the midpoints between them "
            "(`mtacc compensate --tables` writes the files).</p>")
     out += figure(plots.compensation_residuals(result), "TCP position error left by each table")
-    out += table(["table", "largest [µm]", "RMS [µm]", "carries", "not carried"],
-                 [[t["format"], f"{t['residual']['after_max_um']:.3f}", f"{t['residual']['after_rms_um']:.3f}", t["carries"],
-                   "; ".join(t.get("not_carried", [])) or "—"]
-                  for t in result["tables"]], left=1)
+    rows = [[t["format"], f"{t['residual']['after_max_um']:.3f}", f"{t['residual']['after_rms_um']:.3f}", t["carries"],
+             "; ".join(t.get("not_carried", [])) or "—"] for t in result["tables"]]
+    kins = result["linuxcnc_kins"]
+    if kins["applicable"]:
+        rows.append([f"LinuxCNC {kins['kins']} pins (over the rotary axes' poses)", f"{kins['residual']['after_max_um']:.3f}",
+                     f"{kins['residual']['after_rms_um']:.3f}", kins["carries"], "; ".join(kins["not_carried"]) or "—"])
+    out += table(["table", "largest [µm]", "RMS [µm]", "carries", "not carried"], rows, left=1)
     return out
 
 

@@ -262,6 +262,18 @@ TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, 
   return sum.result();
 }
 
+std::vector<std::string> reversalFunctions(const Machine& machine, const ErrorModel& errors) {
+  std::vector<std::string> names;
+  for (size_t a = 0; a < machine.axes.size(); ++a)
+    for (int c = 0; c < 6; ++c)
+      for (const auto& term : errors.axes[a].motion[static_cast<size_t>(c)].terms())
+        if (std::holds_alternative<ReversalTerm>(term) && std::get<ReversalTerm>(term).width != 0.0) {
+          names.push_back(motionErrorName(machine, static_cast<int>(a), c));
+          break;
+        }
+  return names;
+}
+
 std::string correctionGridCsv(const Machine& machine, const CorrectionGrid& g) {
   std::string out = fmt::format(
       "# mtacc correction grid for {}: add (dx, dy, dz) to the X, Y, Z commands; trilinear between the nodes, the end value beyond\n"

@@ -42,17 +42,9 @@ void checkRoles(const Machine& m) {
 // The part of the model the files cannot hold, named.
 std::vector<std::string> notCarried(const Machine& m, const ErrorModel& errors) {
   std::vector<std::string> left{"the tool direction (the controller corrects the position only)"};
-  std::string reversal;
   for (size_t a = 0; a < m.axes.size(); ++a) {
     const auto& e = errors.axes[a];
-    bool moves = !e.location.isZero();
-    for (int c = 0; c < 6; ++c) {
-      const auto& f = e.motion[static_cast<size_t>(c)];
-      moves = moves || !f.empty();
-      for (const auto& term : f.terms())
-        if (std::holds_alternative<ReversalTerm>(term) && std::get<ReversalTerm>(term).width != 0.0)
-          reversal += (reversal.empty() ? "" : ", ") + motionErrorName(m, static_cast<int>(a), c);
-    }
+    const bool moves = !e.location.isZero() || std::any_of(e.motion.begin(), e.motion.end(), [](const auto& f) { return !f.empty(); });
     if (!m.axes[a].commanded() && moves) {
       std::vector<std::string> names;
       for (const auto& p : nonZeroParameters(m, errors))
@@ -61,7 +53,8 @@ std::vector<std::string> notCarried(const Machine& m, const ErrorModel& errors) 
                                  m.axes[a].name, fmt::join(names, ", ")));
     }
   }
-  if (!reversal.empty()) left.push_back("the reversal terms of " + reversal + " (the tables have no direction of motion)");
+  if (const auto reversal = reversalFunctions(m, errors); !reversal.empty())
+    left.push_back(fmt::format("the reversal terms of {} (the tables have no direction of motion)", fmt::join(reversal, ", ")));
   if (!errors.stiffness.empty())
     left.push_back(fmt::format("{} changes of component errors with another axis or the load (mtacc does not write them as "
                                "multi-dimensional tables)", errors.stiffness.size()));

@@ -102,17 +102,21 @@ nlohmann::json residualJson(const TableResidual& r) {
           {"after_rms_um", r.afterRms * 1e3}, {"samples", r.samples}};
 }
 
-nlohmann::json trtJson(const LinuxcncTrtFit& fit) {
-  const auto params = [](const LinuxcncTrt& t) {
-    return nlohmann::json{{"x_rot_point", t.xRotPoint}, {"y_rot_point", t.yRotPoint},
-                          {"x_offset", t.xOffset}, {"y_offset", t.yOffset}, {"z_offset", t.zOffset}};
+nlohmann::json kinsJson(const LinuxcncKinematicsFit& fit) {
+  const auto pins = [](const LinuxcncKinematics& k) {
+    nlohmann::json j;
+    for (const auto& [pin, value] : k.pins()) j[pin] = value;
+    return j;
   };
-  return {{"applicable", true}, {"kins", fit.actual.kinsName()}, {"file", "linuxcnc-trt.hal"},
-          {"parameters_mm", params(fit.actual)}, {"nominal_parameters_mm", params(fit.nominal)},
+  const auto um = [](const Vec3& mm) { return nlohmann::json{mm.x() * 1e3, mm.y() * 1e3, mm.z() * 1e3}; };
+  return {{"applicable", true}, {"kins", fit.actual.name()}, {"file", "linuxcnc-kins.hal"},
+          {"pins", pins(fit.actual)}, {"nominal_pins", pins(fit.nominal)},
           {"sign", {{"tilt", fit.sign[0]}, {"c", fit.sign[1]}}},
           {"world_origin_mm", {fit.worldOrigin.x(), fit.worldOrigin.y(), fit.worldOrigin.z()}},
-          {"work_offset_um", {fit.workOffset.x() * 1e3, fit.workOffset.y() * 1e3, fit.workOffset.z() * 1e3}},
-          {"carries", "the rotary axis lines' positions; not their orientations or zero offsets, the linear axes' or component errors"},
+          {"work_offset_um", um(fit.workOffset)},
+          {"joint_origin_mm", {fit.jointOrigin.x(), fit.jointOrigin.y(), fit.jointOrigin.z()}},
+          {"joint_origin_shift_um", um(fit.jointOriginShift)},
+          {"carries", fit.actual.carries()}, {"not_carried", fit.notCarried},
           {"residual", residualJson(fit.residual)}};
 }
 
@@ -165,10 +169,11 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
     r.files.emplace_back("etalon-exchange.txt", etalonExchange(*m, *r.isg));
   }
   try {
-    r.trt = fitLinuxcncTrt(m, setup.errors);
-    r.files.emplace_back("linuxcnc-trt.hal", linuxcncTrtHal(*m, *r.trt));
-  } catch (const InputError& notTrt) {
-    r.trtNotApplicable = notTrt.reason();
+    r.kins = fitLinuxcncKinematics(m, setup.errors);
+    r.files.emplace_back("linuxcnc-kins.hal", linuxcncKinematicsHal(*m, *r.kins));
+    if (r.checkProgram) r.kinsAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, linuxcncCorrection(m, *r.kins));
+  } catch (const InputError& notKins) {
+    r.kinsNotApplicable = notKins.reason();
   }
   return r;
 }
@@ -214,8 +219,8 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
                            {"not_carried", r.isg->notCarried}, {"residual", residualJson(r.isgResidual)}});
   }
   j["isg_volumetric"] = r.isg ? nlohmann::json{{"applicable", true}} : nlohmann::json{{"applicable", false}, {"reason", r.isgNotApplicable}};
-  j["linuxcnc_trt"] = r.trt ? trtJson(*r.trt)
-                            : nlohmann::json{{"applicable", false}, {"reason", r.trtNotApplicable}};
+  j["linuxcnc_kins"] = r.kins ? kinsJson(*r.kins) : nlohmann::json{{"applicable", false}, {"reason", r.kinsNotApplicable}};
+  if (r.kins && r.checkProgram) j["linuxcnc_kins"]["along_program"] = residualJson(r.kinsAlong);
   if (r.checkProgram) {
     j["check_program"] = r.checkProgram->file;
     const TableResidual* along[] = {&r.gridAlong, &r.oneAxisAlong, &r.oneAxisAlong, &r.ownAxesAlong, &r.ownAxesAlong, &r.oneAxisAlong, &r.isgAlong};  // in the order of "tables"

@@ -71,20 +71,31 @@ def test_tables_cli_equals_api_and_the_files_are_written(cli, tmp_path):
     # The controller holding the model leaves only the interpolation between its records.
     assert tables["isg-volumetric"]["residual"]["after_max_um"] < tables["grid"]["residual"]["after_max_um"]
     assert tables["isg-volumetric"]["chain"] == "BXYZC" and api["isg_volumetric"] == {"applicable": True}
-    assert api["linuxcnc_trt"]["applicable"] is False
-    assert "a table tilting about B that carries the C table" in api["linuxcnc_trt"]["reason"]
+    assert api["linuxcnc_kins"]["applicable"] is False
+    assert "LinuxCNC's 5-axis kinematics need a table tilting about B that carries the C table" in api["linuxcnc_kins"]["reason"]
 
 
-def test_trt_parameters_on_a_tilting_table(cli, tmp_path):
-    run = subprocess.run([cli, "compensate", "tilting-table", "--tables", str(tmp_path), "--nodes", "3,3,3"], capture_output=True, text=True,
-                         check=True)
-    assert "LinuxCNC xyzbc-trt-kins parameters in linuxcnc-trt.hal" in run.stdout
-    trt = mtacc.Machine("tilting-table").compensation_tables(nodes=(3, 3, 3))["linuxcnc_trt"]
-    assert trt["applicable"] and trt["kins"] == "xyzbc-trt-kins" and trt["file"] == "linuxcnc-trt.hal"
-    setp = [line.split() for line in (tmp_path / "linuxcnc-trt.hal").read_text().splitlines() if not line.startswith("#")]
-    assert {pin.removeprefix("xyzbc-trt-kins."): float(value) for _, pin, value in setp} == pytest.approx(
-        {**{k.replace("_", "-"): v for k, v in trt["parameters_mm"].items()}, "z-rot-point": 0.0}, abs=1e-7)
-    assert trt["residual"]["after_rms_um"] < trt["residual"]["before_rms_um"]
+# X's scale error is in no module. On the trunnion the tool's offsets are the work offset's; on the
+# heads the spindle's offset across its axis turns with the head.
+@pytest.mark.parametrize("machine, kins, named", [("tilting-table", "xyzbc-trt-kins", ["EXX.c1"]),
+                                                  ("double-pivot-head", "5axiskins", ["X0C1", "EXX.c1"]),
+                                                  ("swivel-head-table", "maxkins", ["X0C1", "EXX.c1"])])
+def test_linuxcnc_kinematics_parameters(cli, tmp_path, machine, kins, named):
+    errors = tmp_path / "errors.yaml"
+    errors.write_text("errors: {Z0C1: 6 um, X0C1: 4 um, EXX: {linear: {value: 3 um, over: 800 mm}, reversal: 2 um}}\n")
+    run = subprocess.run([cli, "compensate", machine, "--errors", str(errors), "--tables", str(tmp_path / "out"), "--nodes", "3,3,3"],
+                         capture_output=True, text=True, check=True)
+    assert f"LinuxCNC {kins} parameters in linuxcnc-kins.hal" in run.stdout
+    r = mtacc.Machine(machine, errors=str(errors)).compensation_tables(nodes=(3, 3, 3))["linuxcnc_kins"]
+    assert r["applicable"] and r["kins"] == kins and r["file"] == "linuxcnc-kins.hal"
+    setp = [line.split() for line in (tmp_path / "out" / "linuxcnc-kins.hal").read_text().splitlines() if not line.startswith("#")]
+    assert {pin.removeprefix(kins + "."): float(value) for _, pin, value in setp} == pytest.approx(r["pins"], abs=1e-7)
+    # What the pins cannot carry and the reversal are named, in the CLI's table as in the JSON.
+    assert [left.split(" (")[0] for left in r["not_carried"][:-1]] == named
+    assert r["not_carried"][-1] == "the reversal terms of EXX (the kinematics have no direction of motion)"
+    for left in r["not_carried"]:
+        assert f"not carried: {left}" in run.stdout
+    assert r["residual"]["after_rms_um"] < r["residual"]["before_rms_um"]
 
 
 def test_tables_along_a_test_path(tmp_path):

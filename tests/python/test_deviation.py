@@ -190,4 +190,9 @@ def test_what_a_controller_table_cannot_carry_is_named_where_its_residual_is_sho
     isg = next(t for t in tables["tables"] if t["format"] == "isg-volumetric")
     assert any("Z0C1" in left for left in isg["not_carried"])
     assert isg["residual"]["after_max_um"] == pytest.approx(15.0, abs=1e-6)
-    assert "the errors of the spindle C1 (Z0C1)" in report.compensation_section(tables)
+    section = report.compensation_section(tables)
+    assert "the errors of the spindle C1 (Z0C1)" in section
+    # LinuxCNC's maxkins carries the pivot length and the head's offset; the B line's tilt it names.
+    kins = tables["linuxcnc_kins"]
+    assert kins["kins"] == "maxkins" and [left.split(" (")[0] for left in kins["not_carried"]] == ["A0B"]
+    assert "LinuxCNC maxkins pins" in section and "A0B (leaves" in section

@@ -101,6 +101,9 @@ TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, 
 TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
                                  const CorrectionGrid& grid, const CommandCorrection& correction);
 
+// The motion functions with a reversal term of non-zero width, by name ("EXX"): what a
+// controller's model of the machine standing still does not carry.
+std::vector<std::string> reversalFunctions(const Machine& machine, const ErrorModel& errors);
 // The file forms, each stating its units, grid and what it cannot carry in its header.
 // Generic grid: CSV "x_mm,y_mm,z_mm,dx_mm,dy_mm,dz_mm", '#' comment lines first.
 std::string correctionGridCsv(const Machine& machine, const CorrectionGrid& grid);
