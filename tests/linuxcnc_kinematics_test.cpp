@@ -13,7 +13,6 @@
 #include <sstream>
 
 #include "mtacc/compensation/linuxcnc_kinematics.hpp"
-#include "mtacc/io/gcode_program.hpp"
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/io/machine_yaml.hpp"
@@ -244,21 +243,6 @@ TEST(LinuxcncKinematics, TheSwivelHeadTableIsMaxkinsAndCarriesPivotAndCLine) {
   EXPECT_LT(shifted.residual.afterMax, 1e-8);
   EXPECT_NEAR(std::hypot(shifted.jointOriginShift.x(), shifted.jointOriginShift.y()), std::hypot(5e-3, 4e-3), 1e-8);
   checkCarriedAndNamed({"swivel-head-table", "maxkins", "Z0C1: 7 um, X0C: 5 um, Y0C: -4 um, X0B: 3 um", "A0B: 20 urad"});
-}
-
-// LinuxCNC running the fitted pins, the workpiece probed, along a 5-axis program: on a machine
-// whose errors the pins carry the TCP lands where the nominal machine puts it.
-TEST(LinuxcncKinematics, TheCorrectionAlongAProgramLeavesWhatThePinsLeave) {
-  const auto setup = loadMachineSetup({"double-pivot-head", "", "", std::nullopt, ""});
-  const ErrorModel carried = parseErrors(*setup.machine, "errors: {Z0C1: 7 um, X0X: 4 um}\n", "carried.yaml");
-  const LinuxcncKinematicsFit f = fitLinuxcncKinematics(setup.machine, carried);
-  const GcodeProgram program = parseGcodeProgram("G1 X100 Y50 Z100 B0 C0 F1000\nG1 X-50 Y20 Z80 B40 C90\nG1 X20 Y-60 Z120 B-60 C-135\n",
-                                                 "path.nc", *setup.machine);
-  const CorrectionGrid grid = correctionGrid(setup.machine, carried, CorrectionGridSpec{{3, 3, 3}, {}, 1});
-  const TableResidual along = tableResidualAlong(setup.machine, carried, program, grid, linuxcncCorrection(setup.machine, f));
-  EXPECT_GT(along.beforeMax, 4e-3);
-  EXPECT_LT(along.afterMax, 1e-5);
-  EXPECT_EQ(along.samples, 3 * 17);
 }
 
 TEST(LinuxcncKinematics, HeadModulesHalFilesReadBack) {

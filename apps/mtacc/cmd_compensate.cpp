@@ -73,22 +73,32 @@ void emitTables(const CompensateOptions& o, const CompensationTablesResult& r) {
                        res["before_max_um"].get<double>(), res["before_rms_um"].get<double>());
   }
   if (!r.isg) human += fmt::format("TwinCAT/ISG volumetric model: none, {}\n", r.isgNotApplicable);
-  if (r.kins) {
-    const auto& k = j["linuxcnc_kins"];
-    const auto& res = r.kins->residual;
-    human += fmt::format("LinuxCNC {} parameters in linuxcnc-kins.hal, over {} poses of the rotary axes, um:  largest (rms)\n", r.kins->actual.name(),
-                         res.samples);
-    human += fmt::format("  {:<30} {:9.3f} ({:.3f})\n", "nominal parameters", res.beforeMax * 1e3, res.beforeRms * 1e3);
-    human += fmt::format("  {:<30} {:9.3f} ({:.3f})   carries {}\n", "fitted parameters", res.afterMax * 1e3, res.afterRms * 1e3,
-                         k["carries"].get<std::string>());
-    for (const auto& left : r.kins->notCarried) human += fmt::format("  {:<30} not carried: {}\n", "", left);
+  // The controllers' kinematic data sets, each over the rotary axes' poses and along the check program.
+  const auto kinematics = [&](const nlohmann::json& k, const std::string& title, const std::string& format) {
+    if (!k["applicable"].get<bool>()) {
+      human += fmt::format("{}: none, {}\n", title, k["reason"].get<std::string>());
+      return;
+    }
+    const auto& res = k["residual"];
+    human += fmt::format("{} in {}, over {} poses of the rotary axes, um:  largest (rms)\n", title, k["file"].get<std::string>(),
+                         res["samples"].get<int>());
+    human += fmt::format("  {:<30} {:9.3f} ({:.3f})\n", "nominal parameters", res["before_max_um"].get<double>(), res["before_rms_um"].get<double>());
+    human += fmt::format("  {:<30} {:9.3f} ({:.3f})   carries {}\n", "fitted parameters", res["after_max_um"].get<double>(),
+                         res["after_rms_um"].get<double>(), k["carries"].get<std::string>());
+    for (const auto& left : k["not_carried"]) human += fmt::format("  {:<30} not carried: {}\n", "", left.get<std::string>());
     if (k.contains("along_program"))
-      human += fmt::format("  {:<30} {:9.3f} ({:.3f})   along {} (uncorrected {:.3f})\n", "", r.kinsAlong.afterMax * 1e3, r.kinsAlong.afterRms * 1e3,
-                           o.checkProgram, r.kinsAlong.beforeMax * 1e3);
-    csv += fmt::format("linuxcnc-kins,{},{},{},{}\n", res.afterMax * 1e3, res.afterRms * 1e3, res.beforeMax * 1e3, res.beforeRms * 1e3);
-  } else {
-    human += fmt::format("LinuxCNC kinematics parameters: none, {}\n", r.kinsNotApplicable);
-  }
+      human += fmt::format("  {:<30} {:9.3f} ({:.3f})   along {} (uncorrected {:.3f})\n", "", k["along_program"]["after_max_um"].get<double>(),
+                           k["along_program"]["after_rms_um"].get<double>(), o.checkProgram, k["along_program"]["before_max_um"].get<double>());
+    csv += fmt::format("{},{},{},{},{}\n", format, res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
+                       res["before_max_um"].get<double>(), res["before_rms_um"].get<double>());
+  };
+  const auto& kins = j["linuxcnc_kins"];
+  kinematics(kins, kins["applicable"].get<bool>() ? fmt::format("LinuxCNC {} parameters", kins["kins"].get<std::string>()) : "LinuxCNC kinematics parameters",
+             "linuxcnc-kins");
+  const auto& carr = j["siemens_toolholder"];
+  kinematics(carr, carr["applicable"].get<bool>() ? fmt::format("SINUMERIK toolholder $TC_CARR, type {}", carr["type"].get<std::string>())
+                                                  : "SINUMERIK toolholder $TC_CARR",
+             "siemens-toolholder");
   emit(o, j, human, csv);
 }
 

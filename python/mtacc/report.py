@@ -402,10 +402,11 @@ def compensation_section(result):
     out += figure(plots.compensation_residuals(result), "TCP position error left by each table")
     rows = [[t["format"], f"{t['residual']['after_max_um']:.3f}", f"{t['residual']['after_rms_um']:.3f}", t["carries"],
              "; ".join(t.get("not_carried", [])) or "—"] for t in result["tables"]]
-    kins = result["linuxcnc_kins"]
-    if kins["applicable"]:
-        rows.append([f"LinuxCNC {kins['kins']} pins (over the rotary axes' poses)", f"{kins['residual']['after_max_um']:.3f}",
-                     f"{kins['residual']['after_rms_um']:.3f}", kins["carries"], "; ".join(kins["not_carried"]) or "—"])
+    for key, label in (("linuxcnc_kins", lambda k: f"LinuxCNC {k['kins']} pins"), ("siemens_toolholder", lambda k: f"SINUMERIK $TC_CARR type {k['type']}")):
+        k = result[key]
+        if k["applicable"]:
+            rows.append([f"{label(k)} (over the rotary axes' poses)", f"{k['residual']['after_max_um']:.3f}", f"{k['residual']['after_rms_um']:.3f}",
+                         k["carries"], "; ".join(k["not_carried"]) or "—"])
     out += table(["table", "largest [µm]", "RMS [µm]", "carries", "not carried"], rows, left=1)
     return out
 

@@ -7,25 +7,19 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/kinematics/forward.hpp"
+
+#include "controller_kinematics_fit.hpp"
 
 namespace mtacc {
 namespace {
 
 using Module = LinuxcncKinematics::Module;
+using controller_fit::ControllerPose;
 
 constexpr double kNominalFit = 1e-6;  // mm: the nominal machine must be LinuxCNC's to rounding
-// An error alone is carried when the fit leaves less of it than this (mm), or than this share of its
-// effect: the pins carry errors exactly up to second-order terms of micrometres over hundreds of mm.
-constexpr double kCarriedLeft = 1e-6, kCarriedShare = 1e-3;
-
-struct TablePose {  // a pose in LinuxCNC's terms
-  Vec3 world;
-  double tilt, c;  // rad, LinuxCNC's angles
-};
 
 // The machine's commanded axes in LinuxCNC's roles, and how its commands follow from the joints.
 struct Roles {
@@ -59,64 +53,29 @@ std::vector<double*> freeValues(Solution& s, bool withPins) {
   return {};
 }
 
-std::vector<double> commands(const Roles& roles, size_t count, const Vec3& joints, const TablePose& pose) {
+std::vector<double> commands(const Roles& roles, size_t count, const Solution& s, const ControllerPose& pose) {
+  const Vec3 joints = s.p.joints(pose.world, pose.first, pose.second) + s.jointOrigin;
   std::vector<double> q(count, 0.0);
   q[roles.x] = joints.x();
   q[roles.y] = joints.y();
   q[roles.z] = joints.z();
-  q[roles.tilt] = roles.sign[0] * pose.tilt;
-  q[roles.c] = roles.sign[1] * pose.c;
+  q[roles.tilt] = roles.sign[0] * pose.first;
+  q[roles.c] = roles.sign[1] * pose.second;
   return q;
 }
 
-// Where the tool point is, relative to where LinuxCNC puts it, over the poses (mm, x y z per pose).
-Eigen::VectorXd residual(const KinematicModel& model, const Roles& roles, const Solution& s, const std::vector<TablePose>& poses) {
-  Eigen::VectorXd r(3 * static_cast<Eigen::Index>(poses.size()));
-  const auto count = static_cast<size_t>(model.machine->commandedCount());
-  for (size_t k = 0; k < poses.size(); ++k) {
-    const Vec3 joints = s.p.joints(poses[k].world, poses[k].tilt, poses[k].c) + s.jointOrigin;
-    const std::vector<double> q = commands(roles, count, joints, poses[k]);
-    r.segment<3>(3 * static_cast<Eigen::Index>(k)) = toolPoint(model, q.data()).position - s.origin - poses[k].world;
-  }
-  return r;
+// The fit's view of `s` (which must outlive it).
+controller_fit::Model model(const Roles& roles, size_t count, Solution& s, bool withPins) {
+  return {[&roles, count, &s](const ControllerPose& pose) { return commands(roles, count, s, pose); }, s.origin, freeValues(s, withPins)};
 }
 
-// The residual's derivatives by the free values (central differences: the joints are affine in them).
-Eigen::MatrixXd residualJacobian(const KinematicModel& model, const Roles& roles, const Solution& s, const std::vector<TablePose>& poses,
-                                 bool withPins) {
-  constexpr double h = 1e-3;  // mm
-  Solution probe = s;
-  const std::vector<double*> values = freeValues(probe, withPins);
-  Eigen::MatrixXd j(3 * static_cast<Eigen::Index>(poses.size()), static_cast<Eigen::Index>(values.size()));
-  for (size_t k = 0; k < values.size(); ++k) {
-    const double v = *values[k];
-    *values[k] = v + h;
-    const Eigen::VectorXd plus = residual(model, roles, probe, poses);
-    *values[k] = v - h;
-    j.col(static_cast<Eigen::Index>(k)) = (plus - residual(model, roles, probe, poses)) / (2.0 * h);
-    *values[k] = v;
-  }
-  return j;
-}
-
-// Gauss-Newton: the joints are affine in the free values and the machine nearly so over their
-// micrometres, so a few steps converge.
-Solution fit(const KinematicModel& model, const Roles& roles, Solution s, const std::vector<TablePose>& poses, bool withPins) {
-  for (int iteration = 0; iteration < 8; ++iteration) {
-    const Eigen::VectorXd step =
-        residualJacobian(model, roles, s, poses, withPins).colPivHouseholderQr().solve(-residual(model, roles, s, poses));
-    const std::vector<double*> values = freeValues(s, withPins);
-    for (size_t k = 0; k < values.size(); ++k) *values[k] += step[static_cast<Eigen::Index>(k)];
-    if (step.norm() < 1e-12) break;
-  }
+Solution fitted(const KinematicModel& machine, const Roles& roles, Solution s, const std::vector<ControllerPose>& poses, bool withPins) {
+  controller_fit::fit(machine, model(roles, static_cast<size_t>(machine.machine->commandedCount()), s, withPins), poses);
   return s;
 }
 
-std::vector<double> spread(double low, double high, int count, bool closed) {
-  std::vector<double> v(static_cast<size_t>(count));
-  const double step = (high - low) / (closed ? count - 1 : count);
-  for (int k = 0; k < count; ++k) v[static_cast<size_t>(k)] = low + k * step;
-  return v;
+Eigen::VectorXd residual(const KinematicModel& machine, const Roles& roles, Solution s, const std::vector<ControllerPose>& poses) {
+  return controller_fit::residual(machine, model(roles, static_cast<size_t>(machine.machine->commandedCount()), s, false), poses);
 }
 
 Roles roles(const Machine& m) {
@@ -146,45 +105,6 @@ Roles roles(const Machine& m) {
                                      "C table (maxkins); this machine has {0} on the {1} and C on the {2}",
                                      tiltName, tiltOnTable ? "table" : "head", cOnTable ? "table" : "head"));
   return {static_cast<size_t>(x), static_cast<size_t>(y), static_cast<size_t>(z), static_cast<size_t>(tilt), static_cast<size_t>(c), module};
-}
-
-bool withinTravel(const Machine& m, const std::vector<double>& q) {
-  for (size_t k = 0; k < q.size(); ++k) {
-    const auto& travel = m.axes[k].travel;
-    if (travel && (q[k] < travel->min - 1e-9 || q[k] > travel->max + 1e-9)) return false;
-  }
-  return true;
-}
-
-double largestPerPose(const Eigen::VectorXd& r) {
-  double largest = 0.0;
-  for (Eigen::Index k = 0; k < r.size(); k += 3) largest = std::max(largest, r.segment<3>(k).norm());
-  return largest;
-}
-
-// Each error of the model alone, at the nominal pins: what of its effect over the poses the pins
-// and the work offset leave (to first order, exact for the errors they carry). Named when it is not
-// nothing; the reversals and stiffness changes, which standing kinematics never see, by kind.
-std::vector<std::string> notCarried(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const Roles& roles,
-                                    const Solution& exact, const std::vector<TablePose>& poses) {
-  const Machine& m = *machine;
-  const KinematicModel nominal = compileNominal(machine);
-  const Eigen::VectorXd base = residual(nominal, roles, exact, poses);
-  const Eigen::MatrixXd pins = residualJacobian(nominal, roles, exact, poses, true);
-  const auto carried = pins.colPivHouseholderQr();
-  std::vector<std::string> left;
-  for (const Parameter& p : nonZeroParameters(m, errors)) {
-    const ErrorModel alone = singleError(m, errors, p, parameterValue(errors, p));
-    const Eigen::VectorXd effect = residual(compile(machine, alone), roles, exact, poses) - base;
-    const double largest = largestPerPose(effect), rest = largestPerPose(effect - pins * carried.solve(effect));
-    if (rest > std::max(kCarriedLeft, kCarriedShare * largest))
-      left.push_back(fmt::format("{} (leaves {:.3f} um; {:.3f} um uncorrected)", p.name, rest * 1e3, largest * 1e3));
-  }
-  if (const auto reversal = reversalFunctions(m, errors); !reversal.empty())
-    left.push_back(fmt::format("the reversal terms of {} (the kinematics have no direction of motion)", fmt::join(reversal, ", ")));
-  if (!errors.stiffness.empty())
-    left.push_back(fmt::format("{} changes of component errors with another axis or the load (the kinematics are rigid)", errors.stiffness.size()));
-  return left;
 }
 
 }  // namespace
@@ -245,26 +165,7 @@ LinuxcncKinematicsFit fitLinuxcncKinematics(const std::shared_ptr<const Machine>
   const KinematicModel nominal = compileNominal(machine), actual = compile(machine, errors);
   const auto count = static_cast<size_t>(m.commandedCount());
   const std::vector<double> home(count, 0.0);
-
-  std::vector<TablePose> poses;
-  const auto& tiltTravel = m.axes[r.tilt].travel;
-  const auto& cTravel = m.axes[r.c].travel;
-  const double halfTurn = std::numbers::pi;
-  const std::vector<double> tilts = tiltTravel ? spread(tiltTravel->min, tiltTravel->max, 9, true) : spread(-halfTurn / 2, halfTurn / 2, 9, true);
-  const std::vector<double> cs = cTravel ? spread(cTravel->min, cTravel->max, 12, true) : spread(0.0, 2.0 * halfTurn, 12, false);
-  std::array<std::vector<double>, 3> lattice;
-  for (int k = 0; k < 3; ++k) {
-    const size_t axis = k == 0 ? r.x : k == 1 ? r.y : r.z;
-    const auto& travel = m.axes[axis].travel;
-    if (!travel) throw InputError({m.sourceFile, 0, m.axes[axis].name}, "the fit of LinuxCNC's kinematics parameters needs the axis's travel");
-    const double middle = 0.5 * (travel->min + travel->max), quarter = 0.25 * (travel->max - travel->min);
-    lattice[static_cast<size_t>(k)] = {middle - quarter, middle, middle + quarter};
-  }
-  for (double t : tilts)
-    for (double c : cs)
-      for (double x : lattice[0])
-        for (double y : lattice[1])
-          for (double z : lattice[2]) poses.push_back({{x, y, z}, t, c});
+  std::vector<ControllerPose> poses = controller_fit::poseLattice(m, {r.x, r.y, r.z}, r.tilt, r.c);
   // The machine's commands are LinuxCNC's angles times a sign each: the signs the nominal machine fits with.
   Solution start;
   start.p.module = r.module;
@@ -275,7 +176,7 @@ LinuxcncKinematicsFit fitLinuxcncKinematics(const std::shared_ptr<const Machine>
     for (int cSign : {1, -1}) {
       Roles trial = r;
       trial.sign = {tiltSign, cSign};
-      const Solution s = fit(nominal, trial, start, poses, true);
+      const Solution s = fitted(nominal, trial, start, poses, true);
       const double largest = residual(nominal, trial, s, poses).cwiseAbs().maxCoeff();
       if (largest < best) {
         best = largest;
@@ -290,31 +191,21 @@ LinuxcncKinematicsFit fitLinuxcncKinematics(const std::shared_ptr<const Machine>
   if (r.module == Module::Max && r.sign[0] < 0) {
     r.sign[0] = 1;
     exact.p.conventionalDirections = true;
-    for (TablePose& pose : poses) pose.tilt = -pose.tilt;
+    for (ControllerPose& pose : poses) pose.first = -pose.first;
   }
-  std::erase_if(poses, [&](const TablePose& pose) {
-    return !withinTravel(m, commands(r, count, exact.p.joints(pose.world, pose.tilt, pose.c) + exact.jointOrigin, pose));
-  });
-  if (poses.size() < 10) throw InputError({m.sourceFile, 0, "axes"}, "fewer than 10 poses of the fit lie within travel");
+  controller_fit::keepWithinTravel(m, poses, [&](const ControllerPose& pose) { return commands(r, count, exact, pose); });
   // Before: the nominal pins, the workpiece probed (its work offset fitted); after: both fitted.
-  const Solution withNominal = fit(actual, r, exact, poses, false), fitted = fit(actual, r, exact, poses, true);
+  const Solution withNominal = fitted(actual, r, exact, poses, false), withPins = fitted(actual, r, exact, poses, true);
   LinuxcncKinematicsFit f;
   f.nominal = exact.p;
-  f.actual = fitted.p;
+  f.actual = withPins.p;
   f.sign = r.sign;
   f.worldOrigin = exact.origin;
-  f.workOffset = fitted.origin - exact.origin;
+  f.workOffset = withPins.origin - exact.origin;
   f.jointOrigin = exact.jointOrigin;
-  f.jointOriginShift = fitted.jointOrigin - exact.jointOrigin;
-  f.notCarried = notCarried(machine, errors, r, exact, poses);
-
-  const Eigen::VectorXd before = residual(actual, r, withNominal, poses), after = residual(actual, r, fitted, poses);
-  auto& res = f.residual;
-  res.samples = static_cast<int>(poses.size());
-  res.beforeMax = largestPerPose(before);
-  res.afterMax = largestPerPose(after);
-  res.beforeRms = std::sqrt(before.squaredNorm() / res.samples);
-  res.afterRms = std::sqrt(after.squaredNorm() / res.samples);
+  f.jointOriginShift = withPins.jointOrigin - exact.jointOrigin;
+  f.notCarried = controller_fit::notCarried(machine, errors, model(r, count, exact, true), poses);
+  f.residual = controller_fit::residualFigures(residual(actual, r, withNominal, poses), residual(actual, r, withPins, poses));
   return f;
 }
 

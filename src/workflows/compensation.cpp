@@ -120,6 +120,21 @@ nlohmann::json kinsJson(const LinuxcncKinematicsFit& fit) {
           {"residual", residualJson(fit.residual)}};
 }
 
+nlohmann::json toolholderJson(const SiemensToolholderFit& fit) {
+  const auto xyz = [](const Vec3& v, double unit) { return nlohmann::json{v.x() * unit, v.y() * unit, v.z() * unit}; };
+  const auto dataSet = [&](const SiemensToolholder& h) {
+    nlohmann::json l = nlohmann::json::array(), v = nlohmann::json::array();
+    for (const Vec3& vector : h.l) l.push_back(xyz(vector, 1.0));
+    for (const Vec3& vector : h.v) v.push_back(xyz(vector, 1.0));
+    return nlohmann::json{{"l_mm", l}, {"v", v}, {"offset_deg", {h.offset[0] / kDeg, h.offset[1] / kDeg}}};
+  };
+  return {{"applicable", true}, {"type", std::string(1, fit.actual.type)}, {"file", "siemens-toolholder.spf"},
+          {"axes", fit.actual.axes}, {"data_set", dataSet(fit.actual)}, {"nominal_data_set", dataSet(fit.nominal)},
+          {"world_origin_mm", xyz(fit.worldOrigin, 1.0)}, {"work_offset_um", xyz(fit.workOffset, 1e3)},
+          {"work_rotation_urad", xyz(fit.workRotation, 1e6)}, {"carries", fit.actual.carries()}, {"not_carried", fit.notCarried},
+          {"residual", residualJson(fit.residual)}};
+}
+
 }  // namespace
 
 CompensationTablesResult compensationTables(const MachineSetup& setup, const CompensationTablesRequest& request) {
@@ -175,6 +190,14 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   } catch (const InputError& notKins) {
     r.kinsNotApplicable = notKins.reason();
   }
+  try {
+    r.toolholder = fitSiemensToolholder(m, setup.errors);
+    r.files.emplace_back("siemens-toolholder.spf", siemensToolholderProgram(*m, *r.toolholder));
+    if (r.checkProgram)
+      r.toolholderAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, siemensToolholderCorrection(m, *r.toolholder));
+  } catch (const InputError& notToolholder) {
+    r.toolholderNotApplicable = notToolholder.reason();
+  }
   return r;
 }
 
@@ -221,6 +244,9 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
   j["isg_volumetric"] = r.isg ? nlohmann::json{{"applicable", true}} : nlohmann::json{{"applicable", false}, {"reason", r.isgNotApplicable}};
   j["linuxcnc_kins"] = r.kins ? kinsJson(*r.kins) : nlohmann::json{{"applicable", false}, {"reason", r.kinsNotApplicable}};
   if (r.kins && r.checkProgram) j["linuxcnc_kins"]["along_program"] = residualJson(r.kinsAlong);
+  j["siemens_toolholder"] = r.toolholder ? toolholderJson(*r.toolholder)
+                                         : nlohmann::json{{"applicable", false}, {"reason", r.toolholderNotApplicable}};
+  if (r.toolholder && r.checkProgram) j["siemens_toolholder"]["along_program"] = residualJson(r.toolholderAlong);
   if (r.checkProgram) {
     j["check_program"] = r.checkProgram->file;
     const TableResidual* along[] = {&r.gridAlong, &r.oneAxisAlong, &r.oneAxisAlong, &r.ownAxesAlong, &r.ownAxesAlong, &r.oneAxisAlong, &r.isgAlong};  // in the order of "tables"

@@ -196,3 +196,9 @@ def test_what_a_controller_table_cannot_carry_is_named_where_its_residual_is_sho
     kins = tables["linuxcnc_kins"]
     assert kins["kins"] == "maxkins" and [left.split(" (")[0] for left in kins["not_carried"]] == ["A0B"]
     assert "LinuxCNC maxkins pins" in section and "A0B (leaves" in section
+    # SINUMERIK's toolholder data set holds all three (the B line's direction among them).
+    carr = tables["siemens_toolholder"]
+    assert carr["type"] == "M" and carr["axes"] == ["B", "C"] and carr["not_carried"] == []
+    assert carr["residual"]["after_max_um"] < 0.01 < carr["residual"]["before_max_um"]
+    assert "SINUMERIK $TC_CARR type M" in section
+    assert "SINUMERIK toolholder $TC_CARR, type M in siemens-toolholder.spf" in out

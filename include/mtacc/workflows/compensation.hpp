@@ -12,6 +12,7 @@
 #include "mtacc/compensation/correction_tables.hpp"
 #include "mtacc/compensation/isg_volumetric.hpp"
 #include "mtacc/compensation/linuxcnc_kinematics.hpp"
+#include "mtacc/compensation/siemens_toolholder.hpp"
 #include "mtacc/compensation/program_compensation.hpp"
 #include "mtacc/io/gcode_program.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
@@ -49,8 +50,9 @@ nlohmann::json toJson(const ProgramCompensationResult& result);
 // Workflow `compensate --tables`: the correction grid over X, Y, Z at a pose of the other axes,
 // its one-axis reduction, the Siemens and LinuxCNC per-axis files and the TwinCAT/ISG (and Etalon)
 // volumetric model, each with the residual a controller applying it leaves over the working
-// volume; on a machine of one of LinuxCNC's 5-axis kinematics modules, its parameters with the
-// residual they leave over the rotary axes' poses and the errors they cannot carry.
+// volume; on a 5-axis machine, SINUMERIK's orientable toolholder data set and, for a machine of
+// one of LinuxCNC's 5-axis kinematics modules, its parameters, each with the residual it leaves
+// over the rotary axes' poses and the errors it cannot carry.
 struct CompensationTablesRequest {
   CorrectionGridSpec grid;
   int oneAxisFunctions = 9;  // at most this many one-axis functions (1 to 9)
@@ -73,6 +75,9 @@ struct CompensationTablesResult {
   std::optional<LinuxcncKinematicsFit> kins;
   std::string kinsNotApplicable;  // why the machine has no LinuxCNC kinematics parameters, when it has none
   TableResidual kinsAlong;        // along checkProgram
+  std::optional<SiemensToolholderFit> toolholder;
+  std::string toolholderNotApplicable;  // why the machine has no SINUMERIK toolholder data set, when it has none
+  TableResidual toolholderAlong;        // along checkProgram
   std::vector<std::pair<std::string, std::string>> files;  // name, content
 };
 
