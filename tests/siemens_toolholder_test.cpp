@@ -82,6 +82,31 @@ SiemensToolholder readProgram(const std::string& program) {
   return h;
 }
 
+// The data set read back from the transformation's machine data ("$MC_NAME_1[i]=value" lines).
+SiemensToolholder readMachineData(const std::string& ini, const std::array<std::string, 2>& axes) {
+  std::istringstream file(ini);
+  std::map<std::string, double> values;
+  const std::regex assignment(R"(\$MC_([A-Z0-9_]+)_1(\[(\d)\])?=(\S+))");
+  std::string line;
+  while (std::getline(file, line)) {
+    std::smatch m;
+    if (line.starts_with(";") || line.starts_with("%") || line == "CHANDATA(1)" || line == "M17") continue;
+    EXPECT_TRUE(std::regex_match(line, m, assignment)) << line;
+    EXPECT_TRUE(values.emplace(std::string(m[1]) + std::string(m[2]), std::stod(m[4])).second) << line;
+  }
+  SiemensToolholder h;
+  const int type = static_cast<int>(values.at("TRAFO_TYPE"));
+  h.type = type == 24 ? 'T' : type == 40 ? 'P' : 'M';
+  const auto vector = [&](const std::string& name) {
+    return Vec3(values.at(name + "[0]"), values.at(name + "[1]"), values.at(name + "[2]"));
+  };
+  for (const auto& [name, l] : trafo5Vectors(h.type)) h.l[static_cast<size_t>(l)] = vector(name);
+  h.v = {vector("TRAFO5_AXIS1"), vector("TRAFO5_AXIS2")};
+  h.offset = {values.at("TRAFO5_ROT_AX_OFFSET[0]") * kDeg, values.at("TRAFO5_ROT_AX_OFFSET[1]") * kDeg};
+  h.axes = axes;
+  return h;
+}
+
 struct Case {
   std::string machine;
   char type;
@@ -113,16 +138,19 @@ void checkCase(const Case& c) {
   EXPECT_GT(withAlone.residual.afterMax, 1e-3);
   EXPECT_NEAR(withBoth.residual.afterMax, withAlone.residual.afterMax, 1e-3 * withAlone.residual.afterMax);
 
-  const SiemensToolholder read = readProgram(siemensToolholderProgram(*setup.machine, f));
-  EXPECT_EQ(read.type, f.actual.type);
-  EXPECT_EQ(read.axes, f.actual.axes);
-  for (double a : {-40.0, 0.0, 35.0})
-    for (double b : {-120.0, 10.0, 90.0}) {
-      const Vec3 point(120.0, -80.0, 50.0), tool(0.0, 0.0, 0.0);
-      EXPECT_LE((read.machinePosition(point, {a * kDeg, b * kDeg}, tool) - f.actual.machinePosition(point, {a * kDeg, b * kDeg}, tool)).norm(),
-                1e-5)
-          << a << " " << b;
-    }
+  // Both files read back to the fitted data set (the transformation's by the manual's mapping).
+  for (const SiemensToolholder& read :
+       {readProgram(siemensToolholderProgram(*setup.machine, f)), readMachineData(siemensTrafo5MachineData(*setup.machine, f), f.actual.axes)}) {
+    EXPECT_EQ(read.type, f.actual.type);
+    EXPECT_EQ(read.axes, f.actual.axes);
+    for (double a : {-40.0, 0.0, 35.0})
+      for (double b : {-120.0, 10.0, 90.0}) {
+        const Vec3 point(120.0, -80.0, 50.0), tool(0.0, 0.0, 0.0);
+        EXPECT_LE((read.machinePosition(point, {a * kDeg, b * kDeg}, tool) - f.actual.machinePosition(point, {a * kDeg, b * kDeg}, tool)).norm(),
+                  1e-5)
+            << a << " " << b;
+      }
+  }
 }
 
 // Each kind of bundled 5-axis machine. The data set holds the rotary lines' positions (X0C, Y0B),

@@ -96,7 +96,7 @@ void emitTables(const CompensateOptions& o, const CompensationTablesResult& r) {
   kinematics(kins, kins["applicable"].get<bool>() ? fmt::format("LinuxCNC {} parameters", kins["kins"].get<std::string>()) : "LinuxCNC kinematics parameters",
              "linuxcnc-kins");
   const auto& carr = j["siemens_toolholder"];
-  kinematics(carr, carr["applicable"].get<bool>() ? fmt::format("SINUMERIK toolholder $TC_CARR, type {}", carr["type"].get<std::string>())
+  kinematics(carr, carr["applicable"].get<bool>() ? fmt::format("SINUMERIK toolholder $TC_CARR, type {} (and the 5-axis transformation's MD)", carr["type"].get<std::string>())
                                                   : "SINUMERIK toolholder $TC_CARR",
              "siemens-toolholder");
   emit(o, j, human, csv);

@@ -229,3 +229,34 @@ std::string siemensToolholderProgram(const Machine& machine, const SiemensToolho
 }
 
 }  // namespace mtacc
+
+namespace mtacc {
+
+std::vector<Trafo5Vector> trafo5Vectors(char type) {
+  switch (type) {
+    case 'T': return {{"TRAFO5_PART_OFFSET", 0}, {"TRAFO5_JOINT_OFFSET", 1}, {"TRAFO5_BASE_TOOL", 2}};
+    case 'P': return {{"TRAFO5_BASE_TOOL", 1}, {"TRAFO5_JOINT_OFFSET", 2}, {"TRAFO5_PART_OFFSET", 3}};
+    default: return {{"TRAFO5_JOINT_OFFSET", 0}, {"TRAFO5_BASE_TOOL", 1}, {"TRAFO5_JOINT_OFFSET_PART", 2}, {"TRAFO5_PART_OFFSET", 3}};
+  }
+}
+
+std::string siemensTrafo5MachineData(const Machine& machine, const SiemensToolholderFit& f) {
+  const SiemensToolholder& h = f.actual;
+  const auto shown = [](double value, double resolution) { return std::abs(value) < 0.5 * resolution ? 0.0 : value; };
+  std::string out = fmt::format(
+      "%_N_TRAFO5_INI\n"
+      "; mtacc: SINUMERIK generic 5-axis transformation (MD24100 TRAFO_TYPE_1) for {}: the orientable toolholder's data set of\n"
+      "; siemens-toolholder.spf (kinematic type {}) as the transformation's machine data; it leaves what that leaves: largest {:.3f} um\n"
+      "; the axes' assignment (MD24110, MD24120) stays as the machine has it; NEWCONF or a reset takes the data on\n"
+      "CHANDATA(1)\n$MC_TRAFO_TYPE_1={}\n",
+      machine.name, h.type, f.residual.afterMax * 1e3, h.type == 'T' ? 24 : h.type == 'P' ? 40 : 56);
+  auto it = std::back_inserter(out);
+  for (const auto& [name, l] : trafo5Vectors(h.type))
+    for (int c = 0; c < 3; ++c) fmt::format_to(it, "$MC_{}_1[{}]={:.6f}\n", name, c, shown(h.l[static_cast<size_t>(l)][c], 1e-6));
+  for (size_t k = 0; k < 2; ++k)
+    for (int c = 0; c < 3; ++c) fmt::format_to(it, "$MC_TRAFO5_AXIS{}_1[{}]={:.9f}\n", k + 1, c, shown(h.v[k][c], 1e-9));
+  for (size_t k = 0; k < 2; ++k) fmt::format_to(it, "$MC_TRAFO5_ROT_AX_OFFSET_1[{}]={:.7f}\n", k, shown(h.offset[k] / kDeg, 1e-7));
+  return out + "M17\n";
+}
+
+}  // namespace mtacc

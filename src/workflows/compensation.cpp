@@ -128,7 +128,7 @@ nlohmann::json toolholderJson(const SiemensToolholderFit& fit) {
     for (const Vec3& vector : h.v) v.push_back(xyz(vector, 1.0));
     return nlohmann::json{{"l_mm", l}, {"v", v}, {"offset_deg", {h.offset[0] / kDeg, h.offset[1] / kDeg}}};
   };
-  return {{"applicable", true}, {"type", std::string(1, fit.actual.type)}, {"file", "siemens-toolholder.spf"},
+  return {{"applicable", true}, {"type", std::string(1, fit.actual.type)}, {"file", "siemens-toolholder.spf, siemens-trafo5.ini"},
           {"axes", fit.actual.axes}, {"data_set", dataSet(fit.actual)}, {"nominal_data_set", dataSet(fit.nominal)},
           {"world_origin_mm", xyz(fit.worldOrigin, 1.0)}, {"work_offset_um", xyz(fit.workOffset, 1e3)},
           {"work_rotation_urad", xyz(fit.workRotation, 1e6)}, {"carries", fit.actual.carries()}, {"not_carried", fit.notCarried},
@@ -193,6 +193,7 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   try {
     r.toolholder = fitSiemensToolholder(m, setup.errors);
     r.files.emplace_back("siemens-toolholder.spf", siemensToolholderProgram(*m, *r.toolholder));
+    r.files.emplace_back("siemens-trafo5.ini", siemensTrafo5MachineData(*m, *r.toolholder));
     if (r.checkProgram)
       r.toolholderAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, siemensToolholderCorrection(m, *r.toolholder));
   } catch (const InputError& notToolholder) {

@@ -201,4 +201,4 @@ def test_what_a_controller_table_cannot_carry_is_named_where_its_residual_is_sho
     assert carr["type"] == "M" and carr["axes"] == ["B", "C"] and carr["not_carried"] == []
     assert carr["residual"]["after_max_um"] < 0.01 < carr["residual"]["before_max_um"]
     assert "SINUMERIK $TC_CARR type M" in section
-    assert "SINUMERIK toolholder $TC_CARR, type M in siemens-toolholder.spf" in out
+    assert "SINUMERIK toolholder $TC_CARR, type M (and the 5-axis transformation's MD) in siemens-toolholder.spf, siemens-trafo5.ini" in out

@@ -64,4 +64,18 @@ CommandCorrection siemensToolholderCorrection(const std::shared_ptr<const Machin
 // not, the work offset and the residual, ending with M17.
 std::string siemensToolholderProgram(const Machine& machine, const SiemensToolholderFit& fit, int number = 1);
 
+// The same data set as the generic 5-axis transformation's channel machine data (MD24100
+// $MC_TRAFO_TYPE_1 = 24 for T, 40 for P, 56 for M; the offset vectors as TRAFO5_PART_OFFSET_1,
+// _JOINT_OFFSET_1, _BASE_TOOL_1, _JOINT_OFFSET_PART_1 by the SINUMERIK Operate commissioning
+// manual's table "Interrelation of TOOLCARRIER and 5-axis transformation"; v1, v2 as
+// TRAFO5_AXIS1_1, _AXIS2_1; the angle offsets as TRAFO5_ROT_AX_OFFSET_1), as an INI file: ';'
+// comments, CHANDATA(1), "$MC_...[i]=value" lines, M17.
+std::string siemensTrafo5MachineData(const Machine& machine, const SiemensToolholderFit& fit);
+struct Trafo5Vector {
+  const char* name;  // machine data without the "$MC_" prefix and the "_1" suffix
+  int l;             // which offset vector it holds (0 for l1 ... 3 for l4)
+};
+// Which offset vectors a kinematic type's transformation machine data hold.
+std::vector<Trafo5Vector> trafo5Vectors(char type);
+
 }  // namespace mtacc
