@@ -241,7 +241,7 @@ TEST(SiemensCec, TablesReadBackAndInterpolateToTheReduction) {
   const auto setup = bundledSetup("maho");
   const CorrectionGrid grid = correctionGrid(setup.machine, setup.errors, {{8, 6, 7}, {}});
   const OneAxisReduction r = reduceToOneAxisFunctions(grid, 6);
-  std::istringstream file(siemensCecTables(r));
+  std::istringstream file(siemensCecTables(r, setup.machine->describePose(grid.pose)));
   std::string line;
   std::getline(file, line);
   EXPECT_EQ(line, "%_N_NC_CEC_INI");
@@ -306,7 +306,7 @@ TEST(SiemensLec, TablesReadBackAndInterpolateToEachAxisOwnFunction) {
   OneAxisReduction own = reduceToOneAxisFunctions(grid, 9);
   std::erase_if(own.functions, [](const AxisFunction& f) { return f.input != f.output; });
   ASSERT_EQ(own.functions.size(), 3u);
-  std::istringstream file(siemensLecTables(own.functions));
+  std::istringstream file(siemensLecTables(own.functions, *setup.machine, {}, setup.machine->describePose(grid.pose)));
   std::string line;
   std::getline(file, line);
   EXPECT_EQ(line, "%_N_AX_EEC_INI");
@@ -355,8 +355,51 @@ TEST(SiemensLec, TablesReadBackAndInterpolateToEachAxisOwnFunction) {
     EXPECT_LE((controller(p) - own.correction(p)).norm(), 2e-7);  // 7 decimals
   }
   for (const auto& [axis, t] : tables) EXPECT_NEAR(t.min + t.step * static_cast<double>(t.values.size() - 1), t.max, 1e-5) << axis;
-  EXPECT_NE(test::thrown<InputError>([&] { siemensLecTables({AxisFunction{0, 1, {0.0, 1.0}, {0.0, 0.0}}}); })->reason().find("own command"),
+  EXPECT_NE(test::thrown<InputError>([&] { siemensLecTables({AxisFunction{0, 1, {0.0, 1.0}, {0.0, 0.0}}}, *setup.machine, {}, ""); })->reason().find("own command"),
             std::string::npos);
+}
+
+// The rotary axes' own corrections (issue 45, item 3) in the LEC file, in degrees by the machine
+// file's names, C modulo over the turn, and as LinuxCNC COMP_FILEs on the rotary joints (degrees,
+// the forward and reverse columns differing by B's reversal): both read back to the tables.
+TEST(SiemensLec, RotaryAxesOwnCorrectionsReadBackInDegrees) {
+  const auto machine = bundledSetup("tilting-table").machine;
+  const ErrorModel own = parseErrors(*machine, "errors:\n  C.zero: -20 urad\n  EBB: {harmonics: {period: 360 deg, terms: [{order: 1, "
+                                               "amplitude: 8 urad}]}, reversal: 6 urad}\n", "own.yaml");
+  const std::vector<double> pose(static_cast<size_t>(machine->commandedCount()), 0.0);
+  const auto rotary = rotaryPositioning(machine, own, pose);
+  ASSERT_EQ(rotary.size(), 2u);
+  std::istringstream file(siemensLecTables({}, *machine, rotary, machine->describePose(pose)));
+  std::map<std::string, std::vector<double>> values;
+  std::map<std::string, std::string> fields;
+  const std::regex field(R"(\$AA_ENC_COMP_(\w+)\[0,(\w+)\]=(\S+))"), value(R"(\$AA_ENC_COMP\[0,(\d+),(\w+)\]=(\S+))");
+  std::string line;
+  while (std::getline(file, line)) {
+    std::smatch m;
+    if (std::regex_match(line, m, value)) values[m[2]].push_back(std::stod(m[3]));
+    else if (std::regex_match(line, m, field)) fields[std::string(m[1]) + m[2].str()] = m[3];
+  }
+  for (const auto& t : rotary) {
+    const std::string name = machine->axes[static_cast<size_t>(t.axis)].name;
+    ASSERT_EQ(values[name].size(), t.positions.size()) << name;
+    for (size_t n = 0; n < t.positions.size(); ++n) EXPECT_NEAR(-values[name][n] * kDeg, t.standing[n], 1e-7 * kDeg) << name << n;
+    EXPECT_NEAR(std::stod(fields["MIN" + name]), t.positions.front() / kDeg, 1e-6);
+    EXPECT_NEAR(std::stod(fields["MAX" + name]), t.positions.back() / kDeg, 1e-6);
+    EXPECT_EQ(fields["IS_MODULO" + name], name == "C" ? "1" : "0");
+    std::istringstream comp(linuxcncCompFile(t, 1));
+    size_t n = 0;
+    double position, forward, reverse, largestReversal = 0.0;
+    while (comp >> position >> forward >> reverse) {
+      ASSERT_LT(n, t.positions.size());
+      EXPECT_NEAR(position * kDeg, t.positions[n], 1e-6 * kDeg);
+      EXPECT_NEAR(forward * kDeg, t.forward[n], 1e-9 * kDeg);
+      EXPECT_NEAR(reverse * kDeg, t.reverse[n], 1e-9 * kDeg);
+      largestReversal = std::max(largestReversal, std::abs(forward - reverse) * kDeg);
+      ++n;
+    }
+    EXPECT_EQ(n, t.positions.size());
+    EXPECT_NEAR(largestReversal, name == "B" ? 6e-6 : 0.0, 1e-9) << name;
+  }
 }
 
 }  // namespace

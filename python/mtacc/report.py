@@ -400,14 +400,24 @@ def compensation_section(result):
            "and the error a controller applying each table leaves, over the nodes and the midpoints between them "
            "(`mtacc compensate --tables` writes the files).</p>")
     out += figure(plots.compensation_residuals(result), "TCP position error left by each table")
-    rows = [[t["format"], f"{t['residual']['after_max_um']:.3f}", f"{t['residual']['after_rms_um']:.3f}", t["carries"],
-             "; ".join(t.get("not_carried", [])) or "—"] for t in result["tables"]]
+    entries = [(t["format"], t) for t in result["tables"]]
     for key, label in (("linuxcnc_kins", lambda k: f"LinuxCNC {k['kins']} pins"), ("siemens_toolholder", lambda k: f"SINUMERIK $TC_CARR type {k['type']}")):
-        k = result[key]
-        if k["applicable"]:
-            rows.append([f"{label(k)} (over the rotary axes' poses)", f"{k['residual']['after_max_um']:.3f}", f"{k['residual']['after_rms_um']:.3f}",
-                         k["carries"], "; ".join(k["not_carried"]) or "—"])
-    out += table(["table", "largest [µm]", "RMS [µm]", "carries", "not carried"], rows, left=1)
+        if result[key]["applicable"]:
+            entries.append((f"{label(result[key])} (over the rotary axes' poses)", result[key]))
+    # Along the user's test path, when one was given: what each output leaves where the machine works.
+    along = "check_program" in result
+    rows = [[name, f"{t['residual']['after_max_um']:.3f}", f"{t['residual']['after_rms_um']:.3f}",
+             *([f"{t['along_program']['after_max_um']:.3f}"] if along else []), t["carries"], "; ".join(t.get("not_carried", [])) or "—"]
+            for name, t in entries]
+    header = ["table", "largest [µm]", "RMS [µm]", *([f"along {result['check_program']}, largest [µm]"] if along else []),
+              "carries", "not carried"]
+    out += table(header, rows, left=1)
+    rotary = result.get("rotary_positioning", [])
+    if rotary:
+        out += ("<p class='meta'>The rotary axes' own positioning in the LEC and LinuxCNC files: "
+                + "; ".join(f"{r['axis']}: {r['positions']} positions {r['step_deg']:.3g}° apart{', modulo' if r['modulo'] else ''}, "
+                            f"largest correction {r['largest_correction_urad']:.1f} µrad, reversal {r['largest_reversal_urad']:.1f} µrad"
+                            for r in rotary) + ".</p>")
     return out
 
 

@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <stdexcept>
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/parallel.hpp"
+#include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/kinematics/inverse_with_errors.hpp"
 
@@ -31,13 +33,14 @@ class ResidualSum {
   ResidualSum(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& g)
       : actual_(compile(machine, errors)), nominal_(compileNominal(machine)), axes_(g.axes) {}
 
-  void add(const std::vector<double>& q, const CommandCorrection& correction) {
+  void add(const std::vector<double>& q, const CommandCorrection& correction, const std::vector<RotaryPositioning>& rotary) {
     const auto x = static_cast<size_t>(axes_[0]), y = static_cast<size_t>(axes_[1]), z = static_cast<size_t>(axes_[2]);
     corrected_ = q;
     const Vec3 c = correction(q);
     corrected_[x] += c.x();
     corrected_[y] += c.y();
     corrected_[z] += c.z();
+    for (const RotaryPositioning& r : rotary) corrected_[static_cast<size_t>(r.axis)] += r.correction(q[static_cast<size_t>(r.axis)]);
     const Vec3 wanted = toolPoint(nominal_, q.data()).position;
     const double before = (toolPoint(actual_, q.data()).position - wanted).norm();
     const double after = (toolPoint(actual_, corrected_.data()).position - wanted).norm();
@@ -221,17 +224,18 @@ CommandCorrection ofLinearCommands(const CorrectionGrid& g, const std::function<
 }  // namespace
 
 TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& g,
-                            const std::function<Vec3(const Vec3&)>& correction, int perAxis) {
-  return tableResidual(machine, errors, g, ofLinearCommands(g, correction), perAxis);
+                            const std::function<Vec3(const Vec3&)>& correction, int perAxis, const std::vector<RotaryPositioning>& rotary) {
+  return tableResidual(machine, errors, g, ofLinearCommands(g, correction), perAxis, rotary);
 }
 
 TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
-                                 const CorrectionGrid& g, const std::function<Vec3(const Vec3&)>& correction) {
-  return tableResidualAlong(machine, errors, program, g, ofLinearCommands(g, correction));
+                                 const CorrectionGrid& g, const std::function<Vec3(const Vec3&)>& correction,
+                                 const std::vector<RotaryPositioning>& rotary) {
+  return tableResidualAlong(machine, errors, program, g, ofLinearCommands(g, correction), rotary);
 }
 
 TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& g,
-                            const CommandCorrection& correction, int perAxis) {
+                            const CommandCorrection& correction, int perAxis, const std::vector<RotaryPositioning>& rotary) {
   std::array<std::vector<double>, 3> lattice;
   for (size_t a = 0; a < 3; ++a) {
     // The nodes and the midpoints between them, thinned to perAxis.
@@ -248,17 +252,17 @@ TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const
         q[x] = xx;
         q[y] = yy;
         q[z] = zz;
-        sum.add(q, correction);
+        sum.add(q, correction, rotary);
       }
   return sum.result();
 }
 
 TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
-                                 const CorrectionGrid& g, const CommandCorrection& correction) {
+                                 const CorrectionGrid& g, const CommandCorrection& correction, const std::vector<RotaryPositioning>& rotary) {
   ResidualSum sum(machine, errors, g);
   for (const GcodeMove& move : program.moves)
     if (move.mode != MotionMode::Rapid)
-      for (int k = 0; k <= 16; ++k) sum.add(move.at(k / 16.0), correction);
+      for (int k = 0; k <= 16; ++k) sum.add(move.at(k / 16.0), correction, rotary);
   return sum.result();
 }
 
@@ -316,24 +320,55 @@ ReversalTrims reversalTrims(const std::shared_ptr<const Machine>& machine, const
   return out;
 }
 
-std::string linuxcncCompFile(const AxisFunction& f, const ReversalTrims& reversal, int type) {
-  if (f.input != f.output) throw InputError({"", 0, "table"}, "a LinuxCNC COMP_FILE holds an axis's correction as a function of its own command");
-  if (static_cast<int>(f.positions.size()) > kLinuxcncLines)
-    throw InputError({"", 0, "nodes"}, fmt::format("LinuxCNC takes at most {} lines per joint, not {}", kLinuxcncLines, f.positions.size()));
+namespace {
+
+void checkCompFile(size_t lines, int type) {
+  if (static_cast<int>(lines) > kLinuxcncLines)
+    throw InputError({"", 0, "nodes"}, fmt::format("LinuxCNC takes at most {} lines per joint, not {}", kLinuxcncLines, lines));
   if (type != 0 && type != 1) throw InputError({"", 0, "type"}, "COMP_FILE_TYPE is 0 or 1");
-  // LinuxCNC reads no comments: the file holds the triplets only.
+}
+
+// LinuxCNC reads no comments: the file holds the triplets only (type 1 the trims, 0 the positions),
+// the trims to `decimals` places.
+std::string compFileLines(const std::vector<double>& positions, const std::vector<double>& forward, const std::vector<double>& reverse,
+                          int type, int decimals) {
+  checkCompFile(positions.size(), type);
   std::string out;
   auto it = std::back_inserter(out);
-  for (size_t n = 0; n < f.positions.size(); ++n) {
-    const double p = f.positions[n], forward = f.values[n] + reversal.forward[n], reverse = f.values[n] + reversal.reverse[n];
-    if (type == 1) fmt::format_to(it, "{:.6f} {:.7f} {:.7f}\n", p, forward, reverse);
-    else fmt::format_to(it, "{:.6f} {:.7f} {:.7f}\n", p, p + forward, p + reverse);
+  for (size_t n = 0; n < positions.size(); ++n) {
+    const double p = positions[n], shift = type == 1 ? 0.0 : p;
+    fmt::format_to(it, "{:.6f} {:.{}f} {:.{}f}\n", p, shift + forward[n], decimals, shift + reverse[n], decimals);
   }
   return out;
 }
 
-std::string siemensCecTables(const OneAxisReduction& r) {
-  std::string out = "%_N_NC_CEC_INI\n; mtacc one-axis correction functions as CEC tables: values in mm, added to the output axis\n";
+std::vector<double> inDegrees(std::vector<double> radians) {
+  for (double& v : radians) v /= kDeg;
+  return radians;
+}
+
+}  // namespace
+
+std::string linuxcncCompFile(const AxisFunction& f, const ReversalTrims& reversal, int type) {
+  if (f.input != f.output) throw InputError({"", 0, "table"}, "a LinuxCNC COMP_FILE holds an axis's correction as a function of its own command");
+  checkCompFile(f.positions.size(), type);
+  if (reversal.forward.size() != f.values.size() || reversal.reverse.size() != f.values.size())
+    throw std::invalid_argument("linuxcncCompFile: the reversal trims are not at the function's positions");
+  std::vector<double> forward = f.values, reverse = f.values;
+  for (size_t n = 0; n < forward.size(); ++n) {
+    forward[n] += reversal.forward[n];
+    reverse[n] += reversal.reverse[n];
+  }
+  return compFileLines(f.positions, forward, reverse, type, 7);
+}
+
+std::string linuxcncCompFile(const RotaryPositioning& r, int type) {
+  return compFileLines(inDegrees(r.positions), inDegrees(r.forward), inDegrees(r.reverse), type, 9);
+}
+
+std::string siemensCecTables(const OneAxisReduction& r, const std::string& pose) {
+  std::string out = "%_N_NC_CEC_INI\n; mtacc one-axis correction functions as CEC tables: values in mm, added to the output axis\n"
+                    "; taken with the other axes at " + pose + "\n";
   auto it = std::back_inserter(out);
   for (size_t t = 0; t < r.functions.size(); ++t) {
     const AxisFunction& f = r.functions[t];
@@ -346,20 +381,26 @@ std::string siemensCecTables(const OneAxisReduction& r) {
   return out + "M17\n";
 }
 
-std::string siemensLecTables(const std::vector<AxisFunction>& ownAxes) {
-  std::string out = "%_N_AX_EEC_INI\n; mtacc: each axis's correction of its own command as LEC tables on measuring system 1; values in mm, "
-                    "the error (the correction negated: a positive value moves the axis negative)\nCHANDATA(1)\n";
+std::string siemensLecTables(const std::vector<AxisFunction>& ownAxes, const Machine& machine, const std::vector<RotaryPositioning>& rotary,
+                             const std::string& pose) {
+  std::string out = "%_N_AX_EEC_INI\n; mtacc: each axis's correction of its own command as LEC tables on measuring system 1; values in mm "
+                    "(degrees for a rotary axis), the error (the correction negated: a positive value moves the axis negative)\n"
+                    "; taken with the other axes at " + pose + "\nCHANDATA(1)\n";
   auto it = std::back_inserter(out);
+  // One axis's table: its points, the error at each (the correction negated), equidistant from the first to the last.
+  const auto table = [&](const std::string& axis, const std::vector<double>& positions, const std::vector<double>& corrections, bool modulo) {
+    fmt::format_to(it, "; {}: {} points: needs MD38000 $MA_MM_ENC_COMP_MAX_POINTS >= {} and MD32700 ENC_COMP_ENABLE[0] = 1\n", axis,
+                   corrections.size(), corrections.size());
+    for (size_t n = 0; n < corrections.size(); ++n) fmt::format_to(it, "$AA_ENC_COMP[0,{},{}]={:.7f}\n", n, axis, -corrections[n]);
+    const double step = positions.size() > 1 ? positions[1] - positions[0] : 0.0;
+    fmt::format_to(it, "$AA_ENC_COMP_STEP[0,{0}]={1:.6f}\n$AA_ENC_COMP_MIN[0,{0}]={2:.6f}\n$AA_ENC_COMP_MAX[0,{0}]={3:.6f}\n$AA_ENC_COMP_IS_MODULO[0,{0}]={4}\n",
+                   axis, step, positions.front(), positions.back(), modulo ? 1 : 0);
+  };
   for (const AxisFunction& f : ownAxes) {
     if (f.input != f.output) throw InputError({"", 0, "table"}, "an LEC table holds an axis's correction as a function of its own command");
-    const char* axis = kLinearAxisNames[f.input];
-    fmt::format_to(it, "; {}: {} points: needs MD38000 $MA_MM_ENC_COMP_MAX_POINTS >= {} and MD32700 ENC_COMP_ENABLE[0] = 1\n", axis,
-                   f.values.size(), f.values.size());
-    for (size_t n = 0; n < f.values.size(); ++n) fmt::format_to(it, "$AA_ENC_COMP[0,{},{}]={:.7f}\n", n, axis, -f.values[n]);
-    const double step = f.positions.size() > 1 ? f.positions[1] - f.positions[0] : 0.0;
-    fmt::format_to(it, "$AA_ENC_COMP_STEP[0,{0}]={1:.6f}\n$AA_ENC_COMP_MIN[0,{0}]={2:.6f}\n$AA_ENC_COMP_MAX[0,{0}]={3:.6f}\n$AA_ENC_COMP_IS_MODULO[0,{0}]=0\n",
-                   axis, step, f.positions.front(), f.positions.back());
+    table(kLinearAxisNames[f.input], f.positions, f.values, false);
   }
+  for (const RotaryPositioning& r : rotary) table(machine.axes[static_cast<size_t>(r.axis)].name, inDegrees(r.positions), inDegrees(r.standing), r.modulo);
   return out + "M17\n";
 }
 

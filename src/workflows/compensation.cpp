@@ -150,13 +150,15 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   r.ownAxes = reduceToOneAxisFunctions(r.grid, 9);
   std::erase_if(r.ownAxes.functions, [](const AxisFunction& f) { return f.input != f.output; });
   const auto& m = setup.machine;
+  r.rotary = rotaryPositioning(m, setup.errors, r.grid.pose);
   r.gridResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.grid.interpolate(p); });
   r.oneAxisResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.oneAxis.correction(p); });
-  r.ownAxesResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.ownAxes.correction(p); });
+  r.ownAxesResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.ownAxes.correction(p); }, 41, r.rotary);
   if (r.checkProgram) {
     r.gridAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.grid.interpolate(p); });
     r.oneAxisAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.oneAxis.correction(p); });
-    r.ownAxesAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.ownAxes.correction(p); });
+    r.ownAxesAlong =
+        tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.ownAxes.correction(p); }, r.rotary);
   }
   try {
     r.isg = isgVolumetricModel(*m, setup.errors, request.isgRecords);
@@ -171,12 +173,15 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   }
   r.files.emplace_back("grid.csv", correctionGridCsv(*m, r.grid));
   r.files.emplace_back("one-axis.csv", oneAxisCsv(*m, r.oneAxis, r.grid));
-  r.files.emplace_back("siemens-cec.ini", siemensCecTables(r.oneAxis));
-  r.files.emplace_back("siemens-lec.ini", siemensLecTables(r.ownAxes.functions));
+  const std::string pose = m->describePose(r.grid.pose);
+  r.files.emplace_back("siemens-cec.ini", siemensCecTables(r.oneAxis, pose));
+  r.files.emplace_back("siemens-lec.ini", siemensLecTables(r.ownAxes.functions, *m, r.rotary, pose));
   const char* names[3] = {"X", "Y", "Z"};
   for (const auto& f : r.ownAxes.functions)
     r.files.emplace_back(fmt::format("linuxcnc-{}.comp", names[f.input]),
                          linuxcncCompFile(f, reversalTrims(m, setup.errors, r.grid, f.input), request.linuxcncType));
+  for (const auto& rotary : r.rotary)
+    r.files.emplace_back(fmt::format("linuxcnc-{}.comp", m->axes[static_cast<size_t>(rotary.axis)].name), linuxcncCompFile(rotary, request.linuxcncType));
   for (auto& file : heidenhainTables(r.oneAxis)) r.files.push_back(std::move(file));
   if (r.isg) {
     r.files.emplace_back("isg-volcomp.csv", isgCsv(*m, *r.isg));
@@ -207,10 +212,11 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
   nlohmann::json functions = nlohmann::json::array();
   for (const auto& f : r.oneAxis.functions) functions.push_back({{"input", names[f.input]}, {"output", names[f.output]}, {"rms_um", f.rms * 1e3}});
   nlohmann::json files = nlohmann::json::array();
-  std::string heidenhainFiles;
+  std::string heidenhainFiles, linuxcncFiles;
   for (const auto& [name, content] : r.files) {
     files.push_back(name);
     if (name.starts_with("heidenhain")) heidenhainFiles += (heidenhainFiles.empty() ? "" : ", ") + name;
+    if (name.ends_with(".comp")) linuxcncFiles += (linuxcncFiles.empty() ? "" : ", ") + name;
   }
   const auto& g = r.grid;
   nlohmann::json j = {{"machine", r.setup.machine->name},
@@ -226,10 +232,11 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
              {"carries", "the one-axis functions above, one CEC table each (input and output axis by the machine file's names)"},
              {"residual", residualJson(r.oneAxisResidual)}},
             {{"format", "siemens-lec"}, {"file", "siemens-lec.ini"},
-             {"carries", "each axis's correction of its own command (as LinuxCNC's); not the cross-axis terms"},
+             {"carries", "each axis's correction of its own command (as LinuxCNC's), the rotary axes' by their own angular positioning; not the cross-axis terms"},
              {"residual", residualJson(r.ownAxesResidual)}},
-            {{"format", "linuxcnc"}, {"files", "linuxcnc-X.comp, linuxcnc-Y.comp, linuxcnc-Z.comp"},
-             {"carries", "each axis's correction of its own command, moving forward and backward (its reversal); not the cross-axis terms (squareness, straightness)"},
+            {{"format", "linuxcnc"}, {"files", linuxcncFiles},
+             {"carries", "each axis's correction of its own command, moving forward and backward (its reversal), the rotary axes' by their own "
+                         "angular positioning; not the cross-axis terms (squareness, straightness)"},
              {"residual", residualJson(r.ownAxesResidual)}},
             {{"format", "heidenhain"}, {"files", heidenhainFiles},
              {"carries", "the one-axis functions above, one compensation-value table per input axis with a column per output axis"},
@@ -242,6 +249,18 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
                                        "axis's component errors, linear between the records"},
                            {"not_carried", r.isg->notCarried}, {"residual", residualJson(r.isgResidual)}});
   }
+  nlohmann::json rotary = nlohmann::json::array();
+  for (const auto& t : r.rotary) {
+    double correction = 0.0, reversal = 0.0;
+    for (size_t n = 0; n < t.positions.size(); ++n) {
+      correction = std::max(correction, std::abs(t.standing[n]));
+      reversal = std::max(reversal, std::abs(t.forward[n] - t.reverse[n]));
+    }
+    rotary.push_back({{"axis", r.setup.machine->axes[static_cast<size_t>(t.axis)].name}, {"positions", t.positions.size()},
+                      {"step_deg", (t.positions[1] - t.positions[0]) / kDeg}, {"modulo", t.modulo},
+                      {"largest_correction_urad", correction * 1e6}, {"largest_reversal_urad", reversal * 1e6}});
+  }
+  j["rotary_positioning"] = rotary;
   j["isg_volumetric"] = r.isg ? nlohmann::json{{"applicable", true}} : nlohmann::json{{"applicable", false}, {"reason", r.isgNotApplicable}};
   j["linuxcnc_kins"] = r.kins ? kinsJson(*r.kins) : nlohmann::json{{"applicable", false}, {"reason", r.kinsNotApplicable}};
   if (r.kins && r.checkProgram) j["linuxcnc_kins"]["along_program"] = residualJson(r.kinsAlong);

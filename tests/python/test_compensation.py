@@ -58,8 +58,9 @@ def test_tables_cli_equals_api_and_the_files_are_written(cli, tmp_path):
     contents = api.pop("contents")
     assert json.loads(run.stdout) == api
     assert sorted(contents) == sorted(api["files"]) == ["etalon-exchange.txt", "grid.csv", "heidenhain-X.com", "heidenhain-Y.com", "heidenhain-Z.com",
-                                                     "heidenhain.cma", "isg-volcomp.csv", "isg-volcomp.lis", "linuxcnc-X.comp", "linuxcnc-Y.comp",
-                                                     "linuxcnc-Z.comp", "one-axis.csv", "siemens-cec.ini", "siemens-lec.ini"]
+                                                     "heidenhain.cma", "isg-volcomp.csv", "isg-volcomp.lis", "linuxcnc-B.comp", "linuxcnc-C.comp",
+                                                     "linuxcnc-X.comp", "linuxcnc-Y.comp", "linuxcnc-Z.comp", "one-axis.csv", "siemens-cec.ini",
+                                                     "siemens-lec.ini"]
     for name, text in contents.items():
         assert (tmp_path / name).read_text() == text
     tables = {t["format"]: t for t in api["tables"]}
@@ -115,3 +116,22 @@ def test_tables_refuse_a_bad_request():
         mtacc.Machine("maho").compensation_tables(nodes=(1, 5, 5))
     with pytest.raises(mtacc.InputError, match="at most 256"):
         mtacc.Machine("three-axis-vertical").compensation_tables(nodes=(300, 2, 2))
+
+
+def test_five_axis_outputs_along_a_test_path(tmp_path):
+    # Issue 45, item 3: every output's residual along the user's 5-axis path, in the JSON and the
+    # report's table; the rotary axes' own positioning in the LEC and LinuxCNC files.
+    from mtacc import report
+    program = tmp_path / "path.nc"
+    program.write_text("G1 X100 Y50 Z100 B0 C0 F1000\nG1 X-50 Y20 Z80 B40 C90\nG1 X20 Y-60 Z120 B-60 C-135\n")
+    r = mtacc.Machine("tilting-table").compensation_tables(nodes=(5, 5, 5), check_program=program)
+    assert all("along_program" in t for t in r["tables"])
+    assert "along_program" in r["linuxcnc_kins"] and "along_program" in r["siemens_toolholder"]
+    along = {t["format"]: t["along_program"]["after_max_um"] for t in r["tables"]}
+    # The tables hold one pose of B and C; the toolholder data set turns with them.
+    assert r["siemens_toolholder"]["along_program"]["after_max_um"] < along["grid"] < along["grid"] + 1
+    assert [(x["axis"], x["modulo"]) for x in r["rotary_positioning"]] == [("B", False), ("C", True)]
+    assert r["rotary_positioning"][0]["largest_reversal_urad"] > 0
+    assert "linuxcnc-B.comp" in r["files"] and "linuxcnc-C.comp" in r["files"]
+    section = report.compensation_section(r)
+    assert f"along {program}, largest [µm]" in section and "The rotary axes' own positioning in the LEC and LinuxCNC files: B:" in section

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "mtacc/compensation/nc_program.hpp"
+#include "mtacc/compensation/rotary_positioning.hpp"
 #include "mtacc/core/parallel.hpp"
 #include "mtacc/errors/error_model.hpp"
 #include "mtacc/kinematics/inverse_with_errors.hpp"
@@ -85,21 +86,25 @@ struct TableResidual {
   double beforeMax = 0.0, beforeRms = 0.0, afterMax = 0.0, afterRms = 0.0;  // mm
   int samples = 0;
 };
+// `rotary`: the rotary axes' own corrections the controller applies beside (standing).
 TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid,
-                            const std::function<Vec3(const Vec3&)>& correction, int perAxis = 41);
+                            const std::function<Vec3(const Vec3&)>& correction, int perAxis = 41,
+                            const std::vector<RotaryPositioning>& rotary = {});
 // A correction that depends on every command (a controller holding the error model itself).
 using CommandCorrection = std::function<Vec3(const std::vector<double>& q)>;
 TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid,
-                            const CommandCorrection& correction, int perAxis = 41);
+                            const CommandCorrection& correction, int perAxis = 41, const std::vector<RotaryPositioning>& rotary = {});
 
 // The same along a program's feed moves (each sampled at 17 points, ends included), the controller
 // correcting the X, Y, Z commands continuously as it interpolates them; the program's other axes
 // as programmed, the machine file's tool (G43 lengths are not applied: the tables are made for
 // that tool). A test path shows what each table does where the machine works.
 TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
-                                 const CorrectionGrid& grid, const std::function<Vec3(const Vec3&)>& correction);
+                                 const CorrectionGrid& grid, const std::function<Vec3(const Vec3&)>& correction,
+                                 const std::vector<RotaryPositioning>& rotary = {});
 TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
-                                 const CorrectionGrid& grid, const CommandCorrection& correction);
+                                 const CorrectionGrid& grid, const CommandCorrection& correction,
+                                 const std::vector<RotaryPositioning>& rotary = {});
 
 // The motion functions with a reversal term of non-zero width, by name ("EXX"): what a
 // controller's model of the machine standing still does not carry.
@@ -121,18 +126,24 @@ ReversalTrims reversalTrims(const std::shared_ptr<const Machine>& machine, const
 // forward column moving forward, the reverse column moving backward); throws when it has more
 // than 256 nodes.
 std::string linuxcncCompFile(const AxisFunction& function, const ReversalTrims& reversal, int type);
+// The same for a rotary joint, in degrees: its own correction moving forward and backward.
+std::string linuxcncCompFile(const RotaryPositioning& rotary, int type);
 
 // Siemens SINUMERIK CEC (sag and angularity compensation) tables as the INI part program
 // %_N_NC_CEC_INI: one table per one-axis function, $AN_CEC_INPUT_AXIS / _OUTPUT_AXIS named by the
 // machine file's axis names, equidistant $AN_CEC_STEP from $AN_CEC_MIN to $AN_CEC_MAX (mm), the
 // values $AN_CEC[t, N] in mm added to the output axis, both directions, ending with M17.
-std::string siemensCecTables(const OneAxisReduction& reduction);
+// `pose`: the other axes' positions the functions were taken at, stated in a comment.
+std::string siemensCecTables(const OneAxisReduction& reduction, const std::string& pose);
 
 // Siemens SINUMERIK LEC (leadscrew and measuring-system error compensation) as the INI part
 // program %_N_AX_EEC_INI: per axis, from the function of its own command, $AA_ENC_COMP[0, N, axis]
 // on the first measuring system, equidistant from $AA_ENC_COMP_MIN to _MAX by _STEP (mm). The
 // values are the error, the correction negated: a positive value moves the axis negative (808D
-// function manual, LEC). Throws for a function of another axis's command.
-std::string siemensLecTables(const std::vector<AxisFunction>& ownAxes);
+// function manual, LEC). Throws for a function of another axis's command. The rotary axes' own
+// corrections follow, by the machine file's axis names, in degrees over their positions, modulo
+// ($AA_ENC_COMP_IS_MODULO = 1, 0 to 360) for a continuous axis whose table repeats.
+std::string siemensLecTables(const std::vector<AxisFunction>& ownAxes, const Machine& machine, const std::vector<RotaryPositioning>& rotary,
+                             const std::string& pose);
 
 }  // namespace mtacc

@@ -66,6 +66,7 @@ struct CompensationTablesResult {
   CorrectionGrid grid;
   OneAxisReduction oneAxis;
   OneAxisReduction ownAxes;  // the functions of each axis's own command (LinuxCNC)
+  std::vector<RotaryPositioning> rotary;  // the rotary axes' corrections of their own commands (LEC, LinuxCNC)
   TableResidual gridResidual, oneAxisResidual, ownAxesResidual;
   std::optional<GcodeProgram> checkProgram;
   TableResidual gridAlong, oneAxisAlong, ownAxesAlong;  // along checkProgram
