@@ -40,18 +40,24 @@ void checkRoles(const Machine& m) {
 }
 
 // The part of the model the files cannot hold, named.
+// The spindle: the axis past the last commanded one on the tool side, or none.
+int spindleAxis(const Machine& m) {
+  for (size_t a = 0; a < m.axes.size(); ++a)
+    if (!m.axes[a].commanded() && m.axes[a].side == Side::Tool) return static_cast<int>(a);
+  return -1;
+}
+
+// The part of the model the files and the tool's offsets cannot hold, named: of the spindle, all
+// but its offsets.
 std::vector<std::string> notCarried(const Machine& m, const ErrorModel& errors) {
   std::vector<std::string> left{"the tool direction (the controller corrects the position only)"};
-  for (size_t a = 0; a < m.axes.size(); ++a) {
-    const auto& e = errors.axes[a];
-    const bool moves = !e.location.isZero() || std::any_of(e.motion.begin(), e.motion.end(), [](const auto& f) { return !f.empty(); });
-    if (!m.axes[a].commanded() && moves) {
-      std::vector<std::string> names;
-      for (const auto& p : nonZeroParameters(m, errors))
-        if (p.axis == static_cast<int>(a)) names.push_back(p.name);
-      left.push_back(fmt::format("the errors of the spindle {} ({}): the controller's chain ends at the last commanded axis",
-                                 m.axes[a].name, fmt::join(names, ", ")));
-    }
+  if (const int spindle = spindleAxis(m); spindle >= 0) {
+    std::vector<std::string> names;
+    for (const auto& p : nonZeroParameters(m, errors))
+      if (p.axis == spindle && !(p.kind == ParameterKind::Location && p.component < 3)) names.push_back(p.name);
+    if (!names.empty())
+      left.push_back(fmt::format("the errors of the spindle {} ({}): the controller's chain ends at the last commanded axis, and the tool's "
+                                 "offsets hold only the spindle's offsets", m.axes[static_cast<size_t>(spindle)].name, fmt::join(names, ", ")));
   }
   if (const auto reversal = reversalFunctions(m, errors); !reversal.empty())
     left.push_back(fmt::format("the reversal terms of {} (the tables have no direction of motion)", fmt::join(reversal, ", ")));
@@ -59,6 +65,13 @@ std::vector<std::string> notCarried(const Machine& m, const ErrorModel& errors) 
     left.push_back(fmt::format("{} changes of component errors with another axis or the load (mtacc does not write them as "
                                "multi-dimensional tables)", errors.stiffness.size()));
   return left;
+}
+
+// The spindle's offsets, for the tool data the files do not hold.
+std::string toolOffsetNote(const IsgVolumetricModel& model) {
+  if (model.toolOffset.isZero()) return "";
+  return fmt::format("// the spindle's offsets turn with the tool: add ({:.7f}, {:.7f}, {:.7f}) mm to the tool's kinematic offsets (P-TOOL-00009)\n",
+                     model.toolOffset.x(), model.toolOffset.y(), model.toolOffset.z());
 }
 
 }  // namespace
@@ -92,12 +105,14 @@ IsgVolumetricModel isgVolumetricModel(const Machine& m, const ErrorModel& errors
     }
     model.components.push_back(std::move(table));
   }
+  if (const int spindle = spindleAxis(m); spindle >= 0) model.toolOffset = errors.axes[static_cast<size_t>(spindle)].location.head<3>();
   model.notCarried = notCarried(m, errors);
   return model;
 }
 
 ErrorModel isgControllerModel(const Machine& m, const IsgVolumetricModel& model) {
   ErrorModel e = ErrorModel::zero(m);
+  if (const int spindle = spindleAxis(m); spindle >= 0) e.axes[static_cast<size_t>(spindle)].location.head<3>() = model.toolOffset;
   for (const auto& [name, value] : model.positionErrors) setParameterValue(e, findParameter(m, e, name), value);
   for (const auto& table : model.components) {
     const Axis& axis = m.axes[static_cast<size_t>(table.axis)];
@@ -133,6 +148,7 @@ std::string isgCsv(const Machine& m, const IsgVolumetricModel& model) {
                                 "// values in mm and rad; arguments in mm (X, Y, Z) and degrees (A, B, C); linear between the records\n",
                                 m.name, model.chain, model.workpieceAxes);
   for (const auto& left : model.notCarried) out += "// not carried: " + left + "\n";
+  out += toolOffsetNote(model);
   auto it = std::back_inserter(out);
   std::vector<std::string> names;
   std::vector<double> values;
@@ -162,6 +178,7 @@ std::string etalonExchange(const Machine& m, const IsgVolumetricModel& model) {
                                 "// values in mm and rad; Gridpoints: argument (mm; degrees for A, B, C) and value\n",
                                 m.name);
   for (const auto& left : model.notCarried) out += "// not carried: " + left + "\n";
+  out += toolOffsetNote(model);
   auto it = std::back_inserter(out);
   for (const auto& [name, value] : model.positionErrors) fmt::format_to(it, "[{}]\nVALUE = {:.10f}\n", name, value);
   for (const auto& table : model.components)

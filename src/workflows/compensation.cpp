@@ -246,7 +246,8 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
     j["tables"].push_back({{"format", "isg-volumetric"}, {"files", "isg-volcomp.csv, isg-volcomp.lis, etalon-exchange.txt"},
                            {"chain", r.isg->chain}, {"workpiece_axes", r.isg->workpieceAxes},
                            {"carries", "the ISO 230-1 model, evaluated by the controller at every pose: the position errors and each "
-                                       "axis's component errors, linear between the records"},
+                                       "axis's component errors, linear between the records; the spindle's offsets as the tool's"},
+                           {"tool_offset_mm", {r.isg->toolOffset.x(), r.isg->toolOffset.y(), r.isg->toolOffset.z()}},
                            {"not_carried", r.isg->notCarried}, {"residual", residualJson(r.isgResidual)}});
   }
   nlohmann::json rotary = nlohmann::json::array();

@@ -178,25 +178,30 @@ def test_a_compensation_from_an_identified_model_holds_on_the_truth(cli, tmp_pat
 
 
 def test_what_a_controller_table_cannot_carry_is_named_where_its_residual_is_shown(cli, tmp_path):
-    # Issue 45: the TwinCAT/ISG model's chain ends at the last commanded axis, so a swivel head's
-    # spindle errors (the pivot length Z0C1) are left: said in the CLI table, the JSON and the report,
-    # not only inside isg-volcomp.csv; the residual is exactly that error.
+    # Issue 45: the TwinCAT/ISG model's chain ends at the last commanded axis: the spindle's offsets
+    # (the pivot length Z0C1) go to the tool's kinematic offsets, its tilt (B0C1) is left, said in
+    # the CLI table, the JSON and the report, not only inside isg-volcomp.csv. The tilt turns the
+    # tool about its tip here (the spindle's line passes through it): it leaves the direction, which
+    # ISG does not correct, and no position error.
     from mtacc import report
-    (tmp_path / "head.yaml").write_text("errors:\n  X0B: 8 um\n  Z0C1: 15 um\n  A0B: 20 urad\n")
+    (tmp_path / "head.yaml").write_text("errors:\n  X0B: 8 um\n  Z0C1: 15 um\n  A0B: 20 urad\n  B0C1: 30 urad\n")
     out = subprocess.run([cli, "compensate", "swivel-head-table", "--errors", str(tmp_path / "head.yaml"), "--tables", str(tmp_path / "t")],
                          check=True, capture_output=True, text=True).stdout
-    assert "not carried: the errors of the spindle C1 (Z0C1)" in out
+    assert "not carried: the errors of the spindle C1 (B0C1)" in out
+    assert "add (0.0000000, 0.0000000, 0.0150000) mm to the tool's kinematic offsets" in (tmp_path / "t" / "isg-volcomp.csv").read_text()
     tables = mtacc.Machine("swivel-head-table", errors=tmp_path / "head.yaml").compensation_tables(nodes=(5, 5, 5))
     isg = next(t for t in tables["tables"] if t["format"] == "isg-volumetric")
-    assert any("Z0C1" in left for left in isg["not_carried"])
-    assert isg["residual"]["after_max_um"] == pytest.approx(15.0, abs=1e-6)
+    assert [left.split(" (")[0] for left in isg["not_carried"]] == ["the tool direction", "the errors of the spindle C1"]
+    assert isg["tool_offset_mm"] == pytest.approx([0.0, 0.0, 0.015], abs=1e-12)
+    assert isg["residual"]["after_max_um"] < 0.01 < 10.0 < isg["residual"]["before_max_um"]
     section = report.compensation_section(tables)
-    assert "the errors of the spindle C1 (Z0C1)" in section
+    assert "the errors of the spindle C1 (B0C1)" in section
     # LinuxCNC's maxkins carries the pivot length and the head's offset; the B line's tilt it names.
+    # The kinematics' figures are of the tool tip's position: the spindle's tilt about it is none.
     kins = tables["linuxcnc_kins"]
     assert kins["kins"] == "maxkins" and [left.split(" (")[0] for left in kins["not_carried"]] == ["A0B"]
     assert "LinuxCNC maxkins pins" in section and "A0B (leaves" in section
-    # SINUMERIK's toolholder data set holds all three (the B line's direction among them).
+    # SINUMERIK's toolholder data set holds the B line's direction too.
     carr = tables["siemens_toolholder"]
     assert carr["type"] == "M" and carr["axes"] == ["B", "C"] and carr["not_carried"] == []
     assert carr["residual"]["after_max_um"] < 0.01 < carr["residual"]["before_max_um"]

@@ -29,7 +29,11 @@ struct IsgVolumetricModel {
     std::array<std::vector<double>, 6> values;  // EX. EY. EZ. (mm) EA. EB. EC. (rad) at the arguments
   };
   std::vector<ComponentTable> components;
-  std::vector<std::string> notCarried;  // what the machine's model holds that the files cannot
+  // The spindle's offsets from the last commanded axis (its location errors X0, Y0, Z0, mm): they
+  // turn with the tool, so the controller takes them as the tool's kinematic offsets (P-TOOL-00009),
+  // not in the files; stated in them, and applied by the controller's model below.
+  Vec3 toolOffset = Vec3::Zero();
+  std::vector<std::string> notCarried;  // what the machine's model holds that the files and the tool data cannot
 };
 
 // Throws InputError for a machine ISG's model does not describe: commanded axes other than linear
@@ -37,8 +41,8 @@ struct IsgVolumetricModel {
 // over the axis's travel (a continuous rotary axis: 0 to 360 degrees).
 IsgVolumetricModel isgVolumetricModel(const Machine& machine, const ErrorModel& errors, int records = 200);
 
-// The model the controller evaluates from the files: the position errors, and the tables linear
-// between the records, the end values beyond.
+// The model the controller evaluates from the files and the tool's offsets: the position errors,
+// the tables linear between the records, the end values beyond, and the spindle's offsets.
 ErrorModel isgControllerModel(const Machine& machine, const IsgVolumetricModel& model);
 
 // The controller's correction of the X, Y, Z commands at the commands q: the position its model
