@@ -245,6 +245,11 @@ TEST(LinuxcncKinematics, TheSwivelHeadTableIsMaxkinsAndCarriesPivotAndCLine) {
   checkCarriedAndNamed({"swivel-head-table", "maxkins", "Z0C1: 7 um, X0C: 5 um, Y0C: -4 um, X0B: 3 um", "A0B: 20 urad"});
 }
 
+// The trunnion's pins carry its lines' positions; the C line's tilt about X (A0C) they cannot.
+TEST(LinuxcncKinematics, TheTiltingTablesPinsNameTheLinesTilt) {
+  checkCarriedAndNamed({"tilting-table", "xyzbc-trt-kins", "X0B: 6 um, Z0B: -4 um, X0C: -5 um, Y0C: 4 um", "A0C: 30 urad"});
+}
+
 TEST(LinuxcncKinematics, HeadModulesHalFilesReadBack) {
   for (const auto& [machine, module] : {std::pair{"double-pivot-head", "5axiskins"}, std::pair{"swivel-head-table", "maxkins"}}) {
     const auto setup = loadMachineSetup({machine, "", "", std::nullopt, ""});
