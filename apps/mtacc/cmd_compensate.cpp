@@ -51,7 +51,7 @@ void emitTables(const CompensateOptions& o, const CompensationTablesResult& r) {
                                   r.grid.counts[0], r.grid.counts[1], r.grid.counts[2], others, o.tables);
   human += fmt::format("TCP position error left over {} points (nodes and midpoints), um:  largest (rms)\n", r.gridResidual.samples);
   human += fmt::format("  {:<30} {:9.3f} ({:.3f})\n", "uncorrected", r.gridResidual.beforeMax * 1e3, r.gridResidual.beforeRms * 1e3);
-  std::string csv = "format,after_max_um,after_rms_um,before_max_um,before_rms_um\n";
+  std::string csv = "format,after_max_um,after_rms_um,before_max_um,before_rms_um,moving_forward_max_um,moving_backward_max_um\n";
   for (const auto& t : j["tables"]) {
     const auto& res = t["residual"];
     const std::string format = t["format"];
@@ -64,13 +64,18 @@ void emitTables(const CompensateOptions& o, const CompensationTablesResult& r) {
                                                         : "TwinCAT/ISG volumetric model";
     human += fmt::format("  {:<30} {:9.3f} ({:.3f})   carries {}\n", label, res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
                          t["carries"].get<std::string>());
+    if (res.contains("moving_forward_max_um"))
+      human += fmt::format("  {:<30} {:9.3f} / {:.3f} largest moving forward / backward (standing {:.3f})\n", "",
+                           res["moving_forward_max_um"].get<double>(), res["moving_backward_max_um"].get<double>(), res["after_max_um"].get<double>());
     if (t.contains("not_carried"))
       for (const auto& left : t["not_carried"]) human += fmt::format("  {:<30} not carried: {}\n", "", left.get<std::string>());
     if (t.contains("along_program"))
-      human += fmt::format("  {:<30} {:9.3f} ({:.3f})   along {} (uncorrected {:.3f})\n", "", t["along_program"]["after_max_um"].get<double>(),
-                           t["along_program"]["after_rms_um"].get<double>(), o.checkProgram, t["along_program"]["before_max_um"].get<double>());
-    csv += fmt::format("{},{},{},{},{}\n", t["format"].get<std::string>(), res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
-                       res["before_max_um"].get<double>(), res["before_rms_um"].get<double>());
+      human += fmt::format("  {:<30} {:9.3f} ({:.3f})   along {} (uncorrected {:.3f}; moving as programmed {:.3f})\n", "",
+                           t["along_program"]["after_max_um"].get<double>(), t["along_program"]["after_rms_um"].get<double>(), o.checkProgram,
+                           t["along_program"]["before_max_um"].get<double>(), t["along_program"].value("moving_as_programmed_max_um", 0.0));
+    csv += fmt::format("{},{},{},{},{},{},{}\n", t["format"].get<std::string>(), res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
+                       res["before_max_um"].get<double>(), res["before_rms_um"].get<double>(), res.value("moving_forward_max_um", 0.0),
+                       res.value("moving_backward_max_um", 0.0));
   }
   if (!r.isg) human += fmt::format("TwinCAT/ISG volumetric model: none, {}\n", r.isgNotApplicable);
   // The controllers' kinematic data sets, each over the rotary axes' poses and along the check program.
@@ -89,8 +94,9 @@ void emitTables(const CompensateOptions& o, const CompensationTablesResult& r) {
     if (k.contains("along_program"))
       human += fmt::format("  {:<30} {:9.3f} ({:.3f})   along {} (uncorrected {:.3f})\n", "", k["along_program"]["after_max_um"].get<double>(),
                            k["along_program"]["after_rms_um"].get<double>(), o.checkProgram, k["along_program"]["before_max_um"].get<double>());
-    csv += fmt::format("{},{},{},{},{}\n", format, res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
-                       res["before_max_um"].get<double>(), res["before_rms_um"].get<double>());
+    csv += fmt::format("{},{},{},{},{},{},{}\n", format, res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
+                       res["before_max_um"].get<double>(), res["before_rms_um"].get<double>(), res.value("moving_forward_max_um", 0.0),
+                       res.value("moving_backward_max_um", 0.0));
   };
   const auto& kins = j["linuxcnc_kins"];
   kinematics(kins, kins["applicable"].get<bool>() ? fmt::format("LinuxCNC {} parameters", kins["kins"].get<std::string>()) : "LinuxCNC kinematics parameters",

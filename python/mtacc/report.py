@@ -406,11 +406,13 @@ def compensation_section(result):
             entries.append((f"{label(result[key])} (over the rotary axes' poses)", result[key]))
     # Along the user's test path, when one was given: what each output leaves where the machine works.
     along = "check_program" in result
-    rows = [[name, f"{t['residual']['after_max_um']:.3f}", f"{t['residual']['after_rms_um']:.3f}",
+    def moving(r):
+        return f"{r['moving_forward_max_um']:.3f} / {r['moving_backward_max_um']:.3f}" if "moving_forward_max_um" in r else "—"
+    rows = [[name, f"{t['residual']['after_max_um']:.3f}", f"{t['residual']['after_rms_um']:.3f}", moving(t["residual"]),
              *([f"{t['along_program']['after_max_um']:.3f}"] if along else []), t["carries"], "; ".join(t.get("not_carried", [])) or "—"]
             for name, t in entries]
-    header = ["table", "largest [µm]", "RMS [µm]", *([f"along {result['check_program']}, largest [µm]"] if along else []),
-              "carries", "not carried"]
+    header = ["table", "largest [µm]", "RMS [µm]", "moving forward / backward, largest [µm]",
+              *([f"along {result['check_program']}, largest [µm]"] if along else []), "carries", "not carried"]
     out += table(header, rows, left=1)
     rotary = result.get("rotary_positioning", [])
     if rotary:

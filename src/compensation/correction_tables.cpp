@@ -33,17 +33,20 @@ class ResidualSum {
   ResidualSum(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& g)
       : actual_(compile(machine, errors)), nominal_(compileNominal(machine)), axes_(g.axes) {}
 
-  void add(const std::vector<double>& q, const CommandCorrection& correction, const std::vector<RotaryPositioning>& rotary) {
+  // `direction`: per commanded axis, empty standing.
+  void add(const std::vector<double>& q, const std::vector<int>& direction, const DirectedCorrection& correction,
+           const std::vector<RotaryPositioning>& rotary) {
     const auto x = static_cast<size_t>(axes_[0]), y = static_cast<size_t>(axes_[1]), z = static_cast<size_t>(axes_[2]);
     corrected_ = q;
-    const Vec3 c = correction(q);
+    const Vec3 c = correction(q, direction);
     corrected_[x] += c.x();
     corrected_[y] += c.y();
     corrected_[z] += c.z();
     for (const RotaryPositioning& r : rotary) corrected_[static_cast<size_t>(r.axis)] += r.correction(q[static_cast<size_t>(r.axis)]);
+    const int* dir = direction.empty() ? nullptr : direction.data();
     const Vec3 wanted = toolPoint(nominal_, q.data()).position;
-    const double before = (toolPoint(actual_, q.data()).position - wanted).norm();
-    const double after = (toolPoint(actual_, corrected_.data()).position - wanted).norm();
+    const double before = (toolPoint(actual_, q.data(), dir).position - wanted).norm();
+    const double after = (toolPoint(actual_, corrected_.data(), dir).position - wanted).norm();
     r_.beforeMax = std::max(r_.beforeMax, before);
     r_.afterMax = std::max(r_.afterMax, after);
     before_ += before * before;
@@ -234,8 +237,14 @@ TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, 
   return tableResidualAlong(machine, errors, program, g, ofLinearCommands(g, correction), rotary);
 }
 
-TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& g,
-                            const CommandCorrection& correction, int perAxis, const std::vector<RotaryPositioning>& rotary) {
+namespace {
+
+DirectedCorrection standing(const CommandCorrection& correction) {
+  return [correction](const std::vector<double>& q, const std::vector<int>&) { return correction(q); };
+}
+
+// The lattice's points, `perAxis` at most along each axis, the other axes at the grid's pose.
+void forEachLatticePoint(const CorrectionGrid& g, int perAxis, const std::function<void(const std::vector<double>&)>& visit) {
   std::array<std::vector<double>, 3> lattice;
   for (size_t a = 0; a < 3; ++a) {
     // The nodes and the midpoints between them, thinned to perAxis.
@@ -243,7 +252,6 @@ TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const
     const double span = g.step[a] * (g.counts[a] - 1);
     for (int p = 0; p < points; ++p) lattice[a].push_back(g.start[a] + span * p / (points - 1));
   }
-  ResidualSum sum(machine, errors, g);
   std::vector<double> q = g.pose;
   const auto x = static_cast<size_t>(g.axes[0]), y = static_cast<size_t>(g.axes[1]), z = static_cast<size_t>(g.axes[2]);
   for (double zz : lattice[2])
@@ -252,18 +260,76 @@ TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const
         q[x] = xx;
         q[y] = yy;
         q[z] = zz;
-        sum.add(q, correction, rotary);
+        visit(q);
       }
-  return sum.result();
+}
+
+constexpr int kMovingPerAxis = 11;
+
+}  // namespace
+
+TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& g,
+                            const CommandCorrection& correction, int perAxis, const std::vector<RotaryPositioning>& rotary) {
+  return tableResidual(machine, errors, g, standing(correction), perAxis, rotary);
+}
+
+TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& g,
+                            const DirectedCorrection& correction, int perAxis, const std::vector<RotaryPositioning>& rotary) {
+  ResidualSum sum(machine, errors, g);
+  forEachLatticePoint(g, perAxis, [&](const std::vector<double>& q) { sum.add(q, {}, correction, rotary); });
+  TableResidual r = sum.result();
+  for (int way : {1, -1}) {
+    ResidualSum moving(machine, errors, g);
+    std::vector<int> direction(g.pose.size(), 0);
+    for (int axis : g.axes) direction[static_cast<size_t>(axis)] = way;
+    forEachLatticePoint(g, std::min(perAxis, kMovingPerAxis), [&](const std::vector<double>& q) { moving.add(q, direction, correction, rotary); });
+    (way > 0 ? r.forwardMax : r.backwardMax) = moving.result().afterMax;
+  }
+  return r;
 }
 
 TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
                                  const CorrectionGrid& g, const CommandCorrection& correction, const std::vector<RotaryPositioning>& rotary) {
-  ResidualSum sum(machine, errors, g);
-  for (const GcodeMove& move : program.moves)
-    if (move.mode != MotionMode::Rapid)
-      for (int k = 0; k <= 16; ++k) sum.add(move.at(k / 16.0), correction, rotary);
-  return sum.result();
+  return tableResidualAlong(machine, errors, program, g, standing(correction), rotary);
+}
+
+TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
+                                 const CorrectionGrid& g, const DirectedCorrection& correction, const std::vector<RotaryPositioning>& rotary) {
+  ResidualSum sum(machine, errors, g), moving(machine, errors, g);
+  std::vector<int> held;
+  for (const GcodeMove& move : program.moves) {
+    if (move.mode == MotionMode::Rapid) {
+      move.heldMotion(1.0, held);
+      continue;
+    }
+    for (int k = 0; k <= 16; ++k) {
+      const std::vector<double> q = move.at(k / 16.0);
+      move.heldMotion(k / 16.0, held);
+      sum.add(q, {}, correction, rotary);
+      moving.add(q, held, correction, rotary);
+    }
+  }
+  TableResidual r = sum.result();
+  r.programmedMax = moving.result().afterMax;
+  return r;
+}
+
+DirectedCorrection directedCorrection(const CorrectionGrid& g, const OneAxisReduction& functions, const std::array<ReversalTrims, 3>& trims) {
+  return [g, functions, trims](const std::vector<double>& q, const std::vector<int>& direction) {
+    Vec3 p, c;
+    for (size_t a = 0; a < 3; ++a) p[static_cast<Eigen::Index>(a)] = q[static_cast<size_t>(g.axes[a])];
+    c = functions.correction(p);
+    if (direction.empty()) return c;
+    for (size_t a = 0; a < 3; ++a) {
+      const int way = direction[static_cast<size_t>(g.axes[a])];
+      if (way == 0) continue;
+      const std::vector<double>& column = way > 0 ? trims[a].forward : trims[a].reverse;
+      const auto [node, t] = bracket(p[static_cast<Eigen::Index>(a)], g.start[a], g.step[a], g.counts[a]);
+      const auto n = static_cast<size_t>(node);
+      c[static_cast<Eigen::Index>(a)] += (1.0 - t) * column[n] + t * column[std::min(n + 1, column.size() - 1)];
+    }
+    return c;
+  };
 }
 
 std::vector<std::string> reversalFunctions(const Machine& machine, const ErrorModel& errors) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <stdexcept>
 
 #include "mtacc/core/input_error.hpp"
 
@@ -34,25 +35,46 @@ std::string table(const std::string& stem, const std::string& extension, const s
 
 }  // namespace
 
-std::vector<std::pair<std::string, std::string>> heidenhainTables(const OneAxisReduction& reduction) {
+std::vector<std::pair<std::string, std::string>> heidenhainTables(const OneAxisReduction& reduction, const std::array<ReversalTrims, 3>& trims) {
   std::vector<std::pair<std::string, std::string>> files;
   std::vector<std::string> cmaHeader{"NR"}, cmaRow{"0"};
   for (int input = 0; input < 3; ++input) {
-    std::vector<const AxisFunction*> outputs;
+    std::vector<AxisFunction> outputs;
     for (const auto& f : reduction.functions)
-      if (f.input == input) outputs.push_back(&f);
+      if (f.input == input) outputs.push_back(f);
     if (outputs.empty()) continue;
-    std::sort(outputs.begin(), outputs.end(), [](const AxisFunction* a, const AxisFunction* b) { return a->output < b->output; });
-    const auto& positions = outputs.front()->positions;
+    std::sort(outputs.begin(), outputs.end(), [](const AxisFunction& a, const AxisFunction& b) { return a.output < b.output; });
+    const std::vector<double> positions = outputs.front().positions;
     if (positions.size() > kComPoints)
       throw InputError({"", 0, "nodes"}, fmt::format("a HEIDENHAIN compensation-value table holds at most {} points, not {}", kComPoints,
                                                      positions.size()));
+    // Moving each way: the own column forward, BACKLASH backward.
+    const ReversalTrims& reversal = trims[static_cast<size_t>(input)];
+    const bool backlash = std::any_of(reversal.forward.begin(), reversal.forward.end(), [](double t) { return t != 0.0; }) ||
+                          std::any_of(reversal.reverse.begin(), reversal.reverse.end(), [](double t) { return t != 0.0; });
+    std::vector<double> backward;
+    if (backlash) {
+      if (reversal.forward.size() != positions.size() || reversal.reverse.size() != positions.size())
+        throw std::invalid_argument("heidenhainTables: the reversal trims are not at the functions' points");
+      auto own = std::find_if(outputs.begin(), outputs.end(), [&](const AxisFunction& f) { return f.output == input; });
+      if (own == outputs.end()) {
+        outputs.push_back({input, input, positions, std::vector<double>(positions.size(), 0.0), 0.0});
+        std::sort(outputs.begin(), outputs.end(), [](const AxisFunction& a, const AxisFunction& b) { return a.output < b.output; });
+        own = std::find_if(outputs.begin(), outputs.end(), [&](const AxisFunction& f) { return f.output == input; });
+      }
+      for (size_t n = 0; n < positions.size(); ++n) {
+        backward.push_back(own->values[n] + reversal.reverse[n]);
+        own->values[n] += reversal.forward[n];
+      }
+    }
     std::vector<std::string> header{"NR", "AXISPOS"};
-    for (const auto* f : outputs) header.emplace_back(kLinearAxisNames[f->output]);
+    for (const auto& f : outputs) header.emplace_back(kLinearAxisNames[f.output]);
+    if (backlash) header.emplace_back("BACKLASH");
     std::vector<std::vector<std::string>> rows;
     for (size_t n = 0; n < positions.size(); ++n) {
       std::vector<std::string> row{std::to_string(n), fmt::format("{:+.4f}", positions[n])};
-      for (const auto* f : outputs) row.push_back(fmt::format("{:+.5f}", f->values[n]));
+      for (const auto& f : outputs) row.push_back(fmt::format("{:+.5f}", f.values[n]));
+      if (backlash) row.push_back(fmt::format("{:+.5f}", backward[n]));
       rows.push_back(std::move(row));
     }
     const std::string stem = fmt::format("heidenhain-{}", kLinearAxisNames[input]), file = stem + ".com";

@@ -1,6 +1,7 @@
 #include "mtacc/workflows/compensation.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <chrono>
 #include <filesystem>
@@ -98,8 +99,14 @@ std::string oneAxisCsv(const Machine& m, const OneAxisReduction& r, const Correc
 }
 
 nlohmann::json residualJson(const TableResidual& r) {
-  return {{"before_max_um", r.beforeMax * 1e3}, {"before_rms_um", r.beforeRms * 1e3}, {"after_max_um", r.afterMax * 1e3},
-          {"after_rms_um", r.afterRms * 1e3}, {"samples", r.samples}};
+  nlohmann::json j = {{"before_max_um", r.beforeMax * 1e3}, {"before_rms_um", r.beforeRms * 1e3}, {"after_max_um", r.afterMax * 1e3},
+                      {"after_rms_um", r.afterRms * 1e3}, {"samples", r.samples}};
+  if (r.forwardMax > 0.0 || r.backwardMax > 0.0) {
+    j["moving_forward_max_um"] = r.forwardMax * 1e3;
+    j["moving_backward_max_um"] = r.backwardMax * 1e3;
+  }
+  if (r.programmedMax > 0.0) j["moving_as_programmed_max_um"] = r.programmedMax * 1e3;
+  return j;
 }
 
 nlohmann::json kinsJson(const LinuxcncKinematicsFit& fit) {
@@ -154,11 +161,20 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   r.gridResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.grid.interpolate(p); });
   r.oneAxisResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.oneAxis.correction(p); });
   r.ownAxesResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.ownAxes.correction(p); }, 41, r.rotary);
+  std::array<ReversalTrims, 3> trims;
+  for (const auto& f : r.ownAxes.functions) trims[static_cast<size_t>(f.input)] = reversalTrims(m, setup.errors, r.grid, f.input);
+  for (size_t a = 0; a < 3; ++a)
+    if (trims[a].forward.empty()) trims[a] = {std::vector<double>(static_cast<size_t>(r.grid.counts[a]), 0.0), std::vector<double>(static_cast<size_t>(r.grid.counts[a]), 0.0)};
+  const DirectedCorrection linuxcnc = directedCorrection(r.grid, r.ownAxes, trims), heidenhain = directedCorrection(r.grid, r.oneAxis, trims);
+  r.linuxcncResidual = tableResidual(m, setup.errors, r.grid, linuxcnc, 41, r.rotary);
+  r.heidenhainResidual = tableResidual(m, setup.errors, r.grid, heidenhain);
   if (r.checkProgram) {
     r.gridAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.grid.interpolate(p); });
     r.oneAxisAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.oneAxis.correction(p); });
     r.ownAxesAlong =
         tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.ownAxes.correction(p); }, r.rotary);
+    r.linuxcncAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, linuxcnc, r.rotary);
+    r.heidenhainAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, heidenhain);
   }
   try {
     r.isg = isgVolumetricModel(*m, setup.errors, request.isgRecords);
@@ -178,11 +194,10 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   r.files.emplace_back("siemens-lec.ini", siemensLecTables(r.ownAxes.functions, *m, r.rotary, pose));
   const char* names[3] = {"X", "Y", "Z"};
   for (const auto& f : r.ownAxes.functions)
-    r.files.emplace_back(fmt::format("linuxcnc-{}.comp", names[f.input]),
-                         linuxcncCompFile(f, reversalTrims(m, setup.errors, r.grid, f.input), request.linuxcncType));
+    r.files.emplace_back(fmt::format("linuxcnc-{}.comp", names[f.input]), linuxcncCompFile(f, trims[static_cast<size_t>(f.input)], request.linuxcncType));
   for (const auto& rotary : r.rotary)
     r.files.emplace_back(fmt::format("linuxcnc-{}.comp", m->axes[static_cast<size_t>(rotary.axis)].name), linuxcncCompFile(rotary, request.linuxcncType));
-  for (auto& file : heidenhainTables(r.oneAxis)) r.files.push_back(std::move(file));
+  for (auto& file : heidenhainTables(r.oneAxis, trims)) r.files.push_back(std::move(file));
   if (r.isg) {
     r.files.emplace_back("isg-volcomp.csv", isgCsv(*m, *r.isg));
     r.files.emplace_back("isg-volcomp.lis", isgCompensationList(*m, *r.isg, "isg-volcomp.csv"));
@@ -237,11 +252,17 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
             {{"format", "linuxcnc"}, {"files", linuxcncFiles},
              {"carries", "each axis's correction of its own command, moving forward and backward (its reversal), the rotary axes' by their own "
                          "angular positioning; not the cross-axis terms (squareness, straightness)"},
-             {"residual", residualJson(r.ownAxesResidual)}},
+             {"residual", residualJson(r.linuxcncResidual)}},
             {{"format", "heidenhain"}, {"files", heidenhainFiles},
-             {"carries", "the one-axis functions above, one compensation-value table per input axis with a column per output axis"},
-             {"residual", residualJson(r.oneAxisResidual)}}}},
+             {"carries", "the one-axis functions above, one compensation-value table per input axis with a column per output axis; "
+                         "moving, each axis's reversal in its BACKLASH column"},
+             {"residual", residualJson(r.heidenhainResidual)}}}},
           {"files", files}};
+  // The tables taken standing carry no reversal; LinuxCNC's and HEIDENHAIN's carry the linear axes' own.
+  if (const auto reversal = reversalFunctions(*r.setup.machine, r.setup.errors); !reversal.empty())
+    for (auto& t : j["tables"])
+      if (t["format"] != "linuxcnc" && t["format"] != "heidenhain")
+        t["not_carried"].push_back(fmt::format("the reversal terms of {} (the table is taken standing)", fmt::join(reversal, ", ")));
   if (r.isg) {
     j["tables"].push_back({{"format", "isg-volumetric"}, {"files", "isg-volcomp.csv, isg-volcomp.lis, etalon-exchange.txt"},
                            {"chain", r.isg->chain}, {"workpiece_axes", r.isg->workpieceAxes},
@@ -270,7 +291,7 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
   if (r.toolholder && r.checkProgram) j["siemens_toolholder"]["along_program"] = residualJson(r.toolholderAlong);
   if (r.checkProgram) {
     j["check_program"] = r.checkProgram->file;
-    const TableResidual* along[] = {&r.gridAlong, &r.oneAxisAlong, &r.oneAxisAlong, &r.ownAxesAlong, &r.ownAxesAlong, &r.oneAxisAlong, &r.isgAlong};  // in the order of "tables"
+    const TableResidual* along[] = {&r.gridAlong, &r.oneAxisAlong, &r.oneAxisAlong, &r.ownAxesAlong, &r.linuxcncAlong, &r.heidenhainAlong, &r.isgAlong};  // in the order of "tables"
     for (size_t t = 0; t < j["tables"].size(); ++t) j["tables"][t]["along_program"] = residualJson(*along[t]);
   }
   return j;

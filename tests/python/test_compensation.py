@@ -107,8 +107,14 @@ def test_tables_along_a_test_path(tmp_path):
     along = {t["format"]: t["along_program"] for t in r["tables"]}
     assert along["grid"]["after_max_um"] <= 0.05 * along["grid"]["before_max_um"]
     assert along["one-axis"] == along["siemens-cec"]
-    assert along["linuxcnc"] == along["siemens-lec"]
-    assert along["heidenhain"] == along["one-axis"]
+    standing = ("after_max_um", "after_rms_um", "before_max_um")
+    assert [along["linuxcnc"][k] for k in standing] == [along["siemens-lec"][k] for k in standing]
+    assert [along["heidenhain"][k] for k in standing] == [along["one-axis"][k] for k in standing]
+    # Moving as the circles move (issue 46) the reversals act: the grid leaves them, LinuxCNC's trims
+    # and HEIDENHAIN's BACKLASH column take them out.
+    assert along["grid"]["moving_as_programmed_max_um"] > along["grid"]["after_max_um"] + 0.5
+    assert along["linuxcnc"]["moving_as_programmed_max_um"] < along["siemens-lec"]["moving_as_programmed_max_um"] - 0.5
+    assert along["heidenhain"]["moving_as_programmed_max_um"] < along["one-axis"]["moving_as_programmed_max_um"] - 0.5
 
 
 def test_tables_refuse_a_bad_request():
@@ -135,3 +141,37 @@ def test_five_axis_outputs_along_a_test_path(tmp_path):
     assert "linuxcnc-B.comp" in r["files"] and "linuxcnc-C.comp" in r["files"]
     section = report.compensation_section(r)
     assert f"along {program}, largest [µm]" in section and "The rotary axes' own positioning in the LEC and LinuxCNC files: B:" in section
+
+
+def test_each_table_moving_each_way_leaves_the_reversal_it_cannot_carry(cli, tmp_path):
+    # Issue 46: a machine whose only errors are each axis's positioning error with a reversal. The
+    # tables taken standing carry the positioning and leave the reversal moving (half of each width,
+    # on all three axes: |(1, 1.5, 2)| um), named; LinuxCNC's trims and HEIDENHAIN's BACKLASH column
+    # carry it moving each way.
+    from mtacc import report
+    errors = tmp_path / "reversal.yaml"
+    errors.write_text("errors:\n  EXX: {linear: {value: 6 um, over: 500 mm}, reversal: 2 um}\n  EYY: {reversal: 3 um}\n"
+                      "  EZZ: {linear: {value: -4 um, over: 500 mm}, reversal: 4 um}\n")
+    r = mtacc.Machine("three-axis-vertical", errors=str(errors)).compensation_tables(nodes=(6, 5, 5))
+    half = (1.0 ** 2 + 1.5 ** 2 + 2.0 ** 2) ** 0.5
+    for t in r["tables"]:
+        res = t["residual"]
+        if t["format"] in ("linuxcnc", "heidenhain"):
+            assert max(res["after_max_um"], res["moving_forward_max_um"], res["moving_backward_max_um"]) < 0.01, t["format"]
+            assert not any("reversal" in left for left in t.get("not_carried", []))
+        else:
+            assert res["after_max_um"] < 0.05, t["format"]
+            assert res["moving_forward_max_um"] == pytest.approx(half, abs=0.05), t["format"]
+            assert res["moving_backward_max_um"] == pytest.approx(half, abs=0.05), t["format"]
+            assert any(left.startswith("the reversal terms of EXX, EYY, EZZ") for left in t["not_carried"]), t["format"]
+    out = subprocess.run([cli, "compensate", "three-axis-vertical", "--errors", str(errors), "--tables", str(tmp_path / "t"), "--nodes", "6,5,5"],
+                         check=True, capture_output=True, text=True).stdout
+    assert "largest moving forward / backward" in out and "not carried: the reversal terms of EXX, EYY, EZZ (the table is taken standing)" in out
+    section = report.compensation_section(r)
+    assert "moving forward / backward, largest [µm]" in section and "the reversal terms of EXX, EYY, EZZ (the table is taken standing)" in section
+    com = (tmp_path / "t" / "heidenhain-X.com").read_text().splitlines()
+    header = com[1].split()
+    assert header[:3] == ["NR", "AXISPOS", "X"] and header[-1] == "BACKLASH"
+    # The positive direction's values and the negative's differ by the reversal (2 um on X).
+    x, backlash = header.index("X"), header.index("BACKLASH")
+    assert all(abs(float(row.split()[x]) - float(row.split()[backlash]) - 0.002) < 2e-5 for row in com[2:-1])

@@ -82,9 +82,14 @@ OneAxisReduction reduceToOneAxisFunctions(const CorrectionGrid& grid, int maxFun
 // How far the TCP is from where the nominal machine puts it, with the commands as written
 // (before) and corrected by `correction` as the controller applies it (after), over a lattice
 // of the grid's nodes and the midpoints between them (at most `perAxis` per axis).
+// Over the lattice the machine stands at each point; moving, X, Y and Z move forward (or backward)
+// through it, so the reversal errors and the controller's direction-dependent corrections act
+// (a coarser lattice, at most 11 per axis): what the table leaves on a real move.
 struct TableResidual {
   double beforeMax = 0.0, beforeRms = 0.0, afterMax = 0.0, afterRms = 0.0;  // mm
   int samples = 0;
+  double forwardMax = 0.0, backwardMax = 0.0;  // mm, after, moving forward and backward
+  double programmedMax = 0.0;                   // mm, after, along a program: each axis moving as the program moves it
 };
 // `rotary`: the rotary axes' own corrections the controller applies beside (standing).
 TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid,
@@ -94,8 +99,14 @@ TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const
 using CommandCorrection = std::function<Vec3(const std::vector<double>& q)>;
 TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid,
                             const CommandCorrection& correction, int perAxis = 41, const std::vector<RotaryPositioning>& rotary = {});
+// A correction that depends on the directions the axes move in (+1, -1, 0 per commanded axis;
+// empty standing): LinuxCNC's forward and reverse trims.
+using DirectedCorrection = std::function<Vec3(const std::vector<double>& q, const std::vector<int>& direction)>;
+TableResidual tableResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid,
+                            const DirectedCorrection& correction, int perAxis = 41, const std::vector<RotaryPositioning>& rotary = {});
 
-// The same along a program's feed moves (each sampled at 17 points, ends included), the controller
+// The same along a program's feed moves (each sampled at 17 points, ends included), standing and
+// (programmedMax) each axis moving as the program moves it, its reversals acting; the controller
 // correcting the X, Y, Z commands continuously as it interpolates them; the program's other axes
 // as programmed, the machine file's tool (G43 lengths are not applied: the tables are made for
 // that tool). A test path shows what each table does where the machine works.
@@ -104,6 +115,9 @@ TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, 
                                  const std::vector<RotaryPositioning>& rotary = {});
 TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
                                  const CorrectionGrid& grid, const CommandCorrection& correction,
+                                 const std::vector<RotaryPositioning>& rotary = {});
+TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
+                                 const CorrectionGrid& grid, const DirectedCorrection& correction,
                                  const std::vector<RotaryPositioning>& rotary = {});
 
 // The motion functions with a reversal term of non-zero width, by name ("EXX"): what a
@@ -119,6 +133,10 @@ struct ReversalTrims {
   std::vector<double> forward, reverse;
 };
 ReversalTrims reversalTrims(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid, int axis);
+// The correction of one-axis functions with each axis's forward and reverse trims as the
+// controller applies them moving (linear between the nodes, the end values beyond): LinuxCNC's
+// COMP_FILEs (each axis's own function), HEIDENHAIN's tables with their BACKLASH column.
+DirectedCorrection directedCorrection(const CorrectionGrid& grid, const OneAxisReduction& functions, const std::array<ReversalTrims, 3>& trims);
 
 // LinuxCNC [JOINT_n] COMP_FILE: "nominal forward reverse" per line (COMP_FILE_TYPE 1: trims,
 // the correction added to the command; 0: the positions nominal + trim), at most 256 lines.

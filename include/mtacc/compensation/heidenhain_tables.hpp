@@ -6,6 +6,7 @@
 // (MANUALplus 620 technical manual, "Entering compensation values", "Assigning the compensation
 // value tables to the axes"). Written in the control's table form: "BEGIN <name> MM", the column
 // header, one row per point numbered in NR, "[END]".
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,7 +17,10 @@ namespace mtacc {
 
 // The one-axis functions as "heidenhain-<input>.com" files (at most 256 points each: the TNC
 // refuses more) and "heidenhain.cma" naming them; values in mm, the correction added to the
-// column's axis. Throws InputError for a function with more than 256 points.
-std::vector<std::pair<std::string, std::string>> heidenhainTables(const OneAxisReduction& reduction);
+// column's axis. An input axis with reversal trims (`trims`, at the functions' points; empty for
+// none) gets the BACKLASH column: "the compensation values measured in the negative direction of
+// traverse" (p. 716), its own column then holding those of the positive direction. Throws
+// InputError for a function with more than 256 points.
+std::vector<std::pair<std::string, std::string>> heidenhainTables(const OneAxisReduction& reduction, const std::array<ReversalTrims, 3>& trims = {});
 
 }  // namespace mtacc

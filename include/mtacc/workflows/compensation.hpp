@@ -68,6 +68,8 @@ struct CompensationTablesResult {
   OneAxisReduction ownAxes;  // the functions of each axis's own command (LinuxCNC)
   std::vector<RotaryPositioning> rotary;  // the rotary axes' corrections of their own commands (LEC, LinuxCNC)
   TableResidual gridResidual, oneAxisResidual, ownAxesResidual;
+  TableResidual linuxcncResidual, linuxcncAlong;      // the own-axis functions with the reversal trims (moving)
+  TableResidual heidenhainResidual, heidenhainAlong;  // the one-axis functions with them (the BACKLASH column)
   std::optional<GcodeProgram> checkProgram;
   TableResidual gridAlong, oneAxisAlong, ownAxesAlong;  // along checkProgram
   std::optional<IsgVolumetricModel> isg;
