@@ -124,10 +124,18 @@ Eigen::VectorXd residual(const KinematicModel& machine, const Model& model, cons
 }
 
 void fit(const KinematicModel& machine, const Model& model, const std::vector<ControllerPose>& poses) {
+  Eigen::VectorXd r = residual(machine, model, poses);
   for (int iteration = 0; iteration < 8; ++iteration) {
-    const Eigen::VectorXd step = Solver(jacobian(machine, model, poses)).step(-residual(machine, model, poses));
+    const Eigen::VectorXd step = Solver(jacobian(machine, model, poses)).step(-r);
     for (size_t k = 0; k < model.values.size(); ++k) *model.values[k] += step[static_cast<Eigen::Index>(k)];
-    if (step.norm() < 1e-12) break;
+    const Eigen::VectorXd next = residual(machine, model, poses);
+    // Converged when a step no longer lowers the residual by a millionth; a step that raises it is taken back.
+    if (next.norm() >= (1.0 - 1e-6) * r.norm()) {
+      if (next.norm() > r.norm())
+        for (size_t k = 0; k < model.values.size(); ++k) *model.values[k] -= step[static_cast<Eigen::Index>(k)];
+      break;
+    }
+    r = next;
   }
 }
 
