@@ -203,3 +203,27 @@ TEST(IsgVolumetric, NamesWhatItCannotCarryAndRefusesOtherMachines) {
 
 }  // namespace
 }  // namespace mtacc
+
+namespace mtacc {
+namespace {
+
+// A continuous C is a modulo axis to the controller: at C = -135 deg it evaluates its tables at
+// 225 deg, where the machine's periodic errors are the same (issue 45, item 3). Clamped at the
+// table's start instead, the C errors' change over the turn would be left.
+TEST(IsgVolumetric, AContinuousAxisIsEvaluatedWithinTheTurn) {
+  const auto s = bundledSetup("tilting-table");
+  const ErrorModel periodic = parseErrors(*s.machine,
+                                          "errors:\n  EXC: {harmonics: {terms: [{order: 2, amplitude: 3 um}]}}\n"
+                                          "  ECC: {harmonics: {terms: [{order: 1, amplitude: 12 urad}]}}\n",
+                                          "periodic.yaml");
+  const GcodeProgram path = parseGcodeProgram("G1 X100 Y50 Z100 B0 C0 F1000\nG1 X-50 Y20 Z80 B40 C-90\nG1 X20 Y-60 Z120 B-60 C-135\n",
+                                              "path.nc", *s.machine);
+  const CorrectionGrid grid = correctionGrid(s.machine, periodic, {{3, 3, 3}, {}});
+  const auto along = tableResidualAlong(s.machine, periodic, path, grid,
+                                        isgCorrection(s.machine, isgControllerModel(*s.machine, isgVolumetricModel(*s.machine, periodic, 200))));
+  EXPECT_GT(along.beforeMax, 2e-3);
+  EXPECT_LT(along.afterMax, 1e-4);
+}
+
+}  // namespace
+}  // namespace mtacc

@@ -134,7 +134,14 @@ CommandCorrection isgCorrection(const std::shared_ptr<const Machine>& machine, c
   auto s = std::make_shared<State>(State{compile(machine, controllerModel), compileNominal(machine), {}, {}, {}});
   s->options = positionCorrectionOptions();
   for (size_t k = 0; k < 3; ++k) s->xyz[k] = static_cast<size_t>(machine->commandedAxisIndex(kLinearAxisNames[k]));
-  return [s](const std::vector<double>& q) {
+  // A continuous rotary axis is a modulo axis to the controller: it evaluates its tables at the
+  // position within the turn, 0 to 360 degrees, whatever turn the command is in.
+  std::vector<size_t> modulo;
+  for (size_t k = 0; k < static_cast<size_t>(machine->commandedCount()); ++k)
+    if (machine->axes[k].isRotary() && !machine->axes[k].travel) modulo.push_back(k);
+  return [s, modulo](const std::vector<double>& command) {
+    std::vector<double> q = command;
+    for (size_t k : modulo) q[k] -= 2.0 * kPi * std::floor(q[k] / (2.0 * kPi));
     const ToolPoint wanted = toolPoint(s->nominal, q.data());
     const ErrorIkSolution solution = refineWithErrors(s->model, wanted.position, wanted.direction, q, s->options, s->jacobian);
     Vec3 c;
