@@ -179,3 +179,37 @@ TEST(ThermalDrift, BadRecordsAreRefused) {
 
 }  // namespace
 }  // namespace mtacc
+
+namespace mtacc {
+namespace {
+
+// Issue 52: the drift's position dependence stated directly. A noise-free record read along an
+// axis, drift = b0 + g0 z + sum_i (b_i + g_i z) (T_i - T_i0): the fit returns every coefficient,
+// the offset's slope g0 among them, and predicts a sample it was not given by the same formula.
+TEST(DriftModelFit, TheOffsetAndEachCoefficientAreLinearInThePosition) {
+  const int samples = 40;
+  ThermalRecord r{Eigen::MatrixXd(samples, 2), Eigen::VectorXd(samples), Eigen::VectorXd(samples)};
+  const double b0 = 2e-3, g0 = -4e-6, b[2] = {1.5e-3, -0.8e-3}, g[2] = {3e-6, 1e-6};
+  for (int k = 0; k < samples; ++k) {
+    r.temperatures(k, 0) = 20.0 + 0.1 * k + 0.3 * std::sin(0.7 * k);
+    r.temperatures(k, 1) = 21.0 + 0.05 * k * k / samples - 0.2 * std::cos(1.3 * k);
+    r.position[k] = -400.0 + 200.0 * (k % 3);
+  }
+  const auto drift = [&](double t0, double t1, double z) {
+    return b0 + g0 * z + (b[0] + g[0] * z) * (t0 - r.temperatures(0, 0)) + (b[1] + g[1] * z) * (t1 - r.temperatures(0, 1));
+  };
+  for (int k = 0; k < samples; ++k) r.drift[k] = drift(r.temperatures(k, 0), r.temperatures(k, 1), r.position[k]);
+  const DriftModel m = fitDriftModel(r, {0, 1});
+  ASSERT_TRUE(m.positionDependent);
+  EXPECT_NEAR(m.offset, b0, 1e-12);
+  EXPECT_NEAR(m.offsetSlope, g0, 1e-14);
+  for (long i = 0; i < 2; ++i) {
+    EXPECT_NEAR(m.coefficients[i], b[i], 1e-12) << i;
+    EXPECT_NEAR(m.positionCoefficients[i], g[i], 1e-14) << i;
+  }
+  const Eigen::Vector2d elsewhere(23.5, 19.2);
+  EXPECT_NEAR(m.predict(elsewhere, 150.0), drift(23.5, 19.2, 150.0), 1e-12);
+}
+
+}  // namespace
+}  // namespace mtacc
