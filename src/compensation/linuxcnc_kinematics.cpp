@@ -1,7 +1,6 @@
 #include "mtacc/compensation/linuxcnc_kinematics.hpp"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <Eigen/Dense>
 #include <algorithm>

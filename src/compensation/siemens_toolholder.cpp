@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/forward.hpp"
 
 #include "controller_kinematics_fit.hpp"
