@@ -193,12 +193,44 @@ TEST(LinuxcncCompFile, TripletsWithinTheLimitAndTheControllerInterpolatesThem) {
 // reversal. Its LinuxCNC trims applied as LinuxCNC's motion controller applies them (the forward
 // column moving forward, the reverse column moving backward, linear between the entries) put the
 // TCP where the nominal machine puts it, moving either way, between the nodes too.
+// A machine whose only errors are each axis's positioning error with a reversal (issue 46).
+ErrorModel reversalErrors(const Machine& machine) {
+  return parseErrors(machine,
+                     "errors:\n  EXX: {linear: {value: 4 um, over: 600 mm}, reversal: 3 um}\n"
+                     "  EYY: {reversal: 2 um}\n  EZZ: {linear: {value: -2 um, over: 500 mm}, reversal: 1.5 um}\n",
+                     "reversals.yaml", ErrorsKey::Required);
+}
+
+// The largest TCP error left at 300 random points of the grid's box, each axis moving a random
+// way, the commands as a controller corrects them (`commanded`, from the point and the motion).
+using ControllerCommands = std::function<std::vector<double>(const std::vector<double>& q, const std::vector<int>& motion)>;
+double largestMovingResidual(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid,
+                             const ControllerCommands& commanded) {
+  const KinematicModel actual = compile(machine, errors), nominal = compileNominal(machine);
+  std::mt19937 rng(5);
+  double largest = 0.0;
+  for (int s = 0; s < 300; ++s) {
+    std::vector<double> q(3);
+    std::vector<int> motion(3);
+    for (int a = 0; a < 3; ++a) {
+      q[static_cast<size_t>(a)] = std::uniform_real_distribution<double>(grid.node(a, 0), grid.node(a, grid.counts[static_cast<size_t>(a)] - 1))(rng);
+      motion[static_cast<size_t>(a)] = rng() % 2 ? 1 : -1;
+    }
+    const std::vector<double> c = commanded(q, motion);
+    largest = std::max(largest, (toolPoint(actual, c.data(), motion.data()).position - toolPoint(nominal, q.data()).position).norm());
+  }
+  return largest;
+}
+
+std::array<ReversalTrims, 3> trimsOf(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid) {
+  std::array<ReversalTrims, 3> trims;
+  for (int a = 0; a < 3; ++a) trims[static_cast<size_t>(a)] = reversalTrims(machine, errors, grid, a);
+  return trims;
+}
+
 TEST(LinuxcncCompFile, ForwardAndReverseTrimsCorrectTheReversalMovingEachWay) {
   const auto machine = test::bundled("three-axis-vertical");
-  const ErrorModel errors = parseErrors(*machine,
-                                        "errors:\n  EXX: {linear: {value: 4 um, over: 600 mm}, reversal: 3 um}\n"
-                                        "  EYY: {reversal: 2 um}\n  EZZ: {linear: {value: -2 um, over: 500 mm}, reversal: 1.5 um}\n",
-                                        "reversals.yaml", ErrorsKey::Required);
+  const ErrorModel errors = reversalErrors(*machine);
   const CorrectionGrid grid = correctionGrid(machine, errors, {{31, 21, 26}, {}});
   OneAxisReduction own = reduceToOneAxisFunctions(grid, 9);
   std::erase_if(own.functions, [](const AxisFunction& f) { return f.input != f.output; });
@@ -217,19 +249,11 @@ TEST(LinuxcncCompFile, ForwardAndReverseTrimsCorrectTheReversalMovingEachWay) {
     const size_t column = direction > 0 ? 1 : 2;
     return a[column] + (p - a[0]) / (b[0] - a[0]) * (b[column] - a[column]);
   };
-  const KinematicModel actual = compile(machine, errors), nominal = compileNominal(machine);
-  std::mt19937 rng(5);
-  double largest = 0.0;
-  for (int s = 0; s < 300; ++s) {
-    std::vector<double> q(3), commanded(3);
-    std::vector<int> motion(3);
-    for (int a = 0; a < 3; ++a) {
-      q[static_cast<size_t>(a)] = std::uniform_real_distribution<double>(grid.node(a, 0), grid.node(a, grid.counts[static_cast<size_t>(a)] - 1))(rng);
-      motion[static_cast<size_t>(a)] = rng() % 2 ? 1 : -1;
-      commanded[static_cast<size_t>(a)] = q[static_cast<size_t>(a)] + trim(a, q[static_cast<size_t>(a)], motion[static_cast<size_t>(a)]);
-    }
-    largest = std::max(largest, (toolPoint(actual, commanded.data(), motion.data()).position - toolPoint(nominal, q.data()).position).norm());
-  }
+  const double largest = largestMovingResidual(machine, errors, grid, [&](const std::vector<double>& q, const std::vector<int>& motion) {
+    std::vector<double> c = q;
+    for (int a = 0; a < 3; ++a) c[static_cast<size_t>(a)] += trim(a, q[static_cast<size_t>(a)], motion[static_cast<size_t>(a)]);
+    return c;
+  });
   RecordProperty("largest_um", std::to_string(largest * 1e3));
   EXPECT_LT(largest, 1e-5);  // 0.01 um: the file's 7 decimals and the linear interpolation of a linear error
 }
@@ -237,20 +261,26 @@ TEST(LinuxcncCompFile, ForwardAndReverseTrimsCorrectTheReversalMovingEachWay) {
 // Siemens CEC (840D sl function manual K3): per table $AN_CEC_INPUT_AXIS, _OUTPUT_AXIS, _STEP, _MIN,
 // _MAX, _DIRECTION, _MULT_BY_TABLE, _IS_MODULO and the values $AN_CEC[t, N]; the file
 // %_N_NC_CEC_INI ends with M17. Read back, interpolated as the control does, it is the reduction.
-TEST(SiemensCec, TablesReadBackAndInterpolateToTheReduction) {
-  const auto setup = bundledSetup("maho");
-  const CorrectionGrid grid = correctionGrid(setup.machine, setup.errors, {{8, 6, 7}, {}});
-  const OneAxisReduction r = reduceToOneAxisFunctions(grid, 6);
-  std::istringstream file(siemensCecTables(r, setup.machine->describePose(grid.pose)));
+// A %_N_NC_CEC_INI file's tables by index, as the control reads them.
+struct CecTable {
+  std::string input, output;
+  double step = 0, min = 0, max = 0;
+  int direction = 0;
+  std::vector<double> values;
+  // Linear between the points, the end values beyond.
+  double at(double p) const {
+    const double u = std::clamp((p - min) / step, 0.0, static_cast<double>(values.size() - 1));
+    const auto k = std::min(static_cast<size_t>(u), values.size() - 2);
+    return values[k] + (u - static_cast<double>(k)) * (values[k + 1] - values[k]);
+  }
+};
+
+std::map<int, CecTable> readCecTables(const std::string& text) {
+  std::istringstream file(text);
   std::string line;
   std::getline(file, line);
   EXPECT_EQ(line, "%_N_NC_CEC_INI");
-  struct Table {
-    std::string input, output;
-    double step = 0, min = 0, max = 0;
-    std::vector<double> values;
-  };
-  std::map<int, Table> tables;
+  std::map<int, CecTable> tables;
   const std::regex field(R"(\$AN_CEC_(\w+)\[(\d+)\]=\(?([^)]*)\)?)"), value(R"(\$AN_CEC\[(\d+),(\d+)\]=(\S+))");
   std::string last;
   while (std::getline(file, line)) {
@@ -259,7 +289,7 @@ TEST(SiemensCec, TablesReadBackAndInterpolateToTheReduction) {
     last = line;
     if (std::regex_match(line, m, value)) {
       auto& t = tables[std::stoi(m[1])];
-      ASSERT_EQ(static_cast<size_t>(std::stoi(m[2])), t.values.size());
+      EXPECT_EQ(static_cast<size_t>(std::stoi(m[2])), t.values.size());
       t.values.push_back(std::stod(m[3]));
     } else if (std::regex_match(line, m, field)) {
       auto& t = tables[std::stoi(m[2])];
@@ -269,31 +299,80 @@ TEST(SiemensCec, TablesReadBackAndInterpolateToTheReduction) {
       else if (name == "STEP") t.step = std::stod(text);
       else if (name == "MIN") t.min = std::stod(text);
       else if (name == "MAX") t.max = std::stod(text);
-      else EXPECT_TRUE(name == "DIRECTION" || name == "MULT_BY_TABLE" || name == "IS_MODULO") << name;
+      else if (name == "DIRECTION") t.direction = std::stoi(text);
+      else EXPECT_TRUE((name == "MULT_BY_TABLE" || name == "IS_MODULO") && text == "0") << line;
     } else {
       EXPECT_EQ(line, "M17");
     }
   }
   EXPECT_EQ(last, "M17");
-  ASSERT_EQ(tables.size(), 6u);
+  for (const auto& [index, t] : tables) EXPECT_NEAR(t.min + t.step * static_cast<double>(t.values.size() - 1), t.max, 1e-5) << index;
+  return tables;
+}
+
+// The control's correction from CEC tables: each table whose direction is 0 or that of its input
+// axis's motion (`motion` empty: standing, the direction-free tables only) adds to its output axis.
+Vec3 cecCorrection(const std::map<int, CecTable>& tables, const Vec3& p, const std::vector<int>& motion) {
   const char* names[3] = {"X", "Y", "Z"};
-  auto controller = [&](const Vec3& p) {
-    Vec3 c = Vec3::Zero();
-    for (const auto& [index, t] : tables) {
-      const int in = static_cast<int>(std::find(names, names + 3, t.input) - names), out = static_cast<int>(std::find(names, names + 3, t.output) - names);
-      const double u = std::clamp((p[in] - t.min) / t.step, 0.0, static_cast<double>(t.values.size() - 1));
-      const auto k = std::min(static_cast<size_t>(u), t.values.size() - 2);
-      c[out] += t.values[k] + (u - static_cast<double>(k)) * (t.values[k + 1] - t.values[k]);
-    }
-    return c;
-  };
+  const auto index = [&](const std::string& axis) { return static_cast<int>(std::find(names, names + 3, axis) - names); };
+  Vec3 c = Vec3::Zero();
+  for (const auto& [number, t] : tables) {
+    const int in = index(t.input);
+    if (t.direction != 0 && (motion.empty() || motion[static_cast<size_t>(in)] != t.direction)) continue;
+    c[index(t.output)] += t.at(p[in]);
+  }
+  return c;
+}
+
+TEST(SiemensCec, TablesReadBackAndInterpolateToTheReduction) {
+  const auto setup = bundledSetup("maho");
+  const CorrectionGrid grid = correctionGrid(setup.machine, setup.errors, {{8, 6, 7}, {}});
+  const OneAxisReduction r = reduceToOneAxisFunctions(grid, 6);
+  const auto tables = readCecTables(siemensCecTables(r.functions, {}, setup.machine->describePose(grid.pose)));
+  ASSERT_EQ(tables.size(), 6u);
   std::mt19937 rng(5);
   for (int s = 0; s < 100; ++s) {
     Vec3 p;
     for (int a = 0; a < 3; ++a) p[a] = std::uniform_real_distribution<double>(grid.start[a], grid.node(a, grid.counts[a] - 1))(rng);
-    EXPECT_LE((controller(p) - r.correction(p)).norm(), 2e-7);  // 7 decimals
+    EXPECT_LE((cecCorrection(tables, p, {}) - r.correction(p)).norm(), 2e-7);  // 7 decimals
   }
-  for (const auto& [index, t] : tables) EXPECT_NEAR(t.min + t.step * static_cast<double>(t.values.size() - 1), t.max, 1e-5);
+}
+
+// SINUMERIK's reversal (issue 46): two CEC tables on each axis's own command, one applying moving
+// positive ($AN_CEC_DIRECTION 1), one moving negative (-1): "position-dependent backlash
+// compensation can be implemented using two tables" (K3, 03/2013, p. 249). With the one-axis
+// functions, applied as the control applies them, they leave below 0.01 um moving each way on a
+// machine with positioning errors and reversals; the two tables differ by the reversal.
+TEST(SiemensCec, DirectionTablesCorrectTheReversalMovingEachWay) {
+  const auto machine = test::bundled("three-axis-vertical");
+  const ErrorModel errors = reversalErrors(*machine);
+  const CorrectionGrid grid = correctionGrid(machine, errors, {{31, 21, 26}, {}});
+  const OneAxisReduction r = reduceToOneAxisFunctions(grid, 9);
+  const auto reversal = axisReversalTables(*machine, grid, trimsOf(machine, errors, grid), {});
+  ASSERT_EQ(reversal.size(), 3u);
+  const auto tables = readCecTables(siemensCecTables(r.functions, reversal, machine->describePose(grid.pose)));
+  ASSERT_EQ(tables.size(), r.functions.size() + 6);
+  const auto& forwardX = tables.at(static_cast<int>(r.functions.size())), &reverseX = tables.at(static_cast<int>(r.functions.size()) + 1);
+  EXPECT_EQ(forwardX.input, "X");
+  EXPECT_EQ(forwardX.output, "X");
+  EXPECT_EQ(forwardX.direction, 1);
+  EXPECT_EQ(reverseX.direction, -1);
+  for (size_t n = 0; n < forwardX.values.size(); ++n) EXPECT_NEAR(forwardX.values[n] - reverseX.values[n], 0.003, 1e-6) << n;
+  const double largest = largestMovingResidual(machine, errors, grid, [&](const std::vector<double>& q, const std::vector<int>& motion) {
+    const Vec3 c = cecCorrection(tables, {q[0], q[1], q[2]}, motion);
+    return std::vector<double>{q[0] + c.x(), q[1] + c.y(), q[2] + c.z()};
+  });
+  RecordProperty("largest_um", std::to_string(largest * 1e3));
+  EXPECT_LT(largest, 1e-5);
+  // Beside the LEC (each axis's own function, read back below), the same tables alone.
+  OneAxisReduction own = r;
+  std::erase_if(own.functions, [](const AxisFunction& f) { return f.input != f.output; });
+  const auto alone = readCecTables(siemensCecTables({}, reversal, ""));
+  ASSERT_EQ(alone.size(), 6u);
+  EXPECT_LT(largestMovingResidual(machine, errors, grid, [&](const std::vector<double>& q, const std::vector<int>& motion) {
+              const Vec3 p(q[0], q[1], q[2]), c = own.correction(p) + cecCorrection(alone, p, motion);
+              return std::vector<double>{q[0] + c.x(), q[1] + c.y(), q[2] + c.z()};
+            }), 1e-5);
 }
 
 // Siemens LEC (840D sl function manual K3, 4.4): per axis $AA_ENC_COMP[e, N, axis] and

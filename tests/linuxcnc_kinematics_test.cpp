@@ -257,7 +257,9 @@ TEST(LinuxcncKinematics, HeadModulesHalFilesReadBack) {
     const std::string hal = linuxcncKinematicsHal(*setup.machine, f);
     const auto pins = halPins(hal, module);
     EXPECT_NEAR(pins.at("pivot-length"), f.actual.pivotLength, 1e-7) << machine;
-    if (std::string(module) == "maxkins") EXPECT_EQ(pins.at("conventional-directions"), f.actual.conventionalDirections ? 1.0 : 0.0);
+    if (std::string(module) == "maxkins") {
+      EXPECT_EQ(pins.at("conventional-directions"), f.actual.conventionalDirections ? 1.0 : 0.0);
+    }
     EXPECT_EQ(pins.size(), std::string(module) == "maxkins" ? 2u : 1u);
     for (const auto& left : f.notCarried) EXPECT_NE(hal.find("# not carried: " + left + "\n"), std::string::npos) << left;
   }

@@ -314,17 +314,16 @@ TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, 
   return r;
 }
 
-DirectedCorrection directedCorrection(const CorrectionGrid& g, const OneAxisReduction& functions, const std::array<ReversalTrims, 3>& trims) {
-  return [g, functions, trims](const std::vector<double>& q, const std::vector<int>& direction) {
-    Vec3 p, c;
-    for (size_t a = 0; a < 3; ++a) p[static_cast<Eigen::Index>(a)] = q[static_cast<size_t>(g.axes[a])];
-    c = functions.correction(p);
+DirectedCorrection directedCorrection(const CorrectionGrid& g, const CommandCorrection& standing, const std::array<ReversalTrims, 3>& trims) {
+  return [g, standing, trims](const std::vector<double>& q, const std::vector<int>& direction) {
+    Vec3 c = standing(q);
     if (direction.empty()) return c;
     for (size_t a = 0; a < 3; ++a) {
-      const int way = direction[static_cast<size_t>(g.axes[a])];
+      const auto axis = static_cast<size_t>(g.axes[a]);
+      const int way = direction[axis];
       if (way == 0) continue;
       const std::vector<double>& column = way > 0 ? trims[a].forward : trims[a].reverse;
-      const auto [node, t] = bracket(p[static_cast<Eigen::Index>(a)], g.start[a], g.step[a], g.counts[a]);
+      const auto [node, t] = bracket(q[axis], g.start[a], g.step[a], g.counts[a]);
       const auto n = static_cast<size_t>(node);
       c[static_cast<Eigen::Index>(a)] += (1.0 - t) * column[n] + t * column[std::min(n + 1, column.size() - 1)];
     }
@@ -332,15 +331,49 @@ DirectedCorrection directedCorrection(const CorrectionGrid& g, const OneAxisRedu
   };
 }
 
-std::vector<std::string> reversalFunctions(const Machine& machine, const ErrorModel& errors) {
+DirectedCorrection directedCorrection(const CorrectionGrid& g, const OneAxisReduction& functions, const std::array<ReversalTrims, 3>& trims) {
+  return directedCorrection(g, ofLinearCommands(g, [functions](const Vec3& p) { return functions.correction(p); }), trims);
+}
+
+std::array<ReversalTrims, 3> roundedTrims(std::array<ReversalTrims, 3> trims, double unit) {
+  for (ReversalTrims& t : trims)
+    for (auto* column : {&t.forward, &t.reverse})
+      for (double& v : *column) v = std::round(v / unit) * unit;
+  return trims;
+}
+
+std::vector<AxisReversalTable> axisReversalTables(const Machine& machine, const CorrectionGrid& g, const std::array<ReversalTrims, 3>& trims,
+                                                  const std::vector<RotaryPositioning>& rotary) {
+  const auto anyNonZero = [](const std::vector<double>& v) { return std::any_of(v.begin(), v.end(), [](double x) { return x != 0.0; }); };
+  std::vector<AxisReversalTable> out;
+  for (size_t a = 0; a < 3; ++a) {
+    if (!anyNonZero(trims[a].forward) && !anyNonZero(trims[a].reverse)) continue;
+    AxisReversalTable t{machine.axes[static_cast<size_t>(g.axes[a])].name, g.axes[a], false, false, {}, trims[a].forward, trims[a].reverse};
+    for (int n = 0; n < g.counts[a]; ++n) t.positions.push_back(g.node(static_cast<int>(a), n));
+    out.push_back(std::move(t));
+  }
+  for (const RotaryPositioning& r : rotary) {
+    AxisReversalTable t{machine.axes[static_cast<size_t>(r.axis)].name, r.axis, true, r.modulo, {}, {}, {}};
+    for (size_t n = 0; n < r.positions.size(); ++n) {
+      t.positions.push_back(r.positions[n] / kDeg);
+      t.forward.push_back((r.forward[n] - r.standing[n]) / kDeg);
+      t.reverse.push_back((r.reverse[n] - r.standing[n]) / kDeg);
+    }
+    if (anyNonZero(t.forward) || anyNonZero(t.reverse)) out.push_back(std::move(t));
+  }
+  return out;
+}
+
+std::vector<std::string> reversalFunctions(const Machine& machine, const ErrorModel& errors,
+                                           const std::function<bool(int axis, int component)>& among) {
+  const auto reverses = [](const auto& term) { return std::holds_alternative<ReversalTerm>(term) && std::get<ReversalTerm>(term).width != 0.0; };
   std::vector<std::string> names;
   for (size_t a = 0; a < machine.axes.size(); ++a)
-    for (int c = 0; c < 6; ++c)
-      for (const auto& term : errors.axes[a].motion[static_cast<size_t>(c)].terms())
-        if (std::holds_alternative<ReversalTerm>(term) && std::get<ReversalTerm>(term).width != 0.0) {
-          names.push_back(motionErrorName(machine, static_cast<int>(a), c));
-          break;
-        }
+    for (int c = 0; c < 6; ++c) {
+      if (among && !among(static_cast<int>(a), c)) continue;
+      const auto& terms = errors.axes[a].motion[static_cast<size_t>(c)].terms();
+      if (std::any_of(terms.begin(), terms.end(), reverses)) names.push_back(motionErrorName(machine, static_cast<int>(a), c));
+    }
   return names;
 }
 
@@ -432,17 +465,26 @@ std::string linuxcncCompFile(const RotaryPositioning& r, int type) {
   return compFileLines(inDegrees(r.positions), inDegrees(r.forward), inDegrees(r.reverse), type, 9);
 }
 
-std::string siemensCecTables(const OneAxisReduction& r, const std::string& pose) {
-  std::string out = "%_N_NC_CEC_INI\n; mtacc one-axis correction functions as CEC tables: values in mm, added to the output axis\n"
+std::string siemensCecTables(const std::vector<AxisFunction>& functions, const std::vector<AxisReversalTable>& reversal, const std::string& pose) {
+  std::string out = "%_N_NC_CEC_INI\n; mtacc CEC tables: values in mm (degrees on a rotary axis), added to the output axis\n"
                     "; taken with the other axes at " + pose + "\n";
   auto it = std::back_inserter(out);
-  for (size_t t = 0; t < r.functions.size(); ++t) {
-    const AxisFunction& f = r.functions[t];
-    const double step = f.positions.size() > 1 ? f.positions[1] - f.positions[0] : 0.0;
+  int t = 0;
+  const auto table = [&](const std::string& input, const std::string& output, const std::vector<double>& positions, int direction, bool modulo,
+                         const std::vector<double>& values) {
+    const double step = positions.size() > 1 ? positions[1] - positions[0] : 0.0;
     fmt::format_to(it, "$AN_CEC_INPUT_AXIS[{0}]=({1})\n$AN_CEC_OUTPUT_AXIS[{0}]=({2})\n$AN_CEC_STEP[{0}]={3:.6f}\n$AN_CEC_MIN[{0}]={4:.6f}\n"
-                       "$AN_CEC_MAX[{0}]={5:.6f}\n$AN_CEC_DIRECTION[{0}]=0\n$AN_CEC_MULT_BY_TABLE[{0}]=0\n$AN_CEC_IS_MODULO[{0}]=0\n",
-                   t, kLinearAxisNames[f.input], kLinearAxisNames[f.output], step, f.positions.front(), f.positions.back());
-    for (size_t n = 0; n < f.values.size(); ++n) fmt::format_to(it, "$AN_CEC[{},{}]={:.7f}\n", t, n, f.values[n]);
+                       "$AN_CEC_MAX[{0}]={5:.6f}\n$AN_CEC_DIRECTION[{0}]={6}\n$AN_CEC_MULT_BY_TABLE[{0}]=0\n$AN_CEC_IS_MODULO[{0}]={7}\n",
+                   t, input, output, step, positions.front(), positions.back(), direction, modulo ? 1 : 0);
+    for (size_t n = 0; n < values.size(); ++n) fmt::format_to(it, "$AN_CEC[{},{}]={:.7f}\n", t, n, values[n]);
+    ++t;
+  };
+  if (!functions.empty()) fmt::format_to(it, "; tables 0 to {}: the one-axis correction functions\n", functions.size() - 1);
+  for (const AxisFunction& f : functions) table(kLinearAxisNames[f.input], kLinearAxisNames[f.output], f.positions, 0, false, f.values);
+  for (const AxisReversalTable& r : reversal) {
+    fmt::format_to(it, "; tables {} and {}: the reversal of {}, added moving positive (DIRECTION 1) and moving negative (-1)\n", t, t + 1, r.axis);
+    table(r.axis, r.axis, r.positions, 1, r.modulo, r.forward);
+    table(r.axis, r.axis, r.positions, -1, r.modulo, r.reverse);
   }
   return out + "M17\n";
 }

@@ -11,6 +11,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/compensation/heidenhain_tables.hpp"
+#include "mtacc/compensation/isg_leadscrew.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/io/text_file.hpp"
@@ -158,40 +159,35 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
   std::erase_if(r.ownAxes.functions, [](const AxisFunction& f) { return f.input != f.output; });
   const auto& m = setup.machine;
   r.rotary = rotaryPositioning(m, setup.errors, r.grid.pose);
-  r.gridResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.grid.interpolate(p); });
-  r.oneAxisResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.oneAxis.correction(p); });
-  r.ownAxesResidual = tableResidual(m, setup.errors, r.grid, [&](const Vec3& p) { return r.ownAxes.correction(p); }, 41, r.rotary);
   std::array<ReversalTrims, 3> trims;
   for (const auto& f : r.ownAxes.functions) trims[static_cast<size_t>(f.input)] = reversalTrims(m, setup.errors, r.grid, f.input);
   for (size_t a = 0; a < 3; ++a)
     if (trims[a].forward.empty()) trims[a] = {std::vector<double>(static_cast<size_t>(r.grid.counts[a]), 0.0), std::vector<double>(static_cast<size_t>(r.grid.counts[a]), 0.0)};
-  const DirectedCorrection linuxcnc = directedCorrection(r.grid, r.ownAxes, trims), heidenhain = directedCorrection(r.grid, r.oneAxis, trims);
-  r.linuxcncResidual = tableResidual(m, setup.errors, r.grid, linuxcnc, 41, r.rotary);
-  r.heidenhainResidual = tableResidual(m, setup.errors, r.grid, heidenhain);
+  const auto grid = [&](const Vec3& p) { return r.grid.interpolate(p); };
+  const auto oneAxis = [&](const Vec3& p) { return r.oneAxis.correction(p); };
+  const DirectedCorrection ownAxes = directedCorrection(r.grid, r.ownAxes, trims), oneAxisMoving = directedCorrection(r.grid, r.oneAxis, trims);
+  r.gridResidual = tableResidual(m, setup.errors, r.grid, grid);
+  r.oneAxisResidual = tableResidual(m, setup.errors, r.grid, oneAxis);
+  r.oneAxisMovingResidual = tableResidual(m, setup.errors, r.grid, oneAxisMoving);
+  r.ownAxesMovingResidual = tableResidual(m, setup.errors, r.grid, ownAxes, 41, r.rotary);
   if (r.checkProgram) {
-    r.gridAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.grid.interpolate(p); });
-    r.oneAxisAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.oneAxis.correction(p); });
-    r.ownAxesAlong =
-        tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, [&](const Vec3& p) { return r.ownAxes.correction(p); }, r.rotary);
-    r.linuxcncAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, linuxcnc, r.rotary);
-    r.heidenhainAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, heidenhain);
+    r.gridAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, grid);
+    r.oneAxisAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, oneAxis);
+    r.oneAxisMovingAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, oneAxisMoving);
+    r.ownAxesMovingAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, ownAxes, r.rotary);
   }
   try {
     r.isg = isgVolumetricModel(*m, setup.errors, request.isgRecords);
   } catch (const InputError& notIsg) {
     r.isgNotApplicable = notIsg.reason();
   }
-  if (r.isg) {
-    const ErrorModel controllerModel = isgControllerModel(*m, *r.isg);
-    const CommandCorrection controller = isgCorrection(m, controllerModel);
-    r.isgResidual = tableResidual(m, setup.errors, r.grid, controller);
-    if (r.checkProgram) r.isgAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, controller);
-  }
   r.files.emplace_back("grid.csv", correctionGridCsv(*m, r.grid));
   r.files.emplace_back("one-axis.csv", oneAxisCsv(*m, r.oneAxis, r.grid));
   const std::string pose = m->describePose(r.grid.pose);
-  r.files.emplace_back("siemens-cec.ini", siemensCecTables(r.oneAxis, pose));
+  const std::vector<AxisReversalTable> reversal = axisReversalTables(*m, r.grid, trims, r.rotary);
+  r.files.emplace_back("siemens-cec.ini", siemensCecTables(r.oneAxis.functions, reversal, pose));
   r.files.emplace_back("siemens-lec.ini", siemensLecTables(r.ownAxes.functions, *m, r.rotary, pose));
+  if (!reversal.empty()) r.files.emplace_back("siemens-cec-reversal.ini", siemensCecTables({}, reversal, pose));
   const char* names[3] = {"X", "Y", "Z"};
   for (const auto& f : r.ownAxes.functions)
     r.files.emplace_back(fmt::format("linuxcnc-{}.comp", names[f.input]), linuxcncCompFile(f, trims[static_cast<size_t>(f.input)], request.linuxcncType));
@@ -199,8 +195,16 @@ CompensationTablesResult compensationTables(const MachineSetup& setup, const Com
     r.files.emplace_back(fmt::format("linuxcnc-{}.comp", m->axes[static_cast<size_t>(rotary.axis)].name), linuxcncCompFile(rotary, request.linuxcncType));
   for (auto& file : heidenhainTables(r.oneAxis, trims)) r.files.push_back(std::move(file));
   if (r.isg) {
+    // The reversal in bilateral LSEC lists beside the volumetric model; they hold whole 0.1 um,
+    // and the residual is that of the trims as written.
+    const auto isgTrims = roundedTrims(trims, kIsgLeadscrewUnit);
+    const DirectedCorrection controller = directedCorrection(r.grid, isgCorrection(m, isgControllerModel(*m, *r.isg)), isgTrims);
+    r.isgResidual = tableResidual(m, setup.errors, r.grid, controller);
+    if (r.checkProgram) r.isgAlong = tableResidualAlong(m, setup.errors, *r.checkProgram, r.grid, controller);
     r.files.emplace_back("isg-volcomp.csv", isgCsv(*m, *r.isg));
     r.files.emplace_back("isg-volcomp.lis", isgCompensationList(*m, *r.isg, "isg-volcomp.csv"));
+    for (const AxisReversalTable& t : axisReversalTables(*m, r.grid, isgTrims, r.rotary))
+      r.files.emplace_back(fmt::format("isg-lsec-{}.lis", t.axis), isgLeadscrewList(*m, t));
     r.files.emplace_back("etalon-exchange.txt", etalonExchange(*m, *r.isg));
   }
   try {
@@ -227,50 +231,79 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
   nlohmann::json functions = nlohmann::json::array();
   for (const auto& f : r.oneAxis.functions) functions.push_back({{"input", names[f.input]}, {"output", names[f.output]}, {"rms_um", f.rms * 1e3}});
   nlohmann::json files = nlohmann::json::array();
-  std::string heidenhainFiles, linuxcncFiles;
+  std::string heidenhainFiles, linuxcncFiles, isgFiles, lecFiles;
   for (const auto& [name, content] : r.files) {
     files.push_back(name);
-    if (name.starts_with("heidenhain")) heidenhainFiles += (heidenhainFiles.empty() ? "" : ", ") + name;
-    if (name.ends_with(".comp")) linuxcncFiles += (linuxcncFiles.empty() ? "" : ", ") + name;
+    const auto add = [&](std::string& list) { list += (list.empty() ? "" : ", ") + name; };
+    if (name.starts_with("heidenhain")) add(heidenhainFiles);
+    if (name.ends_with(".comp")) add(linuxcncFiles);
+    if (name == "siemens-lec.ini" || name == "siemens-cec-reversal.ini") add(lecFiles);
+    if (name.starts_with("isg-") || name.starts_with("etalon-")) add(isgFiles);
   }
+  const Machine& m = *r.setup.machine;
+  // What of the reversal each table carries: none (taken standing), each axis's along its own
+  // motion (a table of its own command moving each way), or the linear axes' only.
+  enum class Reversal { None, Own, OwnLinear };
+  const auto ownOf = [&](bool linearOnly) {
+    return [&m, linearOnly](int axis, int component) {
+      const Axis& a = m.axes[static_cast<size_t>(axis)];
+      return !(axis < m.commandedCount() && a.ownComponent() == component && (!linearOnly || !a.isRotary()));
+    };
+  };
+  const auto row = [&](nlohmann::json t, const TableResidual& residual, const TableResidual& along, Reversal reversal,
+                       std::vector<std::string> notCarried = {}) {
+    const auto left = reversal == Reversal::None ? reversalFunctions(m, r.setup.errors)
+                                                 : reversalFunctions(m, r.setup.errors, ownOf(reversal == Reversal::OwnLinear));
+    if (!left.empty())
+      notCarried.push_back(fmt::format("the reversal terms of {} ({})", fmt::join(left, ", "),
+                                       reversal == Reversal::None ? "the table is taken standing"
+                                       : reversal == Reversal::Own ? "the tables take each axis's reversal along its own motion only"
+                                                                   : "the tables take the linear axes' reversal along their own motion only"));
+    if (!notCarried.empty()) t["not_carried"] = notCarried;
+    t["residual"] = residualJson(residual);
+    if (r.checkProgram) t["along_program"] = residualJson(along);
+    return t;
+  };
   const auto& g = r.grid;
-  nlohmann::json j = {{"machine", r.setup.machine->name},
-          {"grid", {{"nodes", g.counts}, {"start_mm", g.start}, {"step_mm", g.step}, {"pose", poseJson(*r.setup.machine, g.pose.data())}}},
-          {"tables",
-           {{{"format", "grid"}, {"file", "grid.csv"}, {"carries", "the position error everywhere, trilinear between the nodes"},
-             {"residual", residualJson(r.gridResidual)}},
-            {{"format", "one-axis"}, {"file", "one-axis.csv"}, {"functions", functions},
-             {"reduction_residual_max_um", r.oneAxis.residualMax * 1e3},
-             {"carries", "the sum of one-axis functions; not the interactions (an angular error times another axis's travel)"},
-             {"residual", residualJson(r.oneAxisResidual)}},
-            {{"format", "siemens-cec"}, {"file", "siemens-cec.ini"},
-             {"carries", "the one-axis functions above, one CEC table each (input and output axis by the machine file's names)"},
-             {"residual", residualJson(r.oneAxisResidual)}},
-            {{"format", "siemens-lec"}, {"file", "siemens-lec.ini"},
-             {"carries", "each axis's correction of its own command (as LinuxCNC's), the rotary axes' by their own angular positioning; not the cross-axis terms"},
-             {"residual", residualJson(r.ownAxesResidual)}},
-            {{"format", "linuxcnc"}, {"files", linuxcncFiles},
-             {"carries", "each axis's correction of its own command, moving forward and backward (its reversal), the rotary axes' by their own "
-                         "angular positioning; not the cross-axis terms (squareness, straightness)"},
-             {"residual", residualJson(r.linuxcncResidual)}},
-            {{"format", "heidenhain"}, {"files", heidenhainFiles},
-             {"carries", "the one-axis functions above, one compensation-value table per input axis with a column per output axis; "
-                         "moving, each axis's reversal in its BACKLASH column"},
-             {"residual", residualJson(r.heidenhainResidual)}}}},
-          {"files", files}};
-  // The tables taken standing carry no reversal; LinuxCNC's and HEIDENHAIN's carry the linear axes' own.
-  if (const auto reversal = reversalFunctions(*r.setup.machine, r.setup.errors); !reversal.empty())
-    for (auto& t : j["tables"])
-      if (t["format"] != "linuxcnc" && t["format"] != "heidenhain")
-        t["not_carried"].push_back(fmt::format("the reversal terms of {} (the table is taken standing)", fmt::join(reversal, ", ")));
+  nlohmann::json tables = {
+      row({{"format", "grid"}, {"file", "grid.csv"}, {"carries", "the position error everywhere, trilinear between the nodes"}}, r.gridResidual,
+          r.gridAlong, Reversal::None),
+      row({{"format", "one-axis"}, {"file", "one-axis.csv"}, {"functions", functions}, {"reduction_residual_max_um", r.oneAxis.residualMax * 1e3},
+           {"carries", "the sum of one-axis functions; not the interactions (an angular error times another axis's travel)"}},
+          r.oneAxisResidual, r.oneAxisAlong, Reversal::None),
+      row({{"format", "siemens-cec"}, {"file", "siemens-cec.ini"},
+           {"carries", "the one-axis functions above, one CEC table each (input and output axis by the machine file's names); moving, "
+                       "each axis's reversal in two tables on its own command, one per direction ($AN_CEC_DIRECTION 1 and -1)"}},
+          r.oneAxisMovingResidual, r.oneAxisMovingAlong, Reversal::Own),
+      row({{"format", "siemens-lec"}, {"files", lecFiles},
+           {"carries", "each axis's correction of its own command (as LinuxCNC's), the rotary axes' by their own angular positioning; moving, "
+                       "each axis's reversal in siemens-cec-reversal.ini's tables by direction (in place of siemens-cec.ini); not the "
+                       "cross-axis terms"}},
+          r.ownAxesMovingResidual, r.ownAxesMovingAlong, Reversal::Own),
+      row({{"format", "linuxcnc"}, {"files", linuxcncFiles},
+           {"carries", "each axis's correction of its own command, moving forward and backward (its reversal), the rotary axes' by their own "
+                       "angular positioning; not the cross-axis terms (squareness, straightness)"}},
+          r.ownAxesMovingResidual, r.ownAxesMovingAlong, Reversal::Own),
+      row({{"format", "heidenhain"}, {"files", heidenhainFiles},
+           {"carries", "the one-axis functions above, one compensation-value table per input axis with a column per output axis; "
+                       "moving, each linear axis's reversal in its BACKLASH column"}},
+          r.oneAxisMovingResidual, r.oneAxisMovingAlong, Reversal::OwnLinear)};
   if (r.isg) {
-    j["tables"].push_back({{"format", "isg-volumetric"}, {"files", "isg-volcomp.csv, isg-volcomp.lis, etalon-exchange.txt"},
-                           {"chain", r.isg->chain}, {"workpiece_axes", r.isg->workpieceAxes},
-                           {"carries", "the ISO 230-1 model, evaluated by the controller at every pose: the position errors and each "
-                                       "axis's component errors, linear between the records; the spindle's offsets as the tool's"},
-                           {"tool_offset_mm", {r.isg->toolOffset.x(), r.isg->toolOffset.y(), r.isg->toolOffset.z()}},
-                           {"not_carried", r.isg->notCarried}, {"residual", residualJson(r.isgResidual)}});
+    std::vector<std::string> notCarried;
+    std::copy_if(r.isg->notCarried.begin(), r.isg->notCarried.end(), std::back_inserter(notCarried),
+                 [](const std::string& left) { return !left.starts_with("the reversal terms"); });
+    tables.push_back(row({{"format", "isg-volumetric"}, {"files", isgFiles}, {"chain", r.isg->chain}, {"workpiece_axes", r.isg->workpieceAxes},
+                          {"carries", "the ISO 230-1 model, evaluated by the controller at every pose: the position errors and each "
+                                      "axis's component errors, linear between the records; the spindle's offsets as the tool's; moving, "
+                                      "each axis's reversal in bilateral leadscrew lists isg-lsec-*.lis to 0.1 um (Etalon's exchange has "
+                                      "no direction)"},
+                          {"tool_offset_mm", {r.isg->toolOffset.x(), r.isg->toolOffset.y(), r.isg->toolOffset.z()}}},
+                         r.isgResidual, r.isgAlong, Reversal::Own, notCarried));
   }
+  nlohmann::json j = {{"machine", m.name},
+                      {"grid", {{"nodes", g.counts}, {"start_mm", g.start}, {"step_mm", g.step}, {"pose", poseJson(m, g.pose.data())}}},
+                      {"tables", tables},
+                      {"files", files}};
   nlohmann::json rotary = nlohmann::json::array();
   for (const auto& t : r.rotary) {
     double correction = 0.0, reversal = 0.0;
@@ -278,7 +311,7 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
       correction = std::max(correction, std::abs(t.standing[n]));
       reversal = std::max(reversal, std::abs(t.forward[n] - t.reverse[n]));
     }
-    rotary.push_back({{"axis", r.setup.machine->axes[static_cast<size_t>(t.axis)].name}, {"positions", t.positions.size()},
+    rotary.push_back({{"axis", m.axes[static_cast<size_t>(t.axis)].name}, {"positions", t.positions.size()},
                       {"step_deg", (t.positions[1] - t.positions[0]) / kDeg}, {"modulo", t.modulo},
                       {"largest_correction_urad", correction * 1e6}, {"largest_reversal_urad", reversal * 1e6}});
   }
@@ -289,11 +322,7 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
   j["siemens_toolholder"] = r.toolholder ? toolholderJson(*r.toolholder)
                                          : nlohmann::json{{"applicable", false}, {"reason", r.toolholderNotApplicable}};
   if (r.toolholder && r.checkProgram) j["siemens_toolholder"]["along_program"] = residualJson(r.toolholderAlong);
-  if (r.checkProgram) {
-    j["check_program"] = r.checkProgram->file;
-    const TableResidual* along[] = {&r.gridAlong, &r.oneAxisAlong, &r.oneAxisAlong, &r.ownAxesAlong, &r.linuxcncAlong, &r.heidenhainAlong, &r.isgAlong};  // in the order of "tables"
-    for (size_t t = 0; t < j["tables"].size(); ++t) j["tables"][t]["along_program"] = residualJson(*along[t]);
-  }
+  if (r.checkProgram) j["check_program"] = r.checkProgram->file;
   return j;
 }
 

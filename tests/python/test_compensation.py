@@ -106,15 +106,17 @@ def test_tables_along_a_test_path(tmp_path):
     assert r["check_program"] == str(program)
     along = {t["format"]: t["along_program"] for t in r["tables"]}
     assert along["grid"]["after_max_um"] <= 0.05 * along["grid"]["before_max_um"]
-    assert along["one-axis"] == along["siemens-cec"]
+    # SINUMERIK's CEC and HEIDENHAIN's tables hold the same functions and trims, as SINUMERIK's LEC
+    # (with its reversal tables) and LinuxCNC's files do; standing, the trims do nothing.
+    assert along["siemens-cec"] == along["heidenhain"] and along["siemens-lec"] == along["linuxcnc"]
     standing = ("after_max_um", "after_rms_um", "before_max_um")
-    assert [along["linuxcnc"][k] for k in standing] == [along["siemens-lec"][k] for k in standing]
     assert [along["heidenhain"][k] for k in standing] == [along["one-axis"][k] for k in standing]
-    # Moving as the circles move (issue 46) the reversals act: the grid leaves them, LinuxCNC's trims
-    # and HEIDENHAIN's BACKLASH column take them out.
-    assert along["grid"]["moving_as_programmed_max_um"] > along["grid"]["after_max_um"] + 0.5
-    assert along["linuxcnc"]["moving_as_programmed_max_um"] < along["siemens-lec"]["moving_as_programmed_max_um"] - 0.5
-    assert along["heidenhain"]["moving_as_programmed_max_um"] < along["one-axis"]["moving_as_programmed_max_um"] - 0.5
+    # Moving as the circles move (issue 46) the reversals act: the grid and the one-axis functions
+    # leave them, the trims take them out.
+    for standing_only in ("grid", "one-axis"):
+        assert along[standing_only]["moving_as_programmed_max_um"] > along[standing_only]["after_max_um"] + 0.5
+    for carrying in ("siemens-cec", "siemens-lec", "linuxcnc", "heidenhain", "isg-volumetric"):
+        assert along[carrying]["moving_as_programmed_max_um"] < along[carrying]["after_max_um"] + 0.01, carrying
 
 
 def test_tables_refuse_a_bad_request():
@@ -146,24 +148,30 @@ def test_five_axis_outputs_along_a_test_path(tmp_path):
 def test_each_table_moving_each_way_leaves_the_reversal_it_cannot_carry(cli, tmp_path):
     # Issue 46: a machine whose only errors are each axis's positioning error with a reversal. The
     # tables taken standing carry the positioning and leave the reversal moving (half of each width,
-    # on all three axes: |(1, 1.5, 2)| um), named; LinuxCNC's trims and HEIDENHAIN's BACKLASH column
-    # carry it moving each way.
+    # on all three axes: |(1, 1.5, 2)| um), named; LinuxCNC's trims, HEIDENHAIN's BACKLASH column,
+    # SINUMERIK's CEC tables by direction (also beside the LEC) and ISG's bilateral leadscrew lists
+    # carry it moving each way (ISG to its lists' 0.1 um: these reversals are whole multiples).
     from mtacc import report
     errors = tmp_path / "reversal.yaml"
     errors.write_text("errors:\n  EXX: {linear: {value: 6 um, over: 500 mm}, reversal: 2 um}\n  EYY: {reversal: 3 um}\n"
                       "  EZZ: {linear: {value: -4 um, over: 500 mm}, reversal: 4 um}\n")
     r = mtacc.Machine("three-axis-vertical", errors=str(errors)).compensation_tables(nodes=(6, 5, 5))
     half = (1.0 ** 2 + 1.5 ** 2 + 2.0 ** 2) ** 0.5
+    carrying = {"linuxcnc", "heidenhain", "siemens-cec", "siemens-lec", "isg-volumetric"}
+    assert carrying | {"grid", "one-axis"} == {t["format"] for t in r["tables"]}
     for t in r["tables"]:
         res = t["residual"]
-        if t["format"] in ("linuxcnc", "heidenhain"):
+        if t["format"] in carrying:
             assert max(res["after_max_um"], res["moving_forward_max_um"], res["moving_backward_max_um"]) < 0.01, t["format"]
-            assert not any("reversal" in left for left in t.get("not_carried", []))
+            assert not any("reversal" in left for left in t.get("not_carried", [])), t["format"]
         else:
             assert res["after_max_um"] < 0.05, t["format"]
             assert res["moving_forward_max_um"] == pytest.approx(half, abs=0.05), t["format"]
             assert res["moving_backward_max_um"] == pytest.approx(half, abs=0.05), t["format"]
             assert any(left.startswith("the reversal terms of EXX, EYY, EZZ") for left in t["not_carried"]), t["format"]
+    lec = next(t for t in r["tables"] if t["format"] == "siemens-lec")
+    assert lec["files"] == "siemens-lec.ini, siemens-cec-reversal.ini"
+    assert {"isg-lsec-X.lis", "isg-lsec-Y.lis", "isg-lsec-Z.lis", "siemens-cec-reversal.ini"} <= set(r["files"])
     out = subprocess.run([cli, "compensate", "three-axis-vertical", "--errors", str(errors), "--tables", str(tmp_path / "t"), "--nodes", "6,5,5"],
                          check=True, capture_output=True, text=True).stdout
     assert "largest moving forward / backward" in out and "not carried: the reversal terms of EXX, EYY, EZZ (the table is taken standing)" in out

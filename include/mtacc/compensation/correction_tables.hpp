@@ -121,8 +121,11 @@ TableResidual tableResidualAlong(const std::shared_ptr<const Machine>& machine, 
                                  const std::vector<RotaryPositioning>& rotary = {});
 
 // The motion functions with a reversal term of non-zero width, by name ("EXX"): what a
-// controller's model of the machine standing still does not carry.
-std::vector<std::string> reversalFunctions(const Machine& machine, const ErrorModel& errors);
+// controller's model of the machine standing still does not carry. `among(axis, component)`
+// chooses (all when empty): a table moving each way on an axis's own command carries the
+// reversal of its own positioning (EXX, ECC) and not the others.
+std::vector<std::string> reversalFunctions(const Machine& machine, const ErrorModel& errors,
+                                           const std::function<bool(int axis, int component)>& among = {});
 // The file forms, each stating its units, grid and what it cannot carry in its header.
 // Generic grid: CSV "x_mm,y_mm,z_mm,dx_mm,dy_mm,dz_mm", '#' comment lines first.
 std::string correctionGridCsv(const Machine& machine, const CorrectionGrid& grid);
@@ -133,10 +136,27 @@ struct ReversalTrims {
   std::vector<double> forward, reverse;
 };
 ReversalTrims reversalTrims(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid, int axis);
-// The correction of one-axis functions with each axis's forward and reverse trims as the
-// controller applies them moving (linear between the nodes, the end values beyond): LinuxCNC's
-// COMP_FILEs (each axis's own function), HEIDENHAIN's tables with their BACKLASH column.
+// A standing correction with each axis's forward and reverse trims as the controller applies
+// them moving (linear between the nodes, the end values beyond): LinuxCNC's COMP_FILEs (each
+// axis's own function), HEIDENHAIN's tables with their BACKLASH column, SINUMERIK's CEC tables
+// by direction, ISG's bilateral LSEC beside its volumetric compensation.
+DirectedCorrection directedCorrection(const CorrectionGrid& grid, const CommandCorrection& standing, const std::array<ReversalTrims, 3>& trims);
 DirectedCorrection directedCorrection(const CorrectionGrid& grid, const OneAxisReduction& functions, const std::array<ReversalTrims, 3>& trims);
+// The same trims each rounded to a multiple of `unit` (mm): what a format holding whole units writes.
+std::array<ReversalTrims, 3> roundedTrims(std::array<ReversalTrims, 3> trims, double unit);
+
+// An axis's reversal as two tables on its own command, in the machine's units (mm; degrees for a
+// rotary axis): what the controller adds moving forward and moving backward beyond what it adds
+// standing, at equidistant positions. The linear axes' from their trims at the grid's nodes, the
+// rotary axes' from their own positioning; only axes whose tables are not all zero.
+struct AxisReversalTable {
+  std::string axis;  // the machine file's name
+  int index = 0;     // into Machine::axes
+  bool rotary = false, modulo = false;
+  std::vector<double> positions, forward, reverse;
+};
+std::vector<AxisReversalTable> axisReversalTables(const Machine& machine, const CorrectionGrid& grid, const std::array<ReversalTrims, 3>& trims,
+                                                  const std::vector<RotaryPositioning>& rotary);
 
 // LinuxCNC [JOINT_n] COMP_FILE: "nominal forward reverse" per line (COMP_FILE_TYPE 1: trims,
 // the correction added to the command; 0: the positions nominal + trim), at most 256 lines.
@@ -150,9 +170,12 @@ std::string linuxcncCompFile(const RotaryPositioning& rotary, int type);
 // Siemens SINUMERIK CEC (sag and angularity compensation) tables as the INI part program
 // %_N_NC_CEC_INI: one table per one-axis function, $AN_CEC_INPUT_AXIS / _OUTPUT_AXIS named by the
 // machine file's axis names, equidistant $AN_CEC_STEP from $AN_CEC_MIN to $AN_CEC_MAX (mm), the
-// values $AN_CEC[t, N] in mm added to the output axis, both directions, ending with M17.
+// values $AN_CEC[t, N] in mm added to the output axis, both directions, ending with M17. Then
+// each axis's reversal as two tables on its own command, $AN_CEC_DIRECTION 1 (the positive
+// traversing direction) and -1 (the negative): "position-dependent backlash compensation can be
+// implemented using two tables" (function manual K3, 03/2013, p. 249).
 // `pose`: the other axes' positions the functions were taken at, stated in a comment.
-std::string siemensCecTables(const OneAxisReduction& reduction, const std::string& pose);
+std::string siemensCecTables(const std::vector<AxisFunction>& functions, const std::vector<AxisReversalTable>& reversal, const std::string& pose);
 
 // Siemens SINUMERIK LEC (leadscrew and measuring-system error compensation) as the INI part
 // program %_N_AX_EEC_INI: per axis, from the function of its own command, $AA_ENC_COMP[0, N, axis]

@@ -67,11 +67,11 @@ struct CompensationTablesResult {
   OneAxisReduction oneAxis;
   OneAxisReduction ownAxes;  // the functions of each axis's own command (LinuxCNC)
   std::vector<RotaryPositioning> rotary;  // the rotary axes' corrections of their own commands (LEC, LinuxCNC)
-  TableResidual gridResidual, oneAxisResidual, ownAxesResidual;
-  TableResidual linuxcncResidual, linuxcncAlong;      // the own-axis functions with the reversal trims (moving)
-  TableResidual heidenhainResidual, heidenhainAlong;  // the one-axis functions with them (the BACKLASH column)
+  TableResidual gridResidual, oneAxisResidual;  // taken standing
+  TableResidual oneAxisMovingResidual;  // the one-axis functions with the reversal trims: SINUMERIK CEC, HEIDENHAIN
+  TableResidual ownAxesMovingResidual;  // the own-axis functions with them: SINUMERIK LEC, LinuxCNC
   std::optional<GcodeProgram> checkProgram;
-  TableResidual gridAlong, oneAxisAlong, ownAxesAlong;  // along checkProgram
+  TableResidual gridAlong, oneAxisAlong, oneAxisMovingAlong, ownAxesMovingAlong;  // along checkProgram
   std::optional<IsgVolumetricModel> isg;
   std::string isgNotApplicable;  // why the machine has no ISG model, when it has none
   TableResidual isgResidual, isgAlong;
