@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every benchmark at full size with its baseline, side by side in one run, printing its ratio
 # (bench/README.md). Installs and builds what is missing first (scripts/build.sh).
-# Usage: scripts/bench.sh [NAME ...]   (e.g. bench_identify_vs_scipy; default: all ten)
+# Usage: scripts/bench.sh [NAME ...]   (e.g. bench_identify_vs_scipy; default: all eleven)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -14,6 +14,7 @@ benchmarks=(
   "bench_identify_vs_scipy|identification of 13 parameters from 10,000 R-test points, against SciPy (analytic Jacobian, LM)"
   "bench_plate_identification|component errors from a 24-plate campaign (seed 003), against NumPy + SciPy"
   "bench_program_compensation|compensating a 1,000,000-line 5-axis program, against a vectorised NumPy Newton"
+  "bench_program_streaming|a 20,000,000-line program streamed from file to file: peak memory and rate, against the whole program in memory"
   "bench_dynamics_vs_numpy|3x3 FRF at 500 frequencies at 10,000 positions of a 10-body model, against vectorised NumPy"
   "bench_decomposition_vs_numpy|seed 004's decomposition of six feeds of 150,000 samples, against NumPy + SciPy"
   "bench_sensor_selection_vs_numpy|stepwise choice among 64 temperature sensors on 24 h at 1 Hz, against NumPy"

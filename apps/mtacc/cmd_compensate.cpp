@@ -10,6 +10,8 @@
 #include <ctime>
 #include <iostream>
 
+#include <unistd.h>
+
 #include "cli_common.hpp"
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
@@ -146,13 +148,26 @@ void run(const CompensateOptions& o) {
   request.options.tolerance = o.toleranceUm * 1e-3;
   request.options.directionTolerance = o.directionToleranceUrad * 1e-6;
   request.checkErrorsFile = o.checkErrors;
+  request.outputFile = o.gcode;
+  request.outputKey = "--gcode";
+  // On a terminal, progress on one line, ended before anything else is printed (an error too).
+  struct ProgressLine {
+    bool shown = false;
+    ~ProgressLine() {
+      if (shown) std::cerr << "\n";
+    }
+  } progressLine;
+  if (isatty(STDERR_FILENO)) request.progress = [&progressLine](const StreamProgress& p) {
+    const double rate = p.lines / std::max(p.seconds, 1e-3), done = p.size > 0 ? static_cast<double>(p.bytes) / static_cast<double>(p.size) : 0.0;
+    const double left = done > 0 ? p.seconds * (1.0 - done) / done : 0.0;
+    std::cerr << fmt::format("\rmtacc: {} lines, {:.0f} lines/s, {:.0f} %, {:.0f} s left   ", p.lines, rate, 100.0 * done, left) << std::flush;
+    progressLine.shown = true;
+  };
   const auto r = compensateProgramFile(loadMachineSetup(o.source), request);
-  writeFileAtomically(o.gcode, r.gcode, "--gcode");
   const auto j = toJson(r);
   const auto& c = r.compensated;
   const auto& d = r.deviation;
-  std::string human = fmt::format("{}: {} lines, {} moves, {} points written to {}\n", o.program, r.program.lines.size(), r.program.moves.size(),
-                                  j["written_points"].get<size_t>(), o.gcode);
+  std::string human = fmt::format("{}: {} lines, {} moves, {} points written to {}\n", o.program, r.lines, r.moves, c.written, o.gcode);
   human += "largest correction:";
   for (const auto& [axis, value] : j["largest_correction_um_urad"].items())
     human += fmt::format(" {} {:.2f}", axis, value.get<double>());

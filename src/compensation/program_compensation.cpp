@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <iterator>
 #include <map>
+#include <span>
 
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
@@ -24,28 +25,32 @@ void lerp(const AxisPositions& a, const AxisPositions& b, double t, std::vector<
   for (size_t k = 0; k < q.size(); ++k) q[k] = a[k] + t * (b[k] - a[k]);
 }
 
-class Compensator {
+}  // namespace
+
+class ProgramCompensator::Impl {
  public:
-  Compensator(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
-              const ProgramCompensationOptions& options)
-      : models_(machine, errors), program_(program), o_(options) {
+  Impl(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const ProgramCompensationOptions& options)
+      : models_(machine, errors), o_(options) {
     for (int k = 0; k < machine->commandedCount(); ++k) rotary_.push_back(machine->axes[static_cast<size_t>(k)].isRotary());
     out_.largestCorrection.assign(static_cast<size_t>(machine->commandedCount()), 0.0);
     correction_.assign(out_.largestCorrection.size(), 0.0);
     previousCorrection_ = correction_;
   }
 
-  CompensatedProgram run() {
-    if (program_.moves.empty()) return out_;
-    // A point per move and a few more where axes reverse (arcs add their chords as they come):
-    // the vector grows once instead of doubling through a million points.
-    out_.points.reserve(program_.moves.size() + program_.moves.size() / 16 + 1);
-    const GcodeMove& first = program_.moves.front();
-    first.heldMotion(0.5, lastMotion_);
-    out_.points.push_back(solve(0, first, 0.0, lastMotion_, false));
-    for (size_t m = 0; m < program_.moves.size(); ++m) compensate(static_cast<int>(m));
-    return std::move(out_);
+  // The window: the point before the move (the start, solved first, not written), then its points.
+  std::span<const CompensatedPoint> next(const GcodeMove& move, int index) {
+    if (points_.empty()) {
+      move.heldMotion(0.5, lastMotion_);
+      points_.push_back(solve(0, move, 0.0, lastMotion_, false));
+    } else {
+      points_.erase(points_.begin(), points_.end() - 1);
+    }
+    compensate(index, move);
+    out_.written += static_cast<long long>(points_.size() - 1);
+    return points_;
   }
+
+  const CompensationSummary& summary() const { return out_; }
 
  private:
   // `counted`: the point is written (the start, before the first move, is not: where the
@@ -84,7 +89,7 @@ class Compensator {
   // Where the written segment a-b, interpolated by the controller, leaves the nominal path at
   // its midpoint by more than the tolerances, it is halved.
   // `from`: where a lies on this move (0 for the previous move's end); `motion`: the axes'
-  // directions along the move from a to b. `a` is an element of out_.points, which a push may
+  // directions along the move from a to b. `a` is an element of points_, which a push may
   // move: no frame reads its `a` after the first push below it (the second half starts from
   // the point pushed last).
   void refine(int index, const GcodeMove& move, const CompensatedPoint& a, double from, CompensatedPoint b, const std::vector<int>& motion,
@@ -100,19 +105,18 @@ class Compensator {
     const double direction = o_.directionTolerance + std::max(a.directionResidual, b.directionResidual);
     if (depth >= o_.maxSplits || ((reached.position - wanted.position).norm() <= position &&
                                   angleBetween(reached.direction, wanted.direction) <= direction)) {
-      out_.points.push_back(std::move(b));
+      points_.push_back(std::move(b));
       return;
     }
     CompensatedPoint middle = solve(index, move, s, motion);
     refine(index, move, a, from, middle, motion, depth + 1);
-    refine(index, move, out_.points.back(), s, std::move(b), motion, depth + 1);
+    refine(index, move, points_.back(), s, std::move(b), motion, depth + 1);
   }
 
-  void compensate(int index) {
-    const GcodeMove& move = program_.moves[static_cast<size_t>(index)];
+  void compensate(int index, const GcodeMove& move) {
     if (move.mode == MotionMode::Rapid) {
       move.heldMotion(0.5, lastMotion_);
-      out_.points.push_back(solve(index, move, 1.0, lastMotion_));
+      points_.push_back(solve(index, move, 1.0, lastMotion_));
       return;
     }
     // Where an axis reverses, the reversal errors step: the program steps with them, a point
@@ -138,7 +142,7 @@ class Compensator {
       if (move.isArc()) move.heldMotion(to - std::min(kSide, 0.5 * (to - from)), before_);
       for (int i = 1; i <= pieces; ++i) {
         CompensatedPoint end = solve(index, move, from + (to - from) * i / pieces, before_);
-        const CompensatedPoint& start = out_.points.back();  // the previous move's end is this one's start
+        const CompensatedPoint& start = points_.back();  // the previous move's end is this one's start
         refine(index, move, start, start.move == index ? start.s : 0.0, std::move(end), before_, 0);
       }
       lastMotion_ = before_;
@@ -155,19 +159,19 @@ class Compensator {
   // A step at a reversal is written only where the reversal errors move the commands by what
   // the program's five decimals (mm, deg) show: without them it would be a block of no length.
   void pushStep(CompensatedPoint step) {
-    const auto& last = out_.points.back().q;
+    const auto& last = points_.back().q;
     for (size_t k = 0; k < step.q.size(); ++k)
       if (std::abs(step.q[k] - last[k]) >= 0.5e-5 * (rotary_[k] ? kDeg : 1.0)) {
-        out_.points.push_back(std::move(step));
+        points_.push_back(std::move(step));
         return;
       }
   }
 
   ToolModels models_;
   std::vector<bool> rotary_;  // per commanded axis
-  const GcodeProgram& program_;
-  const ProgramCompensationOptions& o_;
-  CompensatedProgram out_;
+  const ProgramCompensationOptions o_;
+  CompensationSummary out_;
+  std::vector<CompensatedPoint> points_;
   std::vector<double> correction_, previousCorrection_, start_;
   std::vector<double> programmed_, written_;  // scratch of solve and refine
   std::vector<int> lastMotion_;  // the direction of motion the last point was solved for
@@ -177,6 +181,16 @@ class Compensator {
   ErrorIkJacobian jacobian_;
   ErrorIkSolution solution_;  // of the last point solved, its storage reused
 };
+
+ProgramCompensator::ProgramCompensator(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors,
+                                       const ProgramCompensationOptions& options)
+    : impl_(std::make_unique<Impl>(machine, errors, options)) {}
+ProgramCompensator::~ProgramCompensator() = default;
+
+std::span<const CompensatedPoint> ProgramCompensator::compensate(const GcodeMove& move, int index) { return impl_->next(move, index); }
+const CompensationSummary& ProgramCompensator::summary() const { return impl_->summary(); }
+
+namespace {
 
 // " X-123.45678": the word of axis `name` at v with five decimals, as "{:.5f}" writes it up to
 // the rounding of v * 1e5, appended at once: the writer's inner loop writes five words on each
@@ -212,102 +226,147 @@ bool actsAfterMotion(const std::string& word) {
 // Every feed segment sampled at quarters: the controller's linear interpolation of the written
 // commands against the program's nominal path at the same place on the move, and the program
 // as written (no correction) at the same places for `before`.
-ProgramDeviation programDeviation(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
-                                  const std::vector<CompensatedPoint>& points) {
-  ToolModels models(machine, errors);
-  ProgramDeviation d;
-  double before = 0.0, after = 0.0;
-  std::vector<int> motion;
-  std::vector<double> programmed, written;
-  for (size_t i = 1; i < points.size(); ++i) {
-    const CompensatedPoint &a = points[i - 1], &b = points[i];
-    const GcodeMove& move = program.moves[static_cast<size_t>(b.move)];
+class DeviationSum::Impl {
+ public:
+  Impl(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors) : models_(machine, errors) {}
+
+  void add(const CompensatedPoint& a, const CompensatedPoint& b, const GcodeMove& move) {
     const double from = a.move == b.move ? a.s : 0.0;
-    if (b.s == from) continue;  // a step at a reversal: the machine takes up its reversal there, standing
+    if (b.s == from) return;  // a step at a reversal: the machine takes up its reversal there, standing
     // A written segment lies between reversals: its direction of motion is that of its middle
     // (at its ends an axis may be at its reversal point, standing for an instant).
-    move.heldMotion(0.5 * (from + b.s), motion);
-    if (move.mode == MotionMode::Rapid) continue;
-    const Models& m = models(move.toolLength);
+    move.heldMotion(0.5 * (from + b.s), motion_);
+    if (move.mode == MotionMode::Rapid) return;
+    const Models& m = models_(move.toolLength);
     for (int k = 1; k <= 4; ++k) {
       const double t = k / 4.0, s = from + t * (b.s - from);
-      move.at(s, programmed);
-      lerp(a.q, b.q, t, written);
-      const ToolPoint wanted = toolPoint(m.nominal, programmed.data());
-      const ToolPoint uncompensated = toolPoint(m.actual, programmed.data(), motion.data()),
-                      compensated = toolPoint(m.actual, written.data(), motion.data());
+      move.at(s, programmed_);
+      lerp(a.q, b.q, t, written_);
+      const ToolPoint wanted = toolPoint(m.nominal, programmed_.data());
+      const ToolPoint uncompensated = toolPoint(m.actual, programmed_.data(), motion_.data()),
+                      compensated = toolPoint(m.actual, written_.data(), motion_.data());
       const double eBefore = (uncompensated.position - wanted.position).norm(), eAfter = (compensated.position - wanted.position).norm();
-      d.before.maxPosition = std::max(d.before.maxPosition, eBefore);
-      d.after.maxPosition = std::max(d.after.maxPosition, eAfter);
-      d.before.maxDirection = std::max(d.before.maxDirection, angleBetween(uncompensated.direction, wanted.direction));
-      d.after.maxDirection = std::max(d.after.maxDirection, angleBetween(compensated.direction, wanted.direction));
-      before += eBefore * eBefore;
-      after += eAfter * eAfter;
-      ++d.after.samples;
+      d_.before.maxPosition = std::max(d_.before.maxPosition, eBefore);
+      d_.after.maxPosition = std::max(d_.after.maxPosition, eAfter);
+      d_.before.maxDirection = std::max(d_.before.maxDirection, angleBetween(uncompensated.direction, wanted.direction));
+      d_.after.maxDirection = std::max(d_.after.maxDirection, angleBetween(compensated.direction, wanted.direction));
+      before_ += eBefore * eBefore;
+      after_ += eAfter * eAfter;
+      ++d_.after.samples;
     }
   }
-  d.before.samples = d.after.samples;
-  if (d.after.samples > 0) {
-    d.before.rmsPosition = std::sqrt(before / d.before.samples);
-    d.after.rmsPosition = std::sqrt(after / d.after.samples);
+
+  ProgramDeviation result() const {
+    ProgramDeviation d = d_;
+    d.before.samples = d.after.samples;
+    if (d.after.samples > 0) {
+      d.before.rmsPosition = std::sqrt(before_ / d.before.samples);
+      d.after.rmsPosition = std::sqrt(after_ / d.after.samples);
+    }
+    return d;
   }
-  return d;
+
+ private:
+  ToolModels models_;
+  ProgramDeviation d_;
+  double before_ = 0.0, after_ = 0.0;
+  std::vector<int> motion_;
+  std::vector<double> programmed_, written_;
+};
+
+DeviationSum::DeviationSum(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors)
+    : impl_(std::make_unique<Impl>(machine, errors)) {}
+DeviationSum::~DeviationSum() = default;
+void DeviationSum::add(std::span<const CompensatedPoint> points, const GcodeMove& move) {
+  for (size_t i = 1; i < points.size(); ++i) impl_->add(points[i - 1], points[i], move);
+}
+ProgramDeviation DeviationSum::result() const { return impl_->result(); }
+
+ProgramDeviation programDeviation(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
+                                  const std::vector<CompensatedPoint>& points) {
+  DeviationSum sum(machine, errors);
+  // Each move's points with the one before them.
+  for (size_t first = 1; first < points.size();) {
+    size_t end = first;
+    while (end < points.size() && points[end].move == points[first].move) ++end;
+    sum.add(std::span(points).subspan(first - 1, end - first + 1), program.moves[static_cast<size_t>(points[first].move)]);
+    first = end;
+  }
+  return sum.result();
 }
 
 CompensatedProgram compensateProgram(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
                                      const ProgramCompensationOptions& options) {
-  return Compensator(machine, errors, program, options).run();
+  CompensatedProgram out;
+  ProgramCompensator compensator(machine, errors, options);
+  // A point per move and a few more where axes reverse (arcs add their chords as they come):
+  // the vector grows once instead of doubling through a million points.
+  out.points.reserve(program.moves.size() + program.moves.size() / 16 + 1);
+  for (size_t m = 0; m < program.moves.size(); ++m) {
+    const auto points = compensator.compensate(program.moves[m], static_cast<int>(m));
+    out.points.insert(out.points.end(), points.begin() + (m == 0 ? 0 : 1), points.end());
+  }
+  static_cast<CompensationSummary&>(out) = compensator.summary();
+  if (out.largestCorrection.empty()) out.largestCorrection.assign(static_cast<size_t>(machine->commandedCount()), 0.0);
+  return out;
+}
+
+bool isPercentLine(const GcodeLine& line) { return line.kept.size() == 1 && line.kept.front().starts_with('%') && line.move < 0; }
+
+std::string compensatedGcodePreamble(const GcodeLine* percent, const std::string& header) {
+  std::string g = percent ? percent->kept.front() + "\n" : "";
+  for (auto h : splitList(header, '\n')) {
+    std::replace(h.begin(), h.end(), '(', '[');  // a comment ends at the first ')': the machine's name may hold parentheses
+    std::replace(h.begin(), h.end(), ')', ']');
+    fmt::format_to(std::back_inserter(g), "({})\n", h);
+  }
+  return g + "G21 G90\n";
+}
+
+void CompensatedGcodeWriter::line(std::string& g, const GcodeLine& l, const GcodeMove* move, std::span<const CompensatedPoint> points) {
+  std::string before = l.sequence, after;
+  for (const auto& word : l.kept) {
+    // A ';' comment runs to the end of the line: it goes last.
+    std::string& to = move && (actsAfterMotion(word) || word.starts_with(';')) ? after : before;
+    to += (to.empty() ? "" : " ") + word;
+  }
+  if (!move) {
+    g += before + "\n";
+    return;
+  }
+  const size_t axes = static_cast<size_t>(machine_.commandedCount());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const CompensatedPoint& p = points[i];
+    if (i == 0 && !before.empty()) fmt::format_to(std::back_inserter(g), "{} ", before);
+    g.append(move->mode == MotionMode::Rapid ? "G0" : "G1", 2);
+    for (size_t k = 0; k < axes; ++k) {
+      const Axis& a = machine_.axes[k];
+      appendWord(g, a.name, a.isRotary() ? p.q[k] / kDeg : p.q[k]);
+    }
+    if (move->mode != MotionMode::Rapid && move->feed != feed_) {
+      fmt::format_to(std::back_inserter(g), " F{:g}", move->feed);
+      feed_ = move->feed;
+    }
+    if (i + 1 == points.size() && !after.empty()) fmt::format_to(std::back_inserter(g), " {}", after);
+    g += '\n';
+  }
 }
 
 std::string compensatedGcode(const Machine& m, const GcodeProgram& program, const CompensatedProgram& compensated,
                              const std::string& header) {
   const auto axes = static_cast<size_t>(m.commandedCount());
-  std::string g;
+  const bool percent = !program.lines.empty() && isPercentLine(program.lines.front());
+  std::string g = compensatedGcodePreamble(percent ? &program.lines.front() : nullptr, header);
   // About a dozen characters per axis on every point written (" X-123.45678"): grown once.
   g.reserve(compensated.points.size() * (axes * 12 + 8) + program.lines.size() * 8);
-  auto out = std::back_inserter(g);
-  size_t line = 0;
-  if (!program.lines.empty() && program.lines.front().kept.size() == 1 && program.lines.front().kept.front().starts_with('%'))
-    g += program.lines[line++].kept.front() + "\n";
-  for (auto h : splitList(header, '\n')) {
-    std::replace(h.begin(), h.end(), '(', '[');  // a comment ends at the first ')': the machine's name may hold parentheses
-    std::replace(h.begin(), h.end(), ')', ']');
-    fmt::format_to(out, "({})\n", h);
-  }
-  g += "G21 G90\n";
+  CompensatedGcodeWriter writer(m);
   size_t point = 1;  // points[0] is the start, not written
-  double feed = -1.0;
-  for (; line < program.lines.size(); ++line) {
+  for (size_t line = percent ? 1 : 0; line < program.lines.size(); ++line) {
     const GcodeLine& l = program.lines[line];
-    std::string before = l.sequence, after;
-    for (const auto& word : l.kept) {
-      // A ';' comment runs to the end of the line: it goes last.
-      std::string& to = l.move >= 0 && (actsAfterMotion(word) || word.starts_with(';')) ? after : before;
-      to += (to.empty() ? "" : " ") + word;
-    }
-    if (l.move < 0) {
-      g += before + "\n";
-      continue;
-    }
-    const GcodeMove& move = program.moves[static_cast<size_t>(l.move)];
-    bool firstSegment = true;
-    while (point < compensated.points.size() && compensated.points[point].move == l.move) {
-      const CompensatedPoint& p = compensated.points[point++];
-      if (firstSegment && !before.empty()) fmt::format_to(out, "{} ", before);
-      g.append(move.mode == MotionMode::Rapid ? "G0" : "G1", 2);
-      for (size_t k = 0; k < axes; ++k) {
-        const Axis& a = m.axes[k];
-        appendWord(g, a.name, a.isRotary() ? p.q[k] / kDeg : p.q[k]);
-      }
-      if (move.mode != MotionMode::Rapid && move.feed != feed) {
-        fmt::format_to(out, " F{:g}", move.feed);
-        feed = move.feed;
-      }
-      const bool last = point == compensated.points.size() || compensated.points[point].move != l.move;
-      if (last && !after.empty()) fmt::format_to(out, " {}", after);
-      g += '\n';
-      firstSegment = false;
-    }
+    const size_t first = point;
+    while (l.move >= 0 && point < compensated.points.size() && compensated.points[point].move == l.move) ++point;
+    writer.line(g, l, l.move >= 0 ? &program.moves[static_cast<size_t>(l.move)] : nullptr,
+                std::span(compensated.points).subspan(first, point - first));
   }
   return g;
 }

@@ -201,183 +201,217 @@ void setArc(GcodeMove& move, const std::map<char, double>& offsets, std::optiona
 
 }  // namespace
 
-GcodeProgram parseGcodeProgram(std::string_view text, const std::string& file, const Machine& machine, const GcodeReadOptions& options) {
+struct GcodeLineReader::State {
+  State(const std::string& f, const Machine& m, const GcodeReadOptions& o) : file(f), machine(m), options(o) {}
+  std::string file;
+  const Machine& machine;
+  GcodeReadOptions options;
+  std::array<int, 26> axisOf{};  // by address letter; -1 for none
+  ModalState modal;
+  AxisPositions position;
+  int number = 0, moves = 0;
+  std::vector<Token> tokens;
+  GcodeMove move;
+};
+
+GcodeLineReader::GcodeLineReader(const std::string& file, const Machine& machine, const GcodeReadOptions& options)
+    : s_(std::make_unique<State>(file, machine, options)) {
   const auto axes = static_cast<size_t>(machine.commandedCount());
-  std::array<int, 26> axisOf;  // by address letter; -1 for none
-  axisOf.fill(-1);
+  s_->axisOf.fill(-1);
   for (size_t k = 0; k < axes; ++k) {
     const Axis& a = machine.axes[k];
-    if (a.name.size() == 1 && a.name[0] >= 'A' && a.name[0] <= 'Z') axisOf[static_cast<size_t>(a.name[0] - 'A')] = static_cast<int>(k);
+    if (a.name.size() == 1 && a.name[0] >= 'A' && a.name[0] <= 'Z') s_->axisOf[static_cast<size_t>(a.name[0] - 'A')] = static_cast<int>(k);
   }
+  s_->position.assign(options.start.begin(), options.start.end());
+  if (options.start.empty()) s_->position.assign(axes, 0.0);
+  if (s_->position.size() != axes) throw InputError({file, 0, "start"}, fmt::format("the start pose needs {} axis positions", axes));
+}
+
+GcodeLineReader::~GcodeLineReader() = default;
+GcodeLineReader::GcodeLineReader(GcodeLineReader&&) noexcept = default;
+
+int GcodeLineReader::lines() const { return s_->number; }
+int GcodeLineReader::moves() const { return s_->moves; }
+
+const GcodeMove* GcodeLineReader::read(std::string_view raw, GcodeLine& line) {
+  const std::string& file = s_->file;
+  const Machine& machine = s_->machine;
+  const GcodeReadOptions& options = s_->options;
+  const auto& axisOf = s_->axisOf;
+  ModalState& state = s_->modal;
+  AxisPositions& position = s_->position;
+  std::vector<Token>& tokens = s_->tokens;
+  const int number = ++s_->number;
+  line.number = number;
+  line.kept.clear();
+  line.sequence.clear();
+  line.move = -1;
+  const LineReader reader(file, number);
+  const size_t first = raw.find_first_not_of(" \t");
+  if (first != std::string_view::npos && raw[first] == '%') {
+    line.kept.emplace_back(raw.substr(first));
+    return nullptr;
+  }
+  if (first != std::string_view::npos && raw[first] == '/') reader.fail("/", "block delete ('/') is not supported: remove the block or its '/'");
+  std::vector<std::string>& kept = line.kept;
+  std::optional<MotionMode> motion;
+  std::optional<int> plane, units, distance;
+  std::optional<Word> toolOffset, lengthWord, turnsWord, feedWord;
+  std::map<char, double> offsets;
+  std::array<std::pair<char, double>, 9> axisWords{};  // X Y Z U V W A B C at most once each
+  int axisCount = 0;
+  std::optional<double> radius;
+  uint32_t seen = 0;  // bit per letter
+  reader.tokens(raw, tokens);
+  for (const auto& t : tokens) {
+    if (t.comment) {
+      kept.emplace_back(t.text);
+      continue;
+    }
+    const Word& w = t.word;
+    const uint32_t bit = 1u << (w.letter - 'A');
+    if (w.letter != 'G' && w.letter != 'M' && (seen & bit) != 0)
+      reader.fail(w.text, fmt::format("{} is given twice on the line", std::string(1, w.letter)));
+    seen |= bit;
+    switch (w.letter) {
+      case 'G': {
+        const double code = w.value;
+        auto group = [&](auto& slot, int value) {
+          if (slot) reader.fail(w.text, "two G codes of the same modal group on one line");
+          slot = value;
+        };
+        if (code == 0 || code == 1 || code == 2 || code == 3) {
+          if (motion) reader.fail(w.text, "two motion G codes on one line");
+          motion = code == 0 ? MotionMode::Rapid : code == 1 ? MotionMode::Linear : code == 2 ? MotionMode::ArcClockwise : MotionMode::ArcCounterClockwise;
+        } else if (code == 17 || code == 18 || code == 19) {
+          group(plane, static_cast<int>(code));
+        } else if (code == 20 || code == 21) {
+          group(units, static_cast<int>(code));
+        } else if (code == 90 || code == 91) {
+          group(distance, static_cast<int>(code));
+        } else if (code == 43 || code == 49) {
+          if (toolOffset) reader.fail(w.text, "two G codes of the same modal group on one line");
+          toolOffset = w;
+          kept.emplace_back(w.text);
+        } else if (code == std::round(code) && kKeptGcodes.count(static_cast<int>(code))) {
+          kept.emplace_back(w.text);
+        } else {
+          reader.fail(w.text, fmt::format("{} is not supported: mtacc reads G0-G3, G4, G17-G21, G40, G43, G49, G54, G61, G64, G80, G90, "
+                                          "G91, G94 (tool-tip programs, canned cycles and other work offsets are refused)",
+                                          w.text));
+        }
+        break;
+      }
+      case 'I': case 'J': case 'K': offsets[static_cast<char>('X' + (w.letter - 'I'))] = w.value; break;
+      case 'R':
+        if (w.value == 0) reader.fail(w.text, "an arc radius cannot be zero");
+        radius = w.value;
+        break;
+      case 'F':
+        if (w.value <= 0) reader.fail(w.text, "the feed must be positive");
+        feedWord = w;
+        break;
+      case 'H': lengthWord = w; kept.emplace_back(w.text); break;
+      case 'P': turnsWord = w; break;
+      case 'N': line.sequence = w.text; break;
+      case 'M': case 'S': case 'T': case 'O': kept.emplace_back(w.text); break;
+      default:
+        if (!isAxisLetter(w.letter)) reader.fail(w.text, fmt::format("the word {} is not supported", std::string(1, w.letter)));
+        if (axisOf[static_cast<size_t>(w.letter - 'A')] < 0) reader.fail(w.text, fmt::format("the machine {} has no axis {}", machine.name, std::string(1, w.letter)));
+        axisWords[static_cast<size_t>(axisCount++)] = {w.letter, w.value};
+    }
+  }
+  // Execution order within a line (RS-274/NGC): feed, tool length, plane, units, distance, motion.
+  if (units) state.inch = *units == 20;
+  if (feedWord) state.feed = feedWord->value * (state.inch ? kInch : 1.0);
+  if (toolOffset) {
+    if (toolOffset->value == 43) {
+      if (!lengthWord) reader.fail(toolOffset->text, "G43 needs H<tool number>");
+      const int tool = wholeNumber(*lengthWord, reader);
+      const auto it = options.toolLengths.find(tool);
+      if (it == options.toolLengths.end())
+        reader.fail(lengthWord->text, fmt::format("the length of tool {} is not given (--tool-length {}=<mm>)", tool, tool));
+      state.toolLength = it->second;
+    } else {
+      if (lengthWord) reader.fail(lengthWord->text, "H goes with G43");
+      state.toolLength = 0.0;
+    }
+  } else if (lengthWord) {
+    reader.fail(lengthWord->text, "H goes with G43");
+  }
+  if (plane) state.plane = *plane;
+  if (distance) state.incremental = *distance == 91;
+  if (motion) state.motion = motion;
+  const bool arcWords = !offsets.empty() || radius;
+  if (turnsWord) {
+    const bool isDwell = std::any_of(tokens.begin(), tokens.end(), [](const Token& t) { return !t.comment && t.word.letter == 'G' && t.word.value == 4; });
+    if (isDwell) {
+      kept.emplace_back(turnsWord->text);
+    } else if (!(arcWords && state.motion && (*state.motion == MotionMode::ArcClockwise || *state.motion == MotionMode::ArcCounterClockwise))) {
+      reader.fail(turnsWord->text, "P goes with G4 (dwell) or an arc (turns)");
+    }
+  }
+  const bool moves = axisCount > 0 || (arcWords && state.motion && *state.motion != MotionMode::Rapid && *state.motion != MotionMode::Linear);
+  const bool arc = state.motion && (*state.motion == MotionMode::ArcClockwise || *state.motion == MotionMode::ArcCounterClockwise);
+  if (arcWords && (!moves || !arc)) reader.fail(offsets.empty() ? "R" : "I/J/K", "arc words without an arc (G2/G3)");
+  if (moves) {
+    if (!state.motion) reader.fail(std::string(1, axisWords[0].first), "axis words with no motion mode (G0, G1, G2, G3) in effect");
+    GcodeMove& move = s_->move;
+    move = GcodeMove{};
+    move.line = number;
+    move.mode = *state.motion;
+    move.from = position;
+    move.to = position;
+    move.toolLength = state.toolLength;
+    for (int w = 0; w < axisCount; ++w) {
+      const auto [letter, value] = axisWords[static_cast<size_t>(w)];
+      const auto k = static_cast<size_t>(axisOf[static_cast<size_t>(letter - 'A')]);
+      const double v = machine.axes[k].isRotary() ? value * kDeg : value * (state.inch ? kInch : 1.0);
+      move.to[k] = state.incremental ? position[k] + v : v;
+    }
+    if (const std::string beyond = machine.travelViolation({move.to.data(), move.to.size()}); !beyond.empty()) reader.fail(std::string(1, axisWords[0].first), beyond);
+    if (move.mode != MotionMode::Rapid) {
+      if (state.feed <= 0) reader.fail("F", "a feed move before any feed (F word)");
+      move.feed = state.feed;
+    }
+    if (move.isArc()) {
+      if (!offsets.empty() && radius) reader.fail("R", "an arc takes either R or I, J, K, not both");
+      if (offsets.empty() && !radius) reader.fail("G2/G3", "an arc needs its centre (I, J, K) or its radius (R)");
+      std::map<char, double> scaled;
+      for (const auto& [axis, offset] : offsets) scaled[axis] = offset * (state.inch ? kInch : 1.0);
+      const std::string_view letters = planeLetters(state.plane);
+      for (const auto& [axis, offset] : scaled)
+        if (axis == letters[2]) reader.fail(std::string(1, static_cast<char>('I' + (axis - 'X'))), fmt::format("no centre offset along {} in G{}", axis, state.plane));
+      const int turns = turnsWord ? wholeNumber(*turnsWord, reader) : 1;
+      if (turns < 1 || turns > 1000) reader.fail(turnsWord->text, "an arc's turns must be 1 to 1000");
+      setArc(move, scaled, radius ? std::optional<double>(*radius * (state.inch ? kInch : 1.0)) : std::nullopt, turns, machine, state.plane,
+             reader, "G" + std::to_string(move.mode == MotionMode::ArcClockwise ? 2 : 3));
+    }
+    if (s_->moves == 0 && options.start.empty()) move.from = move.to;
+    position = move.to;
+    line.move = s_->moves++;
+    return &move;
+  }
+  return nullptr;
+}
+
+GcodeProgram parseGcodeProgram(std::string_view text, const std::string& file, const Machine& machine, const GcodeReadOptions& options) {
+  GcodeLineReader reader(file, machine, options);
   GcodeProgram program;
   program.file = file;
-  ModalState state;
-  AxisPositions position(options.start.begin(), options.start.end());
-  if (options.start.empty()) position.assign(axes, 0.0);
-  if (position.size() != axes) throw InputError({file, 0, "start"}, fmt::format("the start pose needs {} axis positions", axes));
   const auto lines = static_cast<size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
   program.lines.reserve(lines);
   program.moves.reserve(lines);
   size_t begin = 0;
-  int number = 0;
-  std::vector<Token> tokens;
   while (begin <= text.size()) {
     size_t end = text.find('\n', begin);
     if (end == std::string_view::npos) end = text.size();
     std::string_view raw = text.substr(begin, end - begin);
     begin = end + 1;
-    ++number;
     if (!raw.empty() && raw.back() == '\r') raw.remove_suffix(1);
     if (end == text.size() && raw.empty()) break;
-    const LineReader reader(file, number);
-    GcodeLine line;
-    line.number = number;
-    const size_t first = raw.find_first_not_of(" \t");
-    if (first != std::string_view::npos && raw[first] == '%') {
-      line.kept.emplace_back(raw.substr(first));
-      program.lines.push_back(line);
-      continue;
-    }
-    if (first != std::string_view::npos && raw[first] == '/') reader.fail("/", "block delete ('/') is not supported: remove the block or its '/'");
-    std::vector<std::string>& kept = line.kept;
-    std::optional<MotionMode> motion;
-    std::optional<int> plane, units, distance;
-    std::optional<Word> toolOffset, lengthWord, turnsWord, feedWord;
-    std::map<char, double> offsets;
-    std::array<std::pair<char, double>, 9> axisWords{};  // X Y Z U V W A B C at most once each
-    int axisCount = 0;
-    std::optional<double> radius;
-    uint32_t seen = 0;  // bit per letter
-    reader.tokens(raw, tokens);
-    for (const auto& t : tokens) {
-      if (t.comment) {
-        kept.emplace_back(t.text);
-        continue;
-      }
-      const Word& w = t.word;
-      const uint32_t bit = 1u << (w.letter - 'A');
-      if (w.letter != 'G' && w.letter != 'M' && (seen & bit) != 0)
-        reader.fail(w.text, fmt::format("{} is given twice on the line", std::string(1, w.letter)));
-      seen |= bit;
-      switch (w.letter) {
-        case 'G': {
-          const double code = w.value;
-          auto group = [&](auto& slot, int value) {
-            if (slot) reader.fail(w.text, "two G codes of the same modal group on one line");
-            slot = value;
-          };
-          if (code == 0 || code == 1 || code == 2 || code == 3) {
-            if (motion) reader.fail(w.text, "two motion G codes on one line");
-            motion = code == 0 ? MotionMode::Rapid : code == 1 ? MotionMode::Linear : code == 2 ? MotionMode::ArcClockwise : MotionMode::ArcCounterClockwise;
-          } else if (code == 17 || code == 18 || code == 19) {
-            group(plane, static_cast<int>(code));
-          } else if (code == 20 || code == 21) {
-            group(units, static_cast<int>(code));
-          } else if (code == 90 || code == 91) {
-            group(distance, static_cast<int>(code));
-          } else if (code == 43 || code == 49) {
-            if (toolOffset) reader.fail(w.text, "two G codes of the same modal group on one line");
-            toolOffset = w;
-            kept.emplace_back(w.text);
-          } else if (code == std::round(code) && kKeptGcodes.count(static_cast<int>(code))) {
-            kept.emplace_back(w.text);
-          } else {
-            reader.fail(w.text, fmt::format("{} is not supported: mtacc reads G0-G3, G4, G17-G21, G40, G43, G49, G54, G61, G64, G80, G90, "
-                                            "G91, G94 (tool-tip programs, canned cycles and other work offsets are refused)",
-                                            w.text));
-          }
-          break;
-        }
-        case 'I': case 'J': case 'K': offsets[static_cast<char>('X' + (w.letter - 'I'))] = w.value; break;
-        case 'R':
-          if (w.value == 0) reader.fail(w.text, "an arc radius cannot be zero");
-          radius = w.value;
-          break;
-        case 'F':
-          if (w.value <= 0) reader.fail(w.text, "the feed must be positive");
-          feedWord = w;
-          break;
-        case 'H': lengthWord = w; kept.emplace_back(w.text); break;
-        case 'P': turnsWord = w; break;
-        case 'N': line.sequence = w.text; break;
-        case 'M': case 'S': case 'T': case 'O': kept.emplace_back(w.text); break;
-        default:
-          if (!isAxisLetter(w.letter)) reader.fail(w.text, fmt::format("the word {} is not supported", std::string(1, w.letter)));
-          if (axisOf[static_cast<size_t>(w.letter - 'A')] < 0) reader.fail(w.text, fmt::format("the machine {} has no axis {}", machine.name, std::string(1, w.letter)));
-          axisWords[static_cast<size_t>(axisCount++)] = {w.letter, w.value};
-      }
-    }
-    // Execution order within a line (RS-274/NGC): feed, tool length, plane, units, distance, motion.
-    if (units) state.inch = *units == 20;
-    if (feedWord) state.feed = feedWord->value * (state.inch ? kInch : 1.0);
-    if (toolOffset) {
-      if (toolOffset->value == 43) {
-        if (!lengthWord) reader.fail(toolOffset->text, "G43 needs H<tool number>");
-        const int tool = wholeNumber(*lengthWord, reader);
-        const auto it = options.toolLengths.find(tool);
-        if (it == options.toolLengths.end())
-          reader.fail(lengthWord->text, fmt::format("the length of tool {} is not given (--tool-length {}=<mm>)", tool, tool));
-        state.toolLength = it->second;
-      } else {
-        if (lengthWord) reader.fail(lengthWord->text, "H goes with G43");
-        state.toolLength = 0.0;
-      }
-    } else if (lengthWord) {
-      reader.fail(lengthWord->text, "H goes with G43");
-    }
-    if (plane) state.plane = *plane;
-    if (distance) state.incremental = *distance == 91;
-    if (motion) state.motion = motion;
-    const bool arcWords = !offsets.empty() || radius;
-    if (turnsWord) {
-      const bool isDwell = std::any_of(tokens.begin(), tokens.end(), [](const Token& t) { return !t.comment && t.word.letter == 'G' && t.word.value == 4; });
-      if (isDwell) {
-        kept.emplace_back(turnsWord->text);
-      } else if (!(arcWords && state.motion && (*state.motion == MotionMode::ArcClockwise || *state.motion == MotionMode::ArcCounterClockwise))) {
-        reader.fail(turnsWord->text, "P goes with G4 (dwell) or an arc (turns)");
-      }
-    }
-    const bool moves = axisCount > 0 || (arcWords && state.motion && *state.motion != MotionMode::Rapid && *state.motion != MotionMode::Linear);
-    const bool arc = state.motion && (*state.motion == MotionMode::ArcClockwise || *state.motion == MotionMode::ArcCounterClockwise);
-    if (arcWords && (!moves || !arc)) reader.fail(offsets.empty() ? "R" : "I/J/K", "arc words without an arc (G2/G3)");
-    if (moves) {
-      if (!state.motion) reader.fail(std::string(1, axisWords[0].first), "axis words with no motion mode (G0, G1, G2, G3) in effect");
-      GcodeMove move;
-      move.line = number;
-      move.mode = *state.motion;
-      move.from = position;
-      move.to = position;
-      move.toolLength = state.toolLength;
-      for (int w = 0; w < axisCount; ++w) {
-        const auto [letter, value] = axisWords[static_cast<size_t>(w)];
-        const auto k = static_cast<size_t>(axisOf[static_cast<size_t>(letter - 'A')]);
-        const double v = machine.axes[k].isRotary() ? value * kDeg : value * (state.inch ? kInch : 1.0);
-        move.to[k] = state.incremental ? position[k] + v : v;
-      }
-      if (const std::string beyond = machine.travelViolation({move.to.data(), move.to.size()}); !beyond.empty()) reader.fail(std::string(1, axisWords[0].first), beyond);
-      if (move.mode != MotionMode::Rapid) {
-        if (state.feed <= 0) reader.fail("F", "a feed move before any feed (F word)");
-        move.feed = state.feed;
-      }
-      if (move.isArc()) {
-        if (!offsets.empty() && radius) reader.fail("R", "an arc takes either R or I, J, K, not both");
-        if (offsets.empty() && !radius) reader.fail("G2/G3", "an arc needs its centre (I, J, K) or its radius (R)");
-        std::map<char, double> scaled;
-        for (const auto& [axis, offset] : offsets) scaled[axis] = offset * (state.inch ? kInch : 1.0);
-        const std::string_view letters = planeLetters(state.plane);
-        for (const auto& [axis, offset] : scaled)
-          if (axis == letters[2]) reader.fail(std::string(1, static_cast<char>('I' + (axis - 'X'))), fmt::format("no centre offset along {} in G{}", axis, state.plane));
-        const int turns = turnsWord ? wholeNumber(*turnsWord, reader) : 1;
-        if (turns < 1 || turns > 1000) reader.fail(turnsWord->text, "an arc's turns must be 1 to 1000");
-        setArc(move, scaled, radius ? std::optional<double>(*radius * (state.inch ? kInch : 1.0)) : std::nullopt, turns, machine, state.plane,
-               reader, "G" + std::to_string(move.mode == MotionMode::ArcClockwise ? 2 : 3));
-      }
-      if (program.moves.empty() && options.start.empty()) move.from = move.to;
-      position = move.to;
-      line.move = static_cast<int>(program.moves.size());
-      program.moves.push_back(std::move(move));
-    }
-    program.lines.push_back(std::move(line));
+    GcodeLine& line = program.lines.emplace_back();
+    if (const GcodeMove* move = reader.read(raw, line)) program.moves.push_back(*move);
   }
   return program;
 }

@@ -25,30 +25,78 @@ ProgramCompensationResult compensateProgramFile(const MachineSetup& setup, const
   if (!(o.directionTolerance > 0 && o.directionTolerance <= 0.01))
     throw InputError({"", 0, "direction_tolerance"},
                      fmt::format("the direction tolerance must lie in (0, 10000] urad, not {} urad", o.directionTolerance * 1e6));
-  ProgramCompensationResult r{setup, {}, {}, {}, std::nullopt, {}};
-  r.program = readGcodeProgram(request.programFile, *setup.machine, {{}, request.toolLengths});
-  if (r.program.moves.empty()) throw InputError({request.programFile, static_cast<int>(r.program.lines.size()), "program"},
-                     "the program ends without moving an axis: nothing to compensate");
-  r.compensated = compensateProgram(setup.machine, setup.errors, r.program, request.options);
-  if (!r.compensated.travelViolation.empty())
-    throw InputError({request.programFile, r.compensated.travelViolationLine, "travel"},
-                     "the compensated commands leave the travel: " + r.compensated.travelViolation);
-  r.deviation = programDeviation(setup.machine, setup.errors, r.program, r.compensated.points);
-  if (!request.checkErrorsFile.empty()) {
-    const ErrorModel other = loadErrors(*setup.machine, request.checkErrorsFile);
-    r.check = ProgramCompensationResult::Check{request.checkErrorsFile, programDeviation(setup.machine, other, r.program, r.compensated.points), {}};
+  ProgramCompensationResult r;
+  r.setup = setup;
+  r.programFile = request.programFile;
+  const auto& m = setup.machine;
+  std::optional<ErrorModel> other;
+  if (!request.checkErrorsFile.empty()) other = loadErrors(*m, request.checkErrorsFile);
+  TextLines text(request.programFile);
+  GcodeLineReader reader(request.programFile, *m, {{}, request.toolLengths});
+  ProgramCompensator compensator(m, setup.errors, request.options);
+  DeviationSum deviation(m, setup.errors);
+  std::optional<DeviationSum> checked;
+  if (other) checked.emplace(m, *other);
+  std::optional<AtomicFile> body;  // the program after its preamble, which holds the figures known at the end
+  if (!request.outputFile.empty()) body.emplace(request.outputFile, request.outputKey);
+  CompensatedGcodeWriter writer(*m);
+  std::string written;  // to `body` a block at a time
+  GcodeLine line;
+  std::optional<GcodeLine> percent;
+  const auto started = std::chrono::steady_clock::now();
+  std::string_view raw;
+  while (text.next(raw)) {
+    const GcodeMove* move = reader.read(raw, line);
+    if (reader.lines() == 1 && isPercentLine(line)) {
+      percent = line;
+      continue;
+    }
+    std::span<const CompensatedPoint> points;
+    if (move) {
+      points = compensator.compensate(*move, line.move);
+      if (const auto& c = compensator.summary(); !c.travelViolation.empty())
+        throw InputError({request.programFile, c.travelViolationLine, "travel"}, "the compensated commands leave the travel: " + c.travelViolation);
+      deviation.add(points, *move);
+      if (checked) checked->add(points, *move);
+      points = points.subspan(1);
+    }
+    writer.line(written, line, move, points);
+    if (body && written.size() >= (size_t{1} << 20)) {
+      body->write(written);
+      written.clear();
+    }
+    if (request.progress && reader.lines() % 65536 == 0)
+      request.progress({reader.lines(), text.bytesRead(), text.size(),
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()});
+  }
+  r.lines = reader.lines();
+  r.moves = reader.moves();
+  if (r.moves == 0) throw InputError({request.programFile, reader.lines(), "program"}, "the program ends without moving an axis: nothing to compensate");
+  r.compensated = compensator.summary();
+  r.deviation = deviation.result();
+  if (other) {
+    r.check = ProgramCompensationResult::Check{request.checkErrorsFile, checked->result(), {}};
     std::set<std::string> modelled;
-    for (const auto& p : nonZeroParameters(*setup.machine, setup.errors)) modelled.insert(p.name);
-    for (const auto& p : nonZeroParameters(*setup.machine, other))
+    for (const auto& p : nonZeroParameters(*m, setup.errors)) modelled.insert(p.name);
+    for (const auto& p : nonZeroParameters(*m, *other))
       if (!modelled.contains(p.name)) r.check->notInModel.push_back(p.name);
   }
   const auto& d = r.deviation;
   const std::string header = fmt::format(
       "mtacc: {} compensated for {} and its errors ({} non-zero parameters)\n"
       "tolerance {:g} um, {:g} urad; TCP deviation on the machine with errors: before {:.2f} um, after {:.3f} um (largest)",
-      request.programFile, setup.machine->name, nonZeroParameters(*setup.machine, setup.errors).size(), request.options.tolerance * 1e3,
+      request.programFile, m->name, nonZeroParameters(*m, setup.errors).size(), request.options.tolerance * 1e3,
       request.options.directionTolerance * 1e6, d.before.maxPosition * 1e3, d.after.maxPosition * 1e3);
-  r.gcode = compensatedGcode(*setup.machine, r.program, r.compensated, header);
+  const std::string preamble = compensatedGcodePreamble(percent ? &*percent : nullptr, header);
+  if (!body) {
+    r.gcode = preamble + written;
+    return r;
+  }
+  body->write(written);
+  AtomicFile output(request.outputFile, request.outputKey);
+  output.write(preamble);
+  output.append(*body);
+  output.commit();
   return r;
 }
 
@@ -65,10 +113,10 @@ nlohmann::json toJson(const ProgramCompensationResult& r) {
     correction[a.name] = toDisplay(c.largestCorrection[static_cast<size_t>(k)], a.isRotary() ? Dimension::Angle : Dimension::Length);
   }
   return {{"machine", m.name},
-          {"program", r.program.file},
-          {"lines", r.program.lines.size()},
-          {"moves", r.program.moves.size()},
-          {"written_points", c.points.empty() ? 0 : c.points.size() - 1},
+          {"program", r.programFile},
+          {"lines", r.lines},
+          {"moves", r.moves},
+          {"written_points", c.written},
           {"largest_correction_um_urad", correction},
           {"largest_residual_um", c.largestResidual * 1e3},
           {"not_converged", c.notConverged},

@@ -183,3 +183,32 @@ def test_each_table_moving_each_way_leaves_the_reversal_it_cannot_carry(cli, tmp
     # The positive direction's values and the negative's differ by the reversal (2 um on X).
     x, backlash = header.index("X"), header.index("BACKLASH")
     assert all(abs(float(row.split()[x]) - float(row.split()[backlash]) - 0.002) < 2e-5 for row in com[2:-1])
+
+
+def test_progress_on_a_terminal_only(cli, tmp_path):
+    # Issue 47, item 3: a long program shows its progress (lines, rate, share, time left) on stderr
+    # when stderr is a terminal, on one line ended before the summary; not in a pipe or a log.
+    import os
+    import pty
+    program = tmp_path / "long.nc"
+    program.write_text("G21 G90 G94 F1000\n" + "".join(f"G1 X{100 + (i % 400) * 0.5:.1f} Y{50 + (i % 300) * 0.3:.1f} Z200\n"
+                                                      for i in range(70_000)))
+    command = [cli, "compensate", "three-axis-vertical", "--program", str(program), "--gcode", str(tmp_path / "out.nc")]
+    master, slave = pty.openpty()
+    run = subprocess.run(command, stdout=subprocess.PIPE, stderr=slave, text=True)
+    os.close(slave)
+    shown = b""
+    while True:
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:  # the terminal's other end is closed: all read
+            break
+        if not chunk:
+            break
+        shown += chunk
+    os.close(master)
+    assert run.returncode == 0
+    text = shown.decode()
+    assert "mtacc: 65536 lines," in text and "lines/s" in text and "s left" in text and text.endswith("\r\n")
+    piped = subprocess.run(command, capture_output=True, text=True, check=True)
+    assert piped.stderr == "" and "70001 lines, 70000 moves" in piped.stdout

@@ -5,10 +5,10 @@
 // correction). Arcs are written as G1 chords and a move is split where the correction varies
 // along it, until the written program, interpolated linearly by the controller, stays within
 // the tolerance of the nominal path at every segment's midpoint.
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
-
-#include <memory>
 
 #include "mtacc/compensation/nc_program.hpp"
 #include "mtacc/errors/error_model.hpp"
@@ -42,14 +42,35 @@ struct PathDeviation {
   int samples = 0;
 };
 
-struct CompensatedProgram {
-  std::vector<CompensatedPoint> points;  // the start (not written), then the written points in program order; each move's last has s = 1
+// What compensating a program found, accumulated point by point.
+struct CompensationSummary {
   std::vector<double> largestCorrection; // per commanded axis, mm or rad
   double largestResidual = 0.0;          // mm: of the inverse error model at a written point
   int notConverged = 0, singular = 0;    // written points
   int firstProblemLine = 0;              // the first line with a point not converged, singular or beyond travel
   std::string travelViolation;           // the first written point beyond travel ("" when none)
   int travelViolationLine = 0;           // and its line
+  long long written = 0;                 // points written
+};
+
+struct CompensatedProgram : CompensationSummary {
+  std::vector<CompensatedPoint> points;  // the start (not written), then the written points in program order; each move's last has s = 1
+};
+
+// A program compensated move by move in program order, holding only the points of the move at
+// hand: what compensateProgram does for a whole program, in bounded memory for any length.
+class ProgramCompensator {
+ public:
+  ProgramCompensator(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const ProgramCompensationOptions& options = {});
+  ~ProgramCompensator();
+  // The point before `move` (the program's start, solved from its first move, on the first call),
+  // then the points written for it; `index` counts the moves from 0. Valid until the next call.
+  std::span<const CompensatedPoint> compensate(const GcodeMove& move, int index);
+  const CompensationSummary& summary() const;
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 CompensatedProgram compensateProgram(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
@@ -65,10 +86,36 @@ struct ProgramDeviation {
 };
 ProgramDeviation programDeviation(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const GcodeProgram& program,
                                   const std::vector<CompensatedPoint>& points);
+// The same accumulated move by move, as ProgramCompensator gives the points.
+class DeviationSum {
+ public:
+  DeviationSum(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors);  // `errors` outlives it
+  ~DeviationSum();
+  void add(std::span<const CompensatedPoint> points, const GcodeMove& move);  // the point before the move's, then the move's
+  ProgramDeviation result() const;
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // The compensated program as G-code (G21 G90, axis positions in mm and deg, every axis on every
 // motion line), with the kept words and comments of every line and a header naming the machine.
 std::string compensatedGcode(const Machine& machine, const GcodeProgram& program, const CompensatedProgram& compensated,
                              const std::string& header);
+// The same in parts, for a program written as it is compensated: the preamble (a first line of
+// '%' alone, the header as comments, G21 G90), then each line with its move's points.
+bool isPercentLine(const GcodeLine& line);
+std::string compensatedGcodePreamble(const GcodeLine* percent, const std::string& header);
+class CompensatedGcodeWriter {
+ public:
+  explicit CompensatedGcodeWriter(const Machine& machine) : machine_(machine) {}
+  // Appends the line to `out`: its kept words, and for a move its points (not the one before).
+  void line(std::string& out, const GcodeLine& line, const GcodeMove* move, std::span<const CompensatedPoint> points);
+
+ private:
+  const Machine& machine_;
+  double feed_ = -1.0;  // the F last written
+};
 
 }  // namespace mtacc

@@ -6,6 +6,7 @@
 // move the machine (M, S, T, N, G4 P, G40, G54, G61, G64, G80, G94, comments) are kept for the
 // writer; anything else is refused with its file and line (never dropped).
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,8 +23,27 @@ struct GcodeReadOptions {
   std::map<int, double> toolLengths;    // G43 H<n>: tool n's length in mm (see GcodeMove::toolLength)
 };
 
-// Throws InputError naming file, line and word. The machine's commanded axes must be named by
-// single letters (their G-code addresses).
+// A program read a line at a time, the modal state (motion, plane, units, distance mode, feed,
+// tool length) and the axes' positions carried from line to line: a program of any length in
+// bounded memory. Throws InputError naming file, line and word.
+class GcodeLineReader {
+ public:
+  GcodeLineReader(const std::string& file, const Machine& machine, const GcodeReadOptions& options = {});
+  GcodeLineReader(GcodeLineReader&&) noexcept;
+  ~GcodeLineReader();
+  // The next line's text (without its newline) into `line` (its number, kept words, N word and
+  // its move's index, or -1); its move, valid until the next call, or nullptr.
+  const GcodeMove* read(std::string_view text, GcodeLine& line);
+  int lines() const;  // read so far
+  int moves() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
+
+// The same over a whole text. Throws InputError naming file, line and word. The machine's
+// commanded axes must be named by single letters (their G-code addresses).
 GcodeProgram parseGcodeProgram(std::string_view text, const std::string& file, const Machine& machine,
                                const GcodeReadOptions& options = {});
 GcodeProgram readGcodeProgram(const std::string& path, const Machine& machine, const GcodeReadOptions& options = {});

@@ -2,6 +2,7 @@
 // Workflow `compensate program`: an axis program (G-code) read for a machine, compensated for
 // the machine's errors, as G-code text and a summary (corrections, what the tool's path would
 // deviate from the program on the machine with its errors, before and after).
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <optional>
@@ -19,6 +20,13 @@
 
 namespace mtacc {
 
+// How far a long compensation has got: lines read, bytes of the file read and its size.
+struct StreamProgress {
+  long long lines = 0;
+  std::uint64_t bytes = 0, size = 0;
+  double seconds = 0.0;  // since the start
+};
+
 struct ProgramCompensationRequest {
   std::string programFile;
   std::map<int, double> toolLengths;  // G43 H<n>: mm beyond the machine file's tool
@@ -26,12 +34,17 @@ struct ProgramCompensationRequest {
   // An errors file of the same machine (e.g. as measured again, or a simulation's truth) the
   // program, as written and compensated, is also run on; "" for none.
   std::string checkErrorsFile;
+  // Where the compensated program goes, written as it is produced and put in place at the end
+  // (errors name it under `outputKey`); "": kept in the result's `gcode`.
+  std::string outputFile, outputKey = "gcode";
+  std::function<void(const StreamProgress&)> progress;  // told every 65536 lines, when given
 };
 
 struct ProgramCompensationResult {
   MachineSetup setup;
-  GcodeProgram program;
-  CompensatedProgram compensated;
+  std::string programFile;
+  long long lines = 0, moves = 0;
+  CompensationSummary compensated;
   ProgramDeviation deviation;  // the program as written and compensated, on the machine with its errors
   struct Check {
     std::string errorsFile;
@@ -39,11 +52,12 @@ struct ProgramCompensationResult {
     std::vector<std::string> notInModel;  // its non-zero errors that the compensating model holds at zero
   };
   std::optional<Check> check;
-  std::string gcode;  // the compensated program
+  std::string gcode;  // the compensated program, when no output file is given
 };
 
-// Throws InputError naming the program's file and line for bad G-code, and for a compensated
-// point beyond travel (nothing is written then).
+// The program streamed from its file through the compensator to the output, a line at a time:
+// memory stays bounded whatever its length. Throws InputError naming the program's file and
+// line for bad G-code, and for a compensated point beyond travel; nothing is written then.
 ProgramCompensationResult compensateProgramFile(const MachineSetup& setup, const ProgramCompensationRequest& request);
 nlohmann::json toJson(const ProgramCompensationResult& result);
 
