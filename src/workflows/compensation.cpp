@@ -280,7 +280,8 @@ nlohmann::json toJson(const CompensationTablesResult& r) {
   for (const auto& f : r.oneAxis.functions) functions.push_back({{"input", names[f.input]}, {"output", names[f.output]}, {"rms_um", f.rms * 1e3}});
   nlohmann::json files = nlohmann::json::array();
   std::string heidenhainFiles, linuxcncFiles, isgFiles, lecFiles;
-  for (const auto& [name, content] : r.files) {
+  for (const auto& file : r.files) {
+    const std::string& name = file.first;
     files.push_back(name);
     const auto add = [&](std::string& list) { list += (list.empty() ? "" : ", ") + name; };
     if (name.starts_with("heidenhain")) add(heidenhainFiles);
