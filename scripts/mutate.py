@@ -6,7 +6,8 @@ the compiler cache) and runs ctest on it, which must pass. Then each mutant of t
 alone: its text replaced, the tree rebuilt incrementally, its `tests` regex run first and, if
 nothing failed, the whole suite with --stop-on-failure; the file restored. A mutant is killed
 when a test fails, survives when none does; one that does not compile, or compiles to the same
-object file, is marked so and left out of the score. Prints the table and the score and writes
+object file, is marked so and left out of the score, as is one that survives where its record
+argues (`equivalent:`) that no output can show it. Prints the table and the score and writes
 them to build-mutate/report.md.
 """
 import hashlib
@@ -36,8 +37,8 @@ def read_mutants(path):
             record = {}
             continue
         key, sep, value = line.partition(": ")
-        if not sep or key not in ("id", "file", "find", "replace", "why", "tests"):
-            sys.exit(f"{path}:{number}: expected 'key: value' with key id, file, find, replace, why or tests")
+        if not sep or key not in ("id", "file", "find", "replace", "why", "tests", "equivalent"):
+            sys.exit(f"{path}:{number}: expected 'key: value' with key id, file, find, replace, why, tests or equivalent")
         record[key] = value
         record.setdefault("line", number)
     if record:
@@ -132,7 +133,12 @@ def main():
                 failed = ctest(f"-R '{m['tests']}'", logs / f"{m['id']}-hint.log") if m.get("tests") else []
                 if not failed:
                     failed = ctest("--stop-on-failure", logs / f"{m['id']}-ctest.log")
-                outcome, by = ("killed", failed[0]) if failed else ("survived", "")
+                if failed:
+                    outcome, by = "killed", failed[0]
+                elif m.get("equivalent"):
+                    outcome, by = "equivalent", "argued: " + m["equivalent"]
+                else:
+                    outcome, by = "survived", ""
         finally:
             path.write_text(original)
         rows.append((m, outcome, by, time.time() - started))

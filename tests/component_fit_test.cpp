@@ -55,6 +55,24 @@ const Component kComponents[] = {{"xrx", 0.5 * kArcsec}, {"xry", 0.2 * kArcsec},
                                  {"yry", 0.5 * kArcsec}, {"yrz", 0.2 * kArcsec}, {"zrx", 0.2 * kArcsec}, {"zry", 0.2 * kArcsec},
                                  {"zrz", 0.5 * kArcsec}, {"yty", 0.4 * kMicro}, {"ztz", 0.4 * kMicro}};
 
+// A straight line through five points whose residuals (1, -2, 0, 2, -1) um are orthogonal to
+// the constant and the slope: the fit returns them exactly, with n - p = 3 degrees of freedom,
+// s = sqrt(10 um^2 / 3) and the slope's variance s^2 / sum (x - mean)^2 = s^2 / 6250 mm^2.
+TEST(ComponentFit, DegreesOfFreedomAndResidualStdOnAHandCase) {
+  const std::vector<double> x = {0, 25, 50, 75, 100}, r = {1e-3, -2e-3, 0, 2e-3, -1e-3};
+  std::vector<double> y;
+  for (size_t i = 0; i < x.size(); ++i) y.push_back(0.004 + 2e-5 * x[i] + r[i]);
+  const ComponentFit fit = fitComponent(x, y, {{0.0, 100.0}, 1, 0.0});
+  EXPECT_EQ(fit.degreesOfFreedom, 3);
+  EXPECT_NEAR(fit.residualStd, std::sqrt(10e-6 / 3.0), 1e-15);
+  for (size_t i = 0; i < x.size(); ++i) EXPECT_NEAR(fit.residuals[static_cast<Eigen::Index>(i)], r[i], 1e-15) << i;
+  // The fitted values' uncertainty at the ends: s^2 (1/n + (x - mean)^2 / 6250), x - mean = -+50.
+  const double s2 = 10e-6 / 3.0, end = s2 * (1.0 / 5.0 + 2500.0 / 6250.0);
+  EXPECT_NEAR(fit.valueUncertainty(0.0), std::sqrt(end), 1e-12);
+  EXPECT_NEAR(fit.valueUncertainty(100.0), std::sqrt(end), 1e-12);
+  EXPECT_NEAR(fit.valueUncertainty(50.0), std::sqrt(s2 / 5.0), 1e-12);
+}
+
 TEST(ComponentFit, AppendixDTablesRecoveredWithinTheirUncertainty) {
   // Without stepwise removal the fitted model holds the truth exactly, so the coefficient error
   // e with the fit's covariance C gives e^T C^-1 e ~ chi-square with p degrees of freedom: each

@@ -44,6 +44,38 @@ tcp: {body: mass, point: [0 mm, 0 mm, 0 mm]}
   EXPECT_NEAR(staticCompliance(mats)(0, 0), 1 / 10e6, 1e-20);
 }
 
+// The same oscillator with a damper c along x: its state-space eigenvalue has |lambda| = w_n and
+// -Re(lambda) / |lambda| = c / (2 sqrt(k m)), the damping ratio `mtacc dynamics` reports.
+TEST(Dynamics, DampedOneDofOscillatorHasItsClosedFormDampingRatio) {
+  const double k = 10e6, mass = 100, c = 3000;  // N/m, kg, N s/m: zeta = 0.047
+  const auto m = model(std::string(R"(
+bodies:
+  - {name: mass, mass: 100, centre: [0 mm, 0 mm, 0 mm], inertia: [1, 1, 1, 0, 0, 0]}
+elements:
+  - {type: setup, bodies: [ground, mass], point: [0 mm, 0 mm, 0 mm], damping: [3000, 0, 0, 0, 0, 0], stiffness: [10, )") + kStiff +
+                       ", " + kStiff + ", " + kStiff + ", " + kStiff + ", " + kStiff + R"(]}
+tcp: {body: mass, point: [0 mm, 0 mm, 0 mm]}
+)");
+  const auto damped = dampedModes(assembleStructure(m));
+  ASSERT_FALSE(damped.empty());
+  EXPECT_NEAR(damped[0].frequency, std::sqrt(k / mass) / (2 * kPi), 1e-9 * damped[0].frequency);
+  EXPECT_NEAR(damped[0].dampingRatio, c / (2 * std::sqrt(k * mass)), 1e-9);
+  for (size_t i = 1; i < damped.size(); ++i) EXPECT_NEAR(damped[i].dampingRatio, 0.0, 1e-9) << i;  // the stiff directions have no damper
+}
+
+// A beam's joints take `stiffness_damping` beta as D = beta K (stiffness-proportional damping):
+// on the bundled arm, 2e-5 s on each of the arm's and the ram's joints.
+TEST(Dynamics, BeamJointsDampInProportionToTheirStiffness) {
+  const StructureModel m = loadStructure("tzyx-arm-x");
+  int joints = 0;
+  for (const auto& c : m.connections) {
+    if (c.type != "beam") continue;
+    ++joints;
+    EXPECT_LE((c.damping - 2.0e-5 * c.stiffness).norm(), 1e-12 * c.stiffness.norm()) << c.name;
+  }
+  EXPECT_EQ(joints, 8);  // four between the five segments of each beam
+}
+
 // ground -k1- body1 -k2- body2, along x, springs on the line of the centres.
 std::string twoInSeries(double k1, double k2, const std::string& damping = "") {
   return std::string(R"(

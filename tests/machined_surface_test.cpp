@@ -130,6 +130,24 @@ TEST(MachinedSurface, FlatEndLeavesAFlatFace) {
   EXPECT_LT(std::abs(plane.mean) + plane.residualPeakToValley, 1e-9);
 }
 
+// The measured planes referred to the reference zone (seed 001 evaluates every zone against the
+// vertical one): the reference's own plane becomes zero, and each other zone keeps its height
+// above the reference plane's extension to its centre and its slopes less the reference's.
+TEST(ZonePlanes, ReferredToAZoneThatZonesPlaneIsZero) {
+  CubicTestSpec spec;
+  spec.zones = {{"ref", 0.0, 0.0}, {"east", 16.0, -8.0}};
+  std::vector<ZonePlane> planes(2);
+  planes[0].mean = 0.004, planes[0].slopeX = 2e-5, planes[0].slopeY = -3e-5;
+  planes[1].mean = 0.010, planes[1].slopeX = 5e-5, planes[1].slopeY = 4e-5;
+  const auto out = referencedToZone(planes, spec, 0);
+  EXPECT_EQ(out[0].mean, 0.0);
+  EXPECT_EQ(out[0].slopeX, 0.0);
+  EXPECT_EQ(out[0].slopeY, 0.0);
+  EXPECT_DOUBLE_EQ(out[1].mean, 0.010 - (0.004 + 2e-5 * 16.0 - 3e-5 * -8.0));
+  EXPECT_DOUBLE_EQ(out[1].slopeX, 5e-5 - 2e-5);
+  EXPECT_DOUBLE_EQ(out[1].slopeY, 4e-5 + 3e-5);
+}
+
 TEST(CubicTestSpec, BundledTestIsTheSeedsAndErrorsNameTheirKey) {
   const auto bundled = loadCubicTest("seed001-cubic");
   const auto seed = seed001CubicTest();
