@@ -90,6 +90,23 @@ TEST_F(ComponentFitWorkflow, TheAbbeCorrectionNeedsTheRotations) {
   EXPECT_EQ(e->where().key, "abbe_offset");
 }
 
+// A rotary axis's positions are written in degrees and held in radians, as every angle is; the
+// travel is checked in the same unit (the Maho's C turns from -60 to 60 deg).
+TEST_F(ComponentFitWorkflow, ARotaryAxisPositionsAreDegrees) {
+  const std::string head = "# component: ECC\n# unit: urad\nposition,run,direction,value\n";
+  std::string rows;
+  for (int r = 1; r <= 2; ++r)
+    for (const int d : {1, -1})
+      for (const int position : {-45, 0, 45}) rows += fmt::format("{},{},{},{}\n", position, r, d, 0.1 * position);
+  const auto file = parseComponentRuns(*setup_.machine, head + rows, "c.csv");
+  ASSERT_EQ(file.runs.positions.size(), 3u);
+  EXPECT_NEAR(file.runs.positions.front(), -45 * kDeg, 1e-15);
+  EXPECT_NEAR(file.runs.positions.back(), 45 * kDeg, 1e-15);
+  EXPECT_NEAR(file.runs.forward(2, 0), 4.5e-6, 1e-18);
+  const auto beyond = test::thrown<InputError>([&] { parseComponentRuns(*setup_.machine, head + "61,1,1,0\n", "c.csv"); });
+  EXPECT_EQ(beyond->where().key, "position");
+}
+
 TEST_F(ComponentFitWorkflow, BadRunsAndBreaksAreLocated) {
   const std::string head = "# component: xrx\n# unit: arcsec\nposition,run,direction,value\n";
   auto rows = [](int runs, bool backward, int positions) {

@@ -81,6 +81,7 @@ TEST(DriftTest, BadFilesNameTheirLineAndColumn) {
   };
   const std::string head = "# probe_z: 50, 150 mm\ntime_s,x1_um,x2_um,head_C\n";
   EXPECT_EQ(message(head + "0,0,0,20\n30,1,1,21\n20,2,2,22\n"), "5 time_s: time does not increase (20 s after 30 s)");
+  EXPECT_EQ(message(head + "0,0,0,20\n30,1,1,21\n30,2,2,22\n"), "5 time_s: time does not increase (30 s after 30 s)");  // a row twice
   EXPECT_EQ(message(head + "0,0,0,20\n30,1,1,210\n60,2,2,22\n"), "4 head_C: a temperature outside -50 .. 150 degC");
   EXPECT_EQ(message(head + "0,0,0,20\n30,1,nan,21\n60,2,2,22\n"), "4 x2_um: not a finite number: 'nan'");
   EXPECT_EQ(message(head + "0,0,0,20\n30,1,1,21\n"), "4 time_s: 2 samples, at least 3 needed");

@@ -53,6 +53,13 @@ TEST(MeasurementCsv, BallbarExportWithoutAxisColumns) {
   EXPECT_NEAR(back.readings(3, 0), 0.5e-3, 1e-15);
 }
 
+// A directional sensor's direction is a direction: written at any length, read as the unit vector.
+TEST(MeasurementCsv, ASensingDirectionIsReadAsAUnitVector) {
+  const auto nominal = compileNominal(test::bundled("three-axis-vertical"));
+  const auto run = parseMeasurementCsv(nominal, "# instrument: directional\n# direction: 0, 3, 4\nX,Y,Z,d_um\n300,200,250,0.4\n", "d.csv");
+  EXPECT_LT((run.setup.direction - Vec3(0, 0.6, 0.8)).norm(), 1e-15);
+}
+
 TEST(MeasurementCsv, BadPlansNameTheKey) {
   const auto nominal = compileNominal(test::bundled("tilting-table"));
   const auto unitless = test::thrown<InputError>([&] { parseTestPlan(nominal, "runs:\n  - circle: {plane: XY, radius: 100}\n", "plan.yaml"); });

@@ -184,6 +184,23 @@ TEST(ProgramCompensation, AnAxisStandingKeepsTheSideItLastMovedTo) {
   EXPECT_NEAR(std::abs(solvedWith({0, 1, 0}) - solvedWith({1, 1, 0})), 1e-3, 1e-6);
 }
 
+// A rotary axis's step at its reversal is written where the five decimals in degrees show it:
+// C's reversal of 2 urad (+-1 urad) on the tilting table steps C by 2 urad = 0.000115 deg as it
+// turns back, X, Y, Z, B standing; the step is a point of its own at the same place.
+TEST(ProgramCompensation, ARotaryAxisStepsAtItsReversalWhereTheDecimalsShowIt) {
+  const auto machine = test::bundled("tilting-table");
+  const ErrorModel errors = parseErrors(*machine, "errors:\n  ECC: {reversal: 2 urad}\n", "c.yaml", ErrorsKey::Required);
+  const auto p = parseGcodeProgram("G0 X100 Y20 Z50 B-30 C0\nG1 C10 F1000\nG1 C5\n", "turn.nc", *machine);
+  const CompensatedProgram c = compensateProgram(machine, errors, p);
+  // The start, the rapid's end, C's step as it sets off, C's end, the step as it turns back, C's end.
+  ASSERT_EQ(c.points.size(), 6u);
+  const auto& before = c.points[3].q, &step = c.points[4].q;
+  EXPECT_EQ(c.points[4].move, 2);
+  EXPECT_EQ(c.points[4].s, 0.0);
+  EXPECT_NEAR(std::abs(step[4] - before[4]), 2e-6, 1e-9);
+  for (size_t k = 0; k < 4; ++k) EXPECT_NEAR(step[k], before[k], 1e-9) << k;
+}
+
 // Issue 47: block numbers as far as SINUMERIK and HEIDENHAIN count them (2^31 - 1), kept as
 // written on the compensated block's line.
 TEST(GcodeReader, BlockNumbersRunAsFarAsTheControllersCount) {
