@@ -4,6 +4,8 @@
 // the tolerances only allow for second-order terms (e^2 / R, a few nm).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/measurement/circular_evaluation.hpp"
 #include "mtacc/measurement/simulation.hpp"
@@ -137,6 +139,30 @@ TEST(BallbarDiagnostics, PartialArcKeepsShapeOutOfTheCentre) {
   arc.angle.resize(n), arc.sense.resize(n);
   EXPECT_LT((fitEccentricity(arc, true).eccentricity - full).norm(), 1e-6);
   EXPECT_GT((fitEccentricity(arc, false).eccentricity - full).norm(), 1e-3);
+}
+
+// A cos 3theta shape is none of the diagnostic signatures: on 360 evenly spaced angles
+// (0 and 180 degrees among them) it is orthogonal to every column of the fit, the reversal
+// columns included, so it is left whole in the residual and its RMS over the points is A / sqrt 2.
+TEST(BallbarDiagnostics, ResidualRmsIsOverThePoints) {
+  const Bench b;
+  BallbarCircleSpec spec;
+  spec.centre = Vec3(300, 200, 250);
+  spec.points = 360;
+  spec.bothDirections = false;
+  MeasurementRun run = ballbarCircle(b.nominal, spec);
+  simulateRun(b.nominal, b.nominal, run);
+  const Eigen::Index n = 360;
+  run.q = run.q.topRows(n), run.readings = run.readings.topRows(n);
+  run.angle.resize(n), run.sense.resize(n);
+  const double shape = 4e-3, squarenessTerm = 2e-3;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double t = run.angle[static_cast<size_t>(i)];
+    run.readings(i, 0) = shape * std::cos(3 * t) + squarenessTerm * std::sin(2 * t);
+  }
+  const auto r = evaluateCircularTest(run);
+  EXPECT_NEAR(r.diagnostics.residualRms, shape / std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(r.diagnostics.squareness, -2 * squarenessTerm / run.setup.length, 1e-12);
 }
 
 TEST(BallbarDiagnostics, BadRunsAreRefused) {
