@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/measurement/circular_evaluation.hpp"
 #include "mtacc/measurement/simulation.hpp"
@@ -168,10 +169,10 @@ TEST(BallbarDiagnostics, ResidualRmsIsOverThePoints) {
 TEST(BallbarDiagnostics, BadRunsAreRefused) {
   const Bench b;
   MeasurementRun run = b.circle();
-  EXPECT_THROW(evaluateCircularTest(run), std::invalid_argument);  // no readings
+  EXPECT_THROW(evaluateCircularTest(run), InvalidInput);  // no readings
   simulateRun(b.nominal, b.nominal, run);
   run.angle.resize(3), run.q.conservativeResize(3, Eigen::NoChange), run.readings.conservativeResize(3, Eigen::NoChange);
-  EXPECT_THROW(evaluateCircularTest(run), std::invalid_argument);  // too few points
+  EXPECT_THROW(evaluateCircularTest(run), InvalidInput);  // too few points
 }
 
 }  // namespace

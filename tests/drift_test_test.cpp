@@ -42,7 +42,7 @@ TEST(DriftTest, TiltsOfARigidMandrelFromTwoHeights) {
   EXPECT_NEAR((*d[DriftDirection::X])[1], 3e-3 + b * -250, 1e-15);
   EXPECT_FALSE(d[DriftDirection::Z]);
   p.z2 = 50;
-  EXPECT_TRUE(test::thrown<std::invalid_argument>([&] { mandrelDrift(p); }));
+  EXPECT_TRUE(test::thrown<InvalidInput>([&] { mandrelDrift(p); }));
 }
 
 TEST(DriftTest, TheBundledTestsAreWhatTheVirtualMachineRecords) {

@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/procedures/ballbar_seed002.hpp"
 #include "reference_values.hpp"
@@ -45,8 +46,8 @@ TEST(Seed002Identification, Table7FromTable6ThroughEqs17To28) {
 
 TEST(Seed002Identification, UnseparableSetupIsRefused) {
   const Seed002Eccentricities e{};
-  EXPECT_THROW(identifySeed002(e, Seed002Setup{360, 360, 50, 300, 340}), std::invalid_argument);
-  EXPECT_THROW(identifySeed002(e, Seed002Setup{360, 410, 50, 300, 300}), std::invalid_argument);
+  EXPECT_THROW(identifySeed002(e, Seed002Setup{360, 360, 50, 300, 340}), InvalidInput);
+  EXPECT_THROW(identifySeed002(e, Seed002Setup{360, 410, 50, 300, 300}), InvalidInput);
 }
 
 }  // namespace

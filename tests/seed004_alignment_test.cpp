@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/procedures/servo_loop.hpp"
 #include "mtacc/procedures/trace_alignment.hpp"
 
@@ -84,9 +85,9 @@ TEST(Seed004Alignment, ServoLoopFollowsARampByTheFeedForwardLag) {
   const auto axis = followCommand(ramp, 1e-3, {.positionGain = 40, .feedForward = 0.99});
   EXPECT_NEAR(ramp.back() - axis.back(), 100.0 * 0.01 / 40, 1e-12);  // steady following error, mm
   EXPECT_EQ(axis.front(), ramp.front());
-  EXPECT_THROW(followCommand(ramp, 1e-3, {.positionGain = 0}), std::invalid_argument);
-  EXPECT_THROW(followCommand(ramp, 1e-3, {.positionGain = 40, .feedForward = 1.5}), std::invalid_argument);
-  EXPECT_THROW(followCommand(ramp, 0.0, {}), std::invalid_argument);
+  EXPECT_THROW(followCommand(ramp, 1e-3, {.positionGain = 0}), InvalidInput);
+  EXPECT_THROW(followCommand(ramp, 1e-3, {.positionGain = 40, .feedForward = 1.5}), InvalidInput);
+  EXPECT_THROW(followCommand(ramp, 0.0, {}), InvalidInput);
 }
 
 // R8 (L133, L290): moved by 18 ms onto the 10 kHz instrument clock, the 3 ms command trace's
@@ -101,7 +102,7 @@ TEST(Seed004Alignment, R8EighteenMillisecondsAreSixNcCyclesAnd180InstrumentSampl
   for (size_t k = 0; k < 400; ++k) EXPECT_NEAR(moved[0][30 * k], command.channels[0][k], 1e-12) << k;
   EXPECT_EQ(std::lround(delay / kNcPeriod), 6);
   EXPECT_EQ(std::lround(delay / instrumentPeriod), 180);
-  EXPECT_THROW(resampleTrace(command, delay, {0.0179}), std::invalid_argument);
+  EXPECT_THROW(resampleTrace(command, delay, {0.0179}), InvalidInput);
 }
 
 TEST(Seed004Alignment, RejectsMismatchedChannelsStillAxesAnEmptyWindowAndNoOverlap) {
@@ -109,12 +110,12 @@ TEST(Seed004Alignment, RejectsMismatchedChannelsStillAxesAnEmptyWindowAndNoOverl
   auto r = record(kOffset, exact);
   auto fewer = r.command;
   fewer.channels.pop_back();
-  EXPECT_THROW(estimateClockOffset(fewer, r.encoder), std::invalid_argument);
-  EXPECT_THROW(estimateClockOffset(r.command, r.encoder, {.lowest = 0.1, .highest = 0.1}), std::invalid_argument);
-  EXPECT_THROW(estimateClockOffset(r.command, r.encoder, {.lowest = 20.0, .highest = 30.0}), std::invalid_argument);
+  EXPECT_THROW(estimateClockOffset(fewer, r.encoder), InvalidInput);
+  EXPECT_THROW(estimateClockOffset(r.command, r.encoder, {.lowest = 0.1, .highest = 0.1}), InvalidInput);
+  EXPECT_THROW(estimateClockOffset(r.command, r.encoder, {.lowest = 20.0, .highest = 30.0}), InvalidInput);
   auto still = r;
   for (auto& channel : still.encoder.channels) std::fill(channel.begin(), channel.end(), 1.0);
-  EXPECT_THROW(estimateClockOffset(still.command, still.encoder), std::invalid_argument);
+  EXPECT_THROW(estimateClockOffset(still.command, still.encoder), InvalidInput);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <random>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/procedures/error_decomposition.hpp"
 #include "reference_values.hpp"
 
@@ -154,16 +155,16 @@ TEST(Seed004Decomposition, DirectionStatisticsAreMaximaOfMagnitudesAndRootMeanSq
 
 TEST(Seed004Decomposition, BadSeriesAreRefused) {
   auto tests = threeFeeds().tests;
-  EXPECT_THROW(decomposeErrors(tests, {3, 20, MotionParameter::Time}), std::invalid_argument);
+  EXPECT_THROW(decomposeErrors(tests, {3, 20, MotionParameter::Time}), InvalidInput);
   tests[1].time[10] = tests[1].time[9];
-  EXPECT_THROW(decomposeErrors(tests, kByTime), std::invalid_argument);
+  EXPECT_THROW(decomposeErrors(tests, kByTime), InvalidInput);
   tests = threeFeeds().tests;
   tests[2].link.pop_back();
-  EXPECT_THROW(decomposeErrors(tests, kByTime), std::invalid_argument);
+  EXPECT_THROW(decomposeErrors(tests, kByTime), InvalidInput);
   tests = threeFeeds().tests;
   tests[0].time.resize(21);
   for (auto* s : {&tests[0].measured, &tests[0].encoder, &tests[0].nominal, &tests[0].link}) s->resize(21);
-  EXPECT_THROW(decomposeErrors(tests, kByTime), std::invalid_argument);  // 21 samples for 21 coefficients
+  EXPECT_THROW(decomposeErrors(tests, kByTime), InvalidInput);  // 21 samples for 21 coefficients
   EXPECT_NO_THROW(decomposeErrors(tests, {0, 19, MotionParameter::Time}));
 }
 
@@ -180,15 +181,15 @@ TEST(Seed004Decomposition, PathParameterAgreesWithTimeWhenTheSpeedIsConstantAndI
   }
   auto shorter = tests;
   shorter[1].path.pop_back();
-  EXPECT_THROW(decomposeErrors(shorter), std::invalid_argument);
+  EXPECT_THROW(decomposeErrors(shorter), InvalidInput);
   auto backwards = tests;
   backwards[2].path[7] = backwards[2].path[6] - 1e-3;
-  EXPECT_THROW(decomposeErrors(backwards), std::invalid_argument);
+  EXPECT_THROW(decomposeErrors(backwards), InvalidInput);
   auto still = tests;
   std::fill(still[0].path.begin(), still[0].path.end(), 1.0);
-  EXPECT_THROW(decomposeErrors(still), std::invalid_argument);
+  EXPECT_THROW(decomposeErrors(still), InvalidInput);
   tests[0].path.clear();
-  EXPECT_THROW(decomposeErrors(tests), std::invalid_argument);
+  EXPECT_THROW(decomposeErrors(tests), InvalidInput);
   EXPECT_NO_THROW(decomposeErrors(tests, kByTime));
 }
 
@@ -226,7 +227,7 @@ TEST(Seed004Decomposition, TheSteadyReferenceFitLeavesOutWhereTheAxesAccelerate)
   EXPECT_EQ(whole[0].leftOutOfFit, 0u);
   for (size_t i = 0; i < whole[2].dynamic.size(); ++i) EXPECT_LT((whole[2].dynamic[i] - b[2].dynamic[i]).norm(), 1e-12);
   steady.steadyShare = 0.0;
-  EXPECT_THROW(decomposeErrors(tests, steady), std::invalid_argument);
+  EXPECT_THROW(decomposeErrors(tests, steady), InvalidInput);
 }
 
 TEST(Seed004Statistics, V13ExactPowerLawIsRecovered) {
@@ -237,9 +238,9 @@ TEST(Seed004Statistics, V13ExactPowerLawIsRecovered) {
   EXPECT_NEAR(p.kappa / 2.7e-4, 1.0, 1e-9);
   EXPECT_NEAR(p.exponent, 0.935, 1e-9);
   EXPECT_LT(p.largestRelativeMisfit, 1e-9);
-  EXPECT_THROW(fitPowerLaw({1000, 1000}, {1, 2}), std::invalid_argument);
-  EXPECT_THROW(fitPowerLaw({1000, 1800}, {1, 0}), std::invalid_argument);
-  EXPECT_THROW(fitPowerLaw({1000}, {1}), std::invalid_argument);
+  EXPECT_THROW(fitPowerLaw({1000, 1000}, {1, 2}), InvalidInput);
+  EXPECT_THROW(fitPowerLaw({1000, 1800}, {1, 0}), InvalidInput);
+  EXPECT_THROW(fitPowerLaw({1000}, {1}), InvalidInput);
 }
 
 // The feeds as printed (L325; Table 1, L346-351): 1000 * 1.8^k rounded to 1 mm/min.

@@ -62,7 +62,7 @@ Vec6 handDrift(double head, double column) {
 TEST(SpindleDrift, ThePredictionIsTheModelsSumOverItsSensors) {
   const Vec6 drift = spindleDrift(handModel(), Eigen::Vector2d(31.5, 24.0));
   EXPECT_LT((drift - handDrift(31.5, 24.0)).cwiseAbs().maxCoeff(), 1e-17);  // to rounding
-  EXPECT_TRUE(test::thrown<std::invalid_argument>([] { spindleDrift(handModel(), Eigen::VectorXd::Constant(3, 20.0)); }));
+  EXPECT_TRUE(test::thrown<InvalidInput>([] { spindleDrift(handModel(), Eigen::VectorXd::Constant(3, 20.0)); }));
 }
 
 // The spindle's location error moves probe set 1 by the predicted (X, Y, Z) and turns the tool
@@ -94,7 +94,7 @@ TEST(SpindleDrift, TheWarmSpindleMovesTheToolByTheModelsRigidMotion) {
   const Vec3 moved = toolPoint(warm, q).position - toolPoint(compile(machine, zero), q).position;
   EXPECT_LT((moved - spindleDriftAtTcp(*machine, warmSpindle(31.5, 24.0, 100.0))).norm(), 1e-12) << "exact on a machine without other errors";
   const auto maho = test::bundled("maho");
-  EXPECT_TRUE(test::thrown<std::invalid_argument>([&] { atThermalState(*maho, ErrorModel::zero(*maho), {{}, warmSpindle(30, 22)}); }));
+  EXPECT_TRUE(test::thrown<InvalidInput>([&] { atThermalState(*maho, ErrorModel::zero(*maho), {{}, warmSpindle(30, 22)}); }));
 }
 
 // The tables written at two spindle temperatures differ by the change of the TCP's drift the

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/machine/structure_code.hpp"
 
 namespace mtacc {
@@ -38,12 +39,12 @@ TEST(StructureCode, WorkpieceFirstSeed004WithFrameLetter) {
 }
 
 TEST(StructureCode, Rejects) {
-  EXPECT_THROW(parseStructureCode("t-Z-Q-b-X-w"), std::invalid_argument);   // unknown letter
-  EXPECT_THROW(parseStructureCode("t-Z-Y-X-w"), std::invalid_argument);     // no bed
-  EXPECT_THROW(parseStructureCode("t-Z-b-Z-w"), std::invalid_argument);     // axis twice
-  EXPECT_THROW(parseStructureCode("t-Z-(C)-b-X-w"), std::invalid_argument); // spindle not at the tool
-  EXPECT_THROW(parseStructureCode("Z-b-X-w"), std::invalid_argument);       // no tool end
-  EXPECT_THROW(parseStructureCode("t-Z-b-X-t"), std::invalid_argument);     // both ends tool
+  EXPECT_THROW(parseStructureCode("t-Z-Q-b-X-w"), InvalidInput);   // unknown letter
+  EXPECT_THROW(parseStructureCode("t-Z-Y-X-w"), InvalidInput);     // no bed
+  EXPECT_THROW(parseStructureCode("t-Z-b-Z-w"), InvalidInput);     // axis twice
+  EXPECT_THROW(parseStructureCode("t-Z-(C)-b-X-w"), InvalidInput); // spindle not at the tool
+  EXPECT_THROW(parseStructureCode("Z-b-X-w"), InvalidInput);       // no tool end
+  EXPECT_THROW(parseStructureCode("t-Z-b-X-t"), InvalidInput);     // both ends tool
 }
 
 }  // namespace

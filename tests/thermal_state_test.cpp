@@ -70,7 +70,7 @@ TEST(ThermalState, TheWarmMachineGoesTheExpansionBeyondItsCommand) {
   const double delta = scaleExpansion(zScale.sensors, zScale.temperatures, travel.min);
   EXPECT_LT((moved - delta * machine->axes[static_cast<size_t>(z)].direction).norm(), 1e-12);
   EXPECT_GT(std::fabs(delta), 1e-3);
-  EXPECT_TRUE(test::thrown<std::invalid_argument>([&] { atThermalState(*machine, cold, {{scale, scale}, std::nullopt}); }));
+  EXPECT_TRUE(test::thrown<InvalidInput>([&] { atThermalState(*machine, cold, {{scale, scale}, std::nullopt}); }));
 }
 
 // The compensation table written cold and written warm differ by the expansion the model

@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/thermal/drift_regression.hpp"
 #include "mtacc/thermal/scale_expansion.hpp"
 #include "test_helpers.hpp"
@@ -49,7 +50,7 @@ TEST(ScaleExpansion, IsZeroAtTheReferencePositionAtAnyTemperatures) {
 
 TEST(ScaleExpansion, RefusesAScaleItCannotInterpolate) {
   const auto message = [](const ScaleSensors& s, const std::vector<double>& t) {
-    const auto e = test::thrown<std::invalid_argument>([&] { scaleExpansion(s, t, 10); });
+    const auto e = test::thrown<InvalidInput>([&] { scaleExpansion(s, t, 10); });
     return e ? std::string(e->what()) : std::string();
   };
   EXPECT_EQ(message({{0}, kAlpha}, {20}), "a scale needs at least two temperature sensors, not 1");
@@ -158,7 +159,7 @@ TEST(ThermalDrift, APositionDependentDriftIsRecoveredAndPredictedWhereItWasNotRe
 
 TEST(ThermalDrift, BadRecordsAreRefused) {
   const auto message = [](const ThermalRecord& r, const std::vector<int>& sensors) {
-    const auto e = test::thrown<std::invalid_argument>([&] { fitDriftModel(r, sensors); });
+    const auto e = test::thrown<InvalidInput>([&] { fitDriftModel(r, sensors); });
     return e ? std::string(e->what()) : std::string();
   };
   ThermalRecord r{Eigen::MatrixXd::Random(6, 3), Eigen::VectorXd::Random(6), {}};
@@ -172,7 +173,7 @@ TEST(ThermalDrift, BadRecordsAreRefused) {
   EXPECT_EQ(message({r.temperatures, r.drift, Eigen::VectorXd::Zero(5)}, {0}), "5 positions for 6 drift samples");
   r.temperatures(4, 1) = std::nan("");
   EXPECT_EQ(message(r, {0}), "sensor 1 sample 4: not a finite number");
-  const auto e = test::thrown<std::invalid_argument>([&] { selectSensors({Eigen::MatrixXd::Random(20, 8), Eigen::VectorXd::Random(20), {}}); });
+  const auto e = test::thrown<InvalidInput>([&] { selectSensors({Eigen::MatrixXd::Random(20, 8), Eigen::VectorXd::Random(20), {}}); });
   ASSERT_TRUE(e);
   EXPECT_STREQ(e->what(), "20 samples in 5 folds: at least 10 per fold needed for up to 8 sensors");
 }

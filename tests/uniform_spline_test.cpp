@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/core/uniform_spline.hpp"
 
 namespace mtacc {
@@ -72,15 +73,15 @@ TEST(UniformSpline, Seed004R9LinearInterpolationOfA3msTraceErrsByAT2Over8) {
 
 TEST(UniformSpline, RejectsTooFewSamplesNonFiniteValuesAndTimesOutsideTheSpan) {
   const std::vector<double> three{1, 2, 3}, four{1, 2, 3, 4}, withNan{1, 2, NAN, 4};
-  EXPECT_THROW(UniformSpline(0, 1, three), std::invalid_argument);
-  EXPECT_THROW(UniformSpline(0, 1, withNan), std::invalid_argument);
-  EXPECT_THROW(UniformSpline(0, 0, four), std::invalid_argument);
-  EXPECT_THROW(UniformSpline(0, INFINITY, four), std::invalid_argument);
+  EXPECT_THROW(UniformSpline(0, 1, three), InvalidInput);
+  EXPECT_THROW(UniformSpline(0, 1, withNan), InvalidInput);
+  EXPECT_THROW(UniformSpline(0, 0, four), InvalidInput);
+  EXPECT_THROW(UniformSpline(0, INFINITY, four), InvalidInput);
   const UniformSpline spline(0, 1, four, Interpolation::Linear);
   EXPECT_DOUBLE_EQ(spline(3.0), 4.0);
-  EXPECT_THROW(spline(3.01), std::invalid_argument);
-  EXPECT_THROW(spline(-0.01), std::invalid_argument);
-  EXPECT_THROW(spline(NAN), std::invalid_argument);
+  EXPECT_THROW(spline(3.01), InvalidInput);
+  EXPECT_THROW(spline(-0.01), InvalidInput);
+  EXPECT_THROW(spline(NAN), InvalidInput);
 }
 
 }  // namespace

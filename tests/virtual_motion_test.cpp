@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/dynamics/rigid_body_dynamics.hpp"
 #include "mtacc/dynamics/transient_deflection.hpp"
@@ -43,13 +44,13 @@ TEST(MotionInterpolator, StartsAndEndsAtRestOnTheEndPointsWithinTheFeedAndAccele
 }
 
 TEST(MotionInterpolator, RejectsADegeneratePathAndBadLimits) {
-  EXPECT_THROW(interpolateMotion({{1, 0}, {1, 0}}, kRotary, 1000, {}, 1e-3), std::invalid_argument);
-  EXPECT_THROW(interpolateMotion(kPath, kRotary, 0, {}, 1e-3), std::invalid_argument);
-  EXPECT_THROW(interpolateMotion(kPath, kRotary, 1000, {.acceleration = -1}, 1e-3), std::invalid_argument);
-  EXPECT_THROW(interpolateMotion(kPath, kRotary, 1000, {.dwell = NAN}, 1e-3), std::invalid_argument);
-  EXPECT_THROW(interpolateMotion({{0, 0}, {1, NAN}}, kRotary, 1000, {}, 1e-3), std::invalid_argument);
-  EXPECT_THROW(interpolateMotion({{0}, {1}}, kRotary, 1000, {}, 1e-3), std::invalid_argument);
-  EXPECT_THROW(interpolateMotion(kPath, kRotary, 1000, {}, 1e-9), std::invalid_argument) << "10^8 samples";
+  EXPECT_THROW(interpolateMotion({{1, 0}, {1, 0}}, kRotary, 1000, {}, 1e-3), InvalidInput);
+  EXPECT_THROW(interpolateMotion(kPath, kRotary, 0, {}, 1e-3), InvalidInput);
+  EXPECT_THROW(interpolateMotion(kPath, kRotary, 1000, {.acceleration = -1}, 1e-3), InvalidInput);
+  EXPECT_THROW(interpolateMotion(kPath, kRotary, 1000, {.dwell = NAN}, 1e-3), InvalidInput);
+  EXPECT_THROW(interpolateMotion({{0, 0}, {1, NAN}}, kRotary, 1000, {}, 1e-3), InvalidInput);
+  EXPECT_THROW(interpolateMotion({{0}, {1}}, kRotary, 1000, {}, 1e-3), InvalidInput);
+  EXPECT_THROW(interpolateMotion(kPath, kRotary, 1000, {}, 1e-9), InvalidInput) << "10^8 samples";
 }
 
 // A held acceleration of X: once the modes have rung out the deflection is the quasi-static
@@ -65,9 +66,9 @@ TEST(TransientDeflection, AHeldAccelerationSettlesOnTheQuasiStaticResponse) {
   EXPECT_GT(expected.norm(), 1e-6);
   EXPECT_LT((deflection.back() - expected).norm(), 1e-3 * expected.norm());
   EXPECT_EQ(deflection.front(), Vec3::Zero());
-  EXPECT_THROW(accelerationDeflection(model, at, series, 0.0), std::invalid_argument);
+  EXPECT_THROW(accelerationDeflection(model, at, series, 0.0), InvalidInput);
   series[static_cast<size_t>(model.axisIndex("Y"))].assign(10, 1.0);
-  EXPECT_THROW(accelerationDeflection(model, at, series, period), std::invalid_argument);
+  EXPECT_THROW(accelerationDeflection(model, at, series, period), InvalidInput);
 }
 
 }  // namespace

@@ -106,9 +106,16 @@ def _with_arrays(result, *paths):
     return result
 
 
-def _pose_text(pose):
-    """{axis: mm or deg} as the CLI's pose text "B=10.0,C=0.0"."""
-    return ",".join(f"{name}={float(value)!r}" for name, value in (pose or {}).items())
+def _pose_text(pose, key):
+    """{axis: mm or deg}, or the CLI's pose text itself, as the CLI's pose text "B=10.0,C=0.0"."""
+    if isinstance(pose, str):
+        return pose
+    if pose is not None and not isinstance(pose, Mapping):
+        raise InputError(f"{key}: expected {{axis: mm or deg}} or the text 'B=10,C=0', not {type(pose).__name__}")
+    try:
+        return ",".join(f"{name}={float(value)!r}" for name, value in (pose or {}).items())
+    except (TypeError, ValueError):
+        raise InputError(f"{key}: each axis's position must be a number (mm or deg)") from None
 
 
 class Errors(MutableMapping):
@@ -249,7 +256,7 @@ class Machine:
         commands that reach the pose on the machine with its errors (the inverse error model), with the
         nominal pose it started from and the residual (um, urad); near: a pose ({axis: mm or deg}) whose
         rotary angles the solution stays closest to, a free angle at a singular pose kept at its value."""
-        result, _ = self._core.ik([list(map(float, tcp))], [list(map(float, tool))], branch, all, with_errors, _pose_text(near))
+        result, _ = self._core.ik([list(map(float, tcp))], [list(map(float, tool))], branch, all, with_errors, _pose_text(near, "near"))
         return result["solutions"]
 
     def ik_path(self, tcps, tools, branch="auto", with_errors=False):
@@ -389,7 +396,7 @@ class Machine:
         default 0), its reduction to at most `functions` one-axis functions and the LinuxCNC COMP_FILE of
         each axis, each with the TCP error a controller applying it leaves ("residual", um), and along
         `check_program` (G-code, "along_program") when given. "contents" holds each file's text by name."""
-        return self._core.compensation_tables([int(n) for n in nodes], _pose_text(pose), int(functions), int(linuxcnc_type),
+        return self._core.compensation_tables([int(n) for n in nodes], _pose_text(pose, "pose"), int(functions), int(linuxcnc_type),
                                               "" if check_program is None else str(check_program))
 
     def compare_plate(self, path):

@@ -361,7 +361,7 @@ def plates_section(results):
     """Seed 003 §5.3: each measured plate against the machine's error model."""
     out = ("<h2>Hole and ball plates (seed 003)</h2><p>Each plate measured relative to its reference feature, "
            "corrected for the scale and plate temperatures, its misalignment removed; the model's deviations "
-           "from the machine's errors (D<sub>h</sub> = E(q<sub>h</sub>) − E(q<sub>ref</sub>)), and the residual.</p>")
+           "from the machine's errors (D<sub>h</sub> = −(E(q<sub>h</sub>) − E(q<sub>ref</sub>))), and the residual.</p>")
     for r in results:
         out += figure(plots.plate_vectors(r), f"{html.escape(r['file'])}: measured and modelled deviations, and the residual")
         bound = (f"; k = 2 bound {r['bound_um']:.2f} µm, {r['beyond_bound']} component(s) beyond it"

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
-#include <stdexcept>
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/parallel.hpp"
@@ -452,7 +451,7 @@ std::string linuxcncCompFile(const AxisFunction& f, const ReversalTrims& reversa
   if (f.input != f.output) throw InputError({"", 0, "table"}, "a LinuxCNC COMP_FILE holds an axis's correction as a function of its own command");
   checkCompFile(f.positions.size(), type);
   if (reversal.forward.size() != f.values.size() || reversal.reverse.size() != f.values.size())
-    throw std::invalid_argument("linuxcncCompFile: the reversal trims are not at the function's positions");
+    throw InvalidInput("linuxcncCompFile: the reversal trims are not at the function's positions");
   std::vector<double> forward = f.values, reverse = f.values;
   for (size_t n = 0; n < forward.size(); ++n) {
     forward[n] += reversal.forward[n];

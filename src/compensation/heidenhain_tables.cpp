@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <iterator>
-#include <stdexcept>
 
 #include "mtacc/core/input_error.hpp"
 
@@ -55,7 +54,7 @@ std::vector<std::pair<std::string, std::string>> heidenhainTables(const OneAxisR
     std::vector<double> backward;
     if (backlash) {
       if (reversal.forward.size() != positions.size() || reversal.reverse.size() != positions.size())
-        throw std::invalid_argument("heidenhainTables: the reversal trims are not at the functions' points");
+        throw InvalidInput("heidenhainTables: the reversal trims are not at the functions' points");
       auto own = std::find_if(outputs.begin(), outputs.end(), [&](const AxisFunction& f) { return f.output == input; });
       if (own == outputs.end()) {
         outputs.push_back({input, input, positions, std::vector<double>(positions.size(), 0.0), 0.0});

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/kinematics/forward.hpp"
 #include "tool_models.hpp"
 
@@ -118,12 +118,12 @@ ToolPoint nearestOnMove(ToolModels& models, const IntendedPath& path, size_t j, 
 
 ProgramPathDeviation programPathDeviation(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors,
                                           const GcodeProgram& program, const GcodeProgram* intended, const PathDeviationOptions& o) {
-  if (!(o.step >= 1e-3 && o.step <= 100.0)) throw std::invalid_argument("the sampling step must lie in 0.001 to 100 mm");
+  if (!(o.step >= 1e-3 && o.step <= 100.0)) throw InvalidInput("the sampling step must lie in 0.001 to 100 mm");
   ToolModels models(machine, errors);
   IntendedPath path;
   if (intended) {
     path = sampledPath(models, *intended, o.step);
-    if (path.points.size() < 2) throw std::invalid_argument("the intended program has no feed moves");
+    if (path.points.size() < 2) throw InvalidInput("the intended program has no feed moves");
   }
   ProgramPathDeviation out;
   out.intendedLength = path.length;

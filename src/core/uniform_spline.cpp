@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 
@@ -33,10 +34,10 @@ std::vector<double> notAKnotCurvature(std::span<const double> y) {
 UniformSpline::UniformSpline(double start, double period, std::span<const double> values, Interpolation kind)
     : start_(start), period_(period), kind_(kind), values_(values.begin(), values.end()) {
   if (!(period > 0.0) || !std::isfinite(period) || !std::isfinite(start))
-    throw std::invalid_argument("a sampled signal needs a finite start and a positive, finite period");
-  if (values_.size() < 4) throw std::invalid_argument("a sampled signal needs at least four samples to be interpolated");
+    throw InvalidInput("a sampled signal needs a finite start and a positive, finite period");
+  if (values_.size() < 4) throw InvalidInput("a sampled signal needs at least four samples to be interpolated");
   for (double v : values_)
-    if (!std::isfinite(v)) throw std::invalid_argument("a sampled signal holds a value that is not finite");
+    if (!std::isfinite(v)) throw InvalidInput("a sampled signal holds a value that is not finite");
   if (kind == Interpolation::CubicSpline) curvature_ = notAKnotCurvature(values_);
 }
 
@@ -44,7 +45,7 @@ UniformSpline::Location UniformSpline::locate(double t) const {
   const double position = (t - start_) / period_;
   const auto intervals = static_cast<double>(values_.size() - 1);
   if (!(position >= -1e-6 && position <= intervals + 1e-6))
-    throw std::invalid_argument("interpolation outside the sampled span");
+    throw InvalidInput("interpolation outside the sampled span");
   const double clamped = std::fmin(std::fmax(position, 0.0), intervals);
   const auto i = std::min(static_cast<size_t>(clamped), values_.size() - 2);
   return {i, clamped - static_cast<double>(i)};

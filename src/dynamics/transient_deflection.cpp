@@ -3,8 +3,8 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include <cmath>
-#include <stdexcept>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/dynamics/rigid_body_dynamics.hpp"
 
@@ -12,12 +12,12 @@ namespace mtacc {
 
 std::vector<Vec3> accelerationDeflection(const StructureModel& model, const std::vector<double>& positions,
                                          const std::vector<std::vector<double>>& accelerations, double period) {
-  if (!(period > 0.0) || !std::isfinite(period)) throw std::invalid_argument("deflection: the period must be positive and finite");
-  if (accelerations.size() != model.axes.size()) throw std::invalid_argument("deflection: one acceleration series per structure axis");
+  if (!(period > 0.0) || !std::isfinite(period)) throw InvalidInput("deflection: the period must be positive and finite");
+  if (accelerations.size() != model.axes.size()) throw InvalidInput("deflection: one acceleration series per structure axis");
   size_t samples = 0;
   for (const auto& series : accelerations)
     if (!series.empty()) {
-      if (samples != 0 && series.size() != samples) throw std::invalid_argument("deflection: acceleration series of different lengths");
+      if (samples != 0 && series.size() != samples) throw InvalidInput("deflection: acceleration series of different lengths");
       samples = series.size();
     }
   std::vector<Vec3> out(samples, Vec3::Zero());

@@ -3,12 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 
 PiecewiseTerm scaleExpansionTerm(const ScaleSensors& sensors, const std::vector<double>& temperatures, double from, double to) {
-  if (!(to > from)) throw std::invalid_argument(fmt::format("an empty span for a scale's expansion ({} .. {} mm)", from, to));
+  if (!(to > from)) throw InvalidInput(fmt::format("an empty span for a scale's expansion ({} .. {} mm)", from, to));
   std::vector<double> breaks{from, to};
   for (const double s : sensors.positions)
     if (s > from && s < to) breaks.push_back(s);
@@ -31,11 +32,11 @@ void addScales(const Machine& machine, ErrorModel& errors, const std::vector<Sca
   std::vector<int> seen;
   for (const auto& scale : scales) {
     if (scale.axis < 0 || scale.axis >= static_cast<int>(machine.axes.size()))
-      throw std::invalid_argument(fmt::format("a scale on axis {} of {}", scale.axis, machine.axes.size()));
+      throw InvalidInput(fmt::format("a scale on axis {} of {}", scale.axis, machine.axes.size()));
     const auto& axis = machine.axes[static_cast<size_t>(scale.axis)];
     if (axis.type != AxisType::Linear || !axis.travel)
-      throw std::invalid_argument(fmt::format("axis {}: a scale expands only on a linear axis with a travel", axis.name));
-    if (std::count(seen.begin(), seen.end(), scale.axis)) throw std::invalid_argument(fmt::format("axis {}: two scales", axis.name));
+      throw InvalidInput(fmt::format("axis {}: a scale expands only on a linear axis with a travel", axis.name));
+    if (std::count(seen.begin(), seen.end(), scale.axis)) throw InvalidInput(fmt::format("axis {}: two scales", axis.name));
     seen.push_back(scale.axis);
     // The error motion is the moving part's: a table (workpiece side) goes -Delta d further.
     auto term = scaleExpansionTerm(scale.sensors, scale.temperatures, axis.travel->min, axis.travel->max);
@@ -56,7 +57,7 @@ Vec3 driftAtTcp(const Machine& machine, const SpindleState& spindle, const Vec6&
 void addSpindleDrift(const Machine& machine, ErrorModel& errors, const SpindleState& spindle) {
   const int index = machine.spindleIndex();
   if (index < 0)
-    throw std::invalid_argument("the machine has no spindle for the spindle's drift to move: name it in the structure code, e.g. t-(C)-Z-b-Y-X-w");
+    throw InvalidInput("the machine has no spindle for the spindle's drift to move: name it in the structure code, e.g. t-(C)-Z-b-Y-X-w");
   const Axis& axis = machine.axes[static_cast<size_t>(index)];
   const Vec6 drift = spindleDrift(spindle.model, spindle.temperatures);
   Vec6 location = Vec6::Zero();

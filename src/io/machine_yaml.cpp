@@ -87,7 +87,7 @@ Machine parseMachine(const std::string& yamlText, const std::string& sourceName)
   const auto structureNode = root["structure"];
   try {
     m.structure = parseStructureCode(yamlin::scalar(ctx, structureNode, "structure"));
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidInput& e) {
     ctx.fail(structureNode, "structure", e.what());
   }
 

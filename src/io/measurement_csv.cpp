@@ -102,7 +102,7 @@ class MetaReader {
       try {
         size_t used = 0;
         v[k] = std::stod(parts[static_cast<size_t>(k)], &used);
-        if (used != parts[static_cast<size_t>(k)].size() || !std::isfinite(v[k])) throw std::invalid_argument("");
+        if (used != parts[static_cast<size_t>(k)].size() || !std::isfinite(v[k])) throw InvalidInput("");
       } catch (const std::exception&) {
         fail(key, "not a number: '" + parts[static_cast<size_t>(k)] + "'");
       }
@@ -220,7 +220,7 @@ MeasurementRun parseMeasurementCsv(const KinematicModel& nominal, const std::str
       if (meta.has("plane")) {
         try {
           run.plotAxes = planeAxes(meta.text("plane"));
-        } catch (const std::invalid_argument& e) {
+        } catch (const InvalidInput& e) {
           meta.fail("plane", e.what());
         }
       }
@@ -296,7 +296,7 @@ MeasurementRun readMeasurementCsv(const KinematicModel& nominal, const std::stri
 }
 
 std::string measurementCsv(const Machine& m, const MeasurementRun& run) {
-  if (run.readings.rows() != run.poses()) throw std::invalid_argument("run '" + run.name + "' has no readings");
+  if (run.readings.rows() != run.poses()) throw InvalidInput("run '" + run.name + "' has no readings");
   std::string out = "# mtacc measurement (docs/file-formats.md)\n";
   out += "# machine: " + m.name + "\n";
   out += "# instrument: " + instrumentName(run.instrument) + "\n# name: " + run.name + "\n";

@@ -54,7 +54,7 @@ std::vector<MeasurementRun> generate(const Context& ctx, const KinematicModel& n
         if (const auto violation = travelViolation(m, run); !violation.empty())
           ctx.fail(entry, key, "the run leaves the machine's travel at " + violation);
       return runs;
-    } catch (const std::invalid_argument& e) {
+    } catch (const InvalidInput& e) {
       ctx.fail(entry, key, e.what());
     } catch (const UnreachablePose& e) {
       ctx.fail(entry, key, std::string("unreachable pose: ") + e.what());

@@ -172,22 +172,22 @@ PlateMeasurement readPlateMeasurement(const Machine& machine, const std::string&
 
 std::string plateMeasurementCsv(const Machine& machine, const PlateMeasurement& m) {
   const auto& p = m.placement;
-  std::string out = fmt::format("# plate: {} x {}, pitch {:g} mm\n# features: {}\n", m.plate.rows, m.plate.columns, m.plate.pitch,
+  std::string out = fmt::format("# plate: {} x {}, pitch {} mm\n# features: {}\n", m.plate.rows, m.plate.columns, m.plate.pitch,
                                 p.features == PlateFeatures::All ? "all" : "outer");
-  out += fmt::format("# origin: {:.6f}, {:.6f}, {:.6f} mm\n# axes: {:g},{:g},{:g} / {:g},{:g},{:g}\n", p.origin.x(), p.origin.y(),
+  out += fmt::format("# origin: {}, {}, {} mm\n# axes: {},{},{} / {},{},{}\n", p.origin.x(), p.origin.y(),
                      p.origin.z(), p.u.x(), p.u.y(), p.u.z(), p.v.x(), p.v.y(), p.v.z());
-  out += fmt::format("# stylus: {:g}, {:g}, {:g} mm\n", p.stylus.x(), p.stylus.y(), p.stylus.z());
+  out += fmt::format("# stylus: {}, {}, {} mm\n", p.stylus.x(), p.stylus.y(), p.stylus.z());
   std::string pose;
   for (int a = 0; a < machine.commandedCount(); ++a)
     if (machine.axes[static_cast<size_t>(a)].isRotary() && !p.fixedAxes.empty())
-      pose += fmt::format("{}{}={:.10g}", pose.empty() ? "" : ",", machine.axes[static_cast<size_t>(a)].name,
+      pose += fmt::format("{}{}={}", pose.empty() ? "" : ",", machine.axes[static_cast<size_t>(a)].name,
                           p.fixedAxes[static_cast<size_t>(a)] / kDeg);
   if (!pose.empty()) out += "# pose: " + pose + "\n";
   const auto& t = m.temperatures;
-  out += fmt::format("# temperatures: {:g}, {:g}, {:g} C\n# expansion: {:g}, {:g}\n", t.scale, t.plate, t.reference, t.scaleExpansion,
+  out += fmt::format("# temperatures: {}, {}, {} C\n# expansion: {}, {}\n", t.scale, t.plate, t.reference, t.scaleExpansion,
                      t.plateExpansion);
-  if (m.probe) out += fmt::format("# probe: {:g}, {:g} um\n", m.probe->x() * 1e3, m.probe->y() * 1e3);
-  if (m.simulation) out += fmt::format("# simulation: {:g} um\n", *m.simulation * 1e3);
+  if (m.probe) out += fmt::format("# probe: {}, {} um\n", m.probe->x() * 1e3, m.probe->y() * 1e3);
+  if (m.simulation) out += fmt::format("# simulation: {} um\n", *m.simulation * 1e3);
   out += "row,column,u,v\n";
   for (size_t k = 0; k < m.features.size(); ++k)
     out += fmt::format("{},{},{:.7f},{:.7f}\n", m.features[k].first, m.features[k].second, m.measured(static_cast<Eigen::Index>(k), 0),

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <vector>
 
+#include "mtacc/core/input_error.hpp"
+
 namespace mtacc::yamlin {
 
 InputLocation Context::at(const YAML::Node& node, const std::string& key) const {
@@ -95,7 +97,7 @@ double number(const Context& ctx, const YAML::Node& node, const std::string& key
   try {
     size_t used = 0;
     const double v = std::stod(text, &used);
-    if (used != text.size()) throw std::invalid_argument("trailing text");
+    if (used != text.size()) throw InvalidInput("trailing text");
     if (!std::isfinite(v)) ctx.fail(node, key, "value is not finite");
     return v;
   } catch (const std::logic_error&) {

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 double sensitivityCoefficient(std::shared_ptr<const Machine> machine, const ErrorModel& shape, const ErrorStep& step,
@@ -95,7 +96,7 @@ JointMatrix workingVolumeGrid(const Machine& machine, int samples) {
 std::vector<BudgetEntry> errorBudget(std::shared_ptr<const Machine> machine, const std::vector<BudgetItem>& items,
                                      const JointMatrix& poses, int threads,
                                      const std::function<void(size_t, size_t)>& progress) {
-  if (poses.rows() == 0) throw std::invalid_argument("error budget needs at least one pose");
+  if (poses.rows() == 0) throw InvalidInput("error budget needs at least one pose");
   const auto nominal = compileNominal(machine);
   std::vector<Pose> nominalPoses(static_cast<size_t>(poses.rows()));
   for (long i = 0; i < poses.rows(); ++i) nominalPoses[static_cast<size_t>(i)] = toolInWorkpiece(nominal, poses.row(i).data());

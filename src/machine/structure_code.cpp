@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <set>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 namespace {
@@ -46,17 +47,17 @@ std::vector<Token> tokenize(const std::string& s) {
       ++i;
     } else if (c == '(') {
       const size_t close = s.find(')', i);
-      if (close == std::string::npos) throw std::invalid_argument("unclosed '(' in structure code");
+      if (close == std::string::npos) throw InvalidInput("unclosed '(' in structure code");
       size_t j = i + 1;
-      if (j >= close || !isAxisLetter(s[j])) throw std::invalid_argument("'(...)' must hold the spindle's axis letter");
+      if (j >= close || !isAxisLetter(s[j])) throw InvalidInput("'(...)' must hold the spindle's axis letter");
       std::string name = readAxisName(s, j);
-      if (j != close) throw std::invalid_argument("unexpected text inside '(...)'");
+      if (j != close) throw InvalidInput("unexpected text inside '(...)'");
       tokens.push_back({TokenKind::Spindle, name});
       i = close + 1;
     } else if (isAxisLetter(c)) {
       tokens.push_back({TokenKind::Axis, readAxisName(s, i)});
     } else {
-      throw std::invalid_argument(std::string("unknown letter '") + c + "' in structure code");
+      throw InvalidInput(std::string("unknown letter '") + c + "' in structure code");
     }
   }
   return tokens;
@@ -66,40 +67,40 @@ std::vector<Token> tokenize(const std::string& s) {
 
 StructureCode parseStructureCode(const std::string& text) {
   auto tokens = tokenize(text);
-  if (tokens.size() < 3) throw std::invalid_argument("structure code too short: '" + text + "'");
+  if (tokens.size() < 3) throw InvalidInput("structure code too short: '" + text + "'");
   const bool toolFirst = tokens.front().kind == TokenKind::Tool;
   if (!toolFirst && tokens.front().kind != TokenKind::Workpiece)
-    throw std::invalid_argument("structure code must start with t (tool) or w (workpiece)");
+    throw InvalidInput("structure code must start with t (tool) or w (workpiece)");
   const TokenKind last = toolFirst ? TokenKind::Workpiece : TokenKind::Tool;
   if (tokens.back().kind != last)
-    throw std::invalid_argument(std::string("structure code must end with ") + (toolFirst ? "w" : "t"));
+    throw InvalidInput(std::string("structure code must end with ") + (toolFirst ? "w" : "t"));
   if (!toolFirst) std::reverse(tokens.begin(), tokens.end());  // now tool first
 
   StructureCode code;
   code.text = text;
   const auto bed = std::find_if(tokens.begin(), tokens.end(), [](const Token& t) { return t.kind == TokenKind::Bed; });
-  if (bed == tokens.end()) throw std::invalid_argument("structure code has no bed ('b' or 'F')");
+  if (bed == tokens.end()) throw InvalidInput("structure code has no bed ('b' or 'F')");
   if (std::count_if(tokens.begin(), tokens.end(), [](const Token& t) { return t.kind == TokenKind::Bed; }) > 1)
-    throw std::invalid_argument("structure code has more than one bed");
+    throw InvalidInput("structure code has more than one bed");
 
   std::set<std::string> seen;
   for (auto it = tokens.begin() + 1; it != bed; ++it) {
     if (it->kind == TokenKind::Spindle) {
-      if (it != tokens.begin() + 1) throw std::invalid_argument("the spindle '(...)' must stand next to the tool");
+      if (it != tokens.begin() + 1) throw InvalidInput("the spindle '(...)' must stand next to the tool");
       code.spindle = it->name;
       continue;
     }
-    if (it->kind != TokenKind::Axis) throw std::invalid_argument("unexpected tool or workpiece mark inside the code");
-    if (!seen.insert(it->name).second) throw std::invalid_argument("axis " + it->name + " appears twice");
+    if (it->kind != TokenKind::Axis) throw InvalidInput("unexpected tool or workpiece mark inside the code");
+    if (!seen.insert(it->name).second) throw InvalidInput("axis " + it->name + " appears twice");
     code.toolChain.insert(code.toolChain.begin(), it->name);  // stored from the bed outwards
   }
   for (auto it = bed + 1; it != tokens.end() - 1; ++it) {
-    if (it->kind != TokenKind::Axis) throw std::invalid_argument("only axes may stand between the bed and the workpiece");
-    if (!seen.insert(it->name).second) throw std::invalid_argument("axis " + it->name + " appears twice");
+    if (it->kind != TokenKind::Axis) throw InvalidInput("only axes may stand between the bed and the workpiece");
+    if (!seen.insert(it->name).second) throw InvalidInput("axis " + it->name + " appears twice");
     code.workpieceChain.push_back(it->name);
   }
   if (code.toolChain.empty() && code.workpieceChain.empty())
-    throw std::invalid_argument("structure code has no axes");
+    throw InvalidInput("structure code has no axes");
   return code;
 }
 

@@ -2,21 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 
 namespace mtacc {
 namespace {
 
 void requireCircular(const MeasurementRun& run) {
-  if (run.instrument != Instrument::Ballbar) throw std::invalid_argument(run.name + ": not a ballbar run");
+  if (run.instrument != Instrument::Ballbar) throw InvalidInput(run.name + ": not a ballbar run");
   if (run.angle.size() != static_cast<size_t>(run.poses()) || run.readings.rows() != run.poses())
-    throw std::invalid_argument(run.name + ": a circular evaluation needs an angle and a reading per pose");
-  if (run.poses() < 8) throw std::invalid_argument(run.name + ": too few points for a circle (at least 8)");
+    throw InvalidInput(run.name + ": a circular evaluation needs an angle and a reading per pose");
+  if (run.poses() < 8) throw InvalidInput(run.name + ": too few points for a circle (at least 8)");
   std::vector<double> around;
   for (double a : run.angle) around.push_back(std::fmod(std::fmod(a, 2 * kPi) + 2 * kPi, 2 * kPi));
   std::sort(around.begin(), around.end());
@@ -24,7 +24,7 @@ void requireCircular(const MeasurementRun& run) {
   for (size_t i = 1; i < around.size(); ++i) gap = std::max(gap, around[i] - around[i - 1]);
   constexpr double kSmallestArc = kPi / 2;  // a partial arc (ISO 230-4) of at least 90 deg
   if (2 * kPi - gap < kSmallestArc)
-    throw std::invalid_argument(fmt::format("{}: the points cover only {:.4g} deg of the circle; a circular evaluation "
+    throw InvalidInput(fmt::format("{}: the points cover only {:.4g} deg of the circle; a circular evaluation "
                                             "needs an arc of at least 90 deg", run.name, (2 * kPi - gap) / kDeg));
 }
 

@@ -5,7 +5,8 @@
 #include <Eigen/QR>
 
 #include <cmath>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 namespace {
@@ -44,7 +45,7 @@ Solution solve(const Eigen::MatrixXd& a, const Eigen::VectorXd& y) {
   const Eigen::VectorXd norms = a.colwise().norm().transpose().cwiseMax(1e-300);
   const Eigen::MatrixXd scaled = a * norms.cwiseInverse().asDiagonal();
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled);
-  if (qr.rank() < a.cols()) throw std::invalid_argument("component fit: the points do not determine every term (too few in some interval)");
+  if (qr.rank() < a.cols()) throw InvalidInput("component fit: the points do not determine every term (too few in some interval)");
   Solution s;
   s.parameters = qr.solve(y).cwiseQuotient(norms);
   s.residuals = y - a * s.parameters;
@@ -78,13 +79,13 @@ double ComponentFit::valueUncertainty(double x) const {
 }
 
 ComponentFit fitComponent(const std::vector<double>& x, const std::vector<double>& y, const ComponentFitOptions& o) {
-  if (o.degree != 1 && o.degree != 2) throw std::invalid_argument("component fit: the degree must be 1 or 2");
-  if (o.breaks.size() < 2) throw std::invalid_argument("component fit: needs at least two breaks");
+  if (o.degree != 1 && o.degree != 2) throw InvalidInput("component fit: the degree must be 1 or 2");
+  if (o.breaks.size() < 2) throw InvalidInput("component fit: needs at least two breaks");
   for (size_t i = 1; i < o.breaks.size(); ++i)
-    if (!(o.breaks[i] > o.breaks[i - 1])) throw std::invalid_argument("component fit: the breaks must increase");
-  if (x.size() != y.size()) throw std::invalid_argument("component fit: as many values as positions");
+    if (!(o.breaks[i] > o.breaks[i - 1])) throw InvalidInput("component fit: the breaks must increase");
+  if (x.size() != y.size()) throw InvalidInput("component fit: as many values as positions");
   for (const double v : x)
-    if (!(v >= o.breaks.front() && v <= o.breaks.back())) throw std::invalid_argument("component fit: a position outside the breaks");
+    if (!(v >= o.breaks.front() && v <= o.breaks.back())) throw InvalidInput("component fit: a position outside the breaks");
   ComponentFit fit;
   fit.trend = continuousPiecewise(o.breaks, o.degree);
   if (o.period) fit.periodic = periodicShape(*o.period, o.periodZero, fit.periodicMap);
@@ -93,7 +94,7 @@ ComponentFit fitComponent(const std::vector<double>& x, const std::vector<double
   for (;;) {
     const auto nt = static_cast<Eigen::Index>(fit.trend.coefficients.size());
     const Eigen::Index np = nt + (fit.periodic ? fit.periodicMap.cols() : 0);
-    if (n <= np) throw std::invalid_argument("component fit: fewer points than terms");
+    if (n <= np) throw InvalidInput("component fit: fewer points than terms");
     Eigen::MatrixXd a(n, np);
     for (Eigen::Index i = 0; i < n; ++i) a.row(i) = fit.basis(x[static_cast<size_t>(i)]);
     const Solution s = solve(a, values);

@@ -5,7 +5,8 @@
 #include <limits>
 #include <numeric>
 #include <random>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 namespace {
@@ -154,7 +155,7 @@ double scaleTemperatureCorrected(double reading, double position, double x0, dou
 }
 
 double yryFromStraightness(double ytz1, double ytz2, double y, double xrx, double x1, double x2) {
-  if (x1 == x2) throw std::invalid_argument("yry from straightness: the two X positions must differ");
+  if (x1 == x2) throw InvalidInput("yry from straightness: the two X positions must differ");
   return (ytz2 - ytz1 - y * xrx) / (x1 - x2);
 }
 
@@ -163,7 +164,7 @@ double squarenessFromBlock(double alpha, double beta, double blockSquareness, co
 }
 
 std::vector<double> straightness(const std::vector<double>& x, const std::vector<double>& readings, const std::vector<double>& artefact) {
-  if (artefact.size() != readings.size()) throw std::invalid_argument("straightness: one artefact deviation per reading");
+  if (artefact.size() != readings.size()) throw InvalidInput("straightness: one artefact deviation per reading");
   std::vector<double> y(readings.size());
   for (size_t i = 0; i < y.size(); ++i) y[i] = readings[i] - artefact[i];
   const double slope = leastSquaresSlope(x, y);
@@ -177,11 +178,11 @@ std::vector<double> straightness(const std::vector<double>& x, const std::vector
 }
 
 double leastSquaresSlope(const std::vector<double>& x, const std::vector<double>& y) {
-  if (x.size() != y.size() || x.size() < 2) throw std::invalid_argument("least-squares slope: needs two or more points");
+  if (x.size() != y.size() || x.size() < 2) throw InvalidInput("least-squares slope: needs two or more points");
   const Eigen::Map<const Eigen::VectorXd> xs(x.data(), static_cast<Eigen::Index>(x.size())), ys(y.data(), static_cast<Eigen::Index>(y.size()));
   const Eigen::VectorXd dx = xs.array() - xs.mean();
   const double sxx = dx.squaredNorm();
-  if (!(sxx > 0.0)) throw std::invalid_argument("least-squares slope: the positions must differ");
+  if (!(sxx > 0.0)) throw InvalidInput("least-squares slope: the positions must differ");
   return dx.dot(ys.array().matrix() - Eigen::VectorXd::Constant(ys.size(), ys.mean())) / sxx;
 }
 

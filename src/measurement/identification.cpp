@@ -8,9 +8,10 @@
 #include <cmath>
 #include <mutex>
 #include <optional>
-#include <stdexcept>
 
 #include <Eigen/Dense>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 namespace {
@@ -287,12 +288,12 @@ void checkReadings(const IdentificationProblem& p, Eigen::Index columns) {
   Eigen::Index total = 0;
   for (const auto& r : p.runs) {
     if (r.readings.rows() != r.poses() || r.readings.cols() != readingSize(r.instrument))
-      throw std::invalid_argument("run '" + r.name + "' has no readings");
-    if (!r.readings.allFinite()) throw std::invalid_argument("run '" + r.name + "' has a reading that is not a number");
+      throw InvalidInput("run '" + r.name + "' has no readings");
+    if (!r.readings.allFinite()) throw InvalidInput("run '" + r.name + "' has a reading that is not a number");
     total += r.readings.size();
   }
   if (total <= columns)
-    throw std::invalid_argument("too few readings: " + std::to_string(total) + " for " + std::to_string(columns) +
+    throw InvalidInput("too few readings: " + std::to_string(total) + " for " + std::to_string(columns) +
                                 " unknowns");
 }
 
@@ -331,7 +332,7 @@ struct StackedReadings {
     }
     const NormalEquations& ne = state.normal;
     const Eigen::LLT<Eigen::MatrixXd> c(typical.asDiagonal() * ne.gram * typical.asDiagonal());
-    if (c.info() != Eigen::Success) throw std::runtime_error("identification: the normal matrix became singular");
+    if (c.info() != Eigen::Success) throw InvalidInput("identification: the normal matrix became singular: the data do not determine the parameters");
     r.head(n) = c.matrixL().solve(typical.cwiseProduct(ne.gradient));
     r[n] = std::sqrt(std::max(0.0, ne.squaredNorm - r.head(n).squaredNorm()));
     Eigen::Map<Eigen::MatrixXd> j(jacobian, n + 1, n);
@@ -435,7 +436,7 @@ ObservabilityReport planObservability(const IdentificationProblem& problem, int 
 }
 
 PredictedUncertainty predictUncertainty(const IdentificationProblem& problem, const std::vector<double>& runNoise, int threads) {
-  if (runNoise.size() != problem.runs.size()) throw std::invalid_argument("predictUncertainty: one noise per run");
+  if (runNoise.size() != problem.runs.size()) throw InvalidInput("predictUncertainty: one noise per run");
   State state(problem, true, threadCount(threads));
   state.evaluateAll();
   PredictedUncertainty out;
@@ -469,7 +470,7 @@ IdentificationResult identify(const IdentificationProblem& problem, const Identi
   IdentificationResult out;
   out.columns = problemColumns(problem);
   const auto n = static_cast<Eigen::Index>(out.columns.names.size());
-  if (n == 0) throw std::invalid_argument("no parameter to identify");
+  if (n == 0) throw InvalidInput("no parameter to identify");
   checkReadings(problem, n);
   const int threads = threadCount(options.threads);
 

@@ -1,7 +1,8 @@
 #include "mtacc/measurement/measurement.hpp"
 
 #include <array>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 namespace {
@@ -160,7 +161,7 @@ void readingJacobian(const KinematicModel& model, const ReadingContext& reading,
   switch (run.instrument) {
     case Instrument::Ballbar: {
       if (run.setup.setAt && !setAtJacobian)
-        throw std::invalid_argument("readingJacobian: a ballbar set at the tool ball needs the point Jacobian there");
+        throw InvalidInput("readingJacobian: a ballbar set at the tool ball needs the point Jacobian there");
       const Vec3 u = (t - geometry.target).normalized();
       out.reading[0] = (t - geometry.target).norm() - geometry.length;
       sensitivity.row(0) = u.transpose();

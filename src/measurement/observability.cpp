@@ -5,12 +5,12 @@
 #include <limits>
 #include <numeric>
 #include <optional>
-#include <stdexcept>
 #include <thread>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/core/parallel.hpp"
 
 namespace mtacc {
@@ -71,7 +71,7 @@ ObservabilityReport analyseObservability(Eigen::MatrixXd jacobian, const std::ve
                                          const Eigen::VectorXd& typical, double tol, int threads) {
   const Eigen::Index n = jacobian.cols();
   if (static_cast<Eigen::Index>(names.size()) != n || typical.size() != n)
-    throw std::invalid_argument("analyseObservability: one name and one typical size per column");
+    throw InvalidInput("analyseObservability: one name and one typical size per column");
   ObservabilityReport rep;
   rep.names = names;
   if (n == 0) return rep;

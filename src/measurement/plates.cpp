@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
-#include <stdexcept>
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/kinematics/forward.hpp"
@@ -45,7 +44,7 @@ PlatePoses platePoses(const KinematicModel& nominal, const Plate& plate, const P
   const Machine& m = *nominal.machine;
   std::vector<double> hint = placement.fixedAxes;
   if (hint.empty()) hint = m.referencePose;
-  if (hint.size() != static_cast<size_t>(m.commandedCount())) throw std::invalid_argument("plate placement: one fixed position per axis");
+  if (hint.size() != static_cast<size_t>(m.commandedCount())) throw InvalidInput("plate placement: one fixed position per axis");
   const Pose tool = toolInWorkpiece(nominal, hint.data());
   const Vec3 direction = tool.linear() * m.toolDirection;
   PlatePoses p;
@@ -100,7 +99,7 @@ std::vector<PlatePlacement> cubePlacements(const KinematicModel& nominal, const 
           PlatePlacement p;
           p.name = std::string{axisNames[a], axisNames[b]} + std::to_string(out.size() + 1);
           for (const int k : {a, b})
-            if (high[k] - low[k] < size - 1e-9) throw std::invalid_argument(p.name + ": the plate is larger than the travel");
+            if (high[k] - low[k] < size - 1e-9) throw InvalidInput(p.name + ": the plate is larger than the travel");
           p.u = Vec3::Unit(a);
           p.v = Vec3::Unit(b);
           p.origin[a] = low[a] + ua * (high[a] - low[a] - size);
@@ -160,7 +159,7 @@ std::vector<Eigen::Vector2d> featurePositions(const Plate& plate, const std::vec
 
 Eigen::MatrixX2d temperatureCorrectedDeviations(const Plate& plate, const std::vector<std::pair<int, int>>& features,
                                                 const Eigen::MatrixX2d& measured, const PlateTemperatures& t) {
-  if (measured.rows() != static_cast<Eigen::Index>(features.size())) throw std::invalid_argument("plate deviations: one row per feature");
+  if (measured.rows() != static_cast<Eigen::Index>(features.size())) throw InvalidInput("plate deviations: one row per feature");
   const double scale = 1.0 + t.scaleExpansion * (t.scale - t.reference);
   const double grows = 1.0 + t.plateExpansion * (t.plate - t.reference);
   const auto nominal = featurePositions(plate, features);
@@ -209,7 +208,7 @@ std::vector<Eigen::Vector2d> seed003ProbeNoise(const std::vector<PlatePlacement>
 PlateCampaign simulatePlateCampaign(const KinematicModel& actual, const KinematicModel& nominal, const Plate& plate,
                                     const std::vector<PlatePlacement>& placements, const std::vector<Eigen::Vector2d>& noise,
                                     std::uint64_t seed) {
-  if (noise.size() != placements.size()) throw std::invalid_argument("plate campaign: noise per placement");
+  if (noise.size() != placements.size()) throw InvalidInput("plate campaign: noise per placement");
   PlateCampaign c;
   c.plate = plate;
   c.placements = placements;
@@ -287,19 +286,19 @@ Eigen::MatrixXd plateDesignMatrix(const KinematicModel& model, const PlateCampai
 PlateIdentification identifyFromPlates(const std::shared_ptr<const Machine>& machine, const ErrorModel& shape,
                                        const std::vector<Parameter>& parameters, const PlateCampaign& campaign, int threads) {
   if (campaign.poses.size() != campaign.placements.size() || campaign.deviations.size() != campaign.placements.size())
-    throw std::invalid_argument("plate campaign: poses and deviations for every placement");
+    throw InvalidInput("plate campaign: poses and deviations for every placement");
   ErrorModel zero = shape;
   for (const auto& p : parameterCatalogue(*machine, zero)) setParameterValue(zero, p, 0.0);
   const auto model = compile(machine, zero, parameters);
   Eigen::MatrixXd a = plateDesignMatrix(model, campaign, threads);
   Eigen::VectorXd b(a.rows());
   const bool weighted = !campaign.noise.empty();
-  if (weighted && campaign.noise.size() != campaign.placements.size()) throw std::invalid_argument("plate campaign: noise per placement");
+  if (weighted && campaign.noise.size() != campaign.placements.size()) throw InvalidInput("plate campaign: noise per placement");
   Eigen::Index row = 0;
   for (size_t p = 0; p < campaign.deviations.size(); ++p) {
     const auto& d = campaign.deviations[p];
     if (d.rows() != static_cast<Eigen::Index>(campaign.poses[p].features.size()))
-      throw std::invalid_argument("plate campaign: one deviation row per probed feature");
+      throw InvalidInput("plate campaign: one deviation row per probed feature");
     for (Eigen::Index k = 0; k < d.rows(); ++k)
       for (int c = 0; c < 2; ++c, ++row) {
         const double w = weighted ? 1.0 / campaign.noise[p][c] : 1.0;

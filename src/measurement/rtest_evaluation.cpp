@@ -1,9 +1,10 @@
 #include "mtacc/measurement/rtest_evaluation.hpp"
 
-#include <stdexcept>
 #include <utility>
 
 #include <Eigen/Geometry>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 namespace {
@@ -19,9 +20,9 @@ Pose carrier(const KinematicModel& nominal, const Machine& m, int axis, const do
 }  // namespace
 
 RTestEvaluation evaluateRTest(const KinematicModel& nominal, const MeasurementRun& run) {
-  if (run.instrument != Instrument::RTest) throw std::invalid_argument(run.name + ": not an R-test run");
+  if (run.instrument != Instrument::RTest) throw InvalidInput(run.name + ": not an R-test run");
   const Eigen::Index n = run.poses();
-  if (n < 2) throw std::invalid_argument(run.name + ": an R-test run needs at least two poses");
+  if (n < 2) throw InvalidInput(run.name + ": an R-test run needs at least two poses");
   const Machine& m = *nominal.machine;
   // The rotary axis that turns most (the test is about it); a linear axis only when none turns.
   RTestEvaluation e;
@@ -30,7 +31,7 @@ RTestEvaluation evaluateRTest(const KinematicModel& nominal, const MeasurementRu
   auto rank = [&](int k) { return std::pair{m.axes[static_cast<size_t>(k)].isRotary(), spread[k]}; };
   for (int k = 0; k < static_cast<int>(spread.size()); ++k)
     if (spread[k] > 0.0 && (e.movingAxis < 0 || rank(k) > rank(e.movingAxis))) e.movingAxis = k;
-  if (e.movingAxis < 0) throw std::invalid_argument(run.name + ": no axis moves over the run");
+  if (e.movingAxis < 0) throw InvalidInput(run.name + ": no axis moves over the run");
   e.position = run.q.col(e.movingAxis);
   e.displacement = run.readings;
   e.range = columnRanges(e.displacement);

@@ -1,12 +1,13 @@
 #include "mtacc/measurement/simulation.hpp"
 
 #include <cmath>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 
 std::vector<double> runTimes(const KinematicModel& nominal, const MeasurementRun& run) {
-  if (run.feed <= 0) throw std::invalid_argument("the feed must be positive");
+  if (run.feed <= 0) throw InvalidInput("the feed must be positive");
   std::vector<double> t(static_cast<size_t>(run.poses()), 0.0);
   Vec3 previous = Vec3::Zero();
   for (Eigen::Index i = 0; i < run.poses(); ++i) {
@@ -51,7 +52,7 @@ void simulateRun(const KinematicModel& model, const KinematicModel& nominal, Mea
   actual.q = disturbedPoses(nominal, run, disturbance);
   run.readings = predictReadings(model, nominal, actual);
   if (noise > 0) {
-    if (!rng) throw std::invalid_argument("noise needs a random generator");
+    if (!rng) throw InvalidInput("noise needs a random generator");
     std::normal_distribution<double> gauss(0.0, noise);
     for (Eigen::Index i = 0; i < run.readings.size(); ++i) run.readings.data()[i] += gauss(*rng);
   }

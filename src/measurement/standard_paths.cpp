@@ -1,7 +1,6 @@
 #include "mtacc/measurement/standard_paths.hpp"
 
 #include <cmath>
-#include <stdexcept>
 
 #include <Eigen/Dense>
 
@@ -16,16 +15,16 @@ namespace {
 std::vector<double> basePose(const Machine& m, const std::vector<double>& pose) {
   if (pose.empty()) return std::vector<double>(static_cast<size_t>(m.commandedCount()), 0.0);
   if (static_cast<int>(pose.size()) != m.commandedCount())
-    throw std::invalid_argument("a pose needs " + std::to_string(m.commandedCount()) + " axis values");
+    throw InvalidInput("a pose needs " + std::to_string(m.commandedCount()) + " axis values");
   return pose;
 }
 
 int commandedAxis(const Machine& m, const std::string& name) {
   const int j = m.axisIndex(name);
   if (j >= 0 && j == m.spindleIndex())
-    throw std::invalid_argument("'" + name + "' is the spindle of " + m.name + ", not a commanded rotary axis");
+    throw InvalidInput("'" + name + "' is the spindle of " + m.name + ", not a commanded rotary axis");
   if (j < 0 || !m.axes[static_cast<size_t>(j)].isRotary())
-    throw std::invalid_argument("'" + name + "' is not a rotary axis of " + m.name);
+    throw InvalidInput("'" + name + "' is not a rotary axis of " + m.name);
   return j;
 }
 
@@ -113,12 +112,12 @@ std::array<Vec3, 2> planeAxes(const std::string& plane) {
   if (plane == "XY") return {Vec3::UnitX(), Vec3::UnitY()};
   if (plane == "YZ") return {Vec3::UnitY(), Vec3::UnitZ()};
   if (plane == "ZX") return {Vec3::UnitZ(), Vec3::UnitX()};
-  throw std::invalid_argument("unknown plane '" + plane + "' (XY, YZ or ZX)");
+  throw InvalidInput("unknown plane '" + plane + "' (XY, YZ or ZX)");
 }
 
 MeasurementRun ballbarCircle(const KinematicModel& nominal, const BallbarCircleSpec& spec) {
   const Machine& m = *nominal.machine;
-  if (spec.points < 8) throw std::invalid_argument("a circle needs at least 8 points per direction");
+  if (spec.points < 8) throw InvalidInput("a circle needs at least 8 points per direction");
   MeasurementRun run;
   run.name = "circle-" + spec.plane;
   run.instrument = Instrument::Ballbar;
@@ -159,13 +158,13 @@ RotaryTestMode parseRotaryTestMode(const std::string& name) {
   if (name == "x") return RotaryTestMode::X;
   if (name == "y") return RotaryTestMode::Y;
   if (name == "z") return RotaryTestMode::Z;
-  throw std::invalid_argument("unknown rotary test '" + name + "' (radial, tangential, axial, x, y or z)");
+  throw InvalidInput("unknown rotary test '" + name + "' (radial, tangential, axial, x, y or z)");
 }
 
 MeasurementRun ballbarRotaryTest(const KinematicModel& nominal, const BallbarRotarySpec& spec) {
   const Machine& m = *nominal.machine;
   const int axis = commandedAxis(m, spec.axis);
-  if (spec.points < 8) throw std::invalid_argument("a rotary test needs at least 8 points");
+  if (spec.points < 8) throw InvalidInput("a rotary test needs at least 8 points");
   const bool toolSide = m.axes[static_cast<size_t>(axis)].side == Side::Tool;
   MeasurementRun run;
   run.name = spec.axis + "-" + std::string(spec.mode == RotaryTestMode::Radial       ? "radial"
@@ -200,7 +199,7 @@ MeasurementRun ballbarRotaryTest(const KinematicModel& nominal, const BallbarRot
       const Vec3 w = wp * spec.workBall;
       const Vec3 t = toolChainPose(nominal, q.data(), nullptr) * spec.toolBall;
       d = toolSide ? Vec3(-perpendicularFrom(line, t)) : perpendicularFrom(line, w);
-      if (d.norm() < 1e-9) throw std::invalid_argument("the ball lies on the " + spec.axis + " axis: no radial direction");
+      if (d.norm() < 1e-9) throw InvalidInput("the ball lies on the " + spec.axis + " axis: no radial direction");
       d.normalize();
       const Vec3 radial = toolSide ? d : Vec3(-d);
       Vec3 u = Vec3::Zero();
@@ -227,7 +226,7 @@ std::vector<MeasurementRun> sphereTest(const KinematicModel& nominal, const Sphe
   const Machine& m = *nominal.machine;
   const int axis = commandedAxis(m, spec.axis);
   if (spec.angles.empty() || spec.spheres.empty())
-    throw std::invalid_argument("a sphere test needs at least one angle and one sphere position");
+    throw InvalidInput("a sphere test needs at least one angle and one sphere position");
   const auto base = basePose(m, spec.pose);
   std::vector<MeasurementRun> runs;
   for (size_t s = 0; s < spec.spheres.size(); ++s) {

@@ -1,12 +1,12 @@
 #include "mtacc/procedures/ballbar_seed002.hpp"
 
-#include <stdexcept>
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 
 Seed002Deviations identifySeed002(const Seed002Eccentricities& e, const Seed002Setup& s) {
   if (s.zC1 == s.zC || s.rB2 == s.rB || s.rB == 0.0 || s.rC == 0.0)
-    throw std::invalid_argument(
+    throw InvalidInput(
         "seed 002 identification needs Z_C' != Z_C, R_B'' != R_B and non-zero R_B, R_C: otherwise the twelve errors are not separable");
   const double dz = s.zC1 - s.zC;
   const double slopeX = (e.cr1Ex - e.crEx) / dz;  // beta_CZ, Eq 20

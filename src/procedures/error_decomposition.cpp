@@ -5,29 +5,30 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 namespace {
 
 void check(const DecompositionTest& t, size_t index, MotionParameter parameter) {
   const size_t n = t.time.size();
-  if (n < 2) throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): {} samples, at least 2 needed", index, t.feed, n));
+  if (n < 2) throw InvalidInput(fmt::format("decomposition test {} (F {:g}): {} samples, at least 2 needed", index, t.feed, n));
   if (t.measured.size() != n || t.encoder.size() != n || t.nominal.size() != n || t.link.size() != n ||
       (!t.acceleration.empty() && t.acceleration.size() != n))
-    throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): its series have different lengths", index, t.feed));
+    throw InvalidInput(fmt::format("decomposition test {} (F {:g}): its series have different lengths", index, t.feed));
   for (size_t i = 1; i < n; ++i)
     if (!(t.time[i] > t.time[i - 1]))
-      throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): time does not increase at sample {}", index, t.feed, i));
+      throw InvalidInput(fmt::format("decomposition test {} (F {:g}): time does not increase at sample {}", index, t.feed, i));
   if (parameter != MotionParameter::Path) return;
   if (!t.workpieceRotation.empty() && t.workpieceRotation.size() != n)
-    throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): its workpiece rotations have another length", index, t.feed));
-  if (t.path.size() != n) throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): its path has another length", index, t.feed));
+    throw InvalidInput(fmt::format("decomposition test {} (F {:g}): its workpiece rotations have another length", index, t.feed));
+  if (t.path.size() != n) throw InvalidInput(fmt::format("decomposition test {} (F {:g}): its path has another length", index, t.feed));
   for (size_t i = 1; i < n; ++i)
     if (!(t.path[i] >= t.path[i - 1]))
-      throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): the path decreases at sample {}", index, t.feed, i));
+      throw InvalidInput(fmt::format("decomposition test {} (F {:g}): the path decreases at sample {}", index, t.feed, i));
   if (!(t.path.back() > t.path.front()))
-    throw std::invalid_argument(fmt::format("decomposition test {} (F {:g}): the path does not advance", index, t.feed));
+    throw InvalidInput(fmt::format("decomposition test {} (F {:g}): the path does not advance", index, t.feed));
 }
 
 // P_0 .. P_degree at x = 2 t_n - 1, t_n the parameter (time or path) from the test's first
@@ -71,14 +72,14 @@ std::vector<Eigen::Index> fittedSamples(const DecompositionTest& t, const Decomp
 
 std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>& tests, const DecompositionOptions& o) {
   if (o.referenceTest < 0 || o.referenceTest >= static_cast<int>(tests.size()))
-    throw std::invalid_argument(fmt::format("reference test {} of {} tests", o.referenceTest, tests.size()));
-  if (o.degree < 0 || o.degree > 60) throw std::invalid_argument(fmt::format("motion-error degree {}: give 0 to 60", o.degree));
+    throw InvalidInput(fmt::format("reference test {} of {} tests", o.referenceTest, tests.size()));
+  if (o.degree < 0 || o.degree > 60) throw InvalidInput(fmt::format("motion-error degree {}: give 0 to 60", o.degree));
   if (!(o.steadyShare > 0.0 && o.steadyShare <= 1.0))
-    throw std::invalid_argument(fmt::format("steady share {:g}: give a share of the largest acceleration above 0 and at most 1", o.steadyShare));
+    throw InvalidInput(fmt::format("steady share {:g}: give a share of the largest acceleration above 0 and at most 1", o.steadyShare));
   for (size_t k = 0; k < tests.size(); ++k) check(tests[k], k, o.parameter);
   const DecompositionTest& reference = tests[static_cast<size_t>(o.referenceTest)];
   if (reference.time.size() < static_cast<size_t>(o.degree) + 2)
-    throw std::invalid_argument(fmt::format("the reference test has {} samples: a degree-{} fit of the motion errors needs more than {}",
+    throw InvalidInput(fmt::format("the reference test has {} samples: a degree-{} fit of the motion errors needs more than {}",
                                             reference.time.size(), o.degree, o.degree + 1));
   // Eqs. 16-17: in the reference test everything beyond the link errors is motion error, up to
   // the dynamic residue the fit leaves; the fit's coefficients carry delta_m to the other tests.
@@ -160,19 +161,19 @@ DirectionStatistics directionStatistics(const std::vector<Vec3>& series) {
 
 PowerLaw fitPowerLaw(const std::vector<double>& feeds, const std::vector<double>& values) {
   if (feeds.size() != values.size() || feeds.size() < 2)
-    throw std::invalid_argument(fmt::format("a power law needs two or more feeds, each with a value ({} feeds, {} values)", feeds.size(), values.size()));
+    throw InvalidInput(fmt::format("a power law needs two or more feeds, each with a value ({} feeds, {} values)", feeds.size(), values.size()));
   const auto n = static_cast<Eigen::Index>(feeds.size());
   Eigen::MatrixXd a(n, 2);
   Eigen::VectorXd b(n);
   for (Eigen::Index i = 0; i < n; ++i) {
     const double f = feeds[static_cast<size_t>(i)], v = values[static_cast<size_t>(i)];
     if (!(f > 0) || !(v > 0) || !std::isfinite(f) || !std::isfinite(v))
-      throw std::invalid_argument(fmt::format("a power law needs positive feeds and values (feed {:g}, value {:g})", f, v));
+      throw InvalidInput(fmt::format("a power law needs positive feeds and values (feed {:g}, value {:g})", f, v));
     a(i, 0) = 1.0;
     a(i, 1) = std::log(f);
     b[i] = std::log(v);
   }
-  if (a.col(1).maxCoeff() == a.col(1).minCoeff()) throw std::invalid_argument("a power law needs at least two different feeds");
+  if (a.col(1).maxCoeff() == a.col(1).minCoeff()) throw InvalidInput("a power law needs at least two different feeds");
   const Eigen::Vector2d x = a.colPivHouseholderQr().solve(b);
   PowerLaw p{std::exp(x[0]), x[1], 0.0};
   for (size_t i = 0; i < feeds.size(); ++i)

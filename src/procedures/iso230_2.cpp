@@ -4,7 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 namespace {
@@ -20,7 +21,7 @@ PositioningResult evaluatePositioning(const PositioningTest& test) {
   const auto m = static_cast<Eigen::Index>(test.targets.size());
   const Eigen::Index n = test.forward.cols();
   if (m < 2 || n < 2 || test.forward.rows() != m || test.backward.rows() != m || test.backward.cols() != n)
-    throw std::invalid_argument("ISO 230-2: needs at least 2 targets and 2 cycles in both directions, one row per target");
+    throw InvalidInput("ISO 230-2: needs at least 2 targets and 2 cycles in both directions, one row per target");
   PositioningResult r;
   r.cycles = static_cast<int>(n);
   double upHigh = -INFINITY, upLow = INFINITY, downHigh = -INFINITY, downLow = INFINITY;

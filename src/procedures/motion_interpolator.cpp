@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 
 namespace mtacc {
@@ -15,22 +15,22 @@ namespace {
 using Point = Eigen::VectorXd;
 
 void requirePositive(double value, const char* what) {
-  if (!(value > 0.0) || !std::isfinite(value)) throw std::invalid_argument(std::string("motion: ") + what + " must be positive and finite");
+  if (!(value > 0.0) || !std::isfinite(value)) throw InvalidInput(std::string("motion: ") + what + " must be positive and finite");
 }
 
 // The path in FGROUP units (rotary axes in deg), repeated points dropped.
 std::vector<Point> pathPoints(const std::vector<std::vector<double>>& path, const std::vector<bool>& rotary) {
   std::vector<Point> points;
   for (const auto& row : path) {
-    if (row.size() != rotary.size()) throw std::invalid_argument("motion: a path point has another number of axes");
+    if (row.size() != rotary.size()) throw InvalidInput("motion: a path point has another number of axes");
     Point p(static_cast<long>(row.size()));
     for (size_t a = 0; a < row.size(); ++a) {
-      if (!std::isfinite(row[a])) throw std::invalid_argument("motion: a path point is not finite");
+      if (!std::isfinite(row[a])) throw InvalidInput("motion: a path point is not finite");
       p[static_cast<long>(a)] = rotary[a] ? row[a] / kDeg : row[a];
     }
     if (points.empty() || (p - points.back()).norm() > 1e-12) points.push_back(p);
   }
-  if (points.size() < 2) throw std::invalid_argument("motion: the path needs two distinct points");
+  if (points.size() < 2) throw InvalidInput("motion: the path needs two distinct points");
   return points;
 }
 
@@ -81,12 +81,12 @@ SampledTrace interpolateMotion(const std::vector<std::vector<double>>& path, con
   requirePositive(period, "the period");
   if (!(limits.cornerRounding >= 0.0 && limits.jerkTime >= 0.0 && limits.dwell >= 0.0) ||
       !std::isfinite(limits.cornerRounding + limits.jerkTime + limits.dwell))
-    throw std::invalid_argument("motion: corner rounding, jerk time and dwell must be finite and not negative");
+    throw InvalidInput("motion: corner rounding, jerk time and dwell must be finite and not negative");
   const auto corners = pathPoints(path, rotary);
   double length = 0.0;
   for (size_t i = 1; i < corners.size(); ++i) length += (corners[i] - corners[i - 1]).norm();
   const double step = limits.cornerRounding > 0 ? std::min(limits.cornerRounding / 4, length / 200) : length / 2000;
-  if (length / step > 1e7) throw std::invalid_argument("motion: the path is too long for its corner rounding (over 10^7 points)");
+  if (length / step > 1e7) throw InvalidInput("motion: the path is too long for its corner rounding (over 10^7 points)");
   const auto points = rounded(evenlySpaced(corners, step), limits.cornerRounding / step);
 
   // Speed limits: the feed, and sqrt(a / curvature) from the turn at each point.
@@ -112,7 +112,7 @@ SampledTrace interpolateMotion(const std::vector<std::vector<double>>& path, con
   const auto filterSamples = std::max(1L, static_cast<long>(std::llround(limits.jerkTime / period)));
   const double motionSamples = std::ceil(time.back() / period);
   if (motionSamples + 2.0 * static_cast<double>(dwellSamples + filterSamples) > 1e8)
-    throw std::invalid_argument("motion: more than 10^8 samples at this period");
+    throw InvalidInput("motion: more than 10^8 samples at this period");
 
   std::vector<Point> raw;
   for (long k = 0; k < dwellSamples; ++k) raw.push_back(points.front());

@@ -1,5 +1,6 @@
 #include "mtacc/procedures/recorded_test.hpp"
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/procedures/signal_spikes.hpp"
 
 #include <fmt/format.h>
@@ -71,7 +72,7 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
     alignment.offset = *processing.clockOffset;
     try {
       alignment.tracesOffset = estimateClockOffset(command, encoder, processing.search).offset;
-    } catch (const std::invalid_argument&) {
+    } catch (const InvalidInput&) {
       // The stated offset is used as given; the traces cannot say whether it is right.
     }
   } else {
@@ -100,7 +101,7 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
   alignment.samplesUsed = used.size();
   alignment.firstSampleUsed = used.empty() ? 0 : used.front();
   if (used.size() < 4)
-    throw std::invalid_argument(fmt::format("{} instrument samples fall inside the command's motion and the encoder trace (offset {:.3f} ms)",
+    throw InvalidInput(fmt::format("{} instrument samples fall inside the command's motion and the encoder trace (offset {:.3f} ms)",
                                             used.size(), alignment.offset * 1e3));
   const auto interpolation = processing.search.interpolation;
   const auto nominalQ = posesFromChannels(resampleTrace(command, alignment.offset, test.time, interpolation));

@@ -1,16 +1,17 @@
 #include "mtacc/procedures/servo_loop.hpp"
 
 #include <cmath>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 
 std::vector<double> followCommand(std::span<const double> command, double period, const ServoGains& gains) {
   if (!(gains.positionGain > 0.0) || !std::isfinite(gains.positionGain))
-    throw std::invalid_argument("servo loop: the position gain must be positive and finite");
+    throw InvalidInput("servo loop: the position gain must be positive and finite");
   if (!(gains.feedForward >= 0.0 && gains.feedForward <= 1.0))
-    throw std::invalid_argument("servo loop: the feed-forward must lie in [0, 1]");
-  if (!(period > 0.0) || !std::isfinite(period)) throw std::invalid_argument("servo loop: the period must be positive and finite");
+    throw InvalidInput("servo loop: the feed-forward must lie in [0, 1]");
+  if (!(period > 0.0) || !std::isfinite(period)) throw InvalidInput("servo loop: the period must be positive and finite");
   std::vector<double> axis(command.size());
   if (command.empty()) return axis;
   // The following error e = r - x obeys de/dt = (1 - k_ff) v - Kv e for a command speed v.

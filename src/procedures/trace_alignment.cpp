@@ -2,7 +2,8 @@
 
 #include <cmath>
 #include <limits>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 
@@ -73,10 +74,10 @@ std::pair<size_t, size_t> comparedSamples(const SampledTrace& command, const Sam
 
 ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace& encoder, const ClockOffsetSearch& search) {
   if (command.channels.size() != encoder.channels.size() || encoder.channels.empty())
-    throw std::invalid_argument("clock offset: the command and encoder traces need the same channels");
-  if (!(search.highest > search.lowest)) throw std::invalid_argument("clock offset: the search window is empty");
+    throw InvalidInput("clock offset: the command and encoder traces need the same channels");
+  if (!(search.highest > search.lowest)) throw InvalidInput("clock offset: the search window is empty");
   const auto coarse = normalisedChannels(command, encoder, Interpolation::Linear);
-  if (coarse.command.empty()) throw std::invalid_argument("clock offset: no axis moves in the encoder trace");
+  if (coarse.command.empty()) throw InvalidInput("clock offset: no axis moves in the encoder trace");
   const size_t enough = std::max<size_t>(4, encoder.samples() / 4);
 
   double best = std::numeric_limits<double>::quiet_NaN(), bestCost = std::numeric_limits<double>::infinity();
@@ -90,7 +91,7 @@ ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace&
     if (cost < bestCost) bestCost = cost, best = offset;
   }
   if (std::isnan(best))
-    throw std::invalid_argument("clock offset: no offset in the search window overlaps a quarter of the encoder trace");
+    throw InvalidInput("clock offset: no offset in the search window overlaps a quarter of the encoder trace");
 
   // Gauss-Newton on the interpolated traces within one scan step of the best offset, halving a
   // step that does not lower the misfit; the minimum of a smooth misfit is found to rounding.
@@ -98,7 +99,7 @@ ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace&
   const double lo = std::fmax(best - step, search.lowest), hi = std::fmin(best + step, search.highest);
   const auto [first, last] = comparedSamples(command, encoder, lo, hi);
   if (last - first < enough)
-    throw std::invalid_argument("clock offset: the best offset leaves less than a quarter of the encoder trace to compare");
+    throw InvalidInput("clock offset: the best offset leaves less than a quarter of the encoder trace to compare");
   double offset = best;
   Misfit current = misfit(fine, encoder, offset, first, last, true);
   for (int iteration = 0; iteration < 50 && current.slopeSquare > 0; ++iteration) {

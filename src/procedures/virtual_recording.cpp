@@ -2,8 +2,8 @@
 
 #include <cmath>
 #include <random>
-#include <stdexcept>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/dynamics/transient_deflection.hpp"
 #include "mtacc/kinematics/forward.hpp"
 
@@ -39,12 +39,12 @@ VirtualRecording recordVirtualTest(const KinematicModel& nominal, const Kinemati
   const auto& machine = *nominal.machine;
   const size_t axisCount = reference.channels.size(), n = reference.samples();
   if (!options.servo.empty() && options.servo.size() != axisCount)
-    throw std::invalid_argument("virtual recording: one servo loop per commanded axis");
+    throw InvalidInput("virtual recording: one servo loop per commanded axis");
   const double ratio = options.ncPeriod / reference.period;
   const auto every = static_cast<size_t>(std::llround(ratio));
   if (!(every >= 1 && std::fabs(ratio - static_cast<double>(every)) < 1e-9 * ratio))
-    throw std::invalid_argument("virtual recording: the NC period must be a whole multiple of the reference's period");
-  if (!(options.noise >= 0.0) || !std::isfinite(options.noise)) throw std::invalid_argument("virtual recording: the noise must be finite and not negative");
+    throw InvalidInput("virtual recording: the NC period must be a whole multiple of the reference's period");
+  if (!(options.noise >= 0.0) || !std::isfinite(options.noise)) throw InvalidInput("virtual recording: the noise must be finite and not negative");
 
   VirtualRecording out;
   SampledTrace axes{reference.start, reference.period, {}};
@@ -57,7 +57,7 @@ VirtualRecording recordVirtualTest(const KinematicModel& nominal, const Kinemati
 
   const double firstStamp = std::ceil((reference.start - options.clockOffset) / options.ncPeriod - 1e-9) * options.ncPeriod;
   const auto commandSamples = static_cast<long>(std::floor((reference.end() - options.clockOffset - firstStamp) / options.ncPeriod + 1e-9)) + 1;
-  if (commandSamples < 4) throw std::invalid_argument("virtual recording: the clock offset leaves fewer than four command samples");
+  if (commandSamples < 4) throw InvalidInput("virtual recording: the clock offset leaves fewer than four command samples");
   out.command = {firstStamp, options.ncPeriod, {}};
   for (size_t a = 0; a < axisCount; ++a) {
     const UniformSpline spline(reference.start, reference.period, reference.channels[a]);

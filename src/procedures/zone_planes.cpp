@@ -4,17 +4,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 
 std::vector<ZonePlane> zonePlanes(const HeightMap& map, const CubicTestSpec& spec, double inset, const HeightMap* baseline) {
   const HeightGrid& g = map.grid;
-  if (baseline && baseline->height.size() != map.height.size()) throw std::invalid_argument("zonePlanes: different grids");
+  if (baseline && baseline->height.size() != map.height.size()) throw InvalidInput("zonePlanes: different grids");
   const double offset = baseline ? map.reference - baseline->reference : 0.0;
   const auto at = [&](int i, int j) { return baseline ? map.at(i, j) - baseline->at(i, j) + offset : map.at(i, j); };
   const double half = spec.zoneSize / 2 - inset;
-  if (!(half > 0)) throw std::invalid_argument("zonePlanes: the inset leaves nothing of the zones");
+  if (!(half > 0)) throw InvalidInput("zonePlanes: the inset leaves nothing of the zones");
   std::vector<ZonePlane> planes;
   for (const auto& zone : spec.zones) {
     const int i0 = std::max(0, static_cast<int>(std::ceil((zone.x - half - g.x0) / g.spacing - 0.5)));
@@ -40,7 +41,7 @@ std::vector<ZonePlane> zonePlanes(const HeightMap& map, const CubicTestSpec& spe
     }
     ZonePlane p;
     p.cells = static_cast<size_t>(std::max(0, i1 - i0)) * static_cast<size_t>(std::max(0, j1 - j0));
-    if (p.cells < 3) throw std::invalid_argument("zonePlanes: a zone covers fewer than 3 cells of the grid");
+    if (p.cells < 3) throw InvalidInput("zonePlanes: a zone covers fewer than 3 cells of the grid");
     const Eigen::Vector3d c = normal.ldlt().solve(rhs);
     p.slopeX = c(1);
     p.slopeY = c(2);
@@ -78,7 +79,7 @@ size_t referenceZone(const CubicTestSpec& spec) {
 }
 
 HeightMap heightDifference(const HeightMap& a, const HeightMap& b) {
-  if (a.height.size() != b.height.size()) throw std::invalid_argument("heightDifference: different grids");
+  if (a.height.size() != b.height.size()) throw InvalidInput("heightDifference: different grids");
   HeightMap d{a.grid, 0.0, std::vector<float>(a.height.size())};
   const double offset = a.reference - b.reference;
   for (size_t k = 0; k < a.height.size(); ++k)

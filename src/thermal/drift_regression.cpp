@@ -5,25 +5,26 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 namespace {
 
 void checkRecord(const ThermalRecord& record) {
   if (record.temperatures.rows() != record.drift.size())
-    throw std::invalid_argument(fmt::format("{} temperature samples for {} drift samples", record.temperatures.rows(), record.drift.size()));
+    throw InvalidInput(fmt::format("{} temperature samples for {} drift samples", record.temperatures.rows(), record.drift.size()));
   if (record.position.size() && record.position.size() != record.drift.size())
-    throw std::invalid_argument(fmt::format("{} positions for {} drift samples", record.position.size(), record.drift.size()));
+    throw InvalidInput(fmt::format("{} positions for {} drift samples", record.position.size(), record.drift.size()));
   for (long k = 0; k < record.temperatures.rows(); ++k) {
-    if (!std::isfinite(record.drift[k])) throw std::invalid_argument(fmt::format("drift sample {}: not a finite number", k));
+    if (!std::isfinite(record.drift[k])) throw InvalidInput(fmt::format("drift sample {}: not a finite number", k));
     if (record.position.size() && !std::isfinite(record.position[k]))
-      throw std::invalid_argument(fmt::format("position sample {}: not a finite number", k));
+      throw InvalidInput(fmt::format("position sample {}: not a finite number", k));
     for (long i = 0; i < record.temperatures.cols(); ++i)
-      if (!std::isfinite(record.temperatures(k, i))) throw std::invalid_argument(fmt::format("sensor {} sample {}: not a finite number", i, k));
+      if (!std::isfinite(record.temperatures(k, i))) throw InvalidInput(fmt::format("sensor {} sample {}: not a finite number", i, k));
   }
   if (record.position.size() && record.position.maxCoeff() == record.position.minCoeff())
-    throw std::invalid_argument("the position does not change: no position dependence to fit");
+    throw InvalidInput("the position does not change: no position dependence to fit");
 }
 
 // Parameters per sensor (and for the offset): beta, and gamma with positions.
@@ -154,14 +155,14 @@ DriftModel fitDriftModel(const ThermalRecord& record, const std::vector<int>& se
   checkRecord(record);
   const long n = record.temperatures.rows(), p = static_cast<long>(sensors.size()), parameters = (p + 1) * perSensor(record);
   if (n < parameters + 1)
-    throw std::invalid_argument(fmt::format("{} samples for {} sensors{}: at least {} needed", n, p, record.position.size() ? " and the position" : "",
+    throw InvalidInput(fmt::format("{} samples for {} sensors{}: at least {} needed", n, p, record.position.size() ? " and the position" : "",
                                             parameters + 1));
   for (size_t j = 0; j < sensors.size(); ++j) {
     if (sensors[j] < 0 || sensors[j] >= record.temperatures.cols())
-      throw std::invalid_argument(fmt::format("sensor {} out of range (0 .. {})", sensors[j], record.temperatures.cols() - 1));
-    if (std::count(sensors.begin(), sensors.end(), sensors[j]) > 1) throw std::invalid_argument(fmt::format("sensor {} given twice", sensors[j]));
+      throw InvalidInput(fmt::format("sensor {} out of range (0 .. {})", sensors[j], record.temperatures.cols() - 1));
+    if (std::count(sensors.begin(), sensors.end(), sensors[j]) > 1) throw InvalidInput(fmt::format("sensor {} given twice", sensors[j]));
     const auto column = record.temperatures.col(sensors[j]);
-    if (column.maxCoeff() == column.minCoeff()) throw std::invalid_argument(fmt::format("sensor {} does not change: no slope to fit", sensors[j]));
+    if (column.maxCoeff() == column.minCoeff()) throw InvalidInput(fmt::format("sensor {} does not change: no slope to fit", sensors[j]));
   }
   DriftModel model;
   model.sensors = sensors;
@@ -169,7 +170,7 @@ DriftModel fitDriftModel(const ThermalRecord& record, const std::vector<int>& se
   for (long j = 0; j < p; ++j) model.referenceTemperatures[j] = record.temperatures(0, sensors[static_cast<size_t>(j)]);
   const Eigen::MatrixXd z = design(record, sensors, model.referenceTemperatures);
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(z);
-  if (qr.rank() < parameters) throw std::invalid_argument("the chosen sensors' temperatures are linearly dependent: no unique fit");
+  if (qr.rank() < parameters) throw InvalidInput("the chosen sensors' temperatures are linearly dependent: no unique fit");
   const Eigen::VectorXd beta = qr.solve(record.drift);
   const Eigen::VectorXd residual = record.drift - z * beta;
   model.offset = beta[0];
@@ -188,10 +189,10 @@ DriftModel fitDriftModel(const ThermalRecord& record, const std::vector<int>& se
 SensorSelection selectSensors(const ThermalRecord& record, const SensorSelectionOptions& options) {
   checkRecord(record);
   const long n = record.temperatures.rows(), p = record.temperatures.cols();
-  if (options.folds < 2) throw std::invalid_argument(fmt::format("{} folds: cross-validation needs at least 2", options.folds));
+  if (options.folds < 2) throw InvalidInput(fmt::format("{} folds: cross-validation needs at least 2", options.folds));
   const long perFold = n / options.folds, largest = std::min<long>(options.maximumSensors, p), needed = (largest + 1) * perSensor(record) + 1;
   if (perFold < needed)
-    throw std::invalid_argument(fmt::format("{} samples in {} folds: at least {} per fold needed for up to {} sensors{}", n, options.folds,
+    throw InvalidInput(fmt::format("{} samples in {} folds: at least {} per fold needed for up to {} sensors{}", n, options.folds,
                                             needed, largest, record.position.size() ? " and the position" : ""));
   const bool positional = record.position.size() > 0;
   const FoldGrams grams = foldGrams(record, options.folds);

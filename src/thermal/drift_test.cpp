@@ -3,7 +3,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 
@@ -16,10 +17,10 @@ MandrelDrift mandrelDrift(const MandrelProbes& p) {
   long n = -1;
   for (const auto* probe : {&p.x1, &p.y1, &p.x2, &p.y2, &p.z}) {
     if (probe->size() == 0) continue;
-    if (n >= 0 && probe->size() != n) throw std::invalid_argument(fmt::format("probe readings of {} and {} samples", n, probe->size()));
+    if (n >= 0 && probe->size() != n) throw InvalidInput(fmt::format("probe readings of {} and {} samples", n, probe->size()));
     n = probe->size();
   }
-  if (n < 0) throw std::invalid_argument("no probe readings");
+  if (n < 0) throw InvalidInput("no probe readings");
   const auto fromStart = [](const Eigen::VectorXd& v) -> Eigen::VectorXd { return v.array() - v[0]; };
   MandrelDrift d;
   const auto set = [&](DriftDirection direction, const Eigen::VectorXd& v) { d.series[static_cast<int>(direction)] = v; };
@@ -28,7 +29,7 @@ MandrelDrift mandrelDrift(const MandrelProbes& p) {
   if (p.z.size()) set(DriftDirection::Z, fromStart(p.z));
   const bool tilts = (p.x1.size() && p.x2.size()) || (p.y1.size() && p.y2.size());
   if (tilts && !(std::fabs(p.z2 - p.z1) > 1e-9))
-    throw std::invalid_argument(fmt::format("the probe sets sit at one height ({} mm): no tilt", p.z1));
+    throw InvalidInput(fmt::format("the probe sets sit at one height ({} mm): no tilt", p.z1));
   const double arm = p.z2 - p.z1;
   if (p.y1.size() && p.y2.size()) set(DriftDirection::A, -(fromStart(p.y2) - fromStart(p.y1)) / arm);
   if (p.x1.size() && p.x2.size()) set(DriftDirection::B, (fromStart(p.x2) - fromStart(p.x1)) / arm);
@@ -47,8 +48,8 @@ DriftExtremes driftExtremes(const Eigen::VectorXd& drift, const Eigen::VectorXd&
 
 std::optional<DriftHysteresis> driftHysteresis(const Eigen::VectorXd& drift, const Eigen::VectorXd& temperature, int bins) {
   const long n = temperature.size();
-  if (drift.size() != n) throw std::invalid_argument(fmt::format("{} drift samples for {} temperatures", drift.size(), n));
-  if (bins < 1) throw std::invalid_argument("at least one temperature bin");
+  if (drift.size() != n) throw InvalidInput(fmt::format("{} drift samples for {} temperatures", drift.size(), n));
+  if (bins < 1) throw InvalidInput("at least one temperature bin");
   Eigen::Index peak = 0;
   temperature.maxCoeff(&peak);
   if (peak == 0 || peak == n - 1) return std::nullopt;

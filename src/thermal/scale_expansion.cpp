@@ -3,24 +3,25 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 namespace {
 
 void check(const ScaleSensors& scale, std::span<const double> temperatures, double position) {
   const auto& s = scale.positions;
-  if (s.size() < 2) throw std::invalid_argument(fmt::format("a scale needs at least two temperature sensors, not {}", s.size()));
+  if (s.size() < 2) throw InvalidInput(fmt::format("a scale needs at least two temperature sensors, not {}", s.size()));
   if (temperatures.size() != s.size())
-    throw std::invalid_argument(fmt::format("{} temperatures for {} sensors on the scale", temperatures.size(), s.size()));
+    throw InvalidInput(fmt::format("{} temperatures for {} sensors on the scale", temperatures.size(), s.size()));
   for (size_t i = 0; i < s.size(); ++i) {
-    if (!std::isfinite(s[i]) || !std::isfinite(temperatures[i])) throw std::invalid_argument(fmt::format("scale sensor {}: not a finite number", i));
+    if (!std::isfinite(s[i]) || !std::isfinite(temperatures[i])) throw InvalidInput(fmt::format("scale sensor {}: not a finite number", i));
     if (i > 0 && !(s[i] > s[i - 1]))
-      throw std::invalid_argument(fmt::format("scale sensors must be in increasing position ({} mm after {} mm)", s[i], s[i - 1]));
+      throw InvalidInput(fmt::format("scale sensors must be in increasing position ({} mm after {} mm)", s[i], s[i - 1]));
   }
   if (!std::isfinite(position) || !std::isfinite(scale.expansion) || !std::isfinite(scale.referencePosition) ||
       !std::isfinite(scale.referenceTemperature))
-    throw std::invalid_argument("scale expansion: a position, coefficient or reference that is not finite");
+    throw InvalidInput("scale expansion: a position, coefficient or reference that is not finite");
 }
 
 // The integral of T(u) - T_ref from the first sensor to x (negative below it), K mm.

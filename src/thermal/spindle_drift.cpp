@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <stdexcept>
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 namespace {
@@ -10,7 +10,7 @@ namespace {
 template <class Evaluate>
 Vec6 perDirection(const SpindleDriftModel& model, const Eigen::VectorXd& temperatures, Evaluate evaluate) {
   if (temperatures.size() != static_cast<long>(model.sensors.size()))
-    throw std::invalid_argument(fmt::format("{} temperatures for the spindle drift model's {} sensors", temperatures.size(), model.sensors.size()));
+    throw InvalidInput(fmt::format("{} temperatures for the spindle drift model's {} sensors", temperatures.size(), model.sensors.size()));
   Vec6 out = Vec6::Zero();
   for (int d = 0; d < 5; ++d)
     if (model.directions[d]) out[d] = evaluate(*model.directions[d]);

@@ -5,7 +5,8 @@
 #include <cmath>
 #include <numbers>
 #include <random>
-#include <stdexcept>
+
+#include "mtacc/core/input_error.hpp"
 
 namespace mtacc {
 
@@ -13,19 +14,19 @@ ThermalRecording recordDriftTest(const VirtualThermalMachine& machine, const Eig
                                  const Eigen::VectorXd& positions) {
   const size_t nodes = machine.nodes.size();
   if (machine.driftPerKelvin.size() != nodes)
-    throw std::invalid_argument(fmt::format("{} drift coefficients for {} thermal nodes", machine.driftPerKelvin.size(), nodes));
+    throw InvalidInput(fmt::format("{} drift coefficients for {} thermal nodes", machine.driftPerKelvin.size(), nodes));
   if (!machine.driftGradient.empty() && machine.driftGradient.size() != nodes)
-    throw std::invalid_argument(fmt::format("{} drift gradients for {} thermal nodes", machine.driftGradient.size(), nodes));
+    throw InvalidInput(fmt::format("{} drift gradients for {} thermal nodes", machine.driftGradient.size(), nodes));
   if (positions.size() && positions.size() != loads.rows())
-    throw std::invalid_argument(fmt::format("{} positions for {} samples", positions.size(), loads.rows()));
+    throw InvalidInput(fmt::format("{} positions for {} samples", positions.size(), loads.rows()));
   for (const int s : machine.sensedNode)
-    if (s < -1 || s >= static_cast<int>(nodes)) throw std::invalid_argument(fmt::format("a sensor on node {} of {}", s, nodes));
+    if (s < -1 || s >= static_cast<int>(nodes)) throw InvalidInput(fmt::format("a sensor on node {} of {}", s, nodes));
   for (const auto& node : machine.nodes) {
-    if (!(node.timeConstant > 0)) throw std::invalid_argument("a thermal node's time constant must be positive");
+    if (!(node.timeConstant > 0)) throw InvalidInput("a thermal node's time constant must be positive");
     if (static_cast<long>(node.heatGains.size()) != loads.cols())
-      throw std::invalid_argument(fmt::format("a thermal node with {} heat gains for {} loads", node.heatGains.size(), loads.cols()));
+      throw InvalidInput(fmt::format("a thermal node with {} heat gains for {} loads", node.heatGains.size(), loads.cols()));
   }
-  if (!(period > 0)) throw std::invalid_argument("the sampling period must be positive");
+  if (!(period > 0)) throw InvalidInput("the sampling period must be positive");
 
   const long n = loads.rows();
   ThermalRecording out;

@@ -107,7 +107,7 @@ ComponentFitStudy fitComponentFile(const MachineSetup& setup, const ComponentFit
   const std::vector<double> mean(s.curve.mean.data(), s.curve.mean.data() + s.curve.mean.size());
   try {
     s.fit = fitComponent(runs.positions, mean, o);
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidInput& e) {
     fail(r.breaks.empty() ? "pieces" : "breaks",
          std::string(e.what()) + fmt::format(" ({} positions, {} pieces of degree {})", runs.positions.size(), o.breaks.size() - 1, r.degree));
   }

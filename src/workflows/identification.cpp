@@ -272,7 +272,7 @@ IdentificationOutcome identifyParameters(const MachineSetup& setup, const Identi
     out.result = identify(p.problem, options);
   } catch (const NotIdentifiable& e) {
     throw InputError(InputLocation{"", 0, "parameters"}, std::string("refused: ") + e.what());
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidInput& e) {
     throw InputError(InputLocation{"", 0, "data"}, e.what());
   }
   out.quality = assessQuality(request, out.result);

@@ -28,7 +28,7 @@ MachineSetup loadMachineSetup(const MachineSource& source) {
     const auto state = loadThermalState(*machine, source.thermalFile);
     try {
       errors = atThermalState(*machine, std::move(errors), state);
-    } catch (const std::invalid_argument& e) {
+    } catch (const InvalidInput& e) {
       throw InputError(InputLocation{source.thermalFile, 0, "thermal"}, e.what());
     }
   }

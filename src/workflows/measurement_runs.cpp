@@ -92,7 +92,7 @@ SimulationResult simulateBallbarCircle(const MachineSetup& setup, const BallbarC
   std::vector<MeasurementRun> runs;
   try {
     runs = {ballbarCircle(setup.nominal(), spec)};
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidInput& e) {
     throw InputError(InputLocation{"", 0, "plane"}, e.what());
   }
   if (const auto violation = travelViolation(*setup.machine, runs[0]); !violation.empty())
@@ -106,7 +106,7 @@ SimulationResult simulateSphereTest(const MachineSetup& setup, const SphereTestS
   std::vector<MeasurementRun> runs;
   try {
     runs = sphereTest(setup.nominal(), spec);
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidInput& e) {
     throw InputError(InputLocation{"", 0, "axis"}, e.what());
   }
   for (const auto& run : runs)
@@ -165,7 +165,7 @@ RunEvaluation<Result> evaluateRun(const MachineSetup& setup, const std::string& 
   RunEvaluation<Result> e{setup.machine, file, std::move(run), {}};
   try {
     e.result = evaluate(e.run);
-  } catch (const std::invalid_argument& reason) {
+  } catch (const InvalidInput& reason) {
     throw InputError(InputLocation{file, 0, ""}, reason.what());
   }
   return e;

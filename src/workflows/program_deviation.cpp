@@ -24,7 +24,7 @@ ProgramDeviationResult programDeviationFile(const MachineSetup& setup, const Pro
   if (!request.intendedFile.empty()) r.intended = programWithFeedMoves(request.intendedFile, *setup.machine, request.toolLengths);
   try {
     r.deviation = programPathDeviation(setup.machine, setup.errors, r.program, r.intended ? &*r.intended : nullptr, request.options);
-  } catch (const std::invalid_argument& e) {  // both programs have feed moves: the step is what is wrong
+  } catch (const InvalidInput& e) {  // both programs have feed moves: the step is what is wrong
     throw InputError({"", 0, "step"}, fmt::format("{}, not {:g} mm", e.what(), request.options.step));
   }
   if (setup.covariance) {

@@ -31,7 +31,7 @@ AlignedTest alignedTest(const MachineSetup& setup, const DecompositionSet& set, 
   const SignalProcessing processing{set.clockOffset, {set.searchLowest, set.searchHighest, set.interpolation}, set.ball};
   try {
     return alignRecordedTest(setup.nominal(), setup.actual(), {recorded.feed, command, encoder, instrumentFile.trace}, processing);
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidInput& e) {
     const bool offset = std::string_view(e.what()).starts_with("clock offset");
     throw InputError({offset ? recorded.encoder : recorded.instrument, offset ? encoderFile.headerLine : instrumentFile.headerLine, "time_s"},
                      e.what());
@@ -96,7 +96,7 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
   }
   try {
     out.tests = decomposeErrors(tests, {set.referenceTest, set.degree, set.parameter, set.driftFrame, set.referenceFit});
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidInput& e) {
     throw InputError({set.file, set.tests[static_cast<size_t>(set.referenceTest)].line, fmt::format("tests[{}]", set.referenceTest)}, e.what());
   }
   std::array<std::vector<double>, 3> rms;
@@ -114,7 +114,7 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
   for (size_t d = 0; d < 3; ++d) {
     try {
       out.dynamicLaw[d] = fitPowerLaw(feeds, rms[d]);
-    } catch (const std::invalid_argument&) {
+    } catch (const InvalidInput&) {
       out.dynamicLaw[d].reset();  // fewer than two feeds or an RMS of zero: no law to state
     }
   }

@@ -71,7 +71,7 @@ DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request) {
   const auto& test = out.test;
   try {
     out.drift = mandrelDrift(test.probes);
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidInput& e) {
     throw InputError({test.file, test.headerLine, "probe_z"}, e.what());
   }
   const long sensors = test.temperatures.cols();
@@ -101,7 +101,7 @@ DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request) {
     if (sensors > 0) {
       try {
         e.model = selectSensors({test.temperatures, *series, position}, selection);
-      } catch (const std::invalid_argument& error) {
+      } catch (const InvalidInput& error) {
         throw InputError({test.file, test.headerLine, fmt::format("{} drift", nameOf(direction))}, error.what());
       }
     }

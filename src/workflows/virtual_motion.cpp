@@ -85,7 +85,7 @@ MotionSimulation simulateMotion(const MachineSetup& setup, const MotionSimulatio
     VirtualRecording recording;
     try {
       recording = recordVirtualTest(nominal, actual, interpolateMotion(path, rotary, feed, request.limits, request.instrumentPeriod), options);
-    } catch (const std::invalid_argument& e) {
+    } catch (const InvalidInput& e) {
       throw InputError({request.program, 0, fmt::format("feed {:g}", feed)}, e.what());
     }
     SimulatedFeed simulated{feed, recording.instrument.end() - recording.instrument.start, recording.instrument.samples(),

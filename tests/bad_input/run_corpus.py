@@ -14,7 +14,8 @@ A case is one small file, cases/NNN-what.case:
 Placeholders in `run` and `expect`: {name} is the path of the case's input file `name` (all
 in {indir}), {out} an output file in an output folder ({outdir}), {data} the bundled data folder.
 Every case runs twice: with no output file, and with an existing output file that must stay
-unchanged. The checks: a non-zero exit within the time limit, nothing on stdout, exactly one
+unchanged. The checks: a non-zero exit within the time limit, and not the status 1 of an internal
+failure (an exception the front end did not map), nothing on stdout, exactly one
 line on stderr equal to `mtacc: error: ` + expect, no file created or changed, the inputs
 untouched. At least 98 % of the cases must be located (file:line:, the option or the argument).
 
@@ -104,6 +105,8 @@ def run_once(cli, case, existing_output):
         problems = []
         if r.returncode == 0:
             problems.append("exit status 0")
+        if r.returncode == 1:
+            problems.append("exit status 1, the status of an internal failure: bad input exits 2 (3 for an unreachable pose)")
         if r.returncode < 0 or r.returncode > 125:
             problems.append(f"killed or crashed (status {r.returncode})")
         if r.stdout:

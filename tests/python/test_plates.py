@@ -122,3 +122,18 @@ def test_one_plate_leaves_what_it_cannot_see_at_zero(cli, tmp_path):
     text = yaml.read_text()
     assert hashlib.sha256(plate.read_bytes()).hexdigest() in text and 'by: "mtacc ' in text
     assert text.count("standard_uncertainty: null") == sum(not e["determined"] for e in r["estimates"])
+
+
+def test_the_written_layout_reads_back_to_the_last_digit(tmp_path):
+    # The header of a simulated plate states the layout it was simulated with; at 6 significant
+    # digits a stylus of 60.0001234 mm came back as 60.0001.
+    path = tmp_path / "plate.csv"
+    mtacc.Machine("maho").simulate_plate(path, origin=(-300.1234567, -455, -160), stylus=(0.1234567, 0, 60.0001234))
+    header = dict(line[2:].split(": ", 1) for line in path.read_text().splitlines() if line.startswith("# "))
+
+    def numbers(key):
+        return [float(x) for x in header[key].removesuffix(" mm").replace("/", ",").split(",")]
+
+    assert numbers("stylus") == [0.1234567, 0.0, 60.0001234]
+    assert numbers("origin") == [-300.1234567, -455.0, -160.0]
+    assert numbers("axes") == [1.0, 0.0, 0.0, 0.0, 1.0, 0.0]

@@ -34,7 +34,7 @@ struct PathDeviationOptions {
 // program's own, at the same s of each move. Against another program the distance is to the
 // closest point of its sampled path (chords between its samples), searched in order along it:
 // a path that runs the intended one backwards or skips far ahead is measured against the nearest
-// stretch found from where it last was. Throws std::invalid_argument for a step outside
+// stretch found from where it last was. Throws InvalidInput for a step outside
 // [1 um, 100 mm] or an intended program without feed moves.
 ProgramPathDeviation programPathDeviation(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors,
                                           const GcodeProgram& program, const GcodeProgram* intended,

@@ -23,6 +23,14 @@ class InputError : public std::runtime_error {
   std::string reason_;
 };
 
+// Bad input found by domain code, which cannot name the file or key it came from: the workflow
+// that called it catches it to add them, and a front end that receives it unlocated still
+// reports it as any InputError (exit code 2, mtacc.InputError in Python).
+class InvalidInput : public InputError {
+ public:
+  explicit InvalidInput(const std::string& what) : InputError({}, what) {}
+};
+
 // Input that is well formed but asks for a pose the machine cannot reach (a TCP or a tool
 // direction out of its reach): the CLI reports it as any InputError, Python raises
 // UnreachablePose (itself an InputError there).

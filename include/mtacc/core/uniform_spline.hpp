@@ -12,11 +12,11 @@ namespace mtacc {
 
 class UniformSpline {
  public:
-  // Samples at start + k * period, k = 0 .. n - 1. Throws std::invalid_argument for fewer than
+  // Samples at start + k * period, k = 0 .. n - 1. Throws InvalidInput for fewer than
   // four samples, a period that is not positive and finite, or a value that is not finite.
   UniformSpline(double start, double period, std::span<const double> values, Interpolation kind = Interpolation::CubicSpline);
 
-  // Where t falls: the interval and the fraction of it. Throws std::invalid_argument for t
+  // Where t falls: the interval and the fraction of it. Throws InvalidInput for t
   // outside [first(), last()] beyond a millionth of a period.
   struct Location {
     size_t interval;

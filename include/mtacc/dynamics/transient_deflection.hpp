@@ -14,7 +14,7 @@ namespace mtacc {
 // every `period` s, all of one length; an empty series for an axis that does not move.
 // `positions`: the axes' positions (m) at which the structure is assembled. Returns the
 // displacement (m, machine frame) at each sample, starting at rest. Throws InputError as
-// assembleStructure and undampedModes do, std::invalid_argument for series of other lengths
+// assembleStructure and undampedModes do, InvalidInput for series of other lengths
 // or a period that is not positive and finite.
 std::vector<Vec3> accelerationDeflection(const StructureModel& model, const std::vector<double>& positions,
                                          const std::vector<std::vector<double>>& accelerations, double period);

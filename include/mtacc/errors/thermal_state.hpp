@@ -40,7 +40,7 @@ PiecewiseTerm scaleExpansionTerm(const ScaleSensors& sensors, const std::vector<
 // table's, is -Delta); and with the spindle's drift: the rigid motion of the spindle that moves
 // probe set 1 by the predicted (X, Y, Z) and turns by (A, B) (rotationXYZ), added to the
 // spindle's location errors at its location point, in the frame the spindle is mounted in (the
-// machine's at the rotary axes' zero). Throws std::invalid_argument for a scale's axis that is not
+// machine's at the rotary axes' zero). Throws InvalidInput for a scale's axis that is not
 // linear or has no travel, a scale given twice, or a spindle's drift on a machine without one.
 ErrorModel atThermalState(const Machine& machine, ErrorModel errors, const ThermalState& state);
 // The TCP's displacement by the spindle's drift (mm, in the spindle's frame): probe set 1's,

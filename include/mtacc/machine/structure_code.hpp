@@ -18,7 +18,7 @@ struct StructureCode {
   std::string toolFirst() const;
 };
 
-// Throws std::invalid_argument with a reason when the code cannot be read.
+// Throws InvalidInput with a reason when the code cannot be read.
 StructureCode parseStructureCode(const std::string& text);
 
 }  // namespace mtacc

@@ -19,7 +19,7 @@ struct EccentricityFit {
   double cos2 = 0, sin2 = 0;         // mm
   double rms = 0;                    // residual, mm
 };
-// Throws std::invalid_argument for a run without angles, or with fewer than 8 samples.
+// Throws InvalidInput for a run without angles, or with fewer than 8 samples.
 EccentricityFit fitEccentricity(const MeasurementRun& run, bool secondHarmonics = true);
 
 struct CircularDirection {

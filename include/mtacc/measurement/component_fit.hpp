@@ -45,7 +45,7 @@ struct ComponentFit {
   Eigen::RowVectorXd basis(double x) const;
 };
 
-// Throws std::invalid_argument for fewer points than parameters, breaks that do not increase,
+// Throws InvalidInput for fewer points than parameters, breaks that do not increase,
 // points outside [t_0, t_k] or a degree other than 1 or 2 (the readers check first and say where).
 ComponentFit fitComponent(const std::vector<double>& x, const std::vector<double>& y, const ComponentFitOptions& options);
 

@@ -4,10 +4,10 @@
 // Solver) on the exact model, with standard uncertainties from the covariance. The plan is
 // checked for observability first; a parameter set it cannot determine is refused.
 #include <memory>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/measurement/measurement.hpp"
 #include "mtacc/measurement/observability.hpp"
 
@@ -76,17 +76,16 @@ PredictedUncertainty predictUncertainty(const IdentificationProblem& problem, co
 IdentifiableColumns proposeIdentifiableSet(const IdentificationProblem& problem, int threads = kAllCores);
 
 // Refusal of a parameter set the plan cannot determine; what() lists the findings.
-class NotIdentifiable : public std::runtime_error {
+class NotIdentifiable : public InvalidInput {
  public:
-  NotIdentifiable(ObservabilityReport report, const std::string& what)
-      : std::runtime_error(what), report_(std::move(report)) {}
+  NotIdentifiable(ObservabilityReport report, const std::string& what) : InvalidInput(what), report_(std::move(report)) {}
   const ObservabilityReport& report() const { return report_; }
 
  private:
   ObservabilityReport report_;
 };
 
-// Throws NotIdentifiable, or std::invalid_argument for runs without readings or fewer
+// Throws NotIdentifiable, or InvalidInput for runs without readings or fewer
 // readings than unknowns.
 IdentificationResult identify(const IdentificationProblem& problem, const IdentificationOptions& options = {});
 

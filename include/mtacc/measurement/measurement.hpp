@@ -128,7 +128,7 @@ struct ReadingContext {
   std::span<const SetupParameter> setupParameters = {};
   // pointJacobian of toolBallWithSetupError(run) at run.setup.setAt, computed once per run
   // by the caller: required for the derivatives of a ballbar set at the tool ball
-  // (std::invalid_argument otherwise), ignored else.
+  // (InvalidInput otherwise), ignored else.
   const PointJacobian* setAt = nullptr;
 };
 // The same as predictReading, from what is fixed per run and per pose (many poses).

@@ -1,7 +1,7 @@
 #pragma once
 // Hole plates and ball plates (seed 003 ch. 4.3, 5.3, App. C; extraction §7): a calibrated
 // grid of features probed on the machine in any plane and position. Simulation of a plate
-// measurement (D_h = E(q_h) - E(q_ref), axis positions from the generic inverse kinematics),
+// measurement (D_h = -(E(q_h) - E(q_ref)), axis positions from the generic inverse kinematics),
 // processing of measured plates (temperatures, misalignment), the k = 2 budget of the
 // residual model - measurement (§7.5), and the identification of component errors from
 // several plate positions with per-position nuisance parameters (§7.7).
@@ -59,11 +59,11 @@ PlatePoses platePoses(const KinematicModel& nominal, const Plate& plate, const P
 // each plane at the two ends of both in-plane ranges (2 x 2 positions) and on two levels along the
 // normal (a quarter and three quarters of its range), the second level probed with a stylus
 // `stylus` mm off the TCP along the normal (a second stylus, for the rotations): 24 placements,
-// named XY1..XY8, XZ9..XZ16, YZ17..YZ24. Throws std::invalid_argument when the plate does not fit.
+// named XY1..XY8, XZ9..XZ16, YZ17..YZ24. Throws InvalidInput when the plate does not fit.
 std::vector<PlatePlacement> cubePlacements(const KinematicModel& nominal, const Plate& plate, double stylus = 60.0);
 
 // Deviations (u, v) of each probed feature relative to the reference feature, as the machine
-// with `actual`'s errors measures them (seed 003 §5.3: D_h = E(q_h) - E(q_ref)), mm; one row per
+// with `actual`'s errors measures them (D_h = -(E(q_h) - E(q_ref)), the sign of docs/conventions.md), mm; one row per
 // feature, the reference first (zero).
 Eigen::MatrixX2d simulatePlate(const KinematicModel& actual, const KinematicModel& nominal, const Plate& plate,
                                const PlatePlacement& placement, const PlatePoses& poses);

@@ -30,7 +30,7 @@ struct RTestEvaluation {
   std::optional<AboutTheAxis> aboutTheAxis;
 };
 
-// Throws std::invalid_argument for a run that is not an R-test or whose axes do not move.
+// Throws InvalidInput for a run that is not an R-test or whose axes do not move.
 RTestEvaluation evaluateRTest(const KinematicModel& nominal, const MeasurementRun& run);
 
 }  // namespace mtacc

@@ -17,7 +17,7 @@ namespace mtacc {
 void placeToolPoint(const KinematicModel& nominal, std::vector<double>& q, const Vec3& toolPoint, const Vec3& target);
 
 // Plot plane of a circular test: "XY", "YZ", "ZX" (first axis: angle 0, counter-clockwise
-// towards the second). Throws std::invalid_argument for other names.
+// towards the second). Throws InvalidInput for other names.
 std::array<Vec3, 2> planeAxes(const std::string& plane);
 
 // The centre ball is set at the actual tool ball with the centre commanded.

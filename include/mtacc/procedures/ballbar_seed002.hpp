@@ -26,7 +26,7 @@ struct Seed002Deviations {
   double dxBT, dzBT, alphaBT, alphaXB, betaXB, gammaXB, alphaYZ, betaYZ, dxCZ, dyCZ, alphaCZ, betaCZ;
 };
 
-// Throws std::invalid_argument when the set-up cannot separate them (Z_C' = Z_C, R_B'' = R_B,
+// Throws InvalidInput when the set-up cannot separate them (Z_C' = Z_C, R_B'' = R_B,
 // R_B = 0 or R_C = 0).
 Seed002Deviations identifySeed002(const Seed002Eccentricities& e, const Seed002Setup& s);
 

@@ -70,7 +70,7 @@ struct DecomposedTest {
 
 // What the method cannot split, by construction: a mean of the true dynamic error is booked as
 // drift (delta_d has zero mean in every test), and link and motion errors trade content with
-// each other (only their sum is fixed by the reference test). Throws std::invalid_argument on
+// each other (only their sum is fixed by the reference test). Throws InvalidInput on
 // series of unequal lengths (a path of another length, or decreasing, when the path is the
 // parameter), fewer than two samples, times not increasing, a path that does not advance, a reference test of
 // no more samples than the fit has coefficients, or a reference index out of range.
@@ -95,7 +95,7 @@ struct DirectionStatistics {
 DirectionStatistics directionStatistics(const std::vector<Vec3>& series);
 
 // Eq. 23: value = kappa * feed^exponent, least squares on the logarithms. Throws
-// std::invalid_argument for fewer than two feeds, feeds all equal, or a value or feed <= 0.
+// InvalidInput for fewer than two feeds, feeds all equal, or a value or feed <= 0.
 struct PowerLaw {
   double kappa = 0.0, exponent = 0.0;
   double largestRelativeMisfit = 0.0;  // max |fit / value - 1| over the points

@@ -20,7 +20,7 @@ struct InterpolatorLimits {
 // `path`: the commanded axes at successive points (mm, rad), the controller's straight moves
 // between them (arcs given as dense points). `rotary` marks the axes measured in deg on the path.
 // Returns the commanded positions (mm, rad) every `period` s from time 0. Throws
-// std::invalid_argument for fewer than two distinct points, rows of another length, a feed,
+// InvalidInput for fewer than two distinct points, rows of another length, a feed,
 // limit or period that is not positive and finite, or more than 10^8 samples.
 SampledTrace interpolateMotion(const std::vector<std::vector<double>>& path, const std::vector<bool>& rotary, double feed,
                                const InterpolatorLimits& limits, double period);

@@ -50,7 +50,7 @@ struct AlignedTest {
 // arrival (its first sample at rest at the end), moved onto the encoder clock: the dwells before
 // and after are left out, so that the normalised time of eq. 17 means the same point of the path
 // at every feed (O5). `identified`: the machine with its identified link errors (delta_l = its
-// TCP minus the nominal TCP at the encoder positions). Throws std::invalid_argument when the offset cannot be
+// TCP minus the nominal TCP at the encoder positions). Throws InvalidInput when the offset cannot be
 // estimated (see estimateClockOffset) or fewer than four instrument samples fall inside the
 // moved motion and the encoder trace.
 AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicModel& identified, const RecordedSignals& signals,

@@ -14,7 +14,7 @@ struct ServoGains {
 
 // The axis position at each command sample, the command being linear between samples `period`
 // s apart and the axis at rest on the first sample. The loop is integrated exactly over each
-// interval. Throws std::invalid_argument for a gain or period that is not positive and finite or
+// interval. Throws InvalidInput for a gain or period that is not positive and finite or
 // a feed-forward outside [0, 1].
 std::vector<double> followCommand(std::span<const double> command, double period, const ServoGains& gains);
 

@@ -38,12 +38,12 @@ struct ClockOffset {
 // weigh alike; a channel that does not move is left out. The offset is searched over the
 // window at the encoder period (at most 20 000 steps), then refined by Gauss-Newton on the
 // interpolated traces to the misfit's minimum. Throws
-// std::invalid_argument for traces with different channel counts, no moving channel, an empty
+// InvalidInput for traces with different channel counts, no moving channel, an empty
 // window, or offsets whose overlap holds fewer than a quarter of the encoder samples.
 ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace& encoder, const ClockOffsetSearch& search = {});
 
 // Each channel of `trace`, with its clock moved by `offset`, at the given times (s). Throws
-// std::invalid_argument when a time falls outside the moved trace's span.
+// InvalidInput when a time falls outside the moved trace's span.
 std::vector<std::vector<double>> resampleTrace(const SampledTrace& trace, double offset, const std::vector<double>& times,
                                                Interpolation interpolation = Interpolation::CubicSpline);
 

@@ -38,7 +38,7 @@ struct VirtualRecording {
   std::vector<Vec3> dynamic;      // the structure's deflection
 };
 
-// `reference`: the interpolator's output (mm, rad) from time 0. Throws std::invalid_argument for a
+// `reference`: the interpolator's output (mm, rad) from time 0. Throws InvalidInput for a
 // servo list of the wrong length, an NC period that is not a whole multiple of the reference's,
 // a clock offset that leaves fewer than four command samples, or a negative noise; InputError
 // from the structure as accelerationDeflection does.

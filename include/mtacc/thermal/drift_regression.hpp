@@ -40,7 +40,7 @@ struct DriftModel {
   Eigen::VectorXd positionStandardErrors() const;  // of gamma_i; empty when not position-dependent
 };
 
-// Throws std::invalid_argument for fewer samples than parameters + 1, a value that is not finite, a
+// Throws InvalidInput for fewer samples than parameters + 1, a value that is not finite, a
 // sensor index out of range or given twice, a sensor or a given position that does not change
 // (no slope to fit), or positions not one per sample.
 DriftModel fitDriftModel(const ThermalRecord& record, const std::vector<int>& sensors);
@@ -69,7 +69,7 @@ struct SensorSelection {
 // most, while it does so by at least minimumImprovement; after each addition, remove a chosen
 // sensor whose removal raises it by less than that (the one that costs least), as long as one
 // does. Each sensor brings beta_i (and gamma_i with positions). Every fit comes from the blocks'
-// Gram matrices, formed once. Throws std::invalid_argument as fitDriftModel does, for fewer than
+// Gram matrices, formed once. Throws InvalidInput as fitDriftModel does, for fewer than
 // two folds, or fewer samples per fold than the largest model's parameters + 1.
 SensorSelection selectSensors(const ThermalRecord& record, const SensorSelectionOptions& options = {});
 

@@ -36,7 +36,7 @@ struct MandrelDrift {
   const std::optional<Eigen::VectorXd>& operator[](DriftDirection d) const { return series[static_cast<int>(d)]; }
 };
 
-// Throws std::invalid_argument for probes of unequal lengths, no probe at all, or two heights
+// Throws InvalidInput for probes of unequal lengths, no probe at all, or two heights
 // that coincide while a tilt needs them.
 MandrelDrift mandrelDrift(const MandrelProbes& probes);
 

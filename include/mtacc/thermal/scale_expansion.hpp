@@ -17,7 +17,7 @@ struct ScaleSensors {
 // Delta(p) = alpha * integral from p_ref to p of (T(u) - T_ref) du, in mm, with T linear between
 // adjacent sensors and held at the end sensors' temperatures beyond them. A warm scale reads
 // short: the true position is the assigned one plus Delta, so a compensation subtracts it.
-// Throws std::invalid_argument for fewer than two sensors, positions that do not increase, a
+// Throws InvalidInput for fewer than two sensors, positions that do not increase, a
 // temperature per sensor missing, or a value that is not finite.
 double scaleExpansion(const ScaleSensors& scale, std::span<const double> temperatures, double position);
 

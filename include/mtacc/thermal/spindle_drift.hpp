@@ -19,7 +19,7 @@ struct SpindleDriftModel {
   std::optional<DriftModel> directions[5];
 };
 
-// (X, Y, Z, A, B, 0) at `temperatures` (degC, one per sensor). Throws std::invalid_argument for
+// (X, Y, Z, A, B, 0) at `temperatures` (degC, one per sensor). Throws InvalidInput for
 // a temperature count that is not the sensors'.
 Vec6 spindleDrift(const SpindleDriftModel& model, const Eigen::VectorXd& temperatures);
 // One standard deviation of each direction's prediction there (of a new reading: the

@@ -31,7 +31,7 @@ struct VirtualThermalMachine {
 // speed), `period` s apart, each load held over its period and the nodes following exactly
 // (first order, each also towards the room), the drift read where the axis stands (`positions`,
 // mm, one per sample; empty: at 0). Also returns the true drift and node temperatures,
-// noise-free. Throws std::invalid_argument for a machine whose lists do not match, a node of
+// noise-free. Throws InvalidInput for a machine whose lists do not match, a node of
 // non-positive time constant, a period that is not positive, or positions not one per sample.
 struct ThermalRecording {
   ThermalRecord record;       // the sensors and the measured drift (with noise)

@@ -43,7 +43,7 @@ struct SimulationResult {
 SimulationResult simulateRuns(const MachineSetup& setup, std::vector<MeasurementRun> runs, const SimulationOptions& options);
 nlohmann::json toJson(const SimulationResult& result);
 
-// The runs of the standard paths, simulated (see standard_paths.hpp); std::invalid_argument of
+// The runs of the standard paths, simulated (see standard_paths.hpp); InvalidInput of
 // a path becomes an InputError.
 SimulationResult simulateBallbarCircle(const MachineSetup& setup, const BallbarCircleSpec& spec, const SimulationOptions& options);
 SimulationResult simulateSphereTest(const MachineSetup& setup, const SphereTestSpec& spec, const SimulationOptions& options);
