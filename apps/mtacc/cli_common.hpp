@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
@@ -29,6 +30,10 @@ struct MachineOptions {
 void addMachineOptions(CLI::App& cmd, MachineOptions& o);
 // A workpiece load in kg, 0 to 1e6 (--load).
 CLI::Validator loadInKg();
+// Adds a flag --key ('_' written '-') for each key of a workflow's schema, storing what is given
+// in `values` for the workflow's reader; `aliases` gives a key further flag names ("--params").
+void addSchemaOptions(CLI::App& cmd, const OptionSchema& schema, OptionValues& values,
+                      const std::map<std::string, std::string>& aliases = {});
 // Adds --json and -o only.
 void addOutputOptions(CLI::App& cmd, MachineOptions& o);
 

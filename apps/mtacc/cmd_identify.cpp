@@ -4,12 +4,9 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
-
 #include <iostream>
 
 #include "cli_common.hpp"
-#include "mtacc/core/input_error.hpp"
-#include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/identified_errors.hpp"
@@ -18,30 +15,10 @@ namespace mtacc::cli {
 namespace {
 
 struct IdentifyCliOptions : MachineOptions {
-  std::vector<std::string> data;
-  std::string plan, params, setup, robustScale = "2 um", noise, errorsOut;
-  double uncertaintyFraction = 0.1;
-  bool robust = false, strict = false, fromNominal = false;
-  int threads = kAllCores;
+  OptionValues values;
+  std::string errorsOut;
+  bool strict = false;
 };
-
-IdentificationRequest request(const IdentifyCliOptions& o) {
-  IdentificationRequest r;
-  r.plan = o.plan;
-  for (const auto& d : o.data)
-    for (const auto& f : splitList(d)) r.data.push_back(f);
-  r.parameters = splitList(o.params);
-  if (!o.setup.empty()) r.setup = splitList(o.setup);
-  r.robust = o.robust;
-  r.fromNominal = o.fromNominal;
-  r.robustScale = parseQuantityAs(o.robustScale, Dimension::Length, "--robust-scale");
-  if (!o.noise.empty()) r.noise = parseQuantityAs(o.noise, Dimension::Length, "--noise");
-  r.uncertaintyFraction = o.uncertaintyFraction;
-  if (o.threads < 0 || o.threads > 1024)
-    throw InputError(InputLocation{"", 0, "--threads"}, "must be from 0 (every core) to 1024");
-  r.threads = o.threads;
-  return r;
-}
 
 std::string reportText(const ObservabilityReport& r, Eigen::Index readings) {
   std::string s = fmt::format("{} readings, {} unknowns: rank {}, condition number {:.3g} (columns scaled to unit norm)\n",
@@ -81,7 +58,7 @@ std::string predictionText(const ObservabilityResult& r) {
 }
 
 void observability(const IdentifyCliOptions& o) {
-  const auto r = planObservability(loadMachineSetup(o.source), request(o));
+  const auto r = planObservability(loadMachineSetup(o.source), identificationRequest(observabilitySchema(), o.values));
   std::string csv = "index,singular_value\n";
   for (Eigen::Index i = 0; i < r.report.singularValues.size(); ++i) csv += fmt::format("{},{}\n", i + 1, r.report.singularValues[i]);
   emit(o, toJson(r),
@@ -91,18 +68,8 @@ void observability(const IdentifyCliOptions& o) {
 }
 
 void identify(const IdentifyCliOptions& o) {
-  emitIdentification(o, identifyParameters(loadMachineSetup(o.source), request(o)), o.strict, o.errorsOut);
-}
-
-void addOptions(CLI::App* cmd, IdentifyCliOptions& o) {
-  addMachineOptions(*cmd, o);
-  cmd->add_option("--data", o.data, "Measurement CSV files (several after one --data, or --data repeated, or comma-separated)");
-  cmd->add_option("--plan", o.plan, "Test plan (YAML) or bundled plan name");
-  cmd->add_option("--params", o.params, "Parameters to determine, e.g. X0B,Z0B,A0C (ISO names or aliases)");
-  cmd->add_option("--setup", o.setup, "Set-up errors to estimate in every run, e.g. xW,yW,zW (overrides the files)");
-  cmd->add_option("--threads", o.threads, "Threads (0 = all cores)")->capture_default_str();
-  cmd->add_flag("--from-nominal", o.fromNominal,
-                "Hold the errors not determined at zero (the nominal machine) instead of the machine file's or --errors' values");
+  emitIdentification(o, identifyParameters(loadMachineSetup(o.source), identificationRequest(identificationSchema(), o.values)), o.strict,
+                     o.errorsOut);
 }
 
 }  // namespace
@@ -160,24 +127,18 @@ void emitIdentification(const MachineOptions& o, const IdentificationOutcome& ou
 }
 
 void addIdentifyCommands(CLI::App& app) {
+  const std::map<std::string, std::string> aliases{{"parameters", "--params"}};
   auto o = std::make_shared<IdentifyCliOptions>();
   auto* id = app.add_subcommand("identify", "Least-squares identification of error parameters from measurement files");
-  addOptions(id, *o);
-  id->add_flag("--robust", o->robust, "Huber loss instead of plain least squares");
-  id->add_option("--robust-scale", o->robustScale, "Residual beyond which the Huber loss is linear")->capture_default_str();
-  id->add_option("--noise", o->noise, "Reading noise (standard deviation) for the goodness-of-fit test, e.g. 0.5um; "
-                                      "default: the files' '# noise:' lines");
-  id->add_option("--uncertainty-fraction", o->uncertaintyFraction,
-                 "Warn when a standard uncertainty exceeds this fraction of the plausible magnitude (50 um, 200 urad)")
-      ->capture_default_str();
+  addMachineOptions(*id, *o);
+  addSchemaOptions(*id, identificationSchema(), o->values, aliases);
   id->add_flag("--strict", o->strict, "Exit with status 4 when the fit or the conditioning draws a warning");
   addErrorsOutOption(*id, o->errorsOut);
   id->callback([o] { identify(*o); });
 
   auto* obs = app.add_subcommand("observability", "Which parameters a test plan can determine (SVD of its Jacobian)");
-  addOptions(obs, *o);
-  obs->add_option("--noise", o->noise, "Reading noise (standard deviation), e.g. 0.5um: the uncertainty each parameter would get; "
-                                       "default: the plan's runs' 'noise:'");
+  addMachineOptions(*obs, *o);
+  addSchemaOptions(*obs, observabilitySchema(), o->values, aliases);
   obs->callback([o] { observability(*o); });
 }
 

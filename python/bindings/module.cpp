@@ -28,6 +28,7 @@
 #include "mtacc/workflows/tcp_uncertainty.hpp"
 #include "mtacc/workflows/kinematics_batch.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
+#include "mtacc/workflows/option_schemas.hpp"
 #include "mtacc/workflows/plates.hpp"
 #include "mtacc/workflows/positioning.hpp"
 #include "mtacc/workflows/report_paths.hpp"
@@ -122,6 +123,17 @@ PYBIND11_MODULE(_mtacc, mod) {
   mod.attr("__version__") = version();
   static py::exception<InputError> inputError(mod, "InputError", PyExc_ValueError);
   static py::exception<UnreachablePose> unreachable(mod, "UnreachablePose", inputError.ptr());
+  mod.def("option_keys", [](const std::string& workflow) {
+    const auto& schemas = workflowOptionSchemas();
+    const auto it = schemas.find(workflow);
+    if (it == schemas.end()) throw InputError({"", 0, "workflow"}, "no option schema for '" + workflow + "'");
+    return it->second->keys();
+  }, py::arg("workflow"));
+  mod.def("option_schema_workflows", [] {
+    std::vector<std::string> names;
+    for (const auto& [name, schema] : workflowOptionSchemas()) names.push_back(name);
+    return names;
+  });
   mod.def("positioning", [](const std::string& path) { return toPython(toJson(evaluatePositioningFile(path))); }, py::arg("path"));
   mod.def("thermal_state", [](const std::string& machine, const std::string& thermal, int points) {
     return toPython(thermalStateSummary({machine, "", "", std::nullopt, thermal}, points));
@@ -479,18 +491,11 @@ PYBIND11_MODULE(_mtacc, mod) {
       })
       .def("evaluate_ballbar", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(evaluateBallbarFile(s, path))); })
       .def("evaluate_rtest", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(evaluateRTestFile(s, path))); })
-      .def("observability", [](const PythonMachine& s, const std::string& plan, const std::vector<std::string>& parameters,
-                               const std::string& noise) {
-        IdentificationRequest request{.plan = plan, .parameters = parameters};
-        if (!noise.empty()) request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
-        return toPython(toJson(planObservability(s, request)));
+      .def("observability", [](const PythonMachine& s, const OptionValues& options) {
+        return toPython(toJson(planObservability(s, identificationRequest(observabilitySchema(), options))));
       })
-      .def("identify", [](const PythonMachine& s, const std::vector<std::string>& files, const std::vector<std::string>& parameters,
-                          const std::string& plan, bool robust, const std::string& noise, double uncertaintyFraction, bool fromNominal,
-                          const std::string& errorsOut) {
-        IdentificationRequest request{.plan = plan, .data = files, .parameters = parameters, .robust = robust, .fromNominal = fromNominal};
-        if (!noise.empty()) request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
-        request.uncertaintyFraction = uncertaintyFraction;
+      .def("identify", [](const PythonMachine& s, const OptionValues& options, const std::string& errorsOut) {
+        const IdentificationRequest request = identificationRequest(identificationSchema(), options);
         IdentificationOutcome out;
         {
           py::gil_scoped_release release;

@@ -106,6 +106,23 @@ def _with_arrays(result, *paths):
     return result
 
 
+def _options(**given):
+    """Keyword arguments as a workflow's option values (the CLI's flags, by the same keys): None
+    leaves the workflow's default, a list or tuple gives each item, True/False a flag, anything else
+    its text (a number, a path, "0.5 um")."""
+    values = {}
+    for key, value in given.items():
+        if value is None:
+            continue
+        if isinstance(value, bool):
+            values[key] = ["true" if value else "false"]
+        elif isinstance(value, (list, tuple)):
+            values[key] = [str(v) for v in value]
+        else:
+            values[key] = [str(value)]
+    return values
+
+
 def _pose_text(pose, key):
     """{axis: mm or deg}, or the CLI's pose text itself, as the CLI's pose text "B=10.0,C=0.0"."""
     if isinstance(pose, str):
@@ -491,31 +508,37 @@ class Machine:
         return _with_arrays(self._core.evaluate_rtest(str(path)), ("position",), ("readings_um",), ("q",),
                             ("about_the_axis", "radial_axial_tangential_um"))
 
-    def observability(self, plan, parameters=None, noise=None):
-        """Rank, singular values and findings of a test plan (as `mtacc observability --json`), for the
-        plan's parameters or `parameters`. result["singular_values"] (p,) of the column-normalised
-        Jacobian, descending; result["singular_vectors"] (k, p) the right singular vectors as rows
-        (numpy.linalg.svd's Vh), over result["names"]; a parameter without effect is 0 in every row.
+    def observability(self, plan, data=None, parameters=None, setup=None, noise=None, from_nominal=None, threads=None):
+        """Rank, singular values and findings of a test plan (as `mtacc observability --json`, whose
+        options these keyword arguments are, with its defaults), for the plan's parameters or
+        `parameters`; `data`: measurement files whose runs are added to the plan's.
+        result["singular_values"] (p,) of the column-normalised Jacobian, descending;
+        result["singular_vectors"] (k, p) the right singular vectors as rows (numpy.linalg.svd's Vh),
+        over result["names"]; a parameter without effect is 0 in every row.
         result["identifiable_set"]: when the plan cannot determine every parameter, the set it can
         ("parameters", each with what its estimate "stands_for") and those to hold at zero ("held").
         noise (e.g. "0.5 um"; default: the plan's runs' `noise:`): result["prediction"] gives each
         parameter's predicted standard uncertainty (um, urad; set-up unknowns flagged "setup") and
         result["prediction"]["correlation"] (q, q) over them."""
-        return _with_arrays(self._core.observability(str(plan), list(parameters or []), _text(noise)), ("singular_values",),
-                            ("singular_vectors",), ("prediction", "correlation"))
+        options = _options(plan=plan, data=data, parameters=parameters, setup=setup, noise=noise, from_nominal=from_nominal,
+                           threads=threads)
+        return _with_arrays(self._core.observability(options), ("singular_values",), ("singular_vectors",),
+                            ("prediction", "correlation"))
 
-    def identify(self, files, parameters=None, plan=None, robust=False, noise=None, uncertainty_fraction=0.1,
-                 from_nominal=False, errors_out=None):
+    def identify(self, data, parameters=None, plan=None, setup=None, robust=None, robust_scale=None, noise=None,
+                 uncertainty_fraction=None, from_nominal=None, threads=None, errors_out=None):
         """Least-squares estimates with standard uncertainties (um or urad, "unit"), covariance (um^2,
-        um urad, urad^2) and correlation (as `mtacc identify --json`) from measurement CSV files; the parameters default to the plan's list; refuses (InputError) a
-        set the data cannot determine. `noise` (e.g. "0.5 um", default: the files' '# noise:'
-        lines) feeds the goodness-of-fit test; result["quality"]["warnings"] lists what is doubtful.
-        The errors not determined are held at this machine's values (result["held"] names the
-        non-zero ones); from_nominal=True holds them at zero. errors_out: a path to write the identified
-        errors to, as an errors file that Machine(errors=...) and every command's --errors read
-        (docs/file-formats.md "Identified errors")."""
-        return self._core.identify([str(f) for f in files], list(parameters or []), _text(plan), robust, _text(noise),
-                                   uncertainty_fraction, bool(from_nominal), _text(errors_out))
+        um urad, urad^2) and correlation (as `mtacc identify --json`, whose options these keyword
+        arguments are, with its defaults) from the measurement CSV files `data`; the parameters default
+        to the plan's list; refuses (InputError) a set the data cannot determine. `noise` (e.g.
+        "0.5 um", default: the files' '# noise:' lines) feeds the goodness-of-fit test;
+        result["quality"]["warnings"] lists what is doubtful. The errors not determined are held at
+        this machine's values (result["held"] names the non-zero ones); from_nominal=True holds them at
+        zero. errors_out: a path to write the identified errors to, as an errors file that
+        Machine(errors=...) and every command's --errors read (docs/file-formats.md "Identified errors")."""
+        options = _options(data=list(data), plan=plan, parameters=parameters, setup=setup, robust=robust, robust_scale=robust_scale,
+                           noise=noise, uncertainty_fraction=uncertainty_fraction, from_nominal=from_nominal, threads=threads)
+        return self._core.identify(options, _text(errors_out))
 
     def xy_circle(self):
         """The report's X-Y circle: radial TCP deviation [um] at each angle [deg] around mid-travel, or

@@ -144,9 +144,57 @@ std::string IdentifiableSetProposal::standsFor(size_t k) const {
   return s;
 }
 
+const OptionSchema& identificationSchema() {
+  static const OptionSchema schema{
+      "identify",
+      {{"data", OptionKind::List, "Measurement CSV files"},
+       {"plan", OptionKind::Text, "Test plan (YAML) or bundled plan name: its runs (observability) and its parameter list"},
+       {"parameters", OptionKind::List, "Parameters to determine, e.g. X0B,Z0B,A0C (ISO names or aliases); default: the plan's list"},
+       {"setup", OptionKind::List, "Set-up errors to estimate in every run, e.g. xW,yW,zW (overrides the files)"},
+       {"robust", OptionKind::Flag, "Huber loss instead of plain least squares"},
+       {.key = "robust_scale", .kind = OptionKind::Quantity, .help = "Residual beyond which the Huber loss is linear", .defaultText = "2 um",
+        .low = 1e-6, .high = 1.0, .outOfRange = "must be from 1 nm to 1 mm"},
+       {.key = "noise", .kind = OptionKind::Quantity,
+        .help = "Reading noise (standard deviation): identify tests the fit against it, observability predicts the uncertainties "
+                "from it; default: the files' '# noise:' lines, the plan's runs' 'noise:'",
+        .low = 1e-6, .high = 1.0, .outOfRange = "must be from 1 nm to 1 mm"},
+       {.key = "uncertainty_fraction", .kind = OptionKind::Number,
+        .help = "Warn when a standard uncertainty exceeds this fraction of the plausible magnitude (50 um, 200 urad)",
+        .defaultText = "0.1", .low = 0, .high = 1, .lowExcluded = true, .outOfRange = "must be above 0 and at most 1"},
+       {"from_nominal", OptionKind::Flag,
+        "Hold the errors not determined at zero (the nominal machine) instead of the machine file's or the errors file's values"},
+       {.key = "threads", .kind = OptionKind::Count, .help = "Threads (0: every core)", .defaultText = "0", .low = 0, .high = 1024,
+        .outOfRange = "must be from 0 (every core) to 1024"}}};
+  return schema;
+}
+
+const OptionSchema& observabilitySchema() {
+  static const OptionSchema schema =
+      identificationSchema().subset("observability", {"data", "plan", "parameters", "setup", "noise", "from_nominal", "threads"});
+  return schema;
+}
+
+IdentificationRequest identificationRequest(const OptionSchema& schema, const OptionValues& values) {
+  const OptionReader read(schema, values);
+  IdentificationRequest r;
+  r.data = read.list("data");
+  r.plan = read.text("plan").value_or("");
+  r.parameters = read.list("parameters");
+  if (values.contains("setup")) r.setup = read.list("setup");
+  r.noise = read.quantity("noise");
+  r.fromNominal = read.flag("from_nominal");
+  r.threads = *read.count("threads");
+  if (schema.find("robust")) {
+    r.robust = read.flag("robust");
+    r.robustScale = *read.quantity("robust_scale");
+    r.uncertaintyFraction = *read.number("uncertainty_fraction");
+  }
+  return r;
+}
+
 ObservabilityResult planObservability(const MachineSetup& setup, const IdentificationRequest& request) {
-  if (request.noise && !(*request.noise >= 1e-6 && *request.noise <= 1.0))
-    throw InputError(InputLocation{"", 0, "noise"}, "must be from 1 nm to 1 mm");
+  if (request.noise) requireInRange(observabilitySchema().at("noise"), *request.noise);
+  requireInRange(observabilitySchema().at("threads"), request.threads);
   auto p = buildProblem(setup, request, true);
   ObservabilityResult out{setup.machine, p.problem.runs.size(), countReadings(p.problem), planObservability(p.problem, request.threads), std::nullopt, std::nullopt, "", 0};
   IdentificationProblem determinable = p.problem;
@@ -245,12 +293,11 @@ double correlationOf(const IdentificationResult& r, Eigen::Index a, Eigen::Index
 }
 
 IdentificationOutcome identifyParameters(const MachineSetup& setup, const IdentificationRequest& request) {
-  if (request.robust && !(request.robustScale >= 1e-6 && request.robustScale <= 1.0))
-    throw InputError(InputLocation{"", 0, "robust_scale"}, "must be from 1 nm to 1 mm");
-  if (request.noise && !(*request.noise >= 1e-6 && *request.noise <= 1.0))
-    throw InputError(InputLocation{"", 0, "noise"}, "must be from 1 nm to 1 mm");
-  if (!(request.uncertaintyFraction > 0 && request.uncertaintyFraction <= 1))
-    throw InputError(InputLocation{"", 0, "uncertainty_fraction"}, "must be above 0 and at most 1");
+  const OptionSchema& schema = identificationSchema();
+  if (request.robust) requireInRange(schema.at("robust_scale"), request.robustScale);
+  if (request.noise) requireInRange(schema.at("noise"), *request.noise);
+  requireInRange(schema.at("uncertainty_fraction"), request.uncertaintyFraction);
+  requireInRange(schema.at("threads"), request.threads);
   auto p = buildProblem(setup, request, false);
   IdentificationOptions options;
   options.robust = request.robust;

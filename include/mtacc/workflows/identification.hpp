@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/measurement/identification.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
@@ -31,6 +32,13 @@ struct IdentificationRequest {
   // its plausible magnitude (kPlausibleLength, kPlausibleAngle).
   double uncertaintyFraction = 0.1;
 };
+
+// The options of `identify` and of `observability` (a subset), declared once: the CLI's flags and
+// Python's keyword arguments are these keys, read by identificationRequest.
+const OptionSchema& identificationSchema();
+const OptionSchema& observabilitySchema();
+// The request the values describe, each checked against `schema`; throws InputError naming the key.
+IdentificationRequest identificationRequest(const OptionSchema& schema, const OptionValues& values);
 
 // The plausible magnitude of a geometric or set-up error of a machine tool: about four times
 // the largest location-error limits of seed 000 Table 3.9 (11.6 um and 50 urad,

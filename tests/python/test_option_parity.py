@@ -1,0 +1,51 @@
+"""A workflow whose options are declared in a schema has the same options at both front ends:
+the schema's keys, the CLI command's flags (--key, '_' written '-') and the Python method's
+keyword arguments are one set, besides what a front end adds of its own (listed with why)."""
+import inspect
+import re
+import subprocess
+
+import pytest
+
+import mtacc
+from mtacc import _mtacc
+
+# The machine and its set-up are the Python Machine's constructor; --json, -o and --strict shape
+# the CLI's output; errors_out is a file written by the front end (both have it).
+CLI_ONLY = {"help", "machine", "errors", "alignment", "load", "thermal", "json", "output", "strict"}
+BOTH_FRONT_ENDS = {"errors_out"}
+METHODS = {"identify": mtacc.Machine.identify, "observability": mtacc.Machine.observability}
+
+
+def cli_keys(cli, command):
+    text = subprocess.run([cli, command, "--help"], capture_output=True, text=True, check=True).stdout
+    keys = set()
+    for line in text.splitlines():
+        names = re.match(r"^  (-\S+)", line)
+        if not names:
+            continue
+        longs = [n for n in names.group(1).split(",") if n.startswith("--")]
+        if longs:
+            keys.add(longs[0][2:].replace("-", "_"))
+    positional = re.search(r"^Usage: \S+ \S+ \[OPTIONS\] (.*)$", text, flags=re.M)
+    keys |= set(positional.group(1).split()) if positional else set()
+    return keys
+
+
+def test_every_schema_has_a_python_method():
+    assert set(_mtacc.option_schema_workflows()) == set(METHODS)
+
+
+@pytest.mark.parametrize("workflow", sorted(METHODS))
+def test_cli_flags_python_keywords_and_schema_keys_agree(cli, workflow):
+    schema = set(_mtacc.option_keys(workflow))
+    assert cli_keys(cli, workflow) - CLI_ONLY - BOTH_FRONT_ENDS == schema
+    python = set(inspect.signature(METHODS[workflow]).parameters) - {"self"} - BOTH_FRONT_ENDS
+    assert python == schema
+
+
+def test_cli_keys_are_read_from_the_help(cli):
+    # The parser above must see flags, aliases and positionals, or the agreement is empty talk.
+    keys = cli_keys(cli, "identify")
+    assert {"machine", "parameters", "robust_scale", "from_nominal", "errors_out", "json", "output"} <= keys
+    assert "params" not in keys
