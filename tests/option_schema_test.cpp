@@ -67,6 +67,18 @@ TEST(OptionSchema, EachRefusalNamesItsKey) {
   EXPECT_EQ(refusal({{"threads", {"1025"}}}, [](const OptionReader& r) { r.count("threads"); }), "threads: must be from 0 to 1024");
 }
 
+TEST(OptionSchema, APositionalKeyMustBeGiven) {
+  const OptionSchema withFile{"file", {{.key = "test", .kind = OptionKind::Text, .help = "the file", .positional = true}}};
+  try {
+    OptionReader(withFile, {});
+    ADD_FAILURE() << "a missing positional key was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "test: is required");
+  }
+  const OptionValues given{{"test", {"a.csv"}}};
+  EXPECT_EQ(*OptionReader(withFile, given).text("test"), "a.csv");
+}
+
 TEST(OptionSchema, BothEndsOfARangeAsDeclared) {
   const OptionField& share = *schema().find("share");
   EXPECT_THROW(requireInRange(share, 0.0), InputError);

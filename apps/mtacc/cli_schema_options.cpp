@@ -20,7 +20,7 @@ std::string typeName(const OptionField& field) {
 
 void addSchemaOptions(CLI::App& cmd, const OptionSchema& schema, OptionValues& values, const std::map<std::string, std::string>& aliases) {
   for (const OptionField& field : schema.fields) {
-    std::string flag = "--" + field.key;
+    std::string flag = field.positional ? field.key : "--" + field.key;
     std::replace(flag.begin(), flag.end(), '_', '-');
     if (const auto alias = aliases.find(field.key); alias != aliases.end()) flag += "," + alias->second;
     const std::string help = optionHelp(field);
@@ -32,7 +32,8 @@ void addSchemaOptions(CLI::App& cmd, const OptionSchema& schema, OptionValues& v
                                                         help);
     else
       cmd.add_option_function<std::string>(flag, [&values, key](const std::string& given) { values[key] = {given}; }, help)
-          ->type_name(typeName(field));
+          ->type_name(typeName(field))
+          ->required(field.positional);
   }
 }
 

@@ -10,11 +10,12 @@ namespace mtacc::cli {
 namespace {
 
 struct DriftCliOptions : MachineOptions {
-  DriftTestRequest request;
+  OptionValues values;
 };
 
 void run(const DriftCliOptions& o) {
-  const auto r = evaluateDriftTest(o.request);
+  const DriftTestRequest request = driftTestRequest(o.values);
+  const auto r = evaluateDriftTest(request);
   const auto j = toJson(r);
   const bool positional = j.contains("position_axis");
   const std::string axis = positional ? j["position_axis"].get<std::string>() : "";
@@ -61,7 +62,7 @@ void run(const DriftCliOptions& o) {
   human += fmt::format("model: drift = offset + sum of coefficient x (T - T at the start) over the chosen sensors{}, chosen stepwise by "
                        "{}-fold\ncross-validated RMS in contiguous blocks; a model needing more than one sensor means one sensor cannot "
                        "explain the drift\n",
-                       positional ? fmt::format(", each coefficient linear in {} (per mm of its position)", axis) : "", o.request.selection.folds);
+                       positional ? fmt::format(", each coefficient linear in {} (per mm of its position)", axis) : "", request.selection.folds);
   emit(o, j, human, csv);
 }
 
@@ -71,15 +72,7 @@ void addDriftCommand(CLI::App& app) {
   auto o = std::make_shared<DriftCliOptions>();
   auto* cmd = app.add_subcommand("drift", "thermal drift test (ISO 230-3, seed 003: spindle, axis or the machine at rest): drift per "
                                           "direction, hysteresis, the temperatures that predict it");
-  cmd->add_option("test", o->request.file, "drift test (CSV, docs/file-formats.md \"Drift tests\")")->required();
-  cmd->add_option("--sensor", o->request.hysteresisSensor, "temperature for the hysteresis (default: the one that changes most)");
-  cmd->add_option("--folds", o->request.selection.folds, "cross-validation blocks")->capture_default_str()->check(CLI::Range(2, 100));
-  cmd->add_option("--max-sensors", o->request.selection.maximumSensors, "largest sensor set of a model")->capture_default_str()
-      ->check(CLI::Range(0, 64));
-  cmd->add_option("--position", o->request.positionAxis,
-                  "axis whose position (column AXIS_mm) the coefficients depend on (default: the one that moves, if one does)");
-  cmd->add_option("--save-model", o->request.saveModel,
-                  "write the models as the spindle's drift model (YAML) for a thermal state's spindle: (docs/file-formats.md)");
+  addSchemaOptions(*cmd, driftTestSchema(), o->values);
   addOutputOptions(*cmd, *o);
   cmd->callback([o] { run(*o); });
 }

@@ -138,12 +138,12 @@ PYBIND11_MODULE(_mtacc, mod) {
   mod.def("thermal_state", [](const std::string& machine, const std::string& thermal, int points) {
     return toPython(thermalStateSummary({machine, "", "", std::nullopt, thermal}, points));
   });
-  mod.def("drift_test", [](const std::string& path, const std::string& sensor, int folds, int maximumSensors, const std::string& position,
-                           size_t seriesPoints, const std::string& saveModel) {
+  mod.def("drift_test", [](const OptionValues& options, size_t seriesPoints) {
+    const DriftTestRequest request = driftTestRequest(options);
     DriftTestEvaluation evaluation;
     {
       py::gil_scoped_release release;
-      evaluation = evaluateDriftTest({path, sensor, {.folds = folds, .maximumSensors = maximumSensors}, position, saveModel});
+      evaluation = evaluateDriftTest(request);
     }
     return toPython(toJson(evaluation, seriesPoints));
   });

@@ -68,7 +68,7 @@ def thermal_state(machine, path, points=101):
     return _thermal_state(str(machine), str(path), int(points))
 
 
-def drift_test(path, sensor="", folds=5, max_sensors=8, position="", series_points=0, save_model=None):
+def drift_test(test, sensor=None, folds=None, max_sensors=None, position=None, save_model=None, series_points=0):
     """A thermal drift test (ISO 230-3, seed 003; docs/file-formats.md "Drift tests"), as
     `mtacc drift --json`: what test it is ("test"), per direction (X Y Z in um, A B in urad) the
     largest drift and its range, the warm-up / cool-down hysteresis against `sensor` (default: the
@@ -76,8 +76,10 @@ def drift_test(path, sensor="", folds=5, max_sensors=8, position="", series_poin
     coefficient linear in the position of axis `position` (default: the axis that moves, if one
     does). With series_points > 0 also the curves ("series": time, temperatures and positions; per
     direction its drift and the model's prediction). With save_model, the models are also written
-    there as a spindle drift model for a thermal state's `spindle:` (docs/file-formats.md)."""
-    return _drift_test(str(path), str(sensor), int(folds), int(max_sensors), str(position), int(series_points), _text(save_model))
+    there as a spindle drift model for a thermal state's `spindle:` (docs/file-formats.md). The
+    keyword arguments are the options of `mtacc drift`, with its defaults."""
+    options = _options(test=test, sensor=sensor, folds=folds, max_sensors=max_sensors, position=position, save_model=save_model)
+    return _drift_test(options, int(series_points))
 
 
 def _text(value):

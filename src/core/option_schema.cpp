@@ -54,6 +54,8 @@ OptionReader::OptionReader(const OptionSchema& schema, const OptionValues& value
     if (!f) throw InputError({"", 0, key}, fmt::format("not an option of {}; its options are: {}", schema.name, fmt::join(schema.keys(), ", ")));
     if (f->kind != OptionKind::List && given.size() > 1) throw InputError({"", 0, key}, "given more than once");
   }
+  for (const auto& f : schema.fields)
+    if (f.positional && !values.contains(f.key)) throw InputError({"", 0, f.key}, "is required");
 }
 
 const OptionField& OptionReader::field(const std::string& key, OptionKind kind) const {

@@ -1,12 +1,13 @@
 #include "mtacc/workflows/option_schemas.hpp"
 
 #include "mtacc/workflows/identification.hpp"
+#include "mtacc/workflows/thermal_drift.hpp"
 
 namespace mtacc {
 
 const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
-  static const std::map<std::string, const OptionSchema*> schemas{{"identify", &identificationSchema()},
-                                                                   {"observability", &observabilitySchema()}};
+  static const std::map<std::string, const OptionSchema*> schemas{
+      {"drift", &driftTestSchema()}, {"identify", &identificationSchema()}, {"observability", &observabilitySchema()}};
   return schemas;
 }
 

@@ -65,7 +65,37 @@ const char* nameOf(DriftTestKind kind) {
   return "thermal drift (no spindle speed recorded)";
 }
 
+const OptionSchema& driftTestSchema() {
+  static const OptionSchema schema{
+      "drift",
+      {{.key = "test", .kind = OptionKind::Text, .help = "drift test (CSV, docs/file-formats.md \"Drift tests\")", .positional = true},
+       {"sensor", OptionKind::Text, "temperature for the hysteresis; default: the one that changes most"},
+       {.key = "folds", .kind = OptionKind::Count, .help = "cross-validation blocks", .defaultText = "5", .low = 2, .high = 100,
+        .outOfRange = "must be from 2 to 100"},
+       {.key = "max_sensors", .kind = OptionKind::Count, .help = "largest sensor set of a model", .defaultText = "8", .low = 0, .high = 64,
+        .outOfRange = "must be from 0 to 64"},
+       {"position", OptionKind::Text,
+        "axis whose position (column AXIS_mm) the coefficients depend on; default: the one that moves, if one does"},
+       {"save_model", OptionKind::Text,
+        "write the models as the spindle's drift model (YAML) for a thermal state's spindle: (docs/file-formats.md)"}}};
+  return schema;
+}
+
+DriftTestRequest driftTestRequest(const OptionValues& values) {
+  const OptionReader read(driftTestSchema(), values);
+  DriftTestRequest r;
+  r.file = *read.text("test");
+  r.hysteresisSensor = read.text("sensor").value_or("");
+  r.selection.folds = *read.count("folds");
+  r.selection.maximumSensors = *read.count("max_sensors");
+  r.positionAxis = read.text("position").value_or("");
+  r.saveModel = read.text("save_model").value_or("");
+  return r;
+}
+
 DriftTestEvaluation evaluateDriftTest(const DriftTestRequest& request) {
+  requireInRange(driftTestSchema().at("folds"), request.selection.folds);
+  requireInRange(driftTestSchema().at("max_sensors"), request.selection.maximumSensors);
   DriftTestEvaluation out;
   out.test = readDriftTestCsv(request.file);
   const auto& test = out.test;

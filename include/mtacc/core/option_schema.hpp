@@ -31,6 +31,7 @@ struct OptionField {
   double low = 0, high = 0;
   bool lowExcluded = false;
   std::string outOfRange{};
+  bool positional = false;  // the CLI takes it without a flag name; it must be given
 };
 
 // Throws InputError naming the key with the field's outOfRange message when `value` (mm, rad for
@@ -55,7 +56,8 @@ using OptionValues = std::map<std::string, std::vector<std::string>>;
 std::string optionHelp(const OptionField& field);
 
 // Reads `values` against `schema`. Throws InputError naming the key for a key the schema does
-// not have, a scalar given twice, or a value that is not of its kind or out of its range.
+// not have, a positional key not given, a scalar given twice, or a value that is not of its kind
+// or out of its range.
 class OptionReader {
  public:
   OptionReader(const OptionSchema& schema, const OptionValues& values);

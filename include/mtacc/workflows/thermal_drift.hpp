@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/io/drift_test_csv.hpp"
 #include "mtacc/thermal/drift_regression.hpp"
 #include "mtacc/thermal/drift_test.hpp"
@@ -26,6 +27,10 @@ struct DriftTestRequest {
   std::string positionAxis;      // the axis whose position the drift depends on; empty: the one that moves, if one does
   std::string saveModel;         // where to write the spindle drift model (spindleDriftModel); empty: nowhere
 };
+
+// The options of `drift`, declared once (core/option_schema.hpp), and the request they describe.
+const OptionSchema& driftTestSchema();
+DriftTestRequest driftTestRequest(const OptionValues& values);
 
 enum class DriftTestKind { Spindle, AxisMotion, EnvironmentalVariation, Unstated };
 const char* nameOf(DriftTestKind kind);
