@@ -14,8 +14,7 @@ namespace mtacc::cli {
 namespace {
 
 struct BudgetCliOptions : MachineOptions {
-  int samples = 5;
-  std::string length, angle;
+  OptionValues values;
   int rows = 25;
 };
 
@@ -23,10 +22,7 @@ void run(const BudgetCliOptions& o) {
   if (o.rows < 0) throw InputError(InputLocation{"", 0, "--rows"}, "must not be negative");
   const auto setup = loadMachineSetup(o.source);
   const Machine& m = *setup.machine;
-  BudgetOptions options;
-  options.samplesPerAxis = o.samples;
-  if (!o.length.empty()) options.length = parseQuantityAs(o.length, Dimension::Length, "--length");
-  if (!o.angle.empty()) options.angle = parseQuantityAs(o.angle, Dimension::Angle, "--angle");
+  BudgetOptions options = budgetOptions(o.values);
   const bool tty = !o.json && isatty(2);
   options.progress = [tty](size_t done, size_t total) {
     if (tty) std::cerr << fmt::format("\rbudget: {}/{} parameters", done, total) << (done == total ? "\n" : "") << std::flush;
@@ -60,9 +56,7 @@ void addBudgetCommand(CLI::App& app) {
   auto o = std::make_shared<BudgetCliOptions>();
   auto* cmd = app.add_subcommand("budget", "error budget: largest TCP deviation of each error over the working volume");
   addMachineOptions(*cmd, *o);
-  cmd->add_option("--samples", o->samples, "positions per axis across its travel (default 5)");
-  cmd->add_option("--length", o->length, "budget every length error at this magnitude, e.g. '10 um'");
-  cmd->add_option("--angle", o->angle, "budget every angular error at this magnitude, e.g. '30 urad'");
+  addSchemaOptions(*cmd, budgetSchema(), o->values);
   cmd->add_option("--rows", o->rows, "rows to print (default 25)");
   cmd->callback([o] { run(*o); });
 }

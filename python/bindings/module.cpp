@@ -237,7 +237,7 @@ PYBIND11_MODULE(_mtacc, mod) {
         return sensitivityCoefficient(s.machine, s.errors, {p, eps}, {joints_.row(0).data(), normal});
       })
       .def("working_volume_grid", [](const PythonMachine& s, int samples) {
-        if (samples < 2 || samples > 50) throw InputError(InputLocation{"", 0, "samples"}, "must be between 2 and 50");
+        requireInRange(budgetSchema().at("samples"), samples);
         const auto g = workingVolumeGrid(*s.machine, samples);
         py::array_t<double> out = toArray(g);
         auto w = out.mutable_unchecked<2>();
@@ -246,11 +246,8 @@ PYBIND11_MODULE(_mtacc, mod) {
             if (s.machine->axes[static_cast<size_t>(k)].isRotary()) w(r, k) /= kDeg;
         return out;
       })
-      .def("budget", [](const PythonMachine& s, int samples, const py::object& length, const py::object& angle) {
-        BudgetOptions o;
-        o.samplesPerAxis = samples;
-        if (!length.is_none()) o.length = quantity(length, Dimension::Length, "length");
-        if (!angle.is_none()) o.angle = quantity(angle, Dimension::Angle, "angle");
+      .def("budget", [](const PythonMachine& s, const OptionValues& options) {
+        const BudgetOptions o = budgetOptions(options);
         BudgetResult r;
         {
           py::gil_scoped_release release;

@@ -309,13 +309,14 @@ class Machine:
         combination, as the budget uses."""
         return self._core.working_volume_grid(samples)
 
-    def budget(self, samples=5, length=None, angle=None):
-        """The error budget (as `mtacc budget --json`): each error alone, its largest TCP deviation [um]
-        and tool tilt [urad] over a grid of `samples` (2 to 50) positions per axis across the travel.
-        Without length and angle: each non-zero error of the machine at its value, one entry per
-        component error function. With them (a bare number in mm and rad, or "10 um", "30 urad"):
-        every location error and every component error as a constant of that size."""
-        return self._core.budget(samples, length, angle)
+    def budget(self, samples=None, length=None, angle=None, threads=None):
+        """The error budget (as `mtacc budget --json`, whose options these keyword arguments are, with
+        its defaults): each error alone, its largest TCP deviation [um] and tool tilt [urad] over a grid
+        of `samples` (2 to 50, default 5) positions per axis across the travel. Without length and
+        angle: each non-zero error of the machine at its value, one entry per component error
+        function. With them (with their units, e.g. "10 um", "30 urad"): every location error and
+        every component error as a constant of that size."""
+        return self._core.budget(_options(samples=samples, length=length, angle=angle, threads=threads))
 
     def cone(self, preset=None, alpha=45.0, beta=30.0, radius=40.0, centre=(-65.0, 0.0, 150.0), gamma=0.0,
              face_milling=False, points=720, branch="negative", feed=500.0, single_errors=False, monte_carlo=0,

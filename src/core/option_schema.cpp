@@ -23,6 +23,11 @@ const OptionField& OptionSchema::at(const std::string& key) const {
   return *f;
 }
 
+OptionField threadsOption() {
+  return {.key = "threads", .kind = OptionKind::Count, .help = "Threads (0: every core)", .defaultText = "0", .low = 0, .high = 1024,
+          .outOfRange = "must be from 0 (every core) to 1024"};
+}
+
 void requireInRange(const OptionField& f, double value) {
   if (f.outOfRange.empty()) return;
   if (!((f.lowExcluded ? value > f.low : value >= f.low) && value <= f.high)) throw InputError({"", 0, f.key}, f.outOfRange);

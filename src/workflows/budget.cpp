@@ -8,9 +8,34 @@
 
 namespace mtacc {
 
+const OptionSchema& budgetSchema() {
+  static const OptionSchema schema{
+      "budget",
+      {{.key = "samples", .kind = OptionKind::Count, .help = "positions per axis across its travel", .defaultText = "5", .low = 2,
+        .high = 50, .outOfRange = "must be between 2 and 50"},
+       {.key = "length", .kind = OptionKind::Quantity,
+        .help = "budget every length error at this magnitude (with angle: every location and component error as a constant); "
+                "default: each non-zero error of the machine at its own value",
+        .dimension = Dimension::Length},
+       {.key = "angle", .kind = OptionKind::Quantity, .help = "budget every angular error at this magnitude", .dimension = Dimension::Angle},
+       threadsOption()}};
+  return schema;
+}
+
+BudgetOptions budgetOptions(const OptionValues& values) {
+  const OptionReader read(budgetSchema(), values);
+  BudgetOptions o;
+  o.samplesPerAxis = *read.count("samples");
+  o.length = read.quantity("length");
+  o.angle = read.quantity("angle");
+  o.threads = *read.count("threads");
+  return o;
+}
+
 BudgetResult errorBudget(const MachineSetup& setup, const BudgetOptions& o) {
   const Machine& m = *setup.machine;
-  if (o.samplesPerAxis < 2 || o.samplesPerAxis > 50) throw InputError(InputLocation{"", 0, "samples"}, "must be between 2 and 50");
+  requireInRange(budgetSchema().at("samples"), o.samplesPerAxis);
+  requireInRange(budgetSchema().at("threads"), o.threads);
   BudgetResult r;
   r.machine = setup.machine;
   r.samplesPerAxis = o.samplesPerAxis;

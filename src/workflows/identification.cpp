@@ -163,8 +163,7 @@ const OptionSchema& identificationSchema() {
         .defaultText = "0.1", .low = 0, .high = 1, .lowExcluded = true, .outOfRange = "must be above 0 and at most 1"},
        {"from_nominal", OptionKind::Flag,
         "Hold the errors not determined at zero (the nominal machine) instead of the machine file's or the errors file's values"},
-       {.key = "threads", .kind = OptionKind::Count, .help = "Threads (0: every core)", .defaultText = "0", .low = 0, .high = 1024,
-        .outOfRange = "must be from 0 (every core) to 1024"}}};
+       threadsOption()}};
   return schema;
 }
 

@@ -1,5 +1,6 @@
 #include "mtacc/workflows/option_schemas.hpp"
 
+#include "mtacc/workflows/budget.hpp"
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/thermal_drift.hpp"
 
@@ -7,7 +8,7 @@ namespace mtacc {
 
 const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
   static const std::map<std::string, const OptionSchema*> schemas{
-      {"drift", &driftTestSchema()}, {"identify", &identificationSchema()}, {"observability", &observabilitySchema()}};
+      {"budget", &budgetSchema()}, {"drift", &driftTestSchema()}, {"identify", &identificationSchema()}, {"observability", &observabilitySchema()}};
   return schemas;
 }
 

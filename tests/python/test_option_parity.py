@@ -10,13 +10,13 @@ import pytest
 import mtacc
 from mtacc import _mtacc
 
-# The machine and its set-up are the Python Machine's constructor; --json, -o and --strict shape
-# the CLI's output; errors_out is a file written by the front end (both have it); series_points
+# The machine and its set-up are the Python Machine's constructor; --json, -o, --strict and
+# --rows (of the printed table) shape the CLI's output; errors_out is a file written by the front end (both have it); series_points
 # adds the curves to Python's result, for plots (the report's).
-CLI_ONLY = {"help", "machine", "errors", "alignment", "load", "thermal", "json", "output", "strict"}
+CLI_ONLY = {"help", "machine", "errors", "alignment", "load", "thermal", "json", "output", "strict", "rows"}
 BOTH_FRONT_ENDS = {"errors_out"}
 PYTHON_ONLY = {"series_points"}
-METHODS = {"identify": mtacc.Machine.identify, "observability": mtacc.Machine.observability, "drift": mtacc.drift_test}
+METHODS = {"budget": mtacc.Machine.budget, "identify": mtacc.Machine.identify, "observability": mtacc.Machine.observability, "drift": mtacc.drift_test}
 
 
 def cli_keys(cli, command):

@@ -34,6 +34,9 @@ struct OptionField {
   bool positional = false;  // the CLI takes it without a flag name; it must be given
 };
 
+// `threads`, as every workflow that takes it declares it (core/parallel.hpp: 0 = every core).
+OptionField threadsOption();
+
 // Throws InputError naming the key with the field's outOfRange message when `value` (mm, rad for
 // a Quantity) is outside its range: the check the reader makes, for a request built in code.
 void requireInRange(const OptionField& field, double value);

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/kinematics/budget.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
@@ -31,6 +32,10 @@ struct BudgetResult {
   std::vector<BudgetEntry> entries;  // largest first
   double combinedMaxPositionError = 0;  // all errors of the description together, mm
 };
+
+// The options of `budget`, declared once (core/option_schema.hpp), and the options they describe.
+const OptionSchema& budgetSchema();
+BudgetOptions budgetOptions(const OptionValues& values);
 
 BudgetResult errorBudget(const MachineSetup& setup, const BudgetOptions& options = {});
 nlohmann::json toJson(const BudgetResult& result);
