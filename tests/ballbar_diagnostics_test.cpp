@@ -154,7 +154,7 @@ TEST(BallbarDiagnostics, ResidualRmsIsOverThePoints) {
   MeasurementRun run = ballbarCircle(b.nominal, spec);
   simulateRun(b.nominal, b.nominal, run);
   const Eigen::Index n = 360;
-  run.q = run.q.topRows(n), run.readings = run.readings.topRows(n);
+  run.q.conservativeResize(n, Eigen::NoChange), run.readings.conservativeResize(n, Eigen::NoChange);
   run.angle.resize(n), run.sense.resize(n);
   const double shape = 4e-3, squarenessTerm = 2e-3;
   for (Eigen::Index i = 0; i < n; ++i) {
