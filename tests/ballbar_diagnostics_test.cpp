@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/io/errors_yaml.hpp"
@@ -28,6 +29,14 @@ struct Bench {
     spec.feed = 1000;
     return ballbarCircle(nominal, spec);
   }
+  // One counter-clockwise turn of 360 points, its first pose repeated at the end.
+  MeasurementRun oneWayCircle() const {
+    BallbarCircleSpec spec;
+    spec.centre = Vec3(300, 200, 250);
+    spec.points = 360;
+    spec.bothDirections = false;
+    return ballbarCircle(nominal, spec);
+  }
   CircularTestResult measure(const std::string& errorsYaml, const Disturbance& d = {}, MeasurementRun run = {}) const {
     if (run.poses() == 0) run = circle();
     const auto errors = errorsYaml.empty() ? ErrorModel::zero(*machine)
@@ -37,6 +46,12 @@ struct Bench {
     return evaluateCircularTest(run);
   }
 };
+
+MeasurementRun firstPoses(MeasurementRun run, Eigen::Index n) {
+  run.q.conservativeResize(n, Eigen::NoChange), run.readings.conservativeResize(n, Eigen::NoChange);
+  run.angle.resize(static_cast<size_t>(n)), run.sense.resize(static_cast<size_t>(n));
+  return run;
+}
 
 TEST(BallbarDiagnostics, SquarenessOfXY) {
   const auto r = Bench().measure("  C0Y: 20 urad\n");
@@ -122,11 +137,7 @@ TEST(BallbarDiagnostics, CentreOffsetIsTheEccentricity) {
 
 TEST(BallbarDiagnostics, PartialArcKeepsShapeOutOfTheCentre) {
   const Bench b;
-  BallbarCircleSpec spec;
-  spec.centre = Vec3(300, 200, 250);
-  spec.points = 360;
-  spec.bothDirections = false;
-  auto run = ballbarCircle(b.nominal, spec);
+  auto run = b.oneWayCircle();
   const auto model = compile(b.machine, parseErrors(*b.machine, "errors:\n  C0Y: 50 urad\n", "test"));
   run.setup.errors[static_cast<size_t>(SetupParameter::TargetY)] = 5e-3;
   simulateRun(model, b.nominal, run);
@@ -134,10 +145,7 @@ TEST(BallbarDiagnostics, PartialArcKeepsShapeOutOfTheCentre) {
   EXPECT_NEAR(full.y(), -5e-3, 0.002e-3);
   // Keep 200 of 360 degrees: the sin 2theta shape (R gamma / 2 = 2.5 um) leaks into a
   // first-harmonic-only fit, not into one with the second harmonics.
-  MeasurementRun arc = run;
-  const Eigen::Index n = 200;
-  arc.q = run.q.topRows(n), arc.readings = run.readings.topRows(n);
-  arc.angle.resize(n), arc.sense.resize(n);
+  const MeasurementRun arc = firstPoses(run, 200);
   EXPECT_LT((fitEccentricity(arc, true).eccentricity - full).norm(), 1e-6);
   EXPECT_GT((fitEccentricity(arc, false).eccentricity - full).norm(), 1e-3);
 }
@@ -147,15 +155,10 @@ TEST(BallbarDiagnostics, PartialArcKeepsShapeOutOfTheCentre) {
 // columns included, so it is left whole in the residual and its RMS over the points is A / sqrt 2.
 TEST(BallbarDiagnostics, ResidualRmsIsOverThePoints) {
   const Bench b;
-  BallbarCircleSpec spec;
-  spec.centre = Vec3(300, 200, 250);
-  spec.points = 360;
-  spec.bothDirections = false;
-  MeasurementRun run = ballbarCircle(b.nominal, spec);
+  MeasurementRun run = b.oneWayCircle();
   simulateRun(b.nominal, b.nominal, run);
   const Eigen::Index n = 360;
-  run.q.conservativeResize(n, Eigen::NoChange), run.readings.conservativeResize(n, Eigen::NoChange);
-  run.angle.resize(n), run.sense.resize(n);
+  run = firstPoses(std::move(run), n);
   const double shape = 4e-3, squarenessTerm = 2e-3;
   for (Eigen::Index i = 0; i < n; ++i) {
     const double t = run.angle[static_cast<size_t>(i)];
