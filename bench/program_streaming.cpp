@@ -24,7 +24,7 @@
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/io/gcode_program.hpp"
 #include "mtacc/io/machine_yaml.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "mtacc/workflows/compensation.hpp"
 
 using namespace mtacc;

@@ -14,7 +14,7 @@
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/component_runs_csv.hpp"
 #include "mtacc/io/errors_yaml.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "mtacc/workflows/component_fit.hpp"
 #include "test_helpers.hpp"
 

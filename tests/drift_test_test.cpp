@@ -8,7 +8,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/io/drift_test_csv.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "mtacc/workflows/thermal_drift.hpp"
 #include "test_helpers.hpp"
 #include "thermal_machines.hpp"

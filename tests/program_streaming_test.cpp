@@ -13,7 +13,7 @@
 #include <fstream>
 
 #include "mtacc/core/input_error.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "mtacc/workflows/compensation.hpp"
 #include "test_helpers.hpp"
 

@@ -14,7 +14,7 @@
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/io/machine_yaml.hpp"
 #include "mtacc/io/spindle_drift_yaml.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "mtacc/io/thermal_state_yaml.hpp"
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/workflows/machine_setup.hpp"

@@ -12,7 +12,7 @@
 #include "mtacc/errors/thermal_state.hpp"
 #include "mtacc/io/thermal_state_yaml.hpp"
 #include "mtacc/kinematics/forward.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "mtacc/workflows/compensation.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 #include "test_helpers.hpp"

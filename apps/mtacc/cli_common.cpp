@@ -7,7 +7,7 @@
 
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 
 namespace mtacc::cli {
 

@@ -9,15 +9,14 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
-#include "mtacc/io/text_file.hpp"
-#include "mtacc/io/cone_program.hpp"
-#include "mtacc/workflows/cone_study.hpp"
+#include "mtacc/workflows/test_piece_files.hpp"
 
 namespace mtacc::cli {
 namespace {
 
 struct ConeCliOptions : MachineOptions {
-  std::string preset, centre = "-65,0,150", branch = "negative", gcode, clData;
+  std::string preset, centre = "-65,0,150", branch = "negative";
+  ConeFiles files;
   double alpha = 45, beta = 30, radius = 40, gamma = 0;
   bool faceMilling = false;
   ConeStudyOptions study;
@@ -82,14 +81,7 @@ void run(ConeCliOptions& o) {
                          st.upperQuartile * 1e3, st.max * 1e3);
     for (const auto& n : s.monteCarlo->notes) human += "  note: " + n + "\n";
   }
-  if (!o.clData.empty()) {
-    writeFileAtomically(o.clData, coneClData(s.path), "cl");
-    human += "\nCL data written: " + o.clData + "\n";
-  }
-  if (!o.gcode.empty()) {
-    writeFileAtomically(o.gcode, coneNcProgram(m, spec, s.motion.q, s.options.feed), "gcode");
-    human += "\nNC program written: " + o.gcode + "\n";
-  }
+  for (const auto& line : writeConeFiles(s, o.files)) human += "\n" + line + "\n";
   emit(o, toJson(s), human, csv);
 }
 
@@ -114,8 +106,8 @@ void addConeCommand(CLI::App& app) {
   cmd->add_option("--monte-carlo", o->study.monteCarlo, "number of Monte Carlo samples (e.g. 1000)");
   cmd->add_option("--limits", o->study.limitsFile, "limits file (default: seed 000 Table 3.9)");
   cmd->add_option("--seed", o->study.seed, "random seed of the Monte Carlo (default 1)");
-  cmd->add_option("--gcode", o->gcode, "write the NC program of the path to FILE");
-  cmd->add_option("--cl", o->clData, "write the CL data (phi, TCP, tool vector, surface normal) to FILE.csv");
+  cmd->add_option("--gcode", o->files.gcode, "write the NC program of the path to FILE");
+  cmd->add_option("--cl", o->files.cl, "write the CL data (phi, TCP, tool vector, surface normal) to FILE.csv");
   cmd->callback([o] { run(*o); });
 }
 

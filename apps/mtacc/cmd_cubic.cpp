@@ -10,45 +10,29 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
-#include "mtacc/io/cubic_program.hpp"
-#include "mtacc/io/cubic_test_yaml.hpp"
-#include "mtacc/io/surface_files.hpp"
-#include "mtacc/io/text_file.hpp"
 #include "mtacc/workflows/cubic_identification.hpp"
+#include "mtacc/workflows/test_piece_files.hpp"
 
 namespace mtacc::cli {
 namespace {
 
 struct CubicCliOptions : MachineOptions {
-  std::string test = "seed001-cubic", gcode, cl, map, heights, surface, zonesOut, sensitivityParams, mapLimit = "10 um";
+  std::string test = "seed001-cubic", sensitivityParams, mapLimit = "10 um";
   CubicTestOptions study;
+  CubicTestFiles files;
 };
-
-// The file's format from its extension, one of `allowed`; InputError at `option` otherwise.
-std::string formatOf(const std::string& path, const std::string& option, std::initializer_list<const char*> allowed) {
-  std::string list;
-  for (const char* ext : allowed) {
-    if (path.ends_with(std::string(".") + ext)) return ext;
-    list += std::string(list.empty() ? "" : ", ") + "." + ext;
-  }
-  throw InputError(InputLocation{"", 0, option}, "'" + path + "': expected a file ending in " + list);
-}
 
 std::string planRow(const ZonePlane& p) {
   return fmt::format("{:>9.3f} {:>8.4f} {:>8.4f}", p.mean * 1e3, p.slopeX * 1e3, p.slopeY * 1e3);
 }
 
 void run(CubicCliOptions& o) {
-  // Every output's format first, so that a wrong name fails before anything is written.
-  const std::string mapFormat = o.map.empty() ? "" : formatOf(o.map, "--map", {"svg", "png"});
-  const std::string heightFormat = o.heights.empty() ? "" : formatOf(o.heights, "--heights", {"csv", "npy"});
-  const std::string surfaceFormat = o.surface.empty() ? "" : formatOf(o.surface, "--surface", {"ply", "stl"});
-  const double mapLimit = parseQuantityAs(o.mapLimit, Dimension::Length, "--map-limit");
-  if (!(mapLimit >= 1e-6 && mapLimit <= 10)) throw InputError(InputLocation{"", 0, "--map-limit"}, "must be from 1 nm to 10 mm");
+  o.files.mapLimit = parseQuantityAs(o.mapLimit, Dimension::Length, "map_limit");
+  checkCubicTestFiles(o.files);
   const auto setup = loadMachineSetup(o.source);
   const Machine& m = *setup.machine;
   CubicTestOptions& options = o.study;
-  options.spec = loadCubicTest(o.test);
+  options.spec = loadCubicTestSpec(o.test);
   options.sensitivityParameters = splitList(o.sensitivityParams);
   const bool tty = !o.json && isatty(2);
   options.progress = [tty](const std::string& stage) {
@@ -80,32 +64,7 @@ void run(CubicCliOptions& o) {
     for (size_t k = 0; k < c.withAlignment.size(); ++k)
       human += fmt::format("  {:<7} {:>9.4f} | {:>9.4f}\n", spec.zones[k].name, c.withAlignment[k].mean, c.onTable[k].mean);
   }
-  const auto write = [&](const std::string& path, const std::string& content, const std::string& key, const std::string& what) {
-    writeFileAtomically(path, content, key);
-    human += fmt::format("\n{} written: {}", what, path);
-  };
-  if (!o.gcode.empty()) write(o.gcode, cubicNcProgram(m, spec, s.path), "--gcode", "NC program");
-  if (!o.cl.empty()) write(o.cl, cubicClData(spec, s.path), "--cl", "CL data");
-  if (!mapFormat.empty()) {
-    const auto referenced = referencedDeviation(s);
-    const auto& rz = spec.zones[s.referenceZone];
-    const ColourMap colours{mapLimit, 1200};
-    std::vector<ZonePlane> measured;
-    for (const auto& z : s.zones) measured.push_back(z.measured);
-    write(o.map,
-          mapFormat == "png" ? heightMapPng(referenced, colours)
-                             : zoneMapSvg(referenced, colours, spec, measured,
-                                          fmt::format("{}: machined minus error-free surface, referenced to zone {}", m.name, rz.name)),
-          "--map", "surface map");
-  }
-  if (!heightFormat.empty())
-    write(o.heights, heightFormat == "csv" ? heightMapCsv(s.actual) : heightMapNpy(s.actual), "--heights", "heights");
-  if (!surfaceFormat.empty()) {
-    const int stride = exportStride(s.actual.grid);
-    write(o.surface, surfaceFormat == "ply" ? heightMapPly(s.actual, stride) : heightMapStl(s.actual, stride), "--surface",
-          fmt::format("surface (every {} cell{})", stride, stride > 1 ? "s" : ""));
-  }
-  if (!o.zonesOut.empty()) write(o.zonesOut, zoneResultsCsv(zoneResults(s)), "--zones-out", "zone results");
+  for (const auto& line : writeCubicTestFiles(s, o.files)) human += "\n" + line;
   if (human.back() != '\n') human += "\n";
   emit(o, toJson(s), human, csv);
 }
@@ -138,13 +97,13 @@ void addCubicCommands(CLI::App& app) {
   cmd->add_option("--sensitivity-parameters", o->sensitivityParams, "errors for --sensitivities (default: the rotary axes' location errors)");
   cmd->add_option("--sensitivity-grid", o->study.sensitivityGrid, "grid spacing for the sensitivities [mm] (default 0.02)");
   cmd->add_option("--threads", o->study.threads, "threads (0 = all cores)")->capture_default_str();
-  cmd->add_option("--gcode", o->gcode, "write the NC program to FILE");
-  cmd->add_option("--cl", o->cl, "write the CL data (zone, tool tip, tool vector) to FILE.csv");
-  cmd->add_option("--map", o->map, "write the deviation map referenced to zone I to FILE.svg (zones, colour bar) or FILE.png");
+  cmd->add_option("--gcode", o->files.gcode, "write the NC program to FILE");
+  cmd->add_option("--cl", o->files.cl, "write the CL data (zone, tool tip, tool vector) to FILE.csv");
+  cmd->add_option("--map", o->files.map, "write the deviation map referenced to zone I to FILE.svg (zones, colour bar) or FILE.png");
   cmd->add_option("--map-limit", o->mapLimit, "deviation shown at full colour (default 10 um, as seed 001 Fig. 16)");
-  cmd->add_option("--heights", o->heights, "write the machined heights to FILE.csv (um) or FILE.npy (float32, mm)");
-  cmd->add_option("--surface", o->surface, "write the machined surface to FILE.ply or FILE.stl (at most 1e6 vertices)");
-  cmd->add_option("--zones-out", o->zonesOut, "write the zone results (heights and tilts) to FILE.csv, for cubic-identify");
+  cmd->add_option("--heights", o->files.heights, "write the machined heights to FILE.csv (um) or FILE.npy (float32, mm)");
+  cmd->add_option("--surface", o->files.surface, "write the machined surface to FILE.ply or FILE.stl (at most 1e6 vertices)");
+  cmd->add_option("--zones-out", o->files.zonesOut, "write the zone results (heights and tilts) to FILE.csv, for cubic-identify");
   cmd->callback([o] { run(*o); });
 
   auto id = std::make_shared<CubicIdentifyCliOptions>();

@@ -6,7 +6,6 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
-#include "mtacc/io/structure_yaml.hpp"
 #include "mtacc/workflows/dynamics.hpp"
 
 namespace mtacc::cli {
@@ -19,7 +18,7 @@ struct DynamicsCliOptions : MachineOptions {
 };
 
 void modes(const DynamicsCliOptions& o) {
-  const auto model = loadStructure(o.model);
+  const auto model = loadStructureModel(o.model);
   const auto r = structureModes(model, structurePositions(model, o.at));
   std::string human = fmt::format("{}: {} bodies, {} DOF\n{:>4} {:>10} {:>10} {:>8}  dominant motion (kinetic energy)\n",
                                   model.name, model.bodies.size(), model.dofs(), "mode", "f [Hz]", "f_d [Hz]", "zeta [%]");
@@ -35,7 +34,7 @@ void modes(const DynamicsCliOptions& o) {
 }
 
 void frf(const DynamicsCliOptions& o) {
-  const auto model = loadStructure(o.model);
+  const auto model = loadStructureModel(o.model);
   const auto r = structureFrf(model, {structurePositions(model, o.at), frequencyGrid(o.from, o.to, o.step), o.method});
   static const char* kAxes = "xyz";
   std::string csv = "frequency_hz";
@@ -63,7 +62,7 @@ void frf(const DynamicsCliOptions& o) {
 }
 
 void accel(const DynamicsCliOptions& o) {
-  const auto model = loadStructure(o.model);
+  const auto model = loadStructureModel(o.model);
   const auto r = structureAcceleration(model, structurePositions(model, o.at));
   std::string human = fmt::format("{}: quasi-static TCP displacement per axis acceleration [um/g_n] (seed 000 Table 7.1 form)\n{:>8}",
                                   model.name, "");
@@ -87,8 +86,8 @@ void map(const DynamicsCliOptions& o) {
   const auto axes = splitList(o.axes), grid = splitList(o.grid, 'x');
   if (axes.size() != 2) throw InputError(InputLocation{"", 0, "--axes"}, "expected two axes, e.g. --axes Y,Z");
   if (grid.size() != 2) throw InputError(InputLocation{"", 0, "--grid"}, "expected e.g. --grid 20x20");
-  std::vector<StructureModel> models = {loadStructure(o.model)};
-  if (!o.compare.empty()) models.push_back(loadStructure(o.compare));
+  std::vector<StructureModel> models = {loadStructureModel(o.model)};
+  if (!o.compare.empty()) models.push_back(loadStructureModel(o.compare));
   nlohmann::json j;
   std::string human, csv = "model," + axes[0] + "_mm," + axes[1] + "_mm,value\n";
   for (const auto& m : models) {

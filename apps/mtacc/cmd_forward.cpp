@@ -4,8 +4,6 @@
 
 #include "cli_common.hpp"
 #include "mtacc/core/input_error.hpp"
-#include "mtacc/io/csv.hpp"
-#include "mtacc/io/pose_text.hpp"
 #include "mtacc/workflows/kinematics_batch.hpp"
 
 namespace mtacc::cli {
@@ -26,11 +24,9 @@ void runForward(const ForwardCliOptions& o, bool errorsCommand) {
     throw InputError(InputLocation{"", 0, "--pose/--poses"}, "give exactly one of --pose AXIS=VALUE,... or --poses FILE.csv");
   ForwardResult r;
   if (!o.posesFile.empty()) {
-    const auto table = readCsv(o.posesFile);
-    const auto poses = posesFromCsv(m, table);
-    r = forwardKinematics(setup, poses.q, poses.direction, {o.nominal}, table.lines, o.posesFile);
+    r = forwardKinematicsOfFile(setup, o.posesFile, {o.nominal});
   } else {
-    const auto q = parsePose(m, o.pose, "--pose");
+    const auto q = poseFromText(setup, o.pose, "--pose");
     r = forwardKinematics(setup, Eigen::Map<const JointMatrix>(q.data(), 1, static_cast<Eigen::Index>(q.size())), {}, {o.nominal});
   }
   std::string human = errorsOnly ? fmt::format("{} | {:>8} {:>8} {:>8} {:>8} | {:>8} {:>8} {:>8}\n", poseHeader(m), "dx um",

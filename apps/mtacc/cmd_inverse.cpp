@@ -4,8 +4,6 @@
 #include "cli_common.hpp"
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
-#include "mtacc/io/csv.hpp"
-#include "mtacc/io/pose_text.hpp"
 #include "mtacc/workflows/kinematics_batch.hpp"
 
 namespace mtacc::cli {
@@ -21,24 +19,14 @@ void run(const InverseCliOptions& o) {
   const Machine& m = *setup.machine;
   if (o.tcp.empty() == o.targetsFile.empty())
     throw InputError(InputLocation{"", 0, "--tcp/--targets"}, "give exactly one of --tcp x,y,z or --targets FILE.csv");
-  InverseRequest request;
+  InverseRequest request = o.targetsFile.empty() ? InverseRequest{} : inverseTargetsOfFile(o.targetsFile);
   request.options.branch = parseTiltBranch(o.branch);
-  if (!o.near.empty()) request.options.hint = parsePose(m, o.near, "--near", true);
+  if (!o.near.empty()) request.options.hint = poseFromText(setup, o.near, "--near", true);
   request.all = o.all;
   request.withErrors = o.withErrors;
   if (!o.tcp.empty()) {
     request.positions.push_back(parseVector(o.tcp, "--tcp"));
     request.directions.push_back(parseVector(o.tool, "--tool"));
-  } else {
-    const auto table = readCsv(o.targetsFile);
-    const auto c = requireColumns(table, {"x", "y", "z", "i", "j", "k"});
-    request.file = o.targetsFile;
-    request.lines = table.lines;
-    for (const auto& row : table.rows) {
-      auto at = [&](int k) { return row[static_cast<size_t>(c[static_cast<size_t>(k)])]; };
-      request.positions.emplace_back(at(0), at(1), at(2));
-      request.directions.emplace_back(at(3), at(4), at(5));
-    }
   }
   const auto r = inverseKinematics(setup, request);
   std::string human = poseHeader(m) + "   notes\n";

@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "mtacc/workflows/identified_errors.hpp"
 #include "mtacc/workflows/plates.hpp"
 

@@ -5,7 +5,6 @@
 #include "cli_common.hpp"
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
-#include "mtacc/io/pose_text.hpp"
 #include "mtacc/workflows/budget.hpp"
 
 namespace mtacc::cli {
@@ -19,7 +18,7 @@ void run(const SensitivityCliOptions& o) {
   const auto setup = loadMachineSetup(o.source);
   const Machine& m = *setup.machine;
   SensitivityRequest request;
-  request.q = parsePose(m, o.pose, "--pose");
+  request.q = poseFromText(setup, o.pose, "--pose");
   if (!o.direction.empty()) request.direction = parseVector(o.direction, "--direction");
   request.parameters = splitList(o.params);
   request.epsilonLength = parseQuantityAs(o.epsilonLength, Dimension::Length, "--epsilon-length");

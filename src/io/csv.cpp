@@ -1,6 +1,6 @@
 #include "mtacc/io/csv.hpp"
 
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 
 #include <algorithm>
 #include <charconv>

@@ -1,7 +1,7 @@
 #include "mtacc/io/cubic_test_yaml.hpp"
 
 #include "mtacc/io/bundled_data.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "yaml_input.hpp"
 
 namespace mtacc {

@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "yaml_input.hpp"
 
 namespace mtacc {

@@ -2,7 +2,7 @@
 
 #include <map>
 
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 
 #include <fmt/format.h>
 

@@ -5,7 +5,7 @@
 
 #include <stdexcept>
 
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 
 namespace mtacc {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "yaml_input.hpp"
 
 namespace mtacc {

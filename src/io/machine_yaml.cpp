@@ -1,6 +1,6 @@
 #include "mtacc/io/machine_yaml.hpp"
 
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 
 #include <algorithm>
 #include <cstdlib>

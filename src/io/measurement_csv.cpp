@@ -1,6 +1,6 @@
 #include "mtacc/io/measurement_csv.hpp"
 
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 
 #include <fmt/format.h>
 

@@ -4,7 +4,7 @@
 
 #include "mtacc/io/bundled_data.hpp"
 #include "mtacc/io/cubic_test_yaml.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
 #include "mtacc/procedures/cone_ballbar.hpp"
 #include "yaml_input.hpp"

@@ -10,7 +10,7 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/io/csv.hpp"
 #include "mtacc/io/npy.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 
 namespace mtacc {
 namespace {

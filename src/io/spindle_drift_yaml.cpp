@@ -7,7 +7,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "yaml_input.hpp"
 
 namespace mtacc {

@@ -1,6 +1,6 @@
 #include "mtacc/io/structure_yaml.hpp"
 
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 
 #include <functional>
 

@@ -8,7 +8,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/io/spindle_drift_yaml.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "yaml_input.hpp"
 
 namespace mtacc {

@@ -125,6 +125,16 @@ SensitivityResult sensitivities(const MachineSetup& setup, const SensitivityRequ
   return r;
 }
 
+double sensitivityCoefficientAt(const MachineSetup& setup, const std::vector<double>& q, const std::string& name, double epsilon,
+                                const Vec3& direction) {
+  const Parameter p = findParameter(*setup.machine, setup.errors, name);
+  if (epsilon == 0.0) throw InputError(InputLocation{"", 0, "epsilon"}, "must not be zero");
+  if (!(direction.norm() > 1e-12)) throw InputError(InputLocation{"", 0, "direction"}, "has zero length");
+  if (const auto violation = setup.machine->travelViolation(q); !violation.empty())
+    throw InputError(InputLocation{"", 0, "pose"}, "pose " + violation);
+  return sensitivityCoefficient(setup.machine, setup.errors, {p, epsilon}, {q.data(), direction});
+}
+
 nlohmann::json toJson(const SensitivityResult& r) {
   nlohmann::json j;
   j["machine"] = r.machine->name;

@@ -7,7 +7,7 @@
 
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/errors_yaml.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 
 namespace mtacc {
 namespace {

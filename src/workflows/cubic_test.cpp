@@ -4,6 +4,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/errors/aliases.hpp"
+#include "mtacc/io/cubic_test_yaml.hpp"
 
 namespace mtacc {
 namespace {
@@ -52,6 +53,8 @@ nlohmann::json planeJson(const ZonePlane& p, double unit) {
 }
 
 }  // namespace
+
+CubicTestSpec loadCubicTestSpec(const std::string& pathOrName) { return loadCubicTest(pathOrName); }
 
 CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestOptions& options) {
   const auto require = [](bool ok, const char* key, const char* what) {

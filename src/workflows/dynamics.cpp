@@ -8,6 +8,7 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/io/structure_yaml.hpp"
 
 namespace mtacc {
 namespace {
@@ -18,6 +19,8 @@ nlohmann::json statisticsJson(const BoxStatistics& s) {
 }
 
 }  // namespace
+
+StructureModel loadStructureModel(const std::string& pathOrName) { return loadStructure(pathOrName); }
 
 nlohmann::json structureJson(const StructureModel& m) {
   auto mm = [](const Vec3& v) { return vectorJson(v * 1e3); };

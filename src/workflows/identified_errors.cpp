@@ -11,7 +11,7 @@
 #include "mtacc/core/version.hpp"
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/io/file_hash.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 
 namespace mtacc {
 namespace {

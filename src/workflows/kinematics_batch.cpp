@@ -2,6 +2,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/io/csv.hpp"
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/kinematics/jacobian.hpp"
 
@@ -137,6 +138,26 @@ nlohmann::json toJson(const InverseResult& r) {
                               {"within_travel", s.travelViolation.empty()},
                               {"travel_violation", s.travelViolation}});
   return j;
+}
+
+ForwardResult forwardKinematicsOfFile(const MachineSetup& setup, const std::string& file, const ForwardOptions& options) {
+  const auto table = readCsv(file);
+  const auto poses = posesFromCsv(*setup.machine, table);
+  return forwardKinematics(setup, poses.q, poses.direction, options, table.lines, file);
+}
+
+InverseRequest inverseTargetsOfFile(const std::string& file) {
+  const auto table = readCsv(file);
+  const auto c = requireColumns(table, {"x", "y", "z", "i", "j", "k"});
+  InverseRequest request;
+  request.file = file;
+  request.lines = table.lines;
+  for (const auto& row : table.rows) {
+    auto at = [&](int k) { return row[static_cast<size_t>(c[static_cast<size_t>(k)])]; };
+    request.positions.emplace_back(at(0), at(1), at(2));
+    request.directions.emplace_back(at(3), at(4), at(5));
+  }
+  return request;
 }
 
 }  // namespace mtacc

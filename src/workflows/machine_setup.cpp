@@ -6,8 +6,10 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/errors/aliases.hpp"
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/io/machine_yaml.hpp"
+#include "mtacc/io/pose_text.hpp"
 #include "mtacc/io/thermal_state_yaml.hpp"
 
 namespace mtacc {
@@ -58,6 +60,31 @@ std::vector<Parameter> findPlanParameters(const std::shared_ptr<const Machine>& 
                                     "E<D><axis>.c<k> (power k over the travel, e.g. EXX.c1) or E<D><axis>.h<k> (harmonic "
                                     "of order k, amplitude and phase, e.g. ECC.h1)");
   }
+}
+
+std::vector<double> poseFromText(const MachineSetup& setup, const std::string& text, const std::string& key, bool partial) {
+  return parsePose(*setup.machine, text, key, partial);
+}
+
+double errorValue(const MachineSetup& setup, const std::string& name) {
+  return isoSign(name) * parameterValue(setup.errors, findParameter(*setup.machine, setup.errors, name));
+}
+
+Dimension errorDimension(const MachineSetup& setup, const std::string& name) {
+  return findParameter(*setup.machine, setup.errors, name).dimension;
+}
+
+void setErrorValue(MachineSetup& setup, const std::string& name, const std::function<double(Dimension)>& value) {
+  ErrorModel errors = setup.errors;
+  const Parameter p = defineParameter(*setup.machine, errors, name);
+  setParameterValue(errors, p, isoSign(name) * value(p.dimension));
+  setup.errors = std::move(errors);
+}
+
+std::vector<std::pair<std::string, double>> nonzeroErrorValues(const MachineSetup& setup) {
+  std::vector<std::pair<std::string, double>> values;
+  for (const auto& p : nonZeroParameters(*setup.machine, setup.errors)) values.emplace_back(p.name, parameterValue(setup.errors, p));
+  return values;
 }
 
 nlohmann::json poseJson(const Machine& m, const double* q) {

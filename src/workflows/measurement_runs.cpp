@@ -6,9 +6,10 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "mtacc/io/measurement_csv.hpp"
 #include "mtacc/io/plan_yaml.hpp"
+#include "mtacc/io/pose_text.hpp"
 
 namespace mtacc {
 
@@ -41,6 +42,16 @@ void requireFolderFor(const std::string& folder, const std::vector<std::string>&
 }
 
 }  // namespace
+
+Disturbance disturbanceFromText(const Machine& machine, const std::string& lag, const std::string& backlash, const std::string& spike,
+                                double spikeTime) {
+  Disturbance d;
+  d.lag = parseAxisTimes(machine, lag, "lag");
+  d.backlash = parseAxisQuantities(machine, backlash, "backlash");
+  d.spikeHeight = parseAxisQuantities(machine, spike, "spike");
+  d.spikeTime = spikeTime;
+  return d;
+}
 
 std::array<std::optional<double>, kSetupParameterCount> parseSetupErrors(const std::string& text, const std::string& key) {
   std::array<std::optional<double>, kSetupParameterCount> errors{};
@@ -181,6 +192,8 @@ RTestRunEvaluation evaluateRTestRun(const MachineSetup& setup, const std::string
 }
 
 }  // namespace
+
+MeasurementRun readMeasurementFile(const MachineSetup& setup, const std::string& file) { return readMeasurementCsv(setup.nominal(), file); }
 
 CircularEvaluation evaluateBallbarFile(const MachineSetup& setup, const std::string& file) {
   return evaluateBallbarRun(setup, file, readMeasurementCsv(setup.nominal(), file));

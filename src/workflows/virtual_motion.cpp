@@ -9,7 +9,7 @@
 #include "mtacc/io/gcode_program.hpp"
 #include "mtacc/io/recorded_signal.hpp"
 #include "mtacc/io/structure_yaml.hpp"
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 #include "mtacc/kinematics/forward.hpp"
 
 namespace mtacc {

@@ -4,21 +4,28 @@
 Layers, lowest first: core; the domain folders in their own order (machine, errors, kinematics,
 measurement, procedures, compensation; dynamics and thermal need only core); io; workflows; the front ends (apps/,
 python/bindings/, fuzz/). A file may include headers of its own folder and of lower layers only, so
-that the layers point one way and no two folders include each other.
+that the layers point one way and no two folders include each other. The CLI and the Python
+bindings go through the workflows: they include workflows/ and core/ only (the fuzzers, which
+drive the readers themselves, may include any folder).
 """
 import pathlib
 import re
 import sys
 
 RANK = {"core": 0, "machine": 1, "dynamics": 1, "thermal": 1, "errors": 2, "kinematics": 3, "measurement": 4, "procedures": 5,
-        "compensation": 6, "io": 7, "workflows": 8, "frontend": 9}
+        "compensation": 6, "io": 7, "workflows": 8, "frontend": 9, "fuzz": 9}
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
+
+
+FRONT_END_MAY_INCLUDE = {"core", "workflows"}
 
 
 def folder_of(path, root):
     parts = path.relative_to(root).parts
-    if parts[0] in ("apps", "python", "fuzz"):
+    if parts[0] in ("apps", "python"):
         return "frontend"
+    if parts[0] == "fuzz":
+        return "fuzz"
     if parts[0] == "include":
         return parts[2]
     return parts[1]  # src/<folder>/...
@@ -51,6 +58,8 @@ def violations(root):
                 yield f"{path.relative_to(root)}:{number}: includes unknown folder '{there}'"
             elif RANK[there] >= RANK[here]:
                 yield f"{path.relative_to(root)}:{number}: {here} includes {m.group(1)} ({there} is not below {here})"
+            elif here == "frontend" and there not in FRONT_END_MAY_INCLUDE:
+                yield f"{path.relative_to(root)}:{number}: a front end includes {m.group(1)} (only workflows/ and core/: reach {there}/ through a workflow)"
 
 
 def main():

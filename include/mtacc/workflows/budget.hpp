@@ -65,6 +65,11 @@ struct SensitivityResult {
 };
 
 SensitivityResult sensitivities(const MachineSetup& setup, const SensitivityRequest& request);
+
+// k = E / epsilon of the error `name` alone at exactly `epsilon` (mm or rad, not zero) at pose `q`
+// (mm, rad; within travel), along `direction` (seed 001 eq. 15).
+double sensitivityCoefficientAt(const MachineSetup& setup, const std::vector<double>& q, const std::string& name, double epsilon,
+                                const Vec3& direction);
 nlohmann::json toJson(const SensitivityResult& result);
 
 }  // namespace mtacc

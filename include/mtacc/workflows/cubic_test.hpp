@@ -60,6 +60,9 @@ struct CubicTestStudy {
   std::vector<CubicSensitivity> sensitivities;
 };
 
+// A cubic test description (docs/file-formats.md "Cubic machining tests") or a bundled test's name.
+CubicTestSpec loadCubicTestSpec(const std::string& pathOrName);
+
 // Throws InputError for a spec or option out of range and for a zone the machine cannot reach.
 CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestOptions& options);
 nlohmann::json toJson(const CubicTestStudy& study);

@@ -15,6 +15,8 @@ namespace mtacc {
 
 // The model's axes (travel in mm) and bodies (mass, centre and bounding box in mm, the axes
 // that move each), for drawing.
+// A structure model file (docs/file-formats.md "Structure models") or a bundled model's name.
+StructureModel loadStructureModel(const std::string& pathOrName);
 nlohmann::json structureJson(const StructureModel& model);
 
 // "Y=400,Z=-300" (mm); the other axes at 0. Throws InputError naming `key`.

@@ -44,6 +44,8 @@ ForwardResult forwardKinematics(const MachineSetup& setup, const JointMatrix& q,
 ForwardResult forwardKinematics(const KinematicModel& actual, const KinematicModel& nominal, const JointMatrix& q,
                                 const DirectionMatrix& direction, const ForwardOptions& options = {},
                                 const std::vector<int>& lines = {}, const std::string& file = "");
+// The poses of an axis-position file (docs/file-formats.md "Axis positions"), each named by its line.
+ForwardResult forwardKinematicsOfFile(const MachineSetup& setup, const std::string& file, const ForwardOptions& options = {});
 nlohmann::json toJson(const ForwardResult& result);
 
 // d(pose error)/d(parameter) at each pose: rows dx, dy, dz [mm] and the rotation vector [rad],
@@ -66,6 +68,9 @@ struct InverseRequest {
   std::string file;
   std::vector<int> lines;
 };
+
+// The targets of an IK target file (docs/file-formats.md "IK targets"), with the file and its lines.
+InverseRequest inverseTargetsOfFile(const std::string& file);
 
 struct InverseResult {
   std::shared_ptr<const Machine> machine;

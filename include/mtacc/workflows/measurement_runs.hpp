@@ -32,6 +32,12 @@ struct SimulationOptions {
 // InputError naming `key` for an unknown name or a bad value.
 std::array<std::optional<double>, kSetupParameterCount> parseSetupErrors(const std::string& text, const std::string& key);
 
+// A ballbar run's servo and reversal disturbances as the front ends take them, per axis: the
+// following error "X=1ms" (key lag), lost motion "X=5um" (backlash), reversal spike heights
+// "Y=4um" (spike); spikeTime in s.
+Disturbance disturbanceFromText(const Machine& machine, const std::string& lag, const std::string& backlash, const std::string& spike,
+                                double spikeTime);
+
 struct SimulationResult {
   std::shared_ptr<const Machine> machine;
   double noise = 0;
@@ -50,6 +56,8 @@ SimulationResult simulateSphereTest(const MachineSetup& setup, const SphereTestS
 // Every run of a test plan (path or bundled name).
 SimulationResult simulatePlan(const MachineSetup& setup, const std::string& plan, const SimulationOptions& options);
 
+// A measurement file's run (docs/file-formats.md "Measurement data"); throws InputError naming the file.
+MeasurementRun readMeasurementFile(const MachineSetup& setup, const std::string& file);
 // Poses (mm, deg), readings (um), plot angles (deg) and sense of one run.
 nlohmann::json runJson(const Machine& machine, const MeasurementRun& run);
 

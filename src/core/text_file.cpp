@@ -1,4 +1,4 @@
-#include "mtacc/io/text_file.hpp"
+#include "mtacc/core/text_file.hpp"
 
 #include <fmt/format.h>
 

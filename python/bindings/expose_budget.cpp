@@ -1,0 +1,35 @@
+// Machine: the error budget over the working volume, the sensitivity of the TCP to one error,
+// and the finite-stiffness summary.
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "mtacc/workflows/budget.hpp"
+#include "mtacc/workflows/stiffness.hpp"
+
+namespace mtacc::python {
+
+void exposeBudget(MachineClass& machine) {
+  machine
+      .def("sensitivity_coefficient", [](const PythonMachine& s, const Array& q, const std::string& name, const py::object& epsilon,
+                                         const std::vector<double>& direction) {
+        const auto pose = joints(*s.machine, q);
+        const std::vector<double> first(pose.row(0).data(), pose.row(0).data() + pose.cols());
+        return sensitivityCoefficientAt(s, first, name, quantity(epsilon, errorDimension(s, name), "epsilon"), vec3(direction, "direction"));
+      })
+      .def("working_volume_grid", [](const PythonMachine& s, int samples) {
+        requireInRange(budgetSchema().at("samples"), samples);
+        return jointArray(*s.machine, workingVolumeGrid(*s.machine, samples));
+      })
+      .def("budget", [](const PythonMachine& s, const OptionValues& options) {
+        const BudgetOptions o = budgetOptions(options);
+        BudgetResult r;
+        {
+          py::gil_scoped_release release;
+          r = errorBudget(s, o);
+        }
+        return toPython(toJson(r));
+      })
+      .def("stiffness", [](const PythonMachine& s, int samples) { return toPython(toJson(summariseStiffness(s, samples))); });
+}
+
+}  // namespace mtacc::python

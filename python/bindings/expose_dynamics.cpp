@@ -1,0 +1,74 @@
+// Structure: the rigid-body model's modes, FRFs, acceleration response and maps; Machine: seed
+// 004's virtual machine and the decomposition of recorded TCP errors.
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "mtacc/workflows/dynamics.hpp"
+#include "mtacc/workflows/recorded_decomposition.hpp"
+#include "mtacc/workflows/virtual_motion.hpp"
+
+namespace mtacc::python {
+
+void exposeDynamics(py::module_& mod, MachineClass& machine) {
+  machine
+      .def("decompose", [](const PythonMachine& s, const std::string& setFile, size_t seriesPoints, const std::string& driftFrame) {
+        const auto set = loadDecompositionSetWithDriftFrame(setFile, driftFrame, "drift_frame");
+        RecordedDecomposition result;
+        {
+          py::gil_scoped_release release;
+          result = decomposeRecordedSet(s, set);
+        }
+        return toPython(toJson(result, seriesPoints));
+      })
+      .def("simulate_motion", [](const PythonMachine& s, const std::string& program, const std::string& folder, const std::vector<double>& feeds,
+                                 const std::string& structure, const std::string& noise, double acceleration, double jerkTimeMs,
+                                 const std::vector<double>& kv, const std::vector<double>& feedForward, double clockOffsetMs, std::uint64_t seed,
+                                 const std::string& format) {
+        MotionSimulationRequest request;
+        request.program = program;
+        request.folder = folder;
+        if (!feeds.empty()) request.feeds = feeds;
+        request.structure = structure;
+        request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
+        request.limits.acceleration = acceleration;
+        request.limits.jerkTime = jerkTimeMs * 1e-3;
+        request.positionGains = kv;
+        request.feedForwards = feedForward;
+        request.format = signalFormatNamed(format, "format");
+        request.clockOffset = clockOffsetMs * 1e-3;
+        request.seed = seed;
+        MotionSimulation simulation;
+        {
+          py::gil_scoped_release release;
+          simulation = simulateMotion(s, request);
+        }
+        return toPython(toJson(simulation));
+      });
+
+  py::class_<StructureModel>(mod, "Structure")
+      .def(py::init([](const std::string& pathOrName) { return loadStructureModel(pathOrName); }), py::arg("model"))
+      .def_readonly("name", &StructureModel::name)
+      .def("positions", [](const StructureModel& m, const std::string& at) { return structurePositions(m, at); })
+      .def("modes", [](const StructureModel& m, const std::string& at, int count) {
+        return toPython(toJson(structureModes(m, structurePositions(m, at)), count));
+      })
+      .def("frf", [](const StructureModel& m, const std::vector<double>& frequencies, const std::string& at, const std::string& method) {
+        return toPython(toJson(structureFrf(m, {structurePositions(m, at), frequencies, method})));
+      })
+      .def("acceleration_response", [](const StructureModel& m, const std::string& at) {
+        return toPython(toJson(structureAcceleration(m, structurePositions(m, at))));
+      })
+      .def("map", [](const StructureModel& m, const std::string& quantity, const std::string& axisA, const std::string& axisB,
+                     int countA, int countB, const std::string& at) {
+        MapResult r;
+        const MapRequest request{quantity, {axisA, axisB, countA, countB, structurePositions(m, at)}};
+        {
+          py::gil_scoped_release release;
+          r = structureMap(m, request);
+        }
+        return toPython(toJson(r));
+      })
+      .def("describe", [](const StructureModel& m) { return toPython(structureJson(m)); });
+}
+
+}  // namespace mtacc::python

@@ -1,0 +1,70 @@
+// Machine: measurement runs simulated and read, the ballbar and R-test evaluations, the
+// standard circles of the report, observability and identification, and the hole plates.
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "mtacc/workflows/identification.hpp"
+#include "mtacc/workflows/identified_errors.hpp"
+#include "mtacc/workflows/measurement_runs.hpp"
+#include "mtacc/workflows/plates.hpp"
+#include "mtacc/workflows/report_paths.hpp"
+
+namespace mtacc::python {
+
+void exposeMeasurements(MachineClass& machine) {
+  machine
+      .def("simulate", [](const PythonMachine& s, const std::string& plan, const py::object& noise, std::uint64_t seed,
+                          const std::string& outputDir, const std::string& setupErrors) {
+        SimulationOptions o;
+        o.noise = quantity(noise, Dimension::Length, "noise");
+        o.setupErrors = parseSetupErrors(setupErrors, "setup");
+        o.seed = seed;
+        o.output = outputDir;
+        o.outputIsFolder = true;
+        return toPython(toJson(simulatePlan(s, plan, o)));
+      })
+      .def("read_measurement", [](const PythonMachine& s, const std::string& path) { return toPython(runJson(*s.machine, readMeasurementFile(s, path))); })
+      .def("evaluate_ballbar", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(evaluateBallbarFile(s, path))); })
+      .def("evaluate_rtest", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(evaluateRTestFile(s, path))); })
+      .def("xy_circle", [](const PythonMachine& s) {
+        const auto r = xyCircleTest(s);
+        return r ? toPython(toJson(*r)) : py::none().cast<py::object>();
+      })
+      .def("tilted_circle", [](const PythonMachine& s) {
+        const auto r = tiltedCircleTest(s);
+        return r ? toPython(toJson(*r)) : py::none().cast<py::object>();
+      })
+      .def("observability", [](const PythonMachine& s, const OptionValues& options) {
+        return toPython(toJson(planObservability(s, identificationRequest(observabilitySchema(), options))));
+      })
+      .def("identify", [](const PythonMachine& s, const OptionValues& options, const std::string& errorsOut) {
+        const IdentificationRequest request = identificationRequest(identificationSchema(), options);
+        IdentificationOutcome out;
+        {
+          py::gil_scoped_release release;
+          out = identifyParameters(s, request);
+        }
+        if (!errorsOut.empty()) writeIdentifiedErrors(errorsOut, out, "errors_out");
+        return toPython(toJson(out));
+      })
+      .def("identify_plates", [](const PythonMachine& s, const std::vector<std::string>& files, double piece) {
+        PlateIdentificationStudy study;
+        {
+          py::gil_scoped_release release;
+          study = identifyPlateFiles(s, files, piece);
+        }
+        return toPython(toJson(study));
+      })
+      .def("compare_plate", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(comparePlateFile(s, path))); })
+      .def("simulate_plate", [](const PythonMachine& s, const std::string& output, const std::string& header, const std::string& noise,
+                                std::uint64_t seed) {
+        PlateSimulationRequest r;
+        r.output = output;
+        r.layout = parsePlateLayout(*s.machine, header, "layout");
+        r.noise = noise;
+        r.seed = seed;
+        simulatePlateFile(s, r);
+      });
+}
+
+}  // namespace mtacc::python

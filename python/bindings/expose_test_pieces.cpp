@@ -1,0 +1,110 @@
+// Machine: the test pieces — the cone frustum, the cubic machining test with its machined
+// surface, and the errors identified from the cubic test's zone results.
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/workflows/cone_study.hpp"
+#include "mtacc/workflows/cubic_identification.hpp"
+#include "mtacc/workflows/identified_errors.hpp"
+
+namespace mtacc::python {
+namespace {
+
+// A height map as a (ny, nx) float32 array, row j at y(j), scaled (e.g. mm -> um).
+py::array_t<float> heightArray(const HeightMap& m, double scale) {
+  py::array_t<float> out({static_cast<py::ssize_t>(m.grid.ny), static_cast<py::ssize_t>(m.grid.nx)});
+  float* w = out.mutable_data();
+  for (size_t k = 0; k < m.height.size(); ++k) w[k] = static_cast<float>(m.height[k] * scale);
+  return out;
+}
+
+py::dict gridOf(const HeightGrid& g) { return py::dict(py::arg("x0") = g.x0, py::arg("y0") = g.y0, py::arg("spacing") = g.spacing); }
+
+}  // namespace
+
+void exposeTestPieces(MachineClass& machine) {
+  machine
+      .def("cone", [](const PythonMachine& s, const std::string& preset, double alpha, double beta, double radius,
+                      const std::vector<double>& centre, double gamma, bool face, int points, const std::string& branch, double feed,
+                      bool singleErrors, int monteCarlo, const std::string& limitsFile, const std::string& limitsYaml,
+                      std::uint64_t seed) {
+        ConeStudyOptions o;
+        if (!preset.empty()) {
+          const auto p = conePreset(preset);
+          if (!p) throw InputError(InputLocation{"", 0, "preset"}, "unknown preset '" + preset + "'");
+          o.spec = *p;
+        } else {
+          o.spec.alpha = alpha * kDeg;
+          o.spec.beta = beta * kDeg;
+          o.spec.radius = radius;
+          o.spec.centre = vec3(centre, "centre");
+          o.spec.gamma = gamma * kDeg;
+        }
+        o.spec.faceMilling = face;
+        o.points = points;
+        o.branch = parseTiltBranch(branch);
+        o.feed = feed;
+        o.singleErrors = singleErrors;
+        o.monteCarlo = monteCarlo;
+        o.limitsFile = limitsFile;
+        o.limitsYaml = limitsYaml;
+        o.seed = seed;
+        ConeStudy r;
+        {
+          py::gil_scoped_release release;
+          r = coneStudy(s, o);
+        }
+        return toPython(toJson(r));
+      })
+      .def("cone_preset_name", [](const PythonMachine& s) { return conePresetName(*s.machine); })
+      .def("cubic", [](const PythonMachine& s, const std::string& test, double grid, double inset, bool sensitivities,
+                       const std::vector<std::string>& parameters, double sensitivityGrid, int threads) {
+        CubicTestOptions o;
+        o.spec = loadCubicTestSpec(test);
+        o.gridSpacing = grid;
+        o.inset = inset;
+        o.sensitivities = sensitivities;
+        o.sensitivityParameters = parameters;
+        o.sensitivityGrid = sensitivityGrid;
+        o.threads = threads;
+        CubicTestStudy r;
+        {
+          py::gil_scoped_release release;
+          r = cubicTestStudy(s, o);
+        }
+        py::dict out = toPython(toJson(r));
+        out["grid"] = gridOf(r.actual.grid);
+        out["heights_um"] = heightArray(r.actual, 1e3);
+        out["referenced_deviation_um"] = heightArray(referencedDeviation(r), 1e3);
+        py::list paths;
+        for (const auto& z : r.path) paths.append(toArray(z.tips));
+        out["tool_tips"] = paths;
+        if (!r.sensitivities.empty()) {
+          out["sensitivity_grid"] = gridOf(r.sensitivities.front().mapWithAlignment.grid);
+          py::dict maps;
+          for (const auto& k : r.sensitivities)
+            maps[py::str(k.name)] = py::dict(py::arg("with_alignment") = heightArray(k.mapWithAlignment, 1.0),
+                                             py::arg("on_table") = heightArray(k.mapOnTable, 1.0));
+          out["sensitivity_maps"] = maps;
+        }
+        return out;
+      })
+      .def("cubic_identify", [](const PythonMachine& s, const std::string& zones, const std::vector<std::string>& parameters,
+                                const std::string& test, const std::string& noise, const std::string& errorsOut) {
+        CubicIdentificationRequest request;
+        request.test = test;
+        request.zonesFile = zones;
+        request.parameters = parameters;
+        if (!noise.empty()) request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
+        IdentificationOutcome out;
+        {
+          py::gil_scoped_release release;
+          out = identifyFromZones(s, request);
+        }
+        if (!errorsOut.empty()) writeIdentifiedErrors(errorsOut, out, "errors_out");
+        return toPython(toJson(out));
+      });
+}
+
+}  // namespace mtacc::python

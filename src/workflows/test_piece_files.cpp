@@ -1,0 +1,85 @@
+#include "mtacc/workflows/test_piece_files.hpp"
+
+#include <fmt/format.h>
+
+#include <initializer_list>
+
+#include "mtacc/core/input_error.hpp"
+#include "mtacc/core/text_file.hpp"
+#include "mtacc/io/cone_program.hpp"
+#include "mtacc/io/cubic_program.hpp"
+#include "mtacc/io/surface_files.hpp"
+#include "mtacc/io/zone_results_csv.hpp"
+#include "mtacc/workflows/cubic_identification.hpp"
+
+namespace mtacc {
+namespace {
+
+// The file's format from its extension, one of `allowed`; InputError at `key` otherwise.
+std::string formatOf(const std::string& path, const std::string& key, std::initializer_list<const char*> allowed) {
+  std::string list;
+  for (const char* ext : allowed) {
+    if (path.ends_with(std::string(".") + ext)) return ext;
+    list += std::string(list.empty() ? "" : ", ") + "." + ext;
+  }
+  throw InputError(InputLocation{"", 0, key}, "'" + path + "': expected a file ending in " + list);
+}
+
+class Written {
+ public:
+  void operator()(const std::string& path, const std::string& content, const std::string& key, const std::string& what) {
+    writeFileAtomically(path, content, key);
+    lines_.push_back(what + " written: " + path);
+  }
+  std::vector<std::string> lines() && { return std::move(lines_); }
+
+ private:
+  std::vector<std::string> lines_;
+};
+
+}  // namespace
+
+std::vector<std::string> writeConeFiles(const ConeStudy& s, const ConeFiles& files) {
+  Written write;
+  if (!files.cl.empty()) write(files.cl, coneClData(s.path), "cl", "CL data");
+  if (!files.gcode.empty()) write(files.gcode, coneNcProgram(*s.machine, s.options.spec, s.motion.q, s.options.feed), "gcode", "NC program");
+  return std::move(write).lines();
+}
+
+void checkCubicTestFiles(const CubicTestFiles& files) {
+  if (!files.map.empty()) formatOf(files.map, "map", {"svg", "png"});
+  if (!files.heights.empty()) formatOf(files.heights, "heights", {"csv", "npy"});
+  if (!files.surface.empty()) formatOf(files.surface, "surface", {"ply", "stl"});
+  if (!(files.mapLimit >= 1e-6 && files.mapLimit <= 10)) throw InputError(InputLocation{"", 0, "map_limit"}, "must be from 1 nm to 10 mm");
+}
+
+std::vector<std::string> writeCubicTestFiles(const CubicTestStudy& s, const CubicTestFiles& files) {
+  checkCubicTestFiles(files);
+  const Machine& m = *s.machine;
+  const CubicTestSpec& spec = s.options.spec;
+  Written write;
+  if (!files.gcode.empty()) write(files.gcode, cubicNcProgram(m, spec, s.path), "gcode", "NC program");
+  if (!files.cl.empty()) write(files.cl, cubicClData(spec, s.path), "cl", "CL data");
+  if (!files.map.empty()) {
+    const auto referenced = referencedDeviation(s);
+    const ColourMap colours{files.mapLimit, 1200};
+    std::vector<ZonePlane> measured;
+    for (const auto& z : s.zones) measured.push_back(z.measured);
+    const std::string title = fmt::format("{}: machined minus error-free surface, referenced to zone {}", m.name, spec.zones[s.referenceZone].name);
+    write(files.map, formatOf(files.map, "map", {"svg", "png"}) == "png" ? heightMapPng(referenced, colours)
+                                                                         : zoneMapSvg(referenced, colours, spec, measured, title),
+          "map", "surface map");
+  }
+  if (!files.heights.empty())
+    write(files.heights, formatOf(files.heights, "heights", {"csv", "npy"}) == "csv" ? heightMapCsv(s.actual) : heightMapNpy(s.actual),
+          "heights", "heights");
+  if (!files.surface.empty()) {
+    const int stride = exportStride(s.actual.grid);
+    write(files.surface, formatOf(files.surface, "surface", {"ply", "stl"}) == "ply" ? heightMapPly(s.actual, stride) : heightMapStl(s.actual, stride),
+          "surface", fmt::format("surface (every {} cell{})", stride, stride > 1 ? "s" : ""));
+  }
+  if (!files.zonesOut.empty()) write(files.zonesOut, zoneResultsCsv(zoneResults(s)), "zones_out", "zone results");
+  return std::move(write).lines();
+}
+
+}  // namespace mtacc
