@@ -26,9 +26,9 @@
 #include "mtacc/io/machine_yaml.hpp"
 #include "mtacc/io/structure_yaml.hpp"
 #include "mtacc/kinematics/forward.hpp"
-#include "mtacc/procedures/motion_interpolator.hpp"
+#include "mtacc/virtual_controller/motion_interpolator.hpp"
 #include "mtacc/procedures/recorded_test.hpp"
-#include "mtacc/procedures/virtual_recording.hpp"
+#include "mtacc/virtual_controller/virtual_recording.hpp"
 
 using namespace mtacc;
 

@@ -21,7 +21,7 @@
 
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/machine_yaml.hpp"
-#include "mtacc/measurement/identification.hpp"
+#include "mtacc/identification/identification.hpp"
 #include "mtacc/measurement/simulation.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
 

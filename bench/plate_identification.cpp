@@ -22,7 +22,7 @@
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/io/machine_yaml.hpp"
 #include "mtacc/kinematics/forward.hpp"
-#include "mtacc/measurement/plates.hpp"
+#include "mtacc/identification/plate_identification.hpp"
 #include "bench_support.hpp"
 
 using namespace mtacc;

@@ -66,7 +66,7 @@ class IdentificationQualityTest : public ::testing::Test {
 
   // Simulates `plan` on the tilting table with `errors` (a file, or empty for the machine
   // file's whole error description) and identifies the plan's parameters from zero.
-  IdentificationOutcome simulateAndIdentify(const std::string& errors, const std::string& plan, std::uint64_t seed) {
+  IdentificationStudy simulateAndIdentify(const std::string& errors, const std::string& plan, std::uint64_t seed) {
     const auto truth = loadMachineSetup({"tilting-table", errors, "", std::nullopt, ""});
     SimulationOptions simulation;
     simulation.noise = 0.5e-3;

@@ -6,7 +6,7 @@
 
 #include <random>
 
-#include "mtacc/measurement/identification.hpp"
+#include "mtacc/identification/identification.hpp"
 #include "mtacc/measurement/simulation.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
 #include "test_helpers.hpp"

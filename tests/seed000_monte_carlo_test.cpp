@@ -43,7 +43,7 @@ TEST(Seed000MonteCarlo, ExactAndFirstOrderAgreeForTable3_9SizedErrors) {
 }
 
 ConeStudy monteCarloStudy(const std::string& machine, const std::string& preset, int samples) {
-  ConeStudyOptions o;
+  ConeStudyRequest o;
   if (!preset.empty()) o.spec = *conePreset(preset);
   o.monteCarlo = samples;
   return coneStudy(loadMachineSetup({machine, "", "", std::nullopt, ""}), o);

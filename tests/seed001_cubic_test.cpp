@@ -46,7 +46,7 @@ MachineSetup tiltingTable(WorkpieceAlignment alignment, const std::string& error
 
 CubicTestStudy study(WorkpieceAlignment alignment, const std::string& errors, double grid, double inset = 1.0,
                      const CubicTestSpec& spec = seed001CubicTest()) {
-  CubicTestOptions o;
+  CubicTestRequest o;
   o.spec = spec;
   o.gridSpacing = grid;
   o.inset = inset;
@@ -221,7 +221,7 @@ TEST(Seed001CubicTest, AlphaByAndAlphaCbSameHeightsDifferentTilts) {
 // cells (two per pick) the shifted scallops move a zone mean by up to 0.07 um, and second-order
 // terms stay below 0.01 um.
 TEST(Seed001CubicTest, ZoneSensitivitiesAgreeWithTheClosedForms) {
-  CubicTestOptions o;
+  CubicTestRequest o;
   o.gridSpacing = o.sensitivityGrid = 0.05;
   o.sensitivities = true;
   o.sensitivityParameters.assign(std::begin(kSeedErrors), std::end(kSeedErrors));

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "mtacc/kinematics/forward.hpp"
-#include "mtacc/measurement/identification.hpp"
+#include "mtacc/identification/identification.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
 #include "mtacc/procedures/cubic_test.hpp"
 #include "test_helpers.hpp"

@@ -11,7 +11,7 @@
 
 #include "mtacc/errors/aliases.hpp"
 #include "mtacc/measurement/circular_evaluation.hpp"
-#include "mtacc/measurement/identification.hpp"
+#include "mtacc/identification/identification.hpp"
 #include "mtacc/measurement/simulation.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
 #include "mtacc/procedures/ballbar_seed002.hpp"

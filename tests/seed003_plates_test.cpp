@@ -13,7 +13,7 @@
 
 #include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/forward.hpp"
-#include "mtacc/measurement/plates.hpp"
+#include "mtacc/identification/plate_identification.hpp"
 #include "reference_values.hpp"
 #include "test_helpers.hpp"
 

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "mtacc/core/input_error.hpp"
-#include "mtacc/procedures/servo_loop.hpp"
+#include "mtacc/virtual_controller/servo_loop.hpp"
 #include "mtacc/procedures/trace_alignment.hpp"
 
 namespace mtacc {

@@ -14,11 +14,11 @@
 #include "mtacc/io/structure_yaml.hpp"
 #include "mtacc/core/uniform_spline.hpp"
 #include "mtacc/kinematics/forward.hpp"
-#include "mtacc/measurement/identification.hpp"
+#include "mtacc/identification/identification.hpp"
 #include "mtacc/measurement/simulation.hpp"
-#include "mtacc/procedures/motion_interpolator.hpp"
+#include "mtacc/virtual_controller/motion_interpolator.hpp"
 #include "mtacc/procedures/recorded_test.hpp"
-#include "mtacc/procedures/virtual_recording.hpp"
+#include "mtacc/virtual_controller/virtual_recording.hpp"
 #include "test_helpers.hpp"
 
 namespace mtacc {

@@ -9,7 +9,7 @@
 #include "mtacc/dynamics/rigid_body_dynamics.hpp"
 #include "mtacc/dynamics/transient_deflection.hpp"
 #include "mtacc/io/structure_yaml.hpp"
-#include "mtacc/procedures/motion_interpolator.hpp"
+#include "mtacc/virtual_controller/motion_interpolator.hpp"
 
 namespace mtacc {
 namespace {

@@ -31,7 +31,7 @@ void addMachineOptions(CLI::App& cmd, MachineOptions& o) {
   cmd.add_option("--errors", o.source.errorsFile, "errors file (YAML with an 'errors:' mapping); default: the machine file's");
   cmd.add_option("--alignment", o.source.alignment,
                  "workpiece set-up: 'table' (fixed to the table frame) or 'machine' (aligned at the reference pose, "
-                 "seed 001 M_WC); default: the machine file's");
+                 "the workpiece-to-table transformation M_WC of Li et al. 2021); default: the machine file's");
   cmd.add_option_function<double>(
          "--load", [&o](double kg) { o.source.load = kg; },
          "workpiece load on the table in kg, scaling the errors' load-dependent stiffness changes; default: the errors' "

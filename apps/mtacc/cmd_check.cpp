@@ -50,8 +50,8 @@ void run(const CheckOptions& o) {
                        m.toolOffset.y(), m.toolOffset.z(), m.toolDirection.x(), m.toolDirection.y(), m.toolDirection.z());
   human += fmt::format("Workpiece  offset ({:g}, {:g}, {:g}) mm, {}\n", m.workpieceOffset.x(), m.workpieceOffset.y(),
                        m.workpieceOffset.z(),
-                       m.alignment == WorkpieceAlignment::Table ? "fixed to the table frame (seed 001 eq. 2)"
-                                                                : "aligned with the machine at the reference pose (seed 001 eqs. 10-12)");
+                       m.alignment == WorkpieceAlignment::Table ? "fixed to the table frame (Li et al. 2021 eq. 2)"
+                                                                : "aligned with the machine at the reference pose (Li et al. 2021 eqs. 10-12)");
   human += fmt::format("\nError parameters: {} location, {} component-error coefficients; {} non-zero\n", c.locationCount,
                        c.parameters.size() - static_cast<size_t>(c.locationCount), c.nonZero.size());
   for (const auto& p : c.nonZero)

@@ -1,4 +1,4 @@
-// mtacc cone MACHINE: the 5-axis cone-frustum test piece of seed 000 — tool path and NC
+// mtacc cone MACHINE: the 5-axis cone-frustum test piece of Bossoni 2009 — tool path and NC
 // program, axis motions, single-error influences, Monte Carlo over tolerance limits.
 #include <fmt/format.h>
 
@@ -19,13 +19,13 @@ struct ConeCliOptions : MachineOptions {
   ConeFiles files;
   double alpha = 45, beta = 30, radius = 40, gamma = 0;
   bool faceMilling = false;
-  ConeStudyOptions study;
+  ConeStudyRequest study;
 };
 
 void run(ConeCliOptions& o) {
   const auto setup = loadMachineSetup(o.source);
   const Machine& m = *setup.machine;
-  ConeStudyOptions& options = o.study;
+  ConeStudyRequest& options = o.study;
   if (!o.preset.empty()) {
     const auto p = conePreset(o.preset);
     if (!p) throw InputError(InputLocation{"", 0, "--preset"}, "unknown preset '" + o.preset + "' (tilting-table, swivel-head, double-pivot, nas979)");
@@ -64,13 +64,13 @@ void run(ConeCliOptions& o) {
                        a.maxSpeed * f / 60, a.maxAcceleration * f / 3600);
   }
   const auto& c = s.closedForm;
-  human += fmt::format("closed form (seed 000 Table 3.1, {}): tilt {:.3f} .. {:.3f} deg (range {:.3f}), rotary range {:.3f} deg\n",
+  human += fmt::format("closed form (Bossoni 2009 Table 3.1, {}): tilt {:.3f} .. {:.3f} deg (range {:.3f}), rotary range {:.3f} deg\n",
                        c.caseName, c.tiltMin / kDeg, c.tiltMax / kDeg, c.tiltRange / kDeg, c.rotaryRange / kDeg);
   if (s.form)
     human += fmt::format("\nequivalent cone form error of the machine's errors: {:.3f} um (first order {:.3f} um)\n",
                          s.form->formError * 1e3, s.firstOrderFormError * 1e3);
   if (!s.singleErrors.empty())
-    human += "\nsingle errors (each alone at its value): equivalent cone form error, form type (seed 000 §3.10.4)\n";
+    human += "\nsingle errors (each alone at its value): equivalent cone form error, form type (Bossoni 2009 §3.10.4)\n";
   for (const auto& e : s.singleErrors)
     human += fmt::format("  {:<10} {:8.3f} um  {}\n", e.name, e.form.formError * 1e3, toString(e.type));
   if (s.monteCarlo) {
@@ -89,9 +89,9 @@ void run(ConeCliOptions& o) {
 
 void addConeCommand(CLI::App& app) {
   auto o = std::make_shared<ConeCliOptions>();
-  auto* cmd = app.add_subcommand("cone", "5-axis cone-frustum test piece (seed 000): path, axis motions, error influence");
+  auto* cmd = app.add_subcommand("cone", "5-axis cone-frustum test piece (Bossoni 2009): path, axis motions, error influence");
   addMachineOptions(*cmd, *o);
-  cmd->add_option("--preset", o->preset, "tilting-table, swivel-head, double-pivot (seed 000 §3.6) or nas979");
+  cmd->add_option("--preset", o->preset, "tilting-table, swivel-head, double-pivot (Bossoni 2009 §3.6) or nas979");
   cmd->add_option("--alpha", o->alpha, "cone angle (half apex angle) [deg], negative: upside down (default 45)");
   cmd->add_option("--beta", o->beta, "inclination of the cone axis [deg] (default 30)");
   cmd->add_option("--radius", o->radius, "TCP path radius [mm] (default 40)");
@@ -100,11 +100,11 @@ void addConeCommand(CLI::App& app) {
   cmd->add_flag("--face-milling", o->faceMilling, "tool normal to the cone surface instead of along the slant");
   cmd->add_option("--points", o->study.points, "points around the path (default 720)");
   cmd->add_option("--chord-tolerance", o->study.chordTolerance, "choose the points for this chord error [mm] instead");
-  cmd->add_option("--branch", o->branch, "tilt branch at phi = 0: negative (seed 000), positive or auto");
+  cmd->add_option("--branch", o->branch, "tilt branch at phi = 0: negative (Bossoni 2009), positive or auto");
   cmd->add_option("--feed", o->study.feed, "contouring feed [mm/min] for axis speeds (default 500)");
   cmd->add_flag("--single-errors", o->study.singleErrors, "form error of each non-zero error alone");
   cmd->add_option("--monte-carlo", o->study.monteCarlo, "number of Monte Carlo samples (e.g. 1000)");
-  cmd->add_option("--limits", o->study.limitsFile, "limits file (default: seed 000 Table 3.9)");
+  cmd->add_option("--limits", o->study.limitsFile, "limits file (default: Bossoni 2009 Table 3.9)");
   cmd->add_option("--seed", o->study.seed, "random seed of the Monte Carlo (default 1)");
   cmd->add_option("--gcode", o->files.gcode, "write the NC program of the path to FILE");
   cmd->add_option("--cl", o->files.cl, "write the CL data (phi, TCP, tool vector, surface normal) to FILE.csv");

@@ -1,4 +1,4 @@
-// mtacc cubic MACHINE: seed 001's cubic machining test — NC program and CL data, the machined
+// mtacc cubic MACHINE: Li et al. 2021's cubic machining test — NC program and CL data, the machined
 // surface simulated from the erroneous tool path, zone heights and tilts, sensitivities with
 // and without M_WC. mtacc cubic-identify MACHINE --zones FILE: the errors from zone results.
 #include <fmt/format.h>
@@ -18,7 +18,7 @@ namespace {
 
 struct CubicCliOptions : MachineOptions {
   std::string test = "seed001-cubic", sensitivityParams, mapLimit = "10 um";
-  CubicTestOptions study;
+  CubicTestRequest study;
   CubicTestFiles files;
 };
 
@@ -31,7 +31,7 @@ void run(CubicCliOptions& o) {
   checkCubicTestFiles(o.files);
   const auto setup = loadMachineSetup(o.source);
   const Machine& m = *setup.machine;
-  CubicTestOptions& options = o.study;
+  CubicTestRequest& options = o.study;
   options.spec = loadCubicTestSpec(o.test);
   options.sensitivityParameters = splitList(o.sensitivityParams);
   const bool tty = !o.json && isatty(2);
@@ -87,27 +87,28 @@ void identify(CubicIdentifyCliOptions& o) {
 
 void addCubicCommands(CLI::App& app) {
   auto o = std::make_shared<CubicCliOptions>();
-  auto* cmd = app.add_subcommand("cubic", "cubic machining test (seed 001): NC program, machined surface, zone heights, sensitivities");
+  auto* cmd = app.add_subcommand("cubic", "cubic machining test (Li et al. 2021): NC program, machined surface, zone heights, sensitivities");
   addMachineOptions(*cmd, *o);
   cmd->add_option("--test", o->test, "test piece (YAML) or bundled name (default seed001-cubic)");
   cmd->add_option("--grid", o->study.gridSpacing, "grid spacing of the simulated surface [mm] (default 0.01)");
   cmd->add_option("--inset", o->study.inset, "margin left out along each zone edge when zones are evaluated [mm] (default 1)");
   cmd->add_option("--chord-tolerance", o->study.chordTolerance, "largest departure of the actual path from its chords [mm] (default 1e-6)");
-  cmd->add_flag("--sensitivities", o->study.sensitivities, "sensitivity k = E / epsilon of every zone to each error, with and without M_WC");
+  cmd->add_flag("--sensitivities", o->study.sensitivities, "sensitivity k = E / epsilon of every zone to each error, with and without M_WC (the workpiece aligned with the "
+                "machine at the reference pose, and fixed to the table)");
   cmd->add_option("--sensitivity-parameters", o->sensitivityParams, "errors for --sensitivities (default: the rotary axes' location errors)");
   cmd->add_option("--sensitivity-grid", o->study.sensitivityGrid, "grid spacing for the sensitivities [mm] (default 0.02)");
   cmd->add_option("--threads", o->study.threads, "threads (0 = all cores)")->capture_default_str();
   cmd->add_option("--gcode", o->files.gcode, "write the NC program to FILE");
   cmd->add_option("--cl", o->files.cl, "write the CL data (zone, tool tip, tool vector) to FILE.csv");
   cmd->add_option("--map", o->files.map, "write the deviation map referenced to zone I to FILE.svg (zones, colour bar) or FILE.png");
-  cmd->add_option("--map-limit", o->mapLimit, "deviation shown at full colour (default 10 um, as seed 001 Fig. 16)");
+  cmd->add_option("--map-limit", o->mapLimit, "deviation shown at full colour (default 10 um, as Li et al. 2021 Fig. 16)");
   cmd->add_option("--heights", o->files.heights, "write the machined heights to FILE.csv (um) or FILE.npy (float32, mm)");
   cmd->add_option("--surface", o->files.surface, "write the machined surface to FILE.ply or FILE.stl (at most 1e6 vertices)");
   cmd->add_option("--zones-out", o->files.zonesOut, "write the zone results (heights and tilts) to FILE.csv, for cubic-identify");
   cmd->callback([o] { run(*o); });
 
   auto id = std::make_shared<CubicIdentifyCliOptions>();
-  auto* idc = app.add_subcommand("cubic-identify", "errors from the zone results of a cubic machining test (seed 001 §7.3)");
+  auto* idc = app.add_subcommand("cubic-identify", "errors from the zone results of a cubic machining test (Li et al. 2021 §7.3)");
   addMachineOptions(*idc, *id);
   idc->add_option("--test", id->request.test, "test piece (YAML) or bundled name (default seed001-cubic)");
   idc->add_option("--zones", id->request.zonesFile, "zone results: zone,height_um[,slope_x_um_per_mm,slope_y_um_per_mm]")->required();

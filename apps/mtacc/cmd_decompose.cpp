@@ -1,5 +1,5 @@
 // mtacc decompose: recorded command, encoder and instrument signals of one trajectory at several
-// feeds, split into contouring, link, motion, drift and dynamic errors (seed 004), with the
+// feeds, split into contouring, link, motion, drift and dynamic errors (Andolfatto et al. 2011), with the
 // paper's shares (Table 1), maxima (Tables 2-3), dynamic RMS (Table 4) and power law (eq. 23).
 #include <fmt/format.h>
 
@@ -73,13 +73,13 @@ void run(const DecomposeCliOptions& o) {
 
 void addDecomposeCommand(CLI::App& app) {
   auto o = std::make_shared<DecomposeCliOptions>();
-  auto* cmd = app.add_subcommand("decompose", "recorded TCP errors over feeds split into contouring, link, motion, drift and dynamic errors (seed 004)");
+  auto* cmd = app.add_subcommand("decompose", "recorded TCP errors over feeds split into contouring, link, motion, drift and dynamic errors (Andolfatto et al. 2011)");
   addMachineOptions(*cmd, *o);
   cmd->add_option("set", o->set, "decomposition set (YAML, docs/file-formats.md \"Decomposition sets\")")->required();
   cmd->add_option("--series", o->seriesPoints, "with --json: each test's contributions along the normalised path u, at most this many "
                                                "points (every k-th sample)")->check(CLI::Range(0, 10000000));
   cmd->add_option("--drift-frame", o->driftFrame,
-                  "where the drift is constant over a test: machine (seed 004's, the default) or workpiece; overrides the set's drift_frame");
+                  "where the drift is constant over a test: machine (Andolfatto et al. 2011's, the default) or workpiece; overrides the set's drift_frame");
   cmd->add_flag("--strict", o->strict, "exit with status 4 when a result is doubtful (offset at the search limit, instrument spikes)");
   cmd->callback([o] { run(*o); });
 }

@@ -1,4 +1,4 @@
-// mtacc drift: a thermal drift test (ISO 230-3, seed 003 §2.6) from its probe, position and
+// mtacc drift: a thermal drift test (ISO 230-3, the 1991 BCR report §2.6) from its probe, position and
 // temperature readings: the drift per direction, its warm-up / cool-down hysteresis, and the
 // temperatures that predict it (stepwise regression, linear in an axis's position where it moves).
 #include <fmt/format.h>
@@ -70,7 +70,7 @@ void run(const DriftCliOptions& o) {
 
 void addDriftCommand(CLI::App& app) {
   auto o = std::make_shared<DriftCliOptions>();
-  auto* cmd = app.add_subcommand("drift", "thermal drift test (ISO 230-3, seed 003: spindle, axis or the machine at rest): drift per "
+  auto* cmd = app.add_subcommand("drift", "thermal drift test (ISO 230-3, the 1991 BCR report: spindle, axis or the machine at rest): drift per "
                                           "direction, hysteresis, the temperatures that predict it");
   addSchemaOptions(*cmd, driftTestSchema(), o->values);
   addOutputOptions(*cmd, *o);

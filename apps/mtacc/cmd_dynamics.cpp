@@ -1,5 +1,5 @@
 // mtacc dynamics modes | frf | accel | map: the rigid-body structural dynamics of a structure
-// model (seed 000 part II) at given axis positions, or over a grid of positions.
+// model (Bossoni 2009 part II) at given axis positions, or over a grid of positions.
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
@@ -64,7 +64,7 @@ void frf(const DynamicsCliOptions& o) {
 void accel(const DynamicsCliOptions& o) {
   const auto model = loadStructureModel(o.model);
   const auto r = structureAcceleration(model, structurePositions(model, o.at));
-  std::string human = fmt::format("{}: quasi-static TCP displacement per axis acceleration [um/g_n] (seed 000 Table 7.1 form)\n{:>8}",
+  std::string human = fmt::format("{}: quasi-static TCP displacement per axis acceleration [um/g_n] (Bossoni 2009 Table 7.1 form)\n{:>8}",
                                   model.name, "");
   std::string csv = "response";
   for (const auto& a : r.axes) human += fmt::format(" {:>10}", a + "''"), csv += "," + a;
@@ -112,7 +112,7 @@ void map(const DynamicsCliOptions& o) {
 
 void addDynamicsCommand(CLI::App& app) {
   auto o = std::make_shared<DynamicsCliOptions>();
-  auto* dyn = app.add_subcommand("dynamics", "Rigid-body structural dynamics of a structure model (seed 000 part II)");
+  auto* dyn = app.add_subcommand("dynamics", "Rigid-body structural dynamics of a structure model (Bossoni 2009 part II)");
   dyn->require_subcommand(1);
   auto common = [&](CLI::App* c) {
     c->add_option("model", o->model, "Structure model (YAML) or bundled name, e.g. tzyx-arm-x")->required();

@@ -1,4 +1,4 @@
-// mtacc fit: a component error from its direct-measurement runs (seed 003): corrections, the
+// mtacc fit: a component error from its direct-measurement runs (the 1991 BCR report): corrections, the
 // mean of the runs, the C1 piecewise-polynomial fit with stepwise removal, and its YAML entry.
 #include <fmt/format.h>
 
@@ -66,7 +66,7 @@ void run(FitCliOptions& o) {
 
 void addFitCommand(CLI::App& app) {
   auto o = std::make_shared<FitCliOptions>();
-  auto* cmd = app.add_subcommand("fit", "fit a component error to its direct-measurement runs (seed 003: C1 piecewise polynomial)");
+  auto* cmd = app.add_subcommand("fit", "fit a component error to its direct-measurement runs (the 1991 BCR report: C1 piecewise polynomial)");
   addMachineOptions(*cmd, *o);
   cmd->add_option("data", o->request.file, "component runs CSV (docs/file-formats.md \"Component runs\")")->required();
   cmd->add_option("--breaks", o->breaks, "fixed breaks in the axis unit (mm or deg), e.g. 0,50,100,200; default: --pieces");

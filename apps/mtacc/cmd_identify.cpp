@@ -80,7 +80,7 @@ void addErrorsOutOption(CLI::App& cmd, std::string& errorsOut) {
                  "as an errors file that --errors reads");
 }
 
-void emitIdentification(const MachineOptions& o, const IdentificationOutcome& out, bool strict, const std::string& errorsOut) {
+void emitIdentification(const MachineOptions& o, const IdentificationStudy& out, bool strict, const std::string& errorsOut) {
   if (!errorsOut.empty()) writeIdentifiedErrors(errorsOut, out, "--errors-out");
   const auto& r = out.result;
   std::string human = fmt::format("Identification on {} from {} runs ({} readings, {} unknowns)\n", out.machine->name, out.runs,

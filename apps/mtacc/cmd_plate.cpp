@@ -1,4 +1,4 @@
-// mtacc plate: a measured hole or ball plate against the machine's error model (seed 003 §5.3):
+// mtacc plate: a measured hole or ball plate against the machine's error model (the 1991 BCR report §5.3):
 // per feature the measured and simulated deviations and the residual, with its k = 2 bound.
 // mtacc plate-identify: the component errors from several plates (§7.7).
 #include <fmt/format.h>
@@ -75,13 +75,13 @@ void runIdentify(const PlateIdentifyCliOptions& o) {
 
 void addPlateCommand(CLI::App& app) {
   auto o = std::make_shared<PlateCliOptions>();
-  auto* cmd = app.add_subcommand("plate", "a measured hole or ball plate against the machine's error model (seed 003)");
+  auto* cmd = app.add_subcommand("plate", "a measured hole or ball plate against the machine's error model (the 1991 BCR report)");
   addMachineOptions(*cmd, *o);
   cmd->add_option("data", o->data, "plate measurement CSV (docs/file-formats.md \"Plate measurements\")")->required();
   cmd->callback([o] { run(*o); });
 
   auto io = std::make_shared<PlateIdentifyCliOptions>();
-  auto* identify = app.add_subcommand("plate-identify", "component errors and squareness from several measured plates (seed 003 §7.7)");
+  auto* identify = app.add_subcommand("plate-identify", "component errors and squareness from several measured plates (the 1991 BCR report §7.7)");
   addMachineOptions(*identify, *io);
   identify->add_option("files", io->files, "plate measurement CSVs, one per placement")->required();
   identify->add_option("--piece", io->piece, "length of the pieces of the identified functions [mm] (default 100)");

@@ -67,11 +67,11 @@ void addReportCommand(CLI::App& app) {
   cmd->add_option("--structure", o->structure, "structure model for the dynamics section (e.g. tzyx-arm-x)");
   cmd->add_option("--compare", o->compare, "a second structure model to compare with (e.g. tzyx-arm-y)");
   cmd->add_option("--positioning", o->positioning, "ISO 230-2 positioning-test files for the positioning section");
-  cmd->add_option("--plate", o->plates, "plate measurements (seed 003) to compare with the model, one section each");
-  cmd->add_option("--component", o->components, "direct-measurement runs (seed 003) to fit and plot, one section each");
-  cmd->add_option("--drift", o->drift, "thermal drift tests (ISO 230-3, seed 003) to evaluate and plot, one section each");
+  cmd->add_option("--plate", o->plates, "plate measurements (the 1991 BCR report) to compare with the model, one section each");
+  cmd->add_option("--component", o->components, "direct-measurement runs (the 1991 BCR report) to fit and plot, one section each");
+  cmd->add_option("--drift", o->drift, "thermal drift tests (ISO 230-3, the 1991 BCR report) to evaluate and plot, one section each");
   cmd->add_option("--thermal", o->thermal, "thermal state (YAML: the temperatures along the scales): the whole report is the warm machine's");
-  cmd->add_option("--decomposition", o->decomposition, "a decomposition set (seed 004 recorded signals) for the error-decomposition section");
+  cmd->add_option("--decomposition", o->decomposition, "a decomposition set (Andolfatto et al. 2011 recorded signals) for the error-decomposition section");
   cmd->callback([o] { run(*o); });
 }
 

@@ -1,5 +1,5 @@
 // mtacc sensitivity: how every error parameter moves the TCP at one pose (analytic Jacobian)
-// and the sensitivity coefficient k = E / epsilon of seed 001 eq. 15 along a direction.
+// and the sensitivity coefficient k = E / epsilon of Li et al. 2021 eq. 15 along a direction.
 #include <fmt/format.h>
 
 #include "cli_common.hpp"

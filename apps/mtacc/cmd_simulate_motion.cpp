@@ -1,4 +1,4 @@
-// mtacc simulate motion: seed 004's virtual machine — an NC program run at each feed of a ladder
+// mtacc simulate motion: Andolfatto et al. 2011's virtual machine — an NC program run at each feed of a ladder
 // through interpolator and servo loops, with geometric errors, drift, structural deflection and
 // instrument noise; the recorded signals, the truth and the decomposition set written to a folder.
 #include <fmt/format.h>
@@ -25,7 +25,7 @@ struct MotionCliOptions : MachineOptions {
 
 void addSimulateMotionCommand(CLI::App& simulate) {
   auto o = std::make_shared<MotionCliOptions>();
-  auto* motion = simulate.add_subcommand("motion", "Seed 004's virtual machine: an NC program run at each feed of a ladder, with servo loops, "
+  auto* motion = simulate.add_subcommand("motion", "Andolfatto et al. 2011's virtual machine: an NC program run at each feed of a ladder, with servo loops, "
                                                 "geometric errors, drift, structural deflection and instrument noise; the recorded signals, "
                                                 "the truth and the decomposition set written to a directory");
   motion->add_option("machine", o->source.machine, "Machine file or bundled name")->required();

@@ -56,7 +56,7 @@ void run(const StiffnessOptions& o) {
 void addStiffnessCommand(CLI::App& app) {
   auto o = std::make_shared<StiffnessOptions>();
   auto* cmd = app.add_subcommand("stiffness",
-                                 "finite-stiffness changes of the errors (seed 003) at the workpiece load, and the TCP errors they cause");
+                                 "finite-stiffness changes of the errors (the 1991 BCR report) at the workpiece load, and the TCP errors they cause");
   addMachineOptions(*cmd, o->machine);
   cmd->add_option("--samples", o->samples, "positions per axis of the working-volume grid")->check(CLI::Range(2, 12));
   cmd->callback([o] { run(*o); });

@@ -17,8 +17,7 @@ void exposeBudget(MachineClass& machine) {
         return sensitivityCoefficientAt(s, first, name, quantity(epsilon, errorDimension(s, name), "epsilon"), vec3(direction, "direction"));
       })
       .def("working_volume_grid", [](const PythonMachine& s, int samples) {
-        requireInRange(budgetSchema().at("samples"), samples);
-        return jointArray(*s.machine, workingVolumeGrid(*s.machine, samples));
+        return jointArray(*s.machine, workingVolumeGrid(s, samples));
       })
       .def("budget", [](const PythonMachine& s, const OptionValues& options) {
         const BudgetOptions o = budgetOptions(options);

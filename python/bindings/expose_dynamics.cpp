@@ -37,7 +37,7 @@ void exposeDynamics(py::module_& mod, MachineClass& machine) {
         request.format = signalFormatNamed(format, "format");
         request.clockOffset = clockOffsetMs * 1e-3;
         request.seed = seed;
-        MotionSimulation simulation;
+        MotionSimulationResult simulation;
         {
           py::gil_scoped_release release;
           simulation = simulateMotion(s, request);

@@ -39,7 +39,7 @@ void exposeMeasurements(MachineClass& machine) {
       })
       .def("identify", [](const PythonMachine& s, const OptionValues& options, const std::string& errorsOut) {
         const IdentificationRequest request = identificationRequest(identificationSchema(), options);
-        IdentificationOutcome out;
+        IdentificationStudy out;
         {
           py::gil_scoped_release release;
           out = identifyParameters(s, request);
@@ -56,13 +56,10 @@ void exposeMeasurements(MachineClass& machine) {
         return toPython(toJson(study));
       })
       .def("compare_plate", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(comparePlateFile(s, path))); })
-      .def("simulate_plate", [](const PythonMachine& s, const std::string& output, const std::string& header, const std::string& noise,
-                                std::uint64_t seed) {
-        PlateSimulationRequest r;
-        r.output = output;
-        r.layout = parsePlateLayout(*s.machine, header, "layout");
-        r.noise = noise;
-        r.seed = seed;
+      .def("simulate_plate", [](const PythonMachine& s, const std::string& output, const std::map<std::string, std::string>& layout,
+                                const std::string& noise, std::uint64_t seed) {
+        PlateSimulationRequest r{.output = output, .layout = {}, .noise = noise, .seed = seed};
+        for (const auto& [key, value] : layout) plateLayoutField(r.layout, key) = value;
         simulatePlateFile(s, r);
       });
 }

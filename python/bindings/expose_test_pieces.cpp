@@ -29,7 +29,7 @@ void exposeTestPieces(MachineClass& machine) {
                       const std::vector<double>& centre, double gamma, bool face, int points, const std::string& branch, double feed,
                       bool singleErrors, int monteCarlo, const std::string& limitsFile, const std::string& limitsYaml,
                       std::uint64_t seed) {
-        ConeStudyOptions o;
+        ConeStudyRequest o;
         if (!preset.empty()) {
           const auto p = conePreset(preset);
           if (!p) throw InputError(InputLocation{"", 0, "preset"}, "unknown preset '" + preset + "'");
@@ -60,7 +60,7 @@ void exposeTestPieces(MachineClass& machine) {
       .def("cone_preset_name", [](const PythonMachine& s) { return conePresetName(*s.machine); })
       .def("cubic", [](const PythonMachine& s, const std::string& test, double grid, double inset, bool sensitivities,
                        const std::vector<std::string>& parameters, double sensitivityGrid, int threads) {
-        CubicTestOptions o;
+        CubicTestRequest o;
         o.spec = loadCubicTestSpec(test);
         o.gridSpacing = grid;
         o.inset = inset;
@@ -97,7 +97,7 @@ void exposeTestPieces(MachineClass& machine) {
         request.zonesFile = zones;
         request.parameters = parameters;
         if (!noise.empty()) request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
-        IdentificationOutcome out;
+        IdentificationStudy out;
         {
           py::gil_scoped_release release;
           out = identifyFromZones(s, request);

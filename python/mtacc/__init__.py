@@ -69,7 +69,7 @@ def thermal_state(machine, path, points=101):
 
 
 def drift_test(test, sensor=None, folds=None, max_sensors=None, position=None, save_model=None, series_points=0):
-    """A thermal drift test (ISO 230-3, seed 003; docs/file-formats.md "Drift tests"), as
+    """A thermal drift test (ISO 230-3, the 1991 BCR report; docs/file-formats.md "Drift tests"), as
     `mtacc drift --json`: what test it is ("test"), per direction (X Y Z in um, A B in urad) the
     largest drift and its range, the warm-up / cool-down hysteresis against `sensor` (default: the
     temperature that changes most), and the stepwise regression on the temperatures, with each
@@ -296,7 +296,7 @@ class Machine:
         return names, (J[0] if q.ndim == 1 else J)
 
     def sensitivity_coefficient(self, q, parameter, epsilon, direction):
-        """Seed 001 eq. 15: k = E / epsilon with the exact model, at one pose q (axes,) [mm, deg]
+        """Li et al. 2021 eq. 15: k = E / epsilon with the exact model, at one pose q (axes,) [mm, deg]
         within travel; epsilon in mm/rad or with a unit ("10 um"); E is the TCP deviation along
         `direction` (the outward normal, any length but zero) in mm. k is in mm/mm or mm/rad."""
         q = np.asarray(q, dtype=float)
@@ -321,7 +321,7 @@ class Machine:
     def cone(self, preset=None, alpha=45.0, beta=30.0, radius=40.0, centre=(-65.0, 0.0, 150.0), gamma=0.0,
              face_milling=False, points=720, branch="negative", feed=500.0, single_errors=False, monte_carlo=0,
              limits=None, seed=1):
-        """The cone-frustum test piece of seed 000 (as `mtacc cone --json`): path, axis positions and their
+        """The cone-frustum test piece of Bossoni 2009 (as `mtacc cone --json`): path, axis positions and their
         statistics, the form error of the machine's errors, each error alone, a Monte Carlo over limits.
         preset: "tilting-table", "swivel-head", "double-pivot", "nas979" or "family" (this machine's).
         Arrays (n points, s samples, k limits): path["phi_deg"] (n,), path["points_mm"], ["tools"],
@@ -329,11 +329,11 @@ class Machine:
         "raw_deviation_um" (n,), also per single error; monte_carlo["form_errors_um"] (s,) and
         monte_carlo["drawn"]["values"] (s, k), each limit's drawn value in its unit (["units"], um or
         urad) under its key (["names"]). limits: a limits file (docs/file-formats.md "Error limits";
-        default: seed 000 Table 3.9) or the same mapping as a dict, each range with its units:
+        default: Bossoni 2009 Table 3.9) or the same mapping as a dict, each range with its units:
         {"X0B": ("-10 um", "10 um"), "EXX.rev": ("0 um", "4 um"), "EXX.lin": ("-3 um", "3 um"),
         "EXX.cyclic": {"range": ("-1 um", "1 um"), "pitch": "30 mm"}}. A location error and a reversal
-        (.rev, or .hyst as seed 000 writes it) are limited by the parameter's own name; ".lin" and
-        ".<k>harm" are the error's change over the axis's range on the path (seed 000 eqs 3.63-3.66),
+        (.rev, or .hyst as Bossoni 2009 writes it) are limited by the parameter's own name; ".lin" and
+        ".<k>harm" are the error's change over the axis's range on the path (Bossoni 2009 eqs 3.63-3.66),
         not a coefficient per mm, and so have names of their own."""
         if preset == "family":
             preset = self._core.cone_preset_name()
@@ -350,7 +350,7 @@ class Machine:
 
     def cubic(self, test="seed001-cubic", grid=0.01, inset=1.0, sensitivities=False, parameters=None,
               sensitivity_grid=0.02, threads=0):
-        """The cubic machining test of seed 001 (as `mtacc cubic --json`): per zone the clamped axes, the
+        """The cubic machining test of Li et al. 2021 (as `mtacc cubic --json`): per zone the clamped axes, the
         deviation E (machined minus error-free surface) and the surface referenced to zone I, as mean
         height (um) and tilts (um/mm); with sensitivities, k = E / epsilon of each error with and
         without M_WC. Adds numpy arrays (ny, nx), row j at y = y0 + (j + 0.5) spacing: "heights_um"
@@ -367,7 +367,7 @@ class Machine:
 
     def fit_component(self, path, breaks=None, pieces=0, degree=2, significance=0.05, period=None, period_zero=0.0,
                       disturbance_threshold=5.0, remove_disturbed=False, errors_out=None):
-        """A component error fitted to its direct-measurement runs (seed 003), as `mtacc fit --json`: the
+        """A component error fitted to its direct-measurement runs (the 1991 BCR report), as `mtacc fit --json`: the
         runs, their means, the C1 piecewise-polynomial fit (breaks in mm or deg) with its uncertainty,
         the terms removed by the stepwise test, flagged readings, and "yaml", the machine YAML entry.
         errors_out: a path for this machine's errors with the fitted function in place, its coefficients'
@@ -377,7 +377,7 @@ class Machine:
                                         bool(remove_disturbed), _text(errors_out))
 
     def stiffness(self, samples=5):
-        """The finite-stiffness changes of the errors (seed 003) at this machine's workpiece load, and the
+        """The finite-stiffness changes of the errors (the 1991 BCR report) at this machine's workpiece load, and the
         largest TCP errors over the working-volume grid (`samples` per axis) of the geometric errors, of the
         changes alone and added by them, as `mtacc stiffness --json` (values in um or urad)."""
         return self._core.stiffness(int(samples))
@@ -426,17 +426,17 @@ class Machine:
         return self._core.compare_plate(str(path))
 
     def decompose(self, set_file, series_points=0, drift_frame=None):
-        """Seed 004's decomposition of recorded signals (a decomposition set, docs/file-formats.md), as
+        """Andolfatto et al. 2011's decomposition of recorded signals (a decomposition set, docs/file-formats.md), as
         `mtacc decompose --json`: per feed the clock offset (ms), shares of eq. 21 with both denominators,
         drift, maxima and dynamic RMS (um), and the power law of the dynamic RMS over the feeds. With
         series_points > 0, each test's contributions along the normalised path u ("series", um). drift_frame:
-        "machine" (seed 004's: the drift constant in the machine frame) or "workpiece"; default the set's
+        "machine" (Andolfatto et al. 2011's: the drift constant in the machine frame) or "workpiece"; default the set's
         drift_frame, else machine. Warnings (an offset at its search limit, instrument spikes): result["warnings"]."""
         return self._core.decompose(str(set_file), int(series_points), _text(drift_frame))
 
     def simulate_motion(self, program, output, feeds=None, structure="", noise="0.2 um", acceleration=3000.0,
                         jerk_time_ms=20.0, kv=40.0, feed_forward=0.99, clock_offset_ms=18.0, seed=1, format="csv"):
-        """Seed 004's virtual machine runs the G-code `program` at each feed (mm/min, FGROUP; default the
+        """Andolfatto et al. 2011's virtual machine runs the G-code `program` at each feed (mm/min, FGROUP; default the
         seed's ladder) and writes the command, encoder, instrument and truth signals (format "csv" or
         "npy") and set.yaml into `output`, as `mtacc simulate motion --json`. `structure`: a structure
         model for the dynamic error. `kv` (1/s) and `feed_forward`: one number for every axis or a list
@@ -455,23 +455,26 @@ class Machine:
         return self._core.identify_plates([str(f) for f in files], float(piece_length))
 
     def simulate_plate(self, output, origin, axes=((1, 0, 0), (0, 1, 0)), stylus=(0, 0, 0), plate=(9, 9, 50.0),
-                       features="all", noise="0 um", probe=None, simulation=None, seed=1):
+                       features="all", noise="0 um", probe=None, simulation=None, seed=1, pose=None):
         """Writes the plate measurement this machine with its errors gives (as `mtacc simulate plate`):
         reference feature at `origin` (mm, workpiece frame), plate axes u, v, stylus (mm, tool frame),
-        plate = (rows, columns, pitch mm); probe = (2S_u, 2S_v) and simulation 2S in um, to state in the file."""
+        plate = (rows, columns, pitch mm); probe = (2S_u, 2S_v) and simulation 2S in um, to state in the file;
+        pose: the axes that stay, {"B": 0, "C": 0} (mm, deg) or "B=0,C=0"."""
         u, v = axes
-        header = (f"# plate: {plate[0]} x {plate[1]}, pitch {plate[2]} mm\n# features: {features}\n"
-                  f"# origin: {origin[0]}, {origin[1]}, {origin[2]} mm\n# axes: {u[0]},{u[1]},{u[2]} / {v[0]},{v[1]},{v[2]}\n"
-                  f"# stylus: {stylus[0]}, {stylus[1]}, {stylus[2]} mm\n")
+        layout = {"plate": f"{plate[0]} x {plate[1]}, pitch {plate[2]} mm", "features": str(features),
+                  "origin": f"{origin[0]}, {origin[1]}, {origin[2]} mm", "axes": f"{u[0]},{u[1]},{u[2]} / {v[0]},{v[1]},{v[2]}",
+                  "stylus": f"{stylus[0]}, {stylus[1]}, {stylus[2]} mm"}
+        if pose is not None:
+            layout["pose"] = _pose_text(pose, "pose")
         if probe is not None:
-            header += f"# probe: {probe[0]}, {probe[1]} um\n"
+            layout["probe"] = f"{probe[0]}, {probe[1]} um"
         if simulation is not None:
-            header += f"# simulation: {simulation} um\n"
-        self._core.simulate_plate(str(output), header, str(noise), int(seed))
+            layout["simulation"] = f"{simulation} um"
+        self._core.simulate_plate(str(output), layout, str(noise), int(seed))
 
     def simulate_component(self, component, output, step=10.0, runs=20, noise="", abbe_offset=(0.0, 0.0, 0.0),
                            disturbance="", disturbance_interval=1800.0, settling="", settling_time=600.0, seed=1):
-        """Writes direct-measurement runs of one component (seed 003 name or ISO) simulated from this
+        """Writes direct-measurement runs of one component (the 1991 BCR report name or ISO) simulated from this
         machine's errors to `output`, as `mtacc simulate component`; `settling` (e.g. "2 arcsec") adds a
         drift at the start that dies away with the time constant `settling_time` (s)."""
         self._core.simulate_component(str(component), str(output), float(step), int(runs), str(noise),
@@ -479,7 +482,7 @@ class Machine:
                                       str(settling), float(settling_time), int(seed))
 
     def cone_preset_name(self):
-        """The seed 000 §3.6 preset of this machine's family, or None."""
+        """The Bossoni 2009 §3.6 preset of this machine's family, or None."""
         return self._core.cone_preset_name()
 
     def simulate(self, plan, noise="0 um", seed=1, output_dir=None, setup=None):
@@ -559,7 +562,7 @@ def _at(at):
 
 
 class Structure:
-    """A rigid-body structure model (seed 000 part II); axis positions `at` as {axis: mm}."""
+    """A rigid-body structure model (Bossoni 2009 part II); axis positions `at` as {axis: mm}."""
 
     def __init__(self, model):
         self._core = _CoreStructure(str(model))
@@ -598,7 +601,7 @@ class Structure:
         return r["method"], r["damping_coupling"]
 
     def acceleration_response(self, at=None):
-        """As `mtacc dynamics accel --json`: {"Hx": {axis: um/g_n}, ...} (seed 000 Table 7.1 form)."""
+        """As `mtacc dynamics accel --json`: {"Hx": {axis: um/g_n}, ...} (Bossoni 2009 Table 7.1 form)."""
         return self._core.acceleration_response(_at(at))["response_um_per_g"]
 
     def map(self, quantity="Hx/X", axes=("Y", "Z"), grid=(20, 20), at=None):

@@ -163,7 +163,7 @@ def _relative_errors(machine, plane, fixed, reference, samples):
 
 
 def relative_error_vectors(machine, plane=("X", "Z"), fixed=None, reference=None, samples=8, magnification=None):
-    """Seed 003 Fig. 5.2: the TCP error vectors over a plane of two linear axes (the others at
+    """The 1991 BCR report Fig. 5.2: the TCP error vectors over a plane of two linear axes (the others at
     `fixed`), relative to the error at `reference` (dict of the two axes; default their travel
     start), drawn magnified at the grid points in the plane of the two axes' directions."""
     err, u, v, base, ref = _relative_errors(machine, plane, fixed, reference, samples)
@@ -187,7 +187,7 @@ def relative_error_vectors(machine, plane=("X", "Z"), fixed=None, reference=None
 
 
 def error_component_surface(machine, plane=("X", "Z"), axis="Y", fixed=None, reference=None, samples=25):
-    """Seed 003 Fig. 5.3: one component of the TCP error (along `axis`'s direction of motion) as a
+    """The 1991 BCR report Fig. 5.3: one component of the TCP error (along `axis`'s direction of motion) as a
     surface over a plane of two linear axes, relative to `reference` as in relative_error_vectors."""
     err, u, v, base, _ = _relative_errors(machine, plane, fixed, reference, samples)
     names = machine.axis_names
@@ -273,7 +273,7 @@ def polar_deviation(angle_deg, deviation_um, title="Radial deviation", remove_me
 
 
 def polar_axis_positions(machine, phi_deg, q):
-    """Radial representation of the axis positions over the path (seed 000 Fig. 3.43): each axis
+    """Radial representation of the axis positions over the path (Bossoni 2009 Fig. 3.43): each axis
     scaled to its own range, 1 = mid-range, the dashed circles its extremes."""
     phi = np.radians(np.asarray(phi_deg, float))
     q = np.asarray(q, float)
@@ -447,7 +447,7 @@ def singular_values(observability):
 
 def frf_plot(frequencies, h, title="FRF of the TCP relative to the workpiece"):
     """Magnitude (log) and phase of the direct terms Hxx, Hyy, Hzz and of the cross-talk, with
-    the grey 2 % of the direct response that seed 000 draws as the measurement uncertainty of
+    the grey 2 % of the direct response that Bossoni 2009 draws as the measurement uncertainty of
     cross-talk (L5700-5716)."""
     f = np.asarray(frequencies, float)
     h = np.asarray(h)
@@ -478,7 +478,7 @@ def frf_plot(frequencies, h, title="FRF of the TCP relative to the workpiece"):
 
 def mode_shape_view(structure, modes, index, at=None):
     """The structure's bodies as boxes in two views (Y-Z and X-Y), undeformed (grey) and
-    displaced by mode `index` (coloured by the axis that moves them, seed 000 Fig. 6.2),
+    displaced by mode `index` (coloured by the axis that moves them, Bossoni 2009 Fig. 6.2),
     scaled to a visible deflection."""
     at = at or {}
     shape = np.asarray(modes["modes"][index]["shape"])
@@ -515,7 +515,7 @@ def mode_shape_view(structure, modes, index, at=None):
 
 
 def dynamics_map(result, title=None):
-    """A quantity over a grid of two axes as a colour map (seed 000 Fig. 7.7)."""
+    """A quantity over a grid of two axes as a colour map (Bossoni 2009 Fig. 7.7)."""
     fig, ax = plt.subplots(figsize=(5.2, 4.2))
     mesh = ax.pcolormesh(result["a_mm"], result["b_mm"], np.asarray(result["values"]).T, shading="nearest", cmap="viridis")
     fig.colorbar(mesh, ax=ax, label=f"{result['quantity']} [{result['unit'].replace('um', 'µm')}]")
@@ -567,7 +567,7 @@ def cubic_layout(result, every=20):
 
 def cubic_surface_map(result, limit_um=None):
     """The machined minus the error-free surface referenced to the reference zone's plane (the
-    simulated counterpart of seed 001 Fig. 16), with each zone's mean height."""
+    simulated counterpart of Li et al. 2021 Fig. 16), with each zone's mean height."""
     dev = result["referenced_deviation_um"]
     limit = limit_um or max(1e-3, float(np.percentile(np.abs(dev), 99.5)))
     fig, ax = plt.subplots(figsize=(6.2, 5.2))
@@ -584,7 +584,7 @@ def cubic_surface_map(result, limit_um=None):
 
 def cubic_zone_bars(with_alignment, on_table):
     """Zone mean heights of the same errors with M_WC (eqs. 10-12) and without (eq. 2): the deviation
-    in the workpiece frame, and the surface referenced to zone I, which agree (seed 001 L243)."""
+    in the workpiece frame, and the surface referenced to zone I, which agree (Li et al. 2021 L243)."""
     names = [z["name"] for z in with_alignment["zones"]]
     x = np.arange(len(names))
     series = [("E with M_WC", [z["deviation_um"]["mean"] for z in with_alignment["zones"]], "#1f77b4"),
@@ -602,7 +602,7 @@ def cubic_zone_bars(with_alignment, on_table):
 
 
 def cubic_sensitivity_maps(result, limit=None):
-    """k = E / epsilon over the block for each error (seed 001 eq. 15), with M_WC (top row, Fig. 12)
+    """k = E / epsilon over the block for each error (Li et al. 2021 eq. 15), with M_WC (top row, Fig. 12)
     and without (bottom row, Fig. 10); colours per error, mm/mm or mm/rad. The colour scale is at
     least 0.05 mm/mm or 1 mm/rad, so that an error without effect, whose map holds only the
     scallops' sampling (about 0.001 mm/mm), shows white."""
@@ -667,7 +667,7 @@ def positioning_chart(result, title=None):
 
 
 def component_fit(result, title=None):
-    """A component error as seed 003 Figs 5.1 and D.x show it (`Machine.fit_component`): every run
+    """A component error as the 1991 BCR report Figs 5.1 and D.x show it (`Machine.fit_component`): every run
     forward and backward, their mean (dashed) and the fitted C1 piecewise polynomial (solid) with
     its ±2 u band; the breaks marked, flagged readings circled."""
     x = np.asarray(result["positions"])
@@ -699,7 +699,7 @@ def component_fit(result, title=None):
 
 
 def plate_vectors(result, magnification=None, title=None):
-    """A plate comparison (`Machine.compare_plate`) as seed 003 Figs 5.4-5.15 draw it: the nominal
+    """A plate comparison (`Machine.compare_plate`) as the 1991 BCR report Figs 5.4-5.15 draw it: the nominal
     grid with the measured and the modelled deviation of each feature as magnified vectors, and
     the residual beside it."""
     nominal = np.array([f["nominal_mm"] for f in result["features"]])
@@ -728,7 +728,7 @@ def plate_vectors(result, magnification=None, title=None):
 
 
 def stiffness_changes(result, title=None):
-    """The finite-stiffness changes of `Machine.stiffness` as seed 003 Figs. 4.18 and 4.20 show them:
+    """The finite-stiffness changes of `Machine.stiffness` as the 1991 BCR report Figs. 4.18 and 4.20 show them:
     one panel per changed axis, each change against its axis's position at the machine's load, one
     line per measured position of the other axis it depends on."""
     terms = result["terms"]
@@ -809,7 +809,7 @@ def decomposition_along_path(test, title=None):
 
 
 def decomposition_over_feeds(result, title=None):
-    """Seed 004 over the feeds (`mtacc decompose --json`): the five-way mean-norm shares of eq. 21
+    """Andolfatto et al. 2011 over the feeds (`mtacc decompose --json`): the five-way mean-norm shares of eq. 21
     stacked per feed (Table 1 form), the largest contouring, quasi-static and dynamic errors per
     direction (Tables 2-3 form), and the dynamic RMS per direction on log axes with the power laws
     of eq. 23 (Fig. 11 form)."""
@@ -853,7 +853,7 @@ def decomposition_over_feeds(result, title=None):
     ax.set_xlabel("feed [mm/min]")
     ax.set_ylabel("dynamic error RMS [µm]")
     ax.legend(fontsize=8)
-    fig.suptitle(title or "Error decomposition over the feeds (seed 004)")
+    fig.suptitle(title or "Error decomposition over the feeds (Andolfatto et al. 2011)")
     fig.tight_layout()
     return fig
 
@@ -903,7 +903,7 @@ def drift_test_curves(result, title=None):
 
 def drift_hysteresis(result, title=None):
     """Each displacement's drift against the hysteresis sensor's temperature: the warm-up and the
-    cool-down branches (seed 003: 40 or 52 um of Y drift for the same rise)."""
+    cool-down branches (the 1991 BCR report: 40 or 52 um of Y drift for the same rise)."""
     series = result["series"]
     sensor = result["hysteresis_sensor"]
     temperature = np.array(series["temperatures_C"][sensor])

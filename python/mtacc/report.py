@@ -115,7 +115,7 @@ def five_axis_circle(machine, top_parameter):
 
 
 def cone_section(machine, monte_carlo=200):
-    """The cone-frustum test piece of seed 000 with the recommended set-up of §3.6."""
+    """The cone-frustum test piece of Bossoni 2009 with the recommended set-up of §3.6."""
     family = machine.cone_preset_name()
     if family is None:
         return ""
@@ -123,13 +123,13 @@ def cone_section(machine, monte_carlo=200):
         cone = machine.cone(preset=family, points=720, single_errors=True)
     except (UnreachablePose, InputError) as e:
         return f"<h2>Cone-frustum test piece</h2><p>The recommended set-up is not reachable: {html.escape(str(e))}</p>"
-    try:  # the bundled limits (seed 000 Table 3.9) name the axes of a B-C tilting table
+    try:  # the bundled limits (Bossoni 2009 Table 3.9) name the axes of a B-C tilting table
         cone["monte_carlo"] = machine.cone(preset=family, points=720, monte_carlo=monte_carlo)["monte_carlo"]
     except InputError as e:
         cone["monte_carlo_skipped"] = str(e)
     spec, path = cone["cone"], cone["path"]
     phi, q = np.asarray(path["phi_deg"]), np.asarray(path["q"])
-    out = (f"<h2>Cone-frustum test piece (seed 000)</h2><p>Recommended set-up '{family}' (§3.6): α {spec['alpha_deg']:g}°, "
+    out = (f"<h2>Cone-frustum test piece (Bossoni 2009)</h2><p>Recommended set-up '{family}' (§3.6): α {spec['alpha_deg']:g}°, "
            f"β {spec['beta_deg']:g}°, r {spec['radius_mm']:g} mm, centre ({', '.join(f'{c:g}' for c in spec['centre_mm'])}) mm, "
            f"γ {spec['gamma_deg']:g}°; {spec['points']} points, feed {spec['feed_mm_per_min']:g} mm/min.</p>")
     for w in cone["warnings"]:
@@ -154,13 +154,13 @@ def cone_section(machine, monte_carlo=200):
                           f'Cone form deviation caused by {e["error"]} alone')
     if "monte_carlo" in cone:
         mc = cone["monte_carlo"]
-        out += (f"<p>Monte Carlo: {monte_carlo} machines with errors drawn uniformly within seed 000 Table 3.9: median "
+        out += (f"<p>Monte Carlo: {monte_carlo} machines with errors drawn uniformly within Bossoni 2009 Table 3.9: median "
                 f"{mc['median_um']:.2f} µm, quartiles {mc['lower_quartile_um']:.2f} / {mc['upper_quartile_um']:.2f} µm, "
                 f"range {mc['min_um']:.2f} … {mc['max_um']:.2f} µm (thesis Table 3.5: 8.8, 6.9 / 11.0, 2.6 … 23.9 µm).</p>")
         out += figure(plots.box_plot({"equivalent cone form error": mc["form_errors_um"]}),
                       "Distribution of the equivalent cone form error over the Monte Carlo samples")
     elif "monte_carlo_skipped" in cone:
-        out += f"<p>Monte Carlo skipped: the seed 000 Table 3.9 limits do not fit this machine ({html.escape(cone['monte_carlo_skipped'])}).</p>"
+        out += f"<p>Monte Carlo skipped: the Bossoni 2009 Table 3.9 limits do not fit this machine ({html.escape(cone['monte_carlo_skipped'])}).</p>"
     return out
 
 
@@ -276,7 +276,7 @@ def dynamics_section(structure_name, compare=None):
     at = {a["name"]: (a["travel_mm"][1] if a["name"] == "Y" else a["travel_mm"][0] if a["name"] == "Z" else 0.0)
           for a in s.axes}
     out = f"<h2>Structural dynamics: {html.escape(s.name)}</h2>"
-    out += ("<p>Rigid-body model (seed 000 part II): " + f"{len(s.bodies)} bodies, {6 * len(s.bodies)} DOF, evaluated at "
+    out += ("<p>Rigid-body model (Bossoni 2009 part II): " + f"{len(s.bodies)} bodies, {6 * len(s.bodies)} DOF, evaluated at "
             + ", ".join(f"{k} = {v:g} mm" for k, v in at.items()) + " (position 1: Y and Z extended, X centred).</p>")
     modes = s.modes(at=at, count=8)
     rows = [[k + 1, f"{m['frequency_hz']:.1f}", f"{m['damped_frequency_hz']:.1f}", f"{100 * m['damping_ratio']:.2f}"]
@@ -291,7 +291,7 @@ def dynamics_section(structure_name, compare=None):
                   f"FRF of the TCP relative to the workpiece: direct terms and cross-talk; {how}")
     r = s.acceleration_response(at=at)
     names = [a["name"] for a in s.axes]
-    out += "<p>Quasi-static TCP displacement per axis acceleration [µm/g<sub>n</sub>] (the form of seed 000 Table 7.1):</p>"
+    out += "<p>Quasi-static TCP displacement per axis acceleration [µm/g<sub>n</sub>] (the form of Bossoni 2009 Table 7.1):</p>"
     out += table(["response"] + [f"{n}''" for n in names],
                  [[f"H{c}"] + [f"{r[f'H{c}'][n]:.1f}" for n in names] for c in "xyz"])
     maps = [s.map("Hx/X")]
@@ -307,19 +307,21 @@ def dynamics_section(structure_name, compare=None):
 
 
 def cubic_section(machine_path, errors, load):
-    """Seed 001's cubic machining test on this machine: tool paths, the simulated surface, the zone
+    """Li et al. 2021's cubic machining test on this machine: tool paths, the simulated surface, the zone
     heights with and without M_WC, and the sensitivity maps of the rotary axes' location errors."""
     grid = 0.02
     try:
         aligned = Machine(machine_path, errors, alignment="machine", load=load).cubic(grid=grid, sensitivities=True, sensitivity_grid=0.05)
         on_table = Machine(machine_path, errors, alignment="table", load=load).cubic(grid=grid)
     except (UnreachablePose, InputError) as e:
-        return f"<h2>Cubic machining test (seed 001)</h2><p>Not machinable on this machine: {html.escape(str(e))}</p>"
-    out = ("<h2>Cubic machining test (seed 001)</h2><p>A 48 mm block cut in 3 × 3 zones of 16 mm by 3-axis zig-zag "
+        return f"<h2>Cubic machining test (Li et al. 2021)</h2><p>Not machinable on this machine: {html.escape(str(e))}</p>"
+    out = ("<h2>Cubic machining test (Li et al. 2021)</h2><p>A 48 mm block cut in 3 × 3 zones of 16 mm by 3-axis zig-zag "
            "passes (0.1 mm pick, ball-end mill ø6 mm), the rotary axes clamped so that the tool leans 30° towards "
-           "the centre (seed 001 Tables 1–2). The tool path goes through the inverse kinematics and every CL point "
+           "the centre (Li et al. 2021 Tables 1–2). The tool path goes through the inverse kinematics and every CL point "
            "through the machine's errors; the surface is cut by material removal on a "
-           f"{grid * 1000:g} µm grid. A step between zones or a tilt inside one shows the errors.</p>")
+           f"{grid * 1000:g} µm grid. A step between zones or a tilt inside one shows the errors. <i>With M<sub>WC</sub></i>: "
+           "the workpiece frame aligned with the machine at the reference pose (the transformation M<sub>WC</sub> from "
+           "workpiece to table); <i>without</i>: the workpiece fixed to the table as clamped.</p>")
     out += figure(plots.cubic_layout(aligned), "Zones, tool paths and tool tilt; the clamped rotary axes per zone")
     out += figure(plots.cubic_surface_map(aligned), "Simulated machined surface minus the error-free one, referenced to "
                                                     "zone I (workpiece aligned with the machine, M_WC)")
@@ -331,14 +333,14 @@ def cubic_section(machine_path, errors, load):
                    f'{t["deviation_um"]["mean"]:.3f}', f'{t["measured_um"]["mean"]:.3f}']
                   for a, t in zip(aligned["zones"], on_table["zones"])])
     out += figure(plots.cubic_sensitivity_maps(aligned), "Sensitivity k = E / ε of each location error of the rotary "
-                                                         "axes over the block (seed 001 Figs 10 and 12); white: |k| below 0.05 mm/mm or 1 mm/rad, "
+                                                         "axes over the block (Li et al. 2021 Figs 10 and 12); white: |k| below 0.05 mm/mm or 1 mm/rad, "
                                                          "the sampled scallops' shift")
     return out
 
 
 def components_section(results):
-    """Seed 003: each directly measured component with its runs, mean and C1 piecewise fit."""
-    out = ("<h2>Component errors from direct measurements (seed 003)</h2><p>Each component measured along its "
+    """The 1991 BCR report: each directly measured component with its runs, mean and C1 piecewise fit."""
+    out = ("<h2>Component errors from direct measurements (the 1991 BCR report)</h2><p>Each component measured along its "
            "axis, forward and backward over several runs; the mean of the runs fitted by a C1 piecewise "
            "quadratic with fixed breaks and stepwise removal of terms that are not significant.</p>")
     for r in results:
@@ -358,8 +360,8 @@ def components_section(results):
 
 
 def plates_section(results):
-    """Seed 003 §5.3: each measured plate against the machine's error model."""
-    out = ("<h2>Hole and ball plates (seed 003)</h2><p>Each plate measured relative to its reference feature, "
+    """The 1991 BCR report §5.3: each measured plate against the machine's error model."""
+    out = ("<h2>Hole and ball plates (the 1991 BCR report)</h2><p>Each plate measured relative to its reference feature, "
            "corrected for the scale and plate temperatures, its misalignment removed; the model's deviations "
            "from the machine's errors (D<sub>h</sub> = −(E(q<sub>h</sub>) − E(q<sub>ref</sub>))), and the residual.</p>")
     for r in results:
@@ -371,9 +373,9 @@ def plates_section(results):
 
 
 def stiffness_section(result):
-    """Seed 003 §4.2 and §5.4: the finite-stiffness changes of the errors and what they add to the TCP."""
+    """The 1991 BCR report §4.2 and §5.4: the finite-stiffness changes of the errors and what they add to the TCP."""
     largest = result["largest_tcp_error"]
-    out = ("<h2>Finite stiffness (seed 003)</h2><p>Changes of the component errors with another axis's position or "
+    out = ("<h2>Finite stiffness (the 1991 BCR report)</h2><p>Changes of the component errors with another axis's position or "
            f"the workpiece load, at a load of <b>{result['workpiece_load_kg']:g} kg</b> (each load-dependent change "
            "scaled linearly from the load it was measured under). They are part of every result above.</p>")
     out += figure(plots.stiffness_changes(result), "Changes of the errors along their axes")
@@ -441,9 +443,9 @@ def positioning_section(results):
 
 
 def decomposition_section(result):
-    """Seed 004: the recorded TCP errors split over the feeds."""
+    """Andolfatto et al. 2011: the recorded TCP errors split over the feeds."""
     tests = result["tests"]
-    out = ("<h2>Error decomposition (seed 004)</h2><p>The tool relative to the workpiece measured along one trajectory at "
+    out = ("<h2>Error decomposition (Andolfatto et al. 2011)</h2><p>The tool relative to the workpiece measured along one trajectory at "
            f"{len(tests)} feeds, split into servo contouring (c), link (l), motion (m), thermal drift (td) and dynamic (d) "
            f"errors; motion errors fitted on the {result['reference_feed_mm_min']:g} mm/min test (Legendre degree "
            f"{result['degree']} in the normalised {result['parameter']}"
@@ -473,7 +475,7 @@ def decomposition_section(result):
 
 
 def drift_section(result):
-    """A thermal drift test (ISO 230-3, seed 003): curves, hysteresis and the regression on the temperatures."""
+    """A thermal drift test (ISO 230-3, the 1991 BCR report): curves, hysteresis and the regression on the temperatures."""
     name = html.escape(os.path.basename(result["file"]))
     along = result.get("position_axis")
     out = (f"<h2>Drift test: {name}</h2><p>{html.escape(result['test'][0].upper() + result['test'][1:])}: "
@@ -482,7 +484,7 @@ def drift_section(result):
            "regressed on the temperatures" + (f", each coefficient linear in the position of {along}" if along else "") +
            ", the sensors chosen stepwise by five-fold cross-validated RMS in contiguous blocks. "
            "A model that needs more sensors than the best single one explains is one that a single sensor cannot "
-           "(seed 003's conclusion)." +
+           "(the 1991 BCR report's conclusion)." +
            (" The machine at rest, each direction's range is its environmental temperature variation error (ETVE)."
             if "ETVE" in result["test"] else "") + "</p>")
     out += figure(plots.drift_test_curves(result), "Drift and tilts over time with each model's prediction, the residuals, the temperatures")
@@ -512,11 +514,11 @@ def thermal_section(state):
     name = html.escape(os.path.basename(state["file"]))
     out = f"<h2>Thermal state: {name}</h2><p>Every figure of this report is the warm machine's."
     if state["scales"]:
-        out += (" Each scale's expansion (the temperature linear between its sensors, seed 003 §2.7) is added to its axis's "
+        out += (" Each scale's expansion (the temperature linear between its sensors, the 1991 BCR report §2.7) is added to its axis's "
                 "positioning error. A warm scale reads short, so the axis goes the expansion beyond its command.")
     if "spindle" in state:
         out += (" The spindle's drift, predicted from its temperatures by the model of a spindle drift test (ISO 230-3, "
-                "seed 003 §2.6), moves the spindle: its location errors take the drift at the test's probe set 1 and the tilts.")
+                "the 1991 BCR report §2.6), moves the spindle: its location errors take the drift at the test's probe set 1 and the tilts.")
     out += "</p>"
     if state["scales"]:
         out += figure(plots.thermal_state_scales(state), "Temperatures along each scale and the scale's expansion over the travel")
@@ -752,7 +754,7 @@ def main(argv=None):
                         help="hole- or ball-plate measurement (CSV) to compare with the model; may be given several times")
     parser.add_argument("--component", action="append", default=[],
                         help="direct-measurement runs of a component (CSV) to fit and plot; may be given several times")
-    parser.add_argument("--decomposition", help="a decomposition set (YAML, seed 004) of recorded signals to decompose")
+    parser.add_argument("--decomposition", help="a decomposition set (YAML, Andolfatto et al. 2011) of recorded signals to decompose")
     parser.add_argument("--drift", action="append", default=[],
                         help="thermal drift test (CSV, ISO 230-3) to evaluate and plot; may be given several times")
     parser.add_argument("--thermal", help="thermal state (YAML: the temperatures along the scales) the machine is evaluated at")

@@ -4,9 +4,11 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
+#include <algorithm>
 #include <cmath>
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/core/units.hpp"
 
 namespace mtacc {
 namespace {
@@ -127,6 +129,17 @@ ComponentFit fitComponent(const std::vector<double>& x, const std::vector<double
     fit.trend.coefficients.erase(fit.trend.coefficients.begin() + weakest);
   }
   return fit;
+}
+
+std::vector<double> evenBreaks(double from, double to, bool rotary, size_t positions, int degree, int pieces) {
+  if (pieces <= 0) {
+    const double step = rotary ? 30.0 * kDeg : 100.0;
+    const int most = std::max(1, static_cast<int>(positions) - degree - 1);
+    pieces = std::min(most, std::max(1, static_cast<int>(std::round((to - from) / step))));
+  }
+  std::vector<double> b;
+  for (int i = 0; i <= pieces; ++i) b.push_back(from + (to - from) * i / pieces);
+  return b;
 }
 
 }  // namespace mtacc

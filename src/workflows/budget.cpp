@@ -32,6 +32,11 @@ BudgetOptions budgetOptions(const OptionValues& values) {
   return o;
 }
 
+JointMatrix workingVolumeGrid(const MachineSetup& setup, int samples) {
+  requireInRange(budgetSchema().at("samples"), samples);
+  return workingVolumeGrid(*setup.machine, samples);
+}
+
 BudgetResult errorBudget(const MachineSetup& setup, const BudgetOptions& o) {
   const Machine& m = *setup.machine;
   requireInRange(budgetSchema().at("samples"), o.samplesPerAxis);

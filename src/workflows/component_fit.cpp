@@ -28,14 +28,8 @@ std::vector<double> chooseBreaks(const Axis& axis, const std::vector<double>& po
       fail("breaks", "the breaks must span the measured positions (from the first to the last)");
     return b;
   }
-  const double step = axis.isRotary() ? 30.0 * kDeg : 100.0;
-  // By default about one piece per 100 mm (30 deg), and fewer than the positions can carry.
-  const int most = std::max(1, static_cast<int>(positions.size()) - r.degree - 1);
-  const int pieces = r.pieces > 0 ? r.pieces : std::min(most, std::max(1, static_cast<int>(std::round((hi - lo) / step))));
-  if (pieces > 10000) fail("pieces", "at most 10000 pieces");
-  std::vector<double> b;
-  for (int i = 0; i <= pieces; ++i) b.push_back(lo + (hi - lo) * i / pieces);
-  return b;
+  if (r.pieces > 10000) fail("pieces", "at most 10000 pieces");
+  return evenBreaks(lo, hi, axis.isRotary(), positions.size(), r.degree, r.pieces);
 }
 
 }  // namespace

@@ -30,7 +30,7 @@ nlohmann::json pointsJson(const std::vector<Vec3>& points) {
 
 }  // namespace
 
-ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyOptions& options) {
+ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyRequest& options) {
   const Machine& m = *setup.machine;
   ConeStudy s;
   s.machine = setup.machine;

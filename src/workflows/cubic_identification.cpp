@@ -10,7 +10,7 @@
 
 namespace mtacc {
 
-IdentificationOutcome identifyFromZones(const MachineSetup& setup, const CubicTestSpec& spec, const ZoneResults& results,
+IdentificationStudy identifyFromZones(const MachineSetup& setup, const CubicTestSpec& spec, const ZoneResults& results,
                                         const CubicIdentificationRequest& request) {
   auto machine = std::make_shared<Machine>(*setup.machine);
   machine->alignment = WorkpieceAlignment::Machine;
@@ -56,7 +56,7 @@ IdentificationOutcome identifyFromZones(const MachineSetup& setup, const CubicTe
   return outcome;
 }
 
-IdentificationOutcome identifyFromZones(const MachineSetup& setup, const CubicIdentificationRequest& request) {
+IdentificationStudy identifyFromZones(const MachineSetup& setup, const CubicIdentificationRequest& request) {
   auto outcome = identifyFromZones(setup, loadCubicTest(request.test), readZoneResults(request.zonesFile), request);
   outcome.command = "cubic-identify";
   outcome.plan = request.test;

@@ -10,7 +10,7 @@ namespace mtacc {
 namespace {
 
 HeightMap machinedSurface(const KinematicModel& model, const std::vector<CubicZonePath>& path, const CubicTestSpec& spec,
-                          const HeightGrid& grid, const CubicTestOptions& o, size_t* moves = nullptr) {
+                          const HeightGrid& grid, const CubicTestRequest& o, size_t* moves = nullptr) {
   const CutterPath cutter = cutterPath(model, path, spec.tool, o.chordTolerance);
   if (moves) *moves = cutter.moves();
   HeightMap map = stockHeightMap(grid, spec.topHeight, spec.depth);
@@ -56,7 +56,7 @@ nlohmann::json planeJson(const ZonePlane& p, double unit) {
 
 CubicTestSpec loadCubicTestSpec(const std::string& pathOrName) { return loadCubicTest(pathOrName); }
 
-CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestOptions& options) {
+CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestRequest& options) {
   const auto require = [](bool ok, const char* key, const char* what) {
     if (!ok) throw InputError(InputLocation{"", 0, key}, what);
   };

@@ -33,7 +33,7 @@ std::string optionalNumber(const std::optional<double>& v) { return v ? fmt::for
 
 }  // namespace
 
-IdentificationRecord identificationRecord(const IdentificationOutcome& outcome) {
+IdentificationRecord identificationRecord(const IdentificationStudy& outcome) {
   const IdentificationResult& r = outcome.result;
   IdentificationRecord record{outcome.command, outcome.plan, outcome.dataFiles, {}, {}, outcome.held, r.columns.names,
                               unitsOf(r.columns.dimensions), r.values, r.uncertainty, r.covariance};
@@ -156,7 +156,7 @@ void writeIdentifiedErrors(const std::string& path, const Machine& machine, cons
   writeFileAtomically(path, identifiedErrorsYaml(machine, errors, record), key);
 }
 
-void writeIdentifiedErrors(const std::string& path, const IdentificationOutcome& outcome, const std::string& key) {
+void writeIdentifiedErrors(const std::string& path, const IdentificationStudy& outcome, const std::string& key) {
   writeIdentifiedErrors(path, *outcome.machine, outcome.result.errors, identificationRecord(outcome), key);
 }
 

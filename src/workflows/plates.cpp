@@ -128,8 +128,33 @@ nlohmann::json toJson(const PlateIdentificationStudy& s) {
           {"yaml", s.yaml}};
 }
 
+namespace {
+
+// The fields written as a plate file's header and read by its reader: one parser for both.
+PlateMeasurement plateLayout(const Machine& machine, const PlateLayoutFields& f) {
+  std::string header = "# plate: " + f.plate + "\n# features: " + f.features + "\n# origin: " + f.origin + "\n# axes: " + f.axes +
+                       "\n# stylus: " + f.stylus + "\n";
+  if (!f.pose.empty()) header += "# pose: " + f.pose + "\n";
+  if (!f.probe.empty()) header += "# probe: " + f.probe + "\n";
+  if (!f.simulation.empty()) header += "# simulation: " + f.simulation + "\n";
+  try {
+    return parsePlateLayout(machine, header, "layout");
+  } catch (const InputError& e) {
+    throw InputError(InputLocation{"", 0, e.where().key}, e.reason());
+  }
+}
+
+}  // namespace
+
+std::string& plateLayoutField(PlateLayoutFields& f, const std::string& key) {
+  for (auto [name, field] : {std::pair{"plate", &f.plate}, {"features", &f.features}, {"origin", &f.origin}, {"axes", &f.axes},
+                             {"stylus", &f.stylus}, {"pose", &f.pose}, {"probe", &f.probe}, {"simulation", &f.simulation}})
+    if (key == name) return *field;
+  throw InputError(InputLocation{"", 0, key}, "not a field of a plate layout (plate, features, origin, axes, stylus, pose, probe, simulation)");
+}
+
 PlateMeasurement simulatePlateFile(const MachineSetup& setup, const PlateSimulationRequest& r) {
-  PlateMeasurement m = r.layout;
+  PlateMeasurement m = plateLayout(*setup.machine, r.layout);
   if (m.placement.fixedAxes.empty()) m.placement.fixedAxes = setup.machine->referencePose;
   const double noise = parseQuantityAs(r.noise, Dimension::Length, "noise");
   if (!(noise >= 0.0 && noise < 1.0)) throw InputError(InputLocation{"", 0, "noise"}, "from 0 to 1 mm");

@@ -46,7 +46,7 @@ std::vector<double> perAxis(const std::vector<double>& values, const std::vector
 
 }  // namespace
 
-MotionSimulation simulateMotion(const MachineSetup& setup, const MotionSimulationRequest& request) {
+MotionSimulationResult simulateMotion(const MachineSetup& setup, const MotionSimulationRequest& request) {
   const auto& machine = *setup.machine;
   const auto program = readGcodeProgram(request.program, machine);
   const auto path = programPath(program);
@@ -65,7 +65,7 @@ MotionSimulation simulateMotion(const MachineSetup& setup, const MotionSimulatio
   std::unique_ptr<StructureModel> structure;
   if (!request.structure.empty()) structure = std::make_unique<StructureModel>(loadStructure(request.structure));
 
-  MotionSimulation out;
+  MotionSimulationResult out;
   out.ball = request.ball ? *request.ball : toolPoint(nominal, path.front().data()).position;
   std::filesystem::create_directories(request.folder);
   std::string set = fmt::format("# written by mtacc simulate motion from {}\nball: [{:.9g} mm, {:.9g} mm, {:.9g} mm]\nnc_rate_hz: {:.9g}\n"
@@ -120,7 +120,7 @@ MotionSimulation simulateMotion(const MachineSetup& setup, const MotionSimulatio
   return out;
 }
 
-nlohmann::json toJson(const MotionSimulation& s) {
+nlohmann::json toJson(const MotionSimulationResult& s) {
   const auto um = [](const Vec3& v) { return nlohmann::json::array({v.x() * 1e3, v.y() * 1e3, v.z() * 1e3}); };
   nlohmann::json j{{"ball_mm", {s.ball.x(), s.ball.y(), s.ball.z()}}, {"set", s.setFile}, {"feeds", nlohmann::json::array()}};
   for (const auto& f : s.feeds)

@@ -2,7 +2,7 @@
 """Fails when a folder of the library includes a folder of a higher layer (docs/architecture.md).
 
 Layers, lowest first: core; the domain folders in their own order (machine, errors, kinematics,
-measurement, procedures, compensation; dynamics and thermal need only core); io; workflows; the front ends (apps/,
+measurement, identification, procedures, virtual_controller, compensation; dynamics and thermal need only core); io; workflows; the front ends (apps/,
 python/bindings/, fuzz/). A file may include headers of its own folder and of lower layers only, so
 that the layers point one way and no two folders include each other. The CLI and the Python
 bindings go through the workflows: they include workflows/ and core/ only (the fuzzers, which
@@ -12,8 +12,8 @@ import pathlib
 import re
 import sys
 
-RANK = {"core": 0, "machine": 1, "dynamics": 1, "thermal": 1, "errors": 2, "kinematics": 3, "measurement": 4, "procedures": 5,
-        "compensation": 6, "io": 7, "workflows": 8, "frontend": 9, "fuzz": 9}
+RANK = {"core": 0, "machine": 1, "dynamics": 1, "thermal": 1, "errors": 2, "kinematics": 3, "measurement": 4, "identification": 5,
+        "procedures": 6, "virtual_controller": 7, "compensation": 8, "io": 9, "workflows": 10, "frontend": 11, "fuzz": 11}
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
 
 

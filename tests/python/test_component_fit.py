@@ -98,8 +98,9 @@ def test_the_fit_writes_the_machines_errors_with_its_record(cli, tmp_path, data,
 
 def test_simulated_runs_round_trip(cli, tmp_path):
     out = tmp_path / "ztz.csv"
-    subprocess.run([cli, "simulate", "component", "maho", "--component", "ztz", "--noise", "0.3um", "--runs", "5", "-o", str(out)],
-                   capture_output=True, text=True, check=True)
+    run = subprocess.run([cli, "simulate", "component", "maho", "--component", "ztz", "--noise", "0.3um", "--runs", "5", "-o", str(out),
+                          "--json"], capture_output=True, text=True, check=True)
+    assert json.loads(run.stdout) == {"output": str(out), "component": "ztz", "positions": 61, "runs_each_way": 5}
     r = mtacc.Machine("maho").fit_component(out, pieces=3)
     assert r["iso_name"] == "EZZ" and len(r["runs_forward"]) == 5 and len(r["positions"]) == 61
     mtacc.Machine("maho").simulate_component("ztz", tmp_path / "api.csv", runs=5, noise="0.3 um")

@@ -55,7 +55,7 @@ def test_the_report_section_shows_every_feed(tmp_path):
     machine = mtacc.Machine("inclined-a-table")
     simulated = machine.simulate_motion(PROGRAM, tmp_path, feeds=[1000, 3240, 10498], structure="wcayfxzt-compact")
     section = report.decomposition_section(machine.decompose(simulated["set"]))
-    assert "<svg" in section and "Error decomposition (seed 004)" in section
+    assert "<svg" in section and "Error decomposition (Andolfatto et al. 2011)" in section
     assert all(f">{feed}</td>" in section for feed in ("1000", "3240", "10498"))
     along = report.decomposition_section(machine.decompose(simulated["set"], series_points=1000))
     assert along.count("<svg") == section.count("<svg") + 2

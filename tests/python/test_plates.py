@@ -44,7 +44,7 @@ def test_plot_and_report_section(cli, tmp_path):
     run = subprocess.run([cli, "report", "maho", "-o", str(tmp_path), "--samples", "3", "--plate", str(DATA / "maho-xy-z292.csv")],
                          capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
-    assert "Hole and ball plates (seed 003)" in (tmp_path / "maho-report.html").read_text()
+    assert "Hole and ball plates (the 1991 BCR report)" in (tmp_path / "maho-report.html").read_text()
 
 
 def test_figures_5_2_and_5_3_of_the_bundled_model():
@@ -137,3 +137,20 @@ def test_the_written_layout_reads_back_to_the_last_digit(tmp_path):
     assert numbers("stylus") == [0.1234567, 0.0, 60.0001234]
     assert numbers("origin") == [-300.1234567, -455.0, -160.0]
     assert numbers("axes") == [1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+
+
+def test_cli_and_python_write_the_same_plate_with_a_pose(cli, tmp_path):
+    # One layout reader behind both front ends: the same options give the same file, the pose of
+    # the axes that stay included (Python had no `pose` before the two were read in one place).
+    by_cli, by_python = tmp_path / "cli.csv", tmp_path / "python.csv"
+    run = subprocess.run([cli, "simulate", "plate", "maho", "--origin=-350,-455,-160mm", "--pose", "C=10", "--probe", "1.1, 0.8 um",
+                          "--noise", "0.5um", "--seed", "3", "--json", "-o", str(by_cli)], capture_output=True, text=True, check=True)
+    assert json.loads(run.stdout) == {"output": str(by_cli), "features": 81}
+    mtacc.Machine("maho").simulate_plate(by_python, origin=(-350, -455, -160), pose={"C": 10}, probe=(1.1, 0.8), noise="0.5 um", seed=3)
+    assert by_cli.read_text() == by_python.read_text()
+    assert "# pose: " in by_cli.read_text()
+    with pytest.raises(mtacc.InputError, match="origin"):
+        mtacc.Machine("maho").simulate_plate(tmp_path / "bad.csv", origin=(-350, "x", -160))
+    bad = subprocess.run([cli, "simulate", "plate", "maho", "--origin=-350,x,-160mm", "-o", str(tmp_path / "bad.csv")],
+                         capture_output=True, text=True)
+    assert bad.returncode == 2 and bad.stderr.startswith("mtacc: error: --origin:")

@@ -27,7 +27,7 @@ def tilting_table_report(tmp_path_factory):
 def test_report_is_self_contained(tilting_table_report):
     text = tilting_table_report.read_text()
     assert text.count('<figure class="plot">') >= 15
-    assert "Cone-frustum test piece (seed 000)" in text and "Monte Carlo:" in text
+    assert "Cone-frustum test piece (Bossoni 2009)" in text and "Monte Carlo:" in text
     assert "Measurement and identification" in text and "Identified parameters" in text
     assert "<b>Simulated data:</b>" in text  # no --data: said plainly
     assert "Structural dynamics" in text and "First mode shape" in text

@@ -56,4 +56,4 @@ def test_plot_and_report_section(cli, tmp_path):
                          capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     page = (tmp_path / "maho-report.html").read_text()
-    assert "Finite stiffness (seed 003)" in page and "<b>200 kg</b>" in page
+    assert "Finite stiffness (the 1991 BCR report)" in page and "<b>200 kg</b>" in page

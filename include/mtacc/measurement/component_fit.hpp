@@ -49,4 +49,9 @@ struct ComponentFit {
 // points outside [t_0, t_k] or a degree other than 1 or 2 (the readers check first and say where).
 ComponentFit fitComponent(const std::vector<double>& x, const std::vector<double>& y, const ComponentFitOptions& options);
 
+// Breaks at equal intervals over [from, to]: `pieces` of them, or when 0 about one per 100 mm
+// (30 deg for a rotary axis, `rotary`) and fewer than `positions` measured positions can carry
+// with polynomials of `degree`.
+std::vector<double> evenBreaks(double from, double to, bool rotary, size_t positions, int degree, int pieces = 0);
+
 }  // namespace mtacc

@@ -38,6 +38,8 @@ const OptionSchema& budgetSchema();
 BudgetOptions budgetOptions(const OptionValues& values);
 
 BudgetResult errorBudget(const MachineSetup& setup, const BudgetOptions& options = {});
+// The poses the budget evaluates: `samples` per axis (the schema's range) over each travel.
+JointMatrix workingVolumeGrid(const MachineSetup& setup, int samples);
 nlohmann::json toJson(const BudgetResult& result);
 std::string basisText(const BudgetResult& result);
 

@@ -15,7 +15,7 @@
 
 namespace mtacc {
 
-struct ConeStudyOptions {
+struct ConeStudyRequest {
   ConeSpec spec;                 // conePreset(...) or as given
   int points = 720;              // 8 .. 1,000,000
   double chordTolerance = 0;     // mm; > 0: choose the points for this chord error instead
@@ -37,7 +37,7 @@ struct ConeSingleError {
 
 struct ConeStudy {
   std::shared_ptr<const Machine> machine;
-  ConeStudyOptions options;  // with the number of points used
+  ConeStudyRequest options;  // with the number of points used
   ConePath path;
   ConeMotion motion;
   RotaryRanges closedForm;
@@ -49,7 +49,7 @@ struct ConeStudy {
   ErrorLimits limits;  // as drawn (with their file): their keys label monteCarlo->drawn's columns
 };
 
-ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyOptions& options);
+ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyRequest& options);
 nlohmann::json toJson(const ConeStudy& study);
 
 }  // namespace mtacc

@@ -22,9 +22,9 @@ struct CubicIdentificationRequest {
   int threads = kAllCores;
 };
 
-IdentificationOutcome identifyFromZones(const MachineSetup& setup, const CubicIdentificationRequest& request);
+IdentificationStudy identifyFromZones(const MachineSetup& setup, const CubicIdentificationRequest& request);
 // The same from zone results in memory (the file's name in results.file, for messages).
-IdentificationOutcome identifyFromZones(const MachineSetup& setup, const CubicTestSpec& spec, const ZoneResults& results,
+IdentificationStudy identifyFromZones(const MachineSetup& setup, const CubicTestSpec& spec, const ZoneResults& results,
                                         const CubicIdentificationRequest& request);
 
 // A study's zones as zone results (measured planes, with their tilts).

@@ -16,7 +16,7 @@
 
 namespace mtacc {
 
-struct CubicTestOptions {
+struct CubicTestRequest {
   CubicTestSpec spec = seed001CubicTest();
   double gridSpacing = 0.01;     // mm, over the whole block
   double chordTolerance = 1e-6;  // mm, of the actual path against its chords
@@ -51,7 +51,7 @@ struct CubicSensitivity {
 
 struct CubicTestStudy {
   std::shared_ptr<const Machine> machine;
-  CubicTestOptions options;
+  CubicTestRequest options;
   std::vector<CubicZonePath> path;
   size_t referenceZone = 0;
   size_t cutterMoves = 0;      // straight moves of the actual path after chord refinement
@@ -64,7 +64,7 @@ struct CubicTestStudy {
 CubicTestSpec loadCubicTestSpec(const std::string& pathOrName);
 
 // Throws InputError for a spec or option out of range and for a zone the machine cannot reach.
-CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestOptions& options);
+CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestRequest& options);
 nlohmann::json toJson(const CubicTestStudy& study);
 // The deviation E (machined minus error-free surface) less the reference zone's plane of it:
 // the simulated counterpart of the measured map of seed 001 Fig. 16.

@@ -8,7 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "mtacc/core/option_schema.hpp"
-#include "mtacc/measurement/identification.hpp"
+#include "mtacc/identification/fit_quality.hpp"
+#include "mtacc/identification/identification.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
 namespace mtacc {
@@ -40,22 +41,6 @@ const OptionSchema& observabilitySchema();
 // The request the values describe, each checked against `schema`; throws InputError naming the key.
 IdentificationRequest identificationRequest(const OptionSchema& schema, const OptionValues& values);
 
-// The plausible magnitude of a geometric or set-up error of a machine tool: about four times
-// the largest location-error limits of seed 000 Table 3.9 (11.6 um and 50 urad,
-// data/limits/seed000-table3.9.yaml).
-constexpr double kPlausibleLength = 0.05;  // mm (50 um)
-constexpr double kPlausibleAngle = 200e-6; // rad (200 urad)
-// The goodness-of-fit test fails below this p-value.
-constexpr double kFitSignificance = 0.01;
-
-// What the identification's own numbers say about its trustworthiness.
-struct IdentificationQuality {
-  std::optional<double> chiSquare, pValue;  // against the stated noise; unset when none is stated
-  std::string noiseSource;                  // "--noise", "the files' '# noise:' lines" or empty
-  std::vector<size_t> poorlyDetermined;     // columns whose uncertainty exceeds the limit
-  std::vector<std::string> warnings;        // one sentence each; empty when nothing is wrong
-};
-
 // The parameters a plan can determine together when it cannot determine all that were named:
 // identify `kept`, hold `held` at zero, and the estimate of kept[k] stands for
 // kept[k] + sum_d coefficients(k, d) held[d] (coefficients in the parameters' units, mm/rad).
@@ -85,18 +70,7 @@ ObservabilityResult planObservability(const MachineSetup& setup, const Identific
 nlohmann::json toJson(const ObservabilityResult& result);
 nlohmann::json toJson(const ObservabilityReport& report);
 
-// A harmonic identified as its cosine and sine parts (a plan's "ECC.h1"), as amplitude and
-// phase: a cos(x) + b sin(x) = amplitude cos(x + phase), with their standard uncertainties
-// from the covariance (first order; the phase's is meaningless when the amplitude is within
-// its uncertainty of zero).
-struct HarmonicEstimate {
-  std::string name;  // "ECC.h1"
-  Dimension dimension;
-  double amplitude, amplitudeUncertainty;  // mm or rad
-  double phase, phaseUncertainty;          // rad
-};
-
-struct IdentificationOutcome {
+struct IdentificationStudy {
   std::shared_ptr<const Machine> machine;
   size_t runs = 0;
   std::vector<std::string> given;  // the parameter names as the request wrote them
@@ -115,12 +89,7 @@ struct IdentificationOutcome {
 // Identifies from the request's files; refuses (InputError) a set the data cannot determine,
 // and flags (quality.warnings) residuals that the stated noise does not explain and
 // parameters the data hardly determine.
-IdentificationOutcome identifyParameters(const MachineSetup& setup, const IdentificationRequest& request);
-// "A and B: 0.953" for each pair among the first `count` unknowns whose correlation exceeds
-// 0.9 in size (the pairs a report flags).
-std::vector<std::string> strongCorrelations(const std::vector<std::string>& names, const Eigen::MatrixXd& covariance, size_t count);
-// The correlation of estimates a and b (1 on the diagonal).
-double correlationOf(const IdentificationResult& result, Eigen::Index a, Eigen::Index b);
-nlohmann::json toJson(const IdentificationOutcome& outcome);
+IdentificationStudy identifyParameters(const MachineSetup& setup, const IdentificationRequest& request);
+nlohmann::json toJson(const IdentificationStudy& outcome);
 
 }  // namespace mtacc

@@ -29,7 +29,7 @@ struct IdentificationRecord {
   Eigen::VectorXd values, uncertainty;
   Eigen::MatrixXd covariance;
 };
-IdentificationRecord identificationRecord(const IdentificationOutcome& outcome);
+IdentificationRecord identificationRecord(const IdentificationStudy& outcome);
 IdentificationRecord identificationRecord(const PlateIdentificationStudy& study);
 // A fitted component function: its coefficients (the terms 1, u, u^2 and (u - t_i)^2 at the
 // interior breaks, then the periodic term's), named like identify's (`EXX.k2c2`).
@@ -41,6 +41,6 @@ std::string identifiedErrorsYaml(const Machine& machine, const ErrorModel& error
 // The same written to `path` whole or not at all; an error names `key` (the option or argument).
 void writeIdentifiedErrors(const std::string& path, const Machine& machine, const ErrorModel& errors,
                            const IdentificationRecord& record, const std::string& key);
-void writeIdentifiedErrors(const std::string& path, const IdentificationOutcome& outcome, const std::string& key);
+void writeIdentifiedErrors(const std::string& path, const IdentificationStudy& outcome, const std::string& key);
 
 }  // namespace mtacc

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "mtacc/identification/plate_identification.hpp"
 #include "mtacc/io/plate_csv.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
@@ -29,9 +30,20 @@ PlateComparison comparePlateFile(const MachineSetup& setup, const std::string& p
 // Deviations in um, positions in mm.
 nlohmann::json toJson(const PlateComparison& comparison);
 
+// The plate and its placement as the front ends take them: each field as a plate file's header
+// states it (docs/file-formats.md "Plate measurements"), read by that file's own reader.
+struct PlateLayoutFields {
+  std::string plate = "9 x 9, pitch 50 mm", features = "all";
+  std::string origin;  // the reference feature in the workpiece frame, e.g. "-350, -455, -160 mm"
+  std::string axes = "1,0,0 / 0,1,0", stylus = "0,0,0 mm";
+  std::string pose, probe, simulation;  // optional: the axes that stay; 2S of the probe (u, v) and of the model to state
+};
+// The field named `key` (plate, features, origin, axes, stylus, pose, probe, simulation); throws
+// InputError naming another key.
+std::string& plateLayoutField(PlateLayoutFields& fields, const std::string& key);
 struct PlateSimulationRequest {
   std::string output;
-  PlateMeasurement layout;      // plate, placement, temperatures, probe and simulation 2S to write; no readings
+  PlateLayoutFields layout;
   std::string noise = "0 um";  // standard deviation of a coordinate
   std::uint64_t seed = 1;
 };

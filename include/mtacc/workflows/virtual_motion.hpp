@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "mtacc/io/recorded_signal.hpp"
-#include "mtacc/procedures/motion_interpolator.hpp"
-#include "mtacc/procedures/virtual_recording.hpp"
+#include "mtacc/virtual_controller/motion_interpolator.hpp"
+#include "mtacc/virtual_controller/virtual_recording.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
 namespace mtacc {
@@ -41,7 +41,7 @@ struct SimulatedFeed {
   std::vector<std::string> files;                // command, encoder, instrument, truth
 };
 
-struct MotionSimulation {
+struct MotionSimulationResult {
   Vec3 ball;
   std::vector<SimulatedFeed> feeds;
   std::string setFile;
@@ -49,8 +49,8 @@ struct MotionSimulation {
 
 // Throws InputError naming the program's file and line, the structure file, or the option
 // (kv, feed_forward for lists of the wrong length).
-MotionSimulation simulateMotion(const MachineSetup& setup, const MotionSimulationRequest& request);
+MotionSimulationResult simulateMotion(const MachineSetup& setup, const MotionSimulationRequest& request);
 // Lengths in um, durations in s.
-nlohmann::json toJson(const MotionSimulation& simulation);
+nlohmann::json toJson(const MotionSimulationResult& simulation);
 
 }  // namespace mtacc

@@ -1,4 +1,4 @@
-#include "mtacc/procedures/motion_interpolator.hpp"
+#include "mtacc/virtual_controller/motion_interpolator.hpp"
 
 #include <Eigen/Core>
 

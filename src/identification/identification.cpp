@@ -1,4 +1,4 @@
-#include "mtacc/measurement/identification.hpp"
+#include "mtacc/identification/identification.hpp"
 
 #include <ceres/ceres.h>
 #include <ceres/tiny_solver.h>

@@ -1,4 +1,4 @@
-#include "mtacc/procedures/servo_loop.hpp"
+#include "mtacc/virtual_controller/servo_loop.hpp"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "mtacc/procedures/virtual_recording.hpp"
+#include "mtacc/virtual_controller/virtual_recording.hpp"
 
 #include <cmath>
 #include <random>

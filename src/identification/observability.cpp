@@ -1,4 +1,4 @@
-#include "mtacc/measurement/observability.hpp"
+#include "mtacc/identification/observability.hpp"
 
 #include <algorithm>
 #include <cmath>

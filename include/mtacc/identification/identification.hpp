@@ -9,7 +9,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/measurement/measurement.hpp"
-#include "mtacc/measurement/observability.hpp"
+#include "mtacc/identification/observability.hpp"
 
 namespace mtacc {
 

@@ -12,7 +12,7 @@
 #include "mtacc/dynamics/structure.hpp"
 #include "mtacc/kinematics/kinematic_model.hpp"
 #include "mtacc/procedures/error_decomposition.hpp"
-#include "mtacc/procedures/servo_loop.hpp"
+#include "mtacc/virtual_controller/servo_loop.hpp"
 #include "mtacc/procedures/trace_alignment.hpp"
 
 namespace mtacc {
