@@ -70,17 +70,13 @@ void run(CubicCliOptions& o) {
 }
 
 struct CubicIdentifyCliOptions : MachineOptions {
-  CubicIdentificationRequest request;
-  std::string params, noise, errorsOut;
+  OptionValues values;
+  std::string errorsOut;
   bool strict = false;
 };
 
-void identify(CubicIdentifyCliOptions& o) {
-  o.request.parameters = splitList(o.params);
-  if (!o.noise.empty()) o.request.noise = parseQuantityAs(o.noise, Dimension::Length, "--noise");
-  if (o.request.threads < 0 || o.request.threads > 1024)
-    throw InputError(InputLocation{"", 0, "--threads"}, "must be from 0 (every core) to 1024");
-  emitIdentification(o, identifyFromZones(loadMachineSetup(o.source), o.request), o.strict, o.errorsOut);
+void identify(const CubicIdentifyCliOptions& o) {
+  emitIdentification(o, identifyFromZones(loadMachineSetup(o.source), cubicIdentificationRequest(o.values)), o.strict, o.errorsOut);
 }
 
 }  // namespace
@@ -110,11 +106,7 @@ void addCubicCommands(CLI::App& app) {
   auto id = std::make_shared<CubicIdentifyCliOptions>();
   auto* idc = app.add_subcommand("cubic-identify", "errors from the zone results of a cubic machining test (Li et al. 2021 §7.3)");
   addMachineOptions(*idc, *id);
-  idc->add_option("--test", id->request.test, "test piece (YAML) or bundled name (default seed001-cubic)");
-  idc->add_option("--zones", id->request.zonesFile, "zone results: zone,height_um[,slope_x_um_per_mm,slope_y_um_per_mm]")->required();
-  idc->add_option("--params", id->params, "parameters to determine, e.g. dxBY,alphaBY,alphaCB,betaBY")->required();
-  idc->add_option("--noise", id->noise, "height noise (standard deviation), e.g. 0.2um; default: the file's '# noise:' line");
-  idc->add_option("--threads", id->request.threads, "threads (0 = all cores)")->capture_default_str();
+  addSchemaOptions(*idc, cubicIdentificationSchema(), id->values, {{"parameters", "--params"}});
   idc->add_flag("--strict", id->strict, "exit with status 4 when the fit or the conditioning draws a warning");
   addErrorsOutOption(*idc, id->errorsOut);
   idc->callback([id] { identify(*id); });

@@ -10,7 +10,7 @@ namespace {
 
 struct StiffnessOptions {
   MachineOptions machine;
-  int samples = 5;
+  OptionValues values;
 };
 
 std::string poseText(const nlohmann::json& pose) {
@@ -20,7 +20,7 @@ std::string poseText(const nlohmann::json& pose) {
 }
 
 void run(const StiffnessOptions& o) {
-  const auto summary = summariseStiffness(loadMachineSetup(o.machine.source), o.samples);
+  const auto summary = summariseStiffness(loadMachineSetup(o.machine.source), stiffnessSamples(o.values));
   const auto j = toJson(summary);
   std::string human = fmt::format("Finite stiffness of {}: workpiece load {:g} kg\n", summary.setup.machine->name,
                                   j["workpiece_load_kg"].get<double>());
@@ -58,7 +58,7 @@ void addStiffnessCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("stiffness",
                                  "finite-stiffness changes of the errors (the 1991 BCR report) at the workpiece load, and the TCP errors they cause");
   addMachineOptions(*cmd, o->machine);
-  cmd->add_option("--samples", o->samples, "positions per axis of the working-volume grid")->check(CLI::Range(2, 12));
+  addSchemaOptions(*cmd, stiffnessSchema(), o->values);
   cmd->callback([o] { run(*o); });
 }
 

@@ -28,7 +28,9 @@ void exposeBudget(MachineClass& machine) {
         }
         return toPython(toJson(r));
       })
-      .def("stiffness", [](const PythonMachine& s, int samples) { return toPython(toJson(summariseStiffness(s, samples))); });
+      .def("stiffness", [](const PythonMachine& s, const OptionValues& options) {
+        return toPython(toJson(summariseStiffness(s, stiffnessSamples(options))));
+      });
 }
 
 }  // namespace mtacc::python

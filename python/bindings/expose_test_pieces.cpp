@@ -90,13 +90,8 @@ void exposeTestPieces(MachineClass& machine) {
         }
         return out;
       })
-      .def("cubic_identify", [](const PythonMachine& s, const std::string& zones, const std::vector<std::string>& parameters,
-                                const std::string& test, const std::string& noise, const std::string& errorsOut) {
-        CubicIdentificationRequest request;
-        request.test = test;
-        request.zonesFile = zones;
-        request.parameters = parameters;
-        if (!noise.empty()) request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
+      .def("cubic_identify", [](const PythonMachine& s, const OptionValues& options, const std::string& errorsOut) {
+        const CubicIdentificationRequest request = cubicIdentificationRequest(options);
         IdentificationStudy out;
         {
           py::gil_scoped_release release;

@@ -359,11 +359,15 @@ class Machine:
         points (n, 3) of each zone."""
         return self._core.cubic(str(test), grid, inset, sensitivities, list(parameters or []), sensitivity_grid, threads)
 
-    def cubic_identify(self, zones, parameters, test="seed001-cubic", noise=None, errors_out=None):
+    def cubic_identify(self, zones, parameters, test=None, noise=None, threads=None, errors_out=None):
         """Errors from the zone results of a cubic machining test (CSV: zone,height_um[,slope_x_um_per_mm,
-        slope_y_um_per_mm]), as `mtacc cubic-identify --json`; refuses (InputError) a set the zones
-        cannot determine, naming what they cannot separate. errors_out: as identify's."""
-        return self._core.cubic_identify(str(zones), list(parameters), str(test), _text(noise), _text(errors_out))
+        slope_y_um_per_mm]), as `mtacc cubic-identify --json`, whose options these keyword arguments are
+        (test: the bundled seed001-cubic by default; noise: "0.2 um", default the file's '# noise:' line);
+        refuses (InputError) a set the zones cannot determine, naming what they cannot separate.
+        errors_out: as identify's."""
+        options = _options(zones=zones, parameters=[parameters] if isinstance(parameters, str) else list(parameters), test=test,
+                           noise=noise, threads=threads)
+        return self._core.cubic_identify(options, _text(errors_out))
 
     def fit_component(self, path, breaks=None, pieces=0, degree=2, significance=0.05, period=None, period_zero=0.0,
                       disturbance_threshold=5.0, remove_disturbed=False, errors_out=None):
@@ -376,11 +380,11 @@ class Machine:
                                         float(significance), period, float(period_zero), float(disturbance_threshold),
                                         bool(remove_disturbed), _text(errors_out))
 
-    def stiffness(self, samples=5):
+    def stiffness(self, samples=None):
         """The finite-stiffness changes of the errors (the 1991 BCR report) at this machine's workpiece load, and the
-        largest TCP errors over the working-volume grid (`samples` per axis) of the geometric errors, of the
-        changes alone and added by them, as `mtacc stiffness --json` (values in um or urad)."""
-        return self._core.stiffness(int(samples))
+        largest TCP errors over the working-volume grid (`samples` per axis, 2 to 12, default 5) of the geometric
+        errors, of the changes alone and added by them, as `mtacc stiffness --json` (values in um or urad)."""
+        return self._core.stiffness(_options(samples=samples))
 
     def compensate_program(self, path, tool_lengths=None, tolerance=None, direction_tolerance=None, check_errors=None):
         """The axis program (G-code) at `path` compensated for this machine's errors, as `mtacc compensate

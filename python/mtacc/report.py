@@ -571,7 +571,8 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     machine = Machine(machine_path, errors, load=load, thermal=thermal)
     from . import thermal_state
     thermal_result = thermal_state(machine_path, thermal) if thermal else None
-    stiffness = machine.stiffness(samples) if machine.check()["stiffness_changes"] else None
+    # The stiffness grid takes at most 12 positions per axis (its section states how many it used).
+    stiffness = machine.stiffness(min(samples, 12)) if machine.check()["stiffness_changes"] else None
     if stiffness:
         steps.insert(-1, "finite stiffness")
     linear_with_travel = {a["name"] for a in machine.axes if a["type"] == "linear" and a["travel"] is not None}

@@ -56,6 +56,31 @@ IdentificationStudy identifyFromZones(const MachineSetup& setup, const CubicTest
   return outcome;
 }
 
+const OptionSchema& cubicIdentificationSchema() {
+  static const OptionSchema schema{
+      "cubic-identify",
+      {{"zones", OptionKind::Text, "Zone results: zone,height_um[,slope_x_um_per_mm,slope_y_um_per_mm] (CSV)"},
+       {"parameters", OptionKind::List, "Parameters to determine, e.g. dxBY,alphaBY,alphaCB,betaBY (ISO names or aliases)"},
+       {.key = "test", .kind = OptionKind::Text, .help = "Test piece (YAML) or bundled name", .defaultText = "seed001-cubic"},
+       {.key = "noise", .kind = OptionKind::Quantity, .help = "Height noise (standard deviation); default: the file's '# noise:' line",
+        .low = 1e-6, .high = 1.0, .outOfRange = "must be from 1 nm to 1 mm"},
+       threadsOption()}};
+  return schema;
+}
+
+CubicIdentificationRequest cubicIdentificationRequest(const OptionValues& values) {
+  const OptionReader read(cubicIdentificationSchema(), values);
+  CubicIdentificationRequest r;
+  r.zonesFile = read.text("zones").value_or("");
+  if (r.zonesFile.empty()) throw InputError(InputLocation{"", 0, "zones"}, "give the zone results of the test (CSV)");
+  r.parameters = read.list("parameters");
+  if (r.parameters.empty()) throw InputError(InputLocation{"", 0, "parameters"}, "name the parameters to determine, e.g. dxBY,alphaBY");
+  r.test = *read.text("test");
+  r.noise = read.quantity("noise");
+  r.threads = *read.count("threads");
+  return r;
+}
+
 IdentificationStudy identifyFromZones(const MachineSetup& setup, const CubicIdentificationRequest& request) {
   auto outcome = identifyFromZones(setup, loadCubicTest(request.test), readZoneResults(request.zonesFile), request);
   outcome.command = "cubic-identify";

@@ -31,7 +31,17 @@ ErrorModel stiffnessOnly(const Machine& machine, const ErrorModel& errors) {
   return e;
 }
 
+const OptionSchema& stiffnessSchema() {
+  static const OptionSchema schema{"stiffness",
+                                   {{.key = "samples", .kind = OptionKind::Count, .help = "Positions per axis of the working-volume grid",
+                                     .defaultText = "5", .low = 2, .high = 12, .outOfRange = "must be from 2 to 12"}}};
+  return schema;
+}
+
+int stiffnessSamples(const OptionValues& values) { return *OptionReader(stiffnessSchema(), values).count("samples"); }
+
 StiffnessSummary summariseStiffness(const MachineSetup& setup, int samplesPerAxis) {
+  requireInRange(stiffnessSchema().at("samples"), samplesPerAxis);
   if (setup.errors.stiffness.empty())
     throw InputError(InputLocation{"", 0, ""},
                      "the errors of " + setup.machine->name +

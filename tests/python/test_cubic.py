@@ -56,6 +56,13 @@ def test_cli_and_api_alike_and_files_open(cli, table5, tmp_path):
     # what the 50 um cells' scallop sampling (0.07 um of height) allows.
     values = {e["parameter"]: e["value"] for e in fit["estimates"]}
     assert values["X0B"] == pytest.approx(-14.6, abs=0.15) and values["B0B"] == pytest.approx(-50.61, abs=1.0)
+    # Python reads the same options through the same schema: the same estimates, and a key it does
+    # not know is refused by name.
+    machine = mtacc.Machine("tilting-table", table5)
+    api_fit = machine.cubic_identify(zones, "dxBY,betaBY", threads=1)
+    assert api_fit["estimates"] == fit["estimates"] and api_fit["quality"] == fit["quality"]
+    with pytest.raises(mtacc.InputError, match="noise: must be from 1 nm to 1 mm"):
+        machine.cubic_identify(zones, ["dxBY"], noise="5 mm")
 
 
 def test_sensitivities_and_plots():

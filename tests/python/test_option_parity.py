@@ -16,7 +16,8 @@ from mtacc import _mtacc
 CLI_ONLY = {"help", "machine", "errors", "alignment", "load", "thermal", "json", "output", "strict", "rows"}
 BOTH_FRONT_ENDS = {"errors_out"}
 PYTHON_ONLY = {"series_points"}
-METHODS = {"budget": mtacc.Machine.budget, "identify": mtacc.Machine.identify, "observability": mtacc.Machine.observability, "drift": mtacc.drift_test}
+METHODS = {"budget": mtacc.Machine.budget, "stiffness": mtacc.Machine.stiffness, "identify": mtacc.Machine.identify, "observability": mtacc.Machine.observability, "drift": mtacc.drift_test,
+           "cubic-identify": mtacc.Machine.cubic_identify}
 
 
 def cli_keys(cli, command):

@@ -57,3 +57,9 @@ def test_plot_and_report_section(cli, tmp_path):
     assert run.returncode == 0, run.stderr
     page = (tmp_path / "maho-report.html").read_text()
     assert "Finite stiffness (the 1991 BCR report)" in page and "<b>200 kg</b>" in page
+
+
+def test_the_grid_is_checked_in_python_as_on_the_command_line():
+    # One schema for both: Python took any integer, and samples=100 meant 100^5 poses.
+    with pytest.raises(mtacc.InputError, match="samples: must be from 2 to 12"):
+        mtacc.Machine("maho", errors=LOAD_FILE).stiffness(samples=100)

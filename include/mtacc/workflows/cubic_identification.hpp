@@ -22,6 +22,11 @@ struct CubicIdentificationRequest {
   int threads = kAllCores;
 };
 
+// The options of `cubic-identify`, declared once, and the request they describe (zones and
+// parameters must be given); throws InputError naming the key.
+const OptionSchema& cubicIdentificationSchema();
+CubicIdentificationRequest cubicIdentificationRequest(const OptionValues& values);
+
 IdentificationStudy identifyFromZones(const MachineSetup& setup, const CubicIdentificationRequest& request);
 // The same from zone results in memory (the file's name in results.file, for messages).
 IdentificationStudy identifyFromZones(const MachineSetup& setup, const CubicTestSpec& spec, const ZoneResults& results,

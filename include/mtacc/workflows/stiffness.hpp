@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
 namespace mtacc {
@@ -26,7 +27,13 @@ struct StiffnessSummary {
   LargestTcpError change;     // all the errors minus the geometric ones: what the load and the other axes add
 };
 
-// Over workingVolumeGrid(samplesPerAxis); throws InputError when the errors have no stiffness changes.
+// The options of `stiffness`, declared once (samples: positions per axis of the grid), and the
+// samples they give.
+const OptionSchema& stiffnessSchema();
+int stiffnessSamples(const OptionValues& values);
+
+// Over workingVolumeGrid(samplesPerAxis), samplesPerAxis within the schema's range; throws
+// InputError when the errors have no stiffness changes.
 StiffnessSummary summariseStiffness(const MachineSetup& setup, int samplesPerAxis = 5);
 // The errors without their stiffness changes, and the stiffness changes alone.
 ErrorModel withoutStiffness(const ErrorModel& errors);
