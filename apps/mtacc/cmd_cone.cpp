@@ -15,30 +15,14 @@ namespace mtacc::cli {
 namespace {
 
 struct ConeCliOptions : MachineOptions {
-  std::string preset, centre = "-65,0,150", branch = "negative";
+  OptionValues values;
   ConeFiles files;
-  double alpha = 45, beta = 30, radius = 40, gamma = 0;
-  bool faceMilling = false;
-  ConeStudyRequest study;
 };
 
-void run(ConeCliOptions& o) {
+void run(const ConeCliOptions& o) {
   const auto setup = loadMachineSetup(o.source);
   const Machine& m = *setup.machine;
-  ConeStudyRequest& options = o.study;
-  if (!o.preset.empty()) {
-    const auto p = conePreset(o.preset);
-    if (!p) throw InputError(InputLocation{"", 0, "--preset"}, "unknown preset '" + o.preset + "' (tilting-table, swivel-head, double-pivot, nas979)");
-    options.spec = *p;
-  } else {
-    options.spec.alpha = o.alpha * kDeg;
-    options.spec.beta = o.beta * kDeg;
-    options.spec.radius = o.radius;
-    options.spec.gamma = o.gamma * kDeg;
-    options.spec.centre = parseVector(o.centre, "--centre");
-  }
-  options.spec.faceMilling = o.faceMilling;
-  options.branch = parseTiltBranch(o.branch);
+  ConeStudyRequest options = coneStudyRequest(m, o.values);
   const bool tty = !o.json && isatty(2);
   options.progress = [tty](int d, int t) {
     if (tty) std::cerr << fmt::format("\rmonte carlo: {}/{} samples", d, t) << (d == t ? "\n" : "") << std::flush;
@@ -91,21 +75,7 @@ void addConeCommand(CLI::App& app) {
   auto o = std::make_shared<ConeCliOptions>();
   auto* cmd = app.add_subcommand("cone", "5-axis cone-frustum test piece (Bossoni 2009): path, axis motions, error influence");
   addMachineOptions(*cmd, *o);
-  cmd->add_option("--preset", o->preset, "tilting-table, swivel-head, double-pivot (Bossoni 2009 §3.6) or nas979");
-  cmd->add_option("--alpha", o->alpha, "cone angle (half apex angle) [deg], negative: upside down (default 45)");
-  cmd->add_option("--beta", o->beta, "inclination of the cone axis [deg] (default 30)");
-  cmd->add_option("--radius", o->radius, "TCP path radius [mm] (default 40)");
-  cmd->add_option("--centre", o->centre, "path centre x,y,z in the workpiece frame [mm] (default -65,0,150)");
-  cmd->add_option("--gamma", o->gamma, "turn of the inclined cone about the workpiece z [deg] (default 0)");
-  cmd->add_flag("--face-milling", o->faceMilling, "tool normal to the cone surface instead of along the slant");
-  cmd->add_option("--points", o->study.points, "points around the path (default 720)");
-  cmd->add_option("--chord-tolerance", o->study.chordTolerance, "choose the points for this chord error [mm] instead");
-  cmd->add_option("--branch", o->branch, "tilt branch at phi = 0: negative (Bossoni 2009), positive or auto");
-  cmd->add_option("--feed", o->study.feed, "contouring feed [mm/min] for axis speeds (default 500)");
-  cmd->add_flag("--single-errors", o->study.singleErrors, "form error of each non-zero error alone");
-  cmd->add_option("--monte-carlo", o->study.monteCarlo, "number of Monte Carlo samples (e.g. 1000)");
-  cmd->add_option("--limits", o->study.limitsFile, "limits file (default: Bossoni 2009 Table 3.9)");
-  cmd->add_option("--seed", o->study.seed, "random seed of the Monte Carlo (default 1)");
+  addSchemaOptions(*cmd, coneSchema(), o->values);
   cmd->add_option("--gcode", o->files.gcode, "write the NC program of the path to FILE");
   cmd->add_option("--cl", o->files.cl, "write the CL data (phi, TCP, tool vector, surface normal) to FILE.csv");
   cmd->callback([o] { run(*o); });

@@ -4,9 +4,9 @@
 
 #include "bindings.hpp"
 #include "mtacc/core/input_error.hpp"
-#include "mtacc/workflows/cone_study.hpp"
 #include "mtacc/workflows/cubic_identification.hpp"
 #include "mtacc/workflows/identified_errors.hpp"
+#include "mtacc/workflows/test_piece_files.hpp"
 
 namespace mtacc::python {
 namespace {
@@ -25,36 +25,16 @@ py::dict gridOf(const HeightGrid& g) { return py::dict(py::arg("x0") = g.x0, py:
 
 void exposeTestPieces(MachineClass& machine) {
   machine
-      .def("cone", [](const PythonMachine& s, const std::string& preset, double alpha, double beta, double radius,
-                      const std::vector<double>& centre, double gamma, bool face, int points, const std::string& branch, double feed,
-                      bool singleErrors, int monteCarlo, const std::string& limitsFile, const std::string& limitsYaml,
-                      std::uint64_t seed) {
-        ConeStudyRequest o;
-        if (!preset.empty()) {
-          const auto p = conePreset(preset);
-          if (!p) throw InputError(InputLocation{"", 0, "preset"}, "unknown preset '" + preset + "'");
-          o.spec = *p;
-        } else {
-          o.spec.alpha = alpha * kDeg;
-          o.spec.beta = beta * kDeg;
-          o.spec.radius = radius;
-          o.spec.centre = vec3(centre, "centre");
-          o.spec.gamma = gamma * kDeg;
-        }
-        o.spec.faceMilling = face;
-        o.points = points;
-        o.branch = parseTiltBranch(branch);
-        o.feed = feed;
-        o.singleErrors = singleErrors;
-        o.monteCarlo = monteCarlo;
-        o.limitsFile = limitsFile;
-        o.limitsYaml = limitsYaml;
-        o.seed = seed;
+      .def("cone", [](const PythonMachine& s, const OptionValues& options, const std::string& limitsYaml, const std::string& gcode,
+                      const std::string& cl) {
+        ConeStudyRequest request = coneStudyRequest(*s.machine, options);
+        request.limitsYaml = limitsYaml;
         ConeStudy r;
         {
           py::gil_scoped_release release;
-          r = coneStudy(s, o);
+          r = coneStudy(s, request);
         }
+        writeConeFiles(r, {gcode, cl});
         return toPython(toJson(r));
       })
       .def("cone_preset_name", [](const PythonMachine& s) { return conePresetName(*s.machine); })

@@ -318,12 +318,14 @@ class Machine:
         every component error as a constant of that size."""
         return self._core.budget(_options(samples=samples, length=length, angle=angle, threads=threads))
 
-    def cone(self, preset=None, alpha=45.0, beta=30.0, radius=40.0, centre=(-65.0, 0.0, 150.0), gamma=0.0,
-             face_milling=False, points=720, branch="negative", feed=500.0, single_errors=False, monte_carlo=0,
-             limits=None, seed=1):
-        """The cone-frustum test piece of Bossoni 2009 (as `mtacc cone --json`): path, axis positions and their
+    def cone(self, preset=None, alpha=None, beta=None, radius=None, centre=None, gamma=None, face_milling=None, points=None,
+             chord_tolerance=None, branch=None, feed=None, single_errors=None, monte_carlo=None, limits=None, seed=None,
+             gcode=None, cl=None):
+        """The cone-frustum test piece of Bossoni 2009 (as `mtacc cone --json`, whose options these keyword
+        arguments are, with its defaults; angles in deg, lengths in mm): path, axis positions and their
         statistics, the form error of the machine's errors, each error alone, a Monte Carlo over limits.
         preset: "tilting-table", "swivel-head", "double-pivot", "nas979" or "family" (this machine's).
+        gcode, cl: files to write the NC program and the CL data to, as `--gcode` and `--cl`.
         Arrays (n points, s samples, k limits): path["phi_deg"] (n,), path["points_mm"], ["tools"],
         ["normals"], ["normals_machine"] (n, 3), path["q"] (n, axes) [mm, deg]; "deviation_um" and
         "raw_deviation_um" (n,), also per single error; monte_carlo["form_errors_um"] (s,) and
@@ -335,14 +337,12 @@ class Machine:
         (.rev, or .hyst as Bossoni 2009 writes it) are limited by the parameter's own name; ".lin" and
         ".<k>harm" are the error's change over the axis's range on the path (Bossoni 2009 eqs 3.63-3.66),
         not a coefficient per mm, and so have names of their own."""
-        if preset == "family":
-            preset = self._core.cone_preset_name()
-            if preset is None:
-                raise InputError("preset: the machine does not have two rotary axes")
         limits_yaml = json.dumps({"limits": limits}) if isinstance(limits, Mapping) else ""
-        limits_file = "" if isinstance(limits, Mapping) else _text(limits)
-        result = self._core.cone(_text(preset), alpha, beta, radius, list(map(float, centre)), gamma, face_milling, points,
-                                 branch, feed, single_errors, monte_carlo, limits_file, limits_yaml, seed)
+        centre_text = None if centre is None else ",".join(repr(float(c)) for c in centre)
+        options = _options(preset=preset, alpha=alpha, beta=beta, radius=radius, centre=centre_text, gamma=gamma, face_milling=face_milling,
+                           points=points, chord_tolerance=chord_tolerance, branch=branch, feed=feed, single_errors=single_errors,
+                           monte_carlo=monte_carlo, limits=None if isinstance(limits, Mapping) else limits, seed=seed)
+        result = self._core.cone(options, limits_yaml, _text(gcode), _text(cl))
         return _with_arrays(result, ("path", "phi_deg"), ("path", "points_mm"), ("path", "tools"), ("path", "normals"),
                             ("path", "normals_machine"), ("path", "q"), ("deviation_um",), ("raw_deviation_um",),
                             ("single_errors", "*", "deviation_um"), ("single_errors", "*", "raw_deviation_um"),

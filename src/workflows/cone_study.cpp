@@ -8,6 +8,7 @@
 #include <fmt/ranges.h>
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/bundled_data.hpp"
 #include "mtacc/io/limits_yaml.hpp"
@@ -29,6 +30,63 @@ nlohmann::json pointsJson(const std::vector<Vec3>& points) {
 }
 
 }  // namespace
+
+const OptionSchema& coneSchema() {
+  static const OptionSchema schema{
+      "cone",
+      {{"preset", OptionKind::Text, "tilting-table, swivel-head, double-pivot (Bossoni 2009 §3.6), nas979, or family (this machine's)"},
+       {.key = "alpha", .kind = OptionKind::Number, .help = "Cone angle (half apex angle) [deg], negative: upside down", .defaultText = "45"},
+       {.key = "beta", .kind = OptionKind::Number, .help = "Inclination of the cone axis [deg]", .defaultText = "30"},
+       {.key = "radius", .kind = OptionKind::Number, .help = "TCP path radius [mm]", .defaultText = "40"},
+       {.key = "centre", .kind = OptionKind::Text, .help = "Path centre x,y,z in the workpiece frame [mm]", .defaultText = "-65,0,150"},
+       {.key = "gamma", .kind = OptionKind::Number, .help = "Turn of the inclined cone about the workpiece z [deg]", .defaultText = "0"},
+       {"face_milling", OptionKind::Flag, "Tool normal to the cone surface instead of along the slant"},
+       {.key = "points", .kind = OptionKind::Count, .help = "Points around the path", .defaultText = "720", .low = 8, .high = 1e6,
+        .outOfRange = "must be between 8 and 1000000"},
+       {.key = "chord_tolerance", .kind = OptionKind::Number, .help = "Choose the points for this chord error [mm] instead (0: use points)",
+        .defaultText = "0"},
+       {.key = "branch", .kind = OptionKind::Text, .help = "Tilt branch at phi = 0: negative (Bossoni 2009), positive or auto",
+        .defaultText = "negative"},
+       {.key = "feed", .kind = OptionKind::Number, .help = "Contouring feed [mm/min] for the axis speeds", .defaultText = "500"},
+       {"single_errors", OptionKind::Flag, "Form error of each non-zero error alone"},
+       {.key = "monte_carlo", .kind = OptionKind::Count, .help = "Number of Monte Carlo samples (e.g. 1000)", .defaultText = "0", .low = 0,
+        .high = 1e6, .outOfRange = "must be from 0 to 1,000,000 samples"},
+       {"limits", OptionKind::Text, "Error limits file for the Monte Carlo (default: Bossoni 2009 Table 3.9)"},
+       {.key = "seed", .kind = OptionKind::Count, .help = "Random seed of the Monte Carlo", .defaultText = "1", .low = 0, .high = 2147483647,
+        .outOfRange = "must be from 0 to 2147483647"}}};
+  return schema;
+}
+
+ConeStudyRequest coneStudyRequest(const Machine& machine, const OptionValues& values) {
+  const OptionReader read(coneSchema(), values);
+  ConeStudyRequest r;
+  if (auto preset = read.text("preset")) {
+    if (*preset == "family") {
+      const auto family = conePresetName(machine);
+      if (!family) throw InputError(InputLocation{"", 0, "preset"}, "the machine does not have two rotary axes");
+      preset = *family;
+    }
+    const auto spec = conePreset(*preset);
+    if (!spec) throw InputError(InputLocation{"", 0, "preset"}, "unknown preset '" + *preset + "' (tilting-table, swivel-head, double-pivot, nas979)");
+    r.spec = *spec;
+  } else {
+    r.spec.alpha = *read.number("alpha") * kDeg;
+    r.spec.beta = *read.number("beta") * kDeg;
+    r.spec.radius = *read.number("radius");
+    r.spec.centre = parseVector(*read.text("centre"), "centre");
+    r.spec.gamma = *read.number("gamma") * kDeg;
+  }
+  r.spec.faceMilling = read.flag("face_milling");
+  r.points = *read.count("points");
+  r.chordTolerance = *read.number("chord_tolerance");
+  r.branch = parseTiltBranch(*read.text("branch"));
+  r.feed = *read.number("feed");
+  r.singleErrors = read.flag("single_errors");
+  r.monteCarlo = *read.count("monte_carlo");
+  r.limitsFile = read.text("limits").value_or("");
+  r.seed = static_cast<std::uint64_t>(*read.count("seed"));
+  return r;
+}
 
 ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyRequest& options) {
   const Machine& m = *setup.machine;

@@ -1,6 +1,7 @@
 #include "mtacc/workflows/option_schemas.hpp"
 
 #include "mtacc/workflows/budget.hpp"
+#include "mtacc/workflows/cone_study.hpp"
 #include "mtacc/workflows/cubic_identification.hpp"
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/stiffness.hpp"
@@ -10,7 +11,7 @@ namespace mtacc {
 
 const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
   static const std::map<std::string, const OptionSchema*> schemas{
-      {"budget", &budgetSchema()}, {"cubic-identify", &cubicIdentificationSchema()}, {"drift", &driftTestSchema()}, {"identify", &identificationSchema()}, {"observability", &observabilitySchema()}, {"stiffness", &stiffnessSchema()}};
+      {"budget", &budgetSchema()}, {"cone", &coneSchema()}, {"cubic-identify", &cubicIdentificationSchema()}, {"drift", &driftTestSchema()}, {"identify", &identificationSchema()}, {"observability", &observabilitySchema()}, {"stiffness", &stiffnessSchema()}};
   return schemas;
 }
 

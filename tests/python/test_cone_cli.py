@@ -4,6 +4,8 @@ import subprocess
 
 import pytest
 
+import mtacc
+
 
 def cone(cli, *args):
     out = subprocess.run([cli, "cone", "tilting-table", "--points", "3600", *args, "--json"], check=True,
@@ -41,3 +43,18 @@ def test_bad_input_and_gcode(cli, tmp_path):
     assert cl.read_text().splitlines()[0] == "phi_deg,x,y,z,i,j,k,nx,ny,nz" and len(cl.read_text().splitlines()) == 721
     lines = gcode.read_text().splitlines()
     assert lines[3].startswith("N10 G01 X") and " B" in lines[3] and " C" in lines[3] and lines[-1] == "M30"
+
+
+def test_python_takes_the_same_options_and_writes_the_same_files(cli, tmp_path):
+    # One schema: the CLI's flags and Python's keywords read alike, "family" and the chord
+    # tolerance included (Python had neither), and the same NC program and CL data come out.
+    files = {name: tmp_path / name for name in ("cli.nc", "cli.csv", "py.nc", "py.csv")}
+    out = subprocess.run([cli, "cone", "swivel-head-table", "--preset", "family", "--chord-tolerance", "0.001", "--json",
+                          "--gcode", str(files["cli.nc"]), "--cl", str(files["cli.csv"])], check=True, capture_output=True, text=True)
+    by_cli = json.loads(out.stdout)
+    by_python = mtacc.as_json(mtacc.Machine("swivel-head-table").cone(preset="family", chord_tolerance=0.001, gcode=files["py.nc"],
+                                                                        cl=files["py.csv"]))
+    assert by_python["cone"] == by_cli["cone"] and by_python["axes"] == by_cli["axes"]
+    assert files["py.nc"].read_text() == files["cli.nc"].read_text() and files["py.csv"].read_text() == files["cli.csv"].read_text()
+    with pytest.raises(mtacc.InputError, match="points: must be between 8 and 1000000"):
+        mtacc.Machine("tilting-table").cone(points=3)

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/procedures/monte_carlo.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
@@ -28,6 +29,12 @@ struct ConeStudyRequest {
   std::uint64_t seed = 1;
   std::function<void(int, int)> progress;  // Monte Carlo samples done, total
 };
+
+// The options of `cone`, declared once (angles in deg, lengths in mm), and the request they
+// describe for `machine`: a preset's set-up (preset "family": this machine's, Bossoni 2009
+// §3.6) or the cone as given. The study checks the values' ranges; throws InputError naming the key.
+const OptionSchema& coneSchema();
+ConeStudyRequest coneStudyRequest(const Machine& machine, const OptionValues& values);
 
 struct ConeSingleError {
   std::string name;
