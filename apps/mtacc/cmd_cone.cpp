@@ -16,7 +16,6 @@ namespace {
 
 struct ConeCliOptions : MachineOptions {
   OptionValues values;
-  ConeFiles files;
 };
 
 void run(const ConeCliOptions& o) {
@@ -65,7 +64,7 @@ void run(const ConeCliOptions& o) {
                          st.upperQuartile * 1e3, st.max * 1e3);
     for (const auto& n : s.monteCarlo->notes) human += "  note: " + n + "\n";
   }
-  for (const auto& line : writeConeFiles(s, o.files)) human += "\n" + line + "\n";
+  for (const auto& line : writeConeFiles(s, coneFiles(o.values))) human += "\n" + line + "\n";
   emit(o, toJson(s), human, csv);
 }
 
@@ -76,8 +75,6 @@ void addConeCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("cone", "5-axis cone-frustum test piece (Bossoni 2009): path, axis motions, error influence");
   addMachineOptions(*cmd, *o);
   addSchemaOptions(*cmd, coneSchema(), o->values);
-  cmd->add_option("--gcode", o->files.gcode, "write the NC program of the path to FILE");
-  cmd->add_option("--cl", o->files.cl, "write the CL data (phi, TCP, tool vector, surface normal) to FILE.csv");
   cmd->callback([o] { run(*o); });
 }
 

@@ -17,23 +17,19 @@ namespace mtacc::cli {
 namespace {
 
 struct CubicCliOptions : MachineOptions {
-  std::string test = "seed001-cubic", sensitivityParams, mapLimit = "10 um";
-  CubicTestRequest study;
-  CubicTestFiles files;
+  OptionValues values;
 };
 
 std::string planRow(const ZonePlane& p) {
   return fmt::format("{:>9.3f} {:>8.4f} {:>8.4f}", p.mean * 1e3, p.slopeX * 1e3, p.slopeY * 1e3);
 }
 
-void run(CubicCliOptions& o) {
-  o.files.mapLimit = parseQuantityAs(o.mapLimit, Dimension::Length, "map_limit");
-  checkCubicTestFiles(o.files);
+void run(const CubicCliOptions& o) {
+  const CubicTestFiles files = cubicTestFiles(o.values);
+  checkCubicTestFiles(files);
+  CubicTestRequest options = cubicTestRequest(o.values);
   const auto setup = loadMachineSetup(o.source);
   const Machine& m = *setup.machine;
-  CubicTestRequest& options = o.study;
-  options.spec = loadCubicTestSpec(o.test);
-  options.sensitivityParameters = splitList(o.sensitivityParams);
   const bool tty = !o.json && isatty(2);
   options.progress = [tty](const std::string& stage) {
     if (tty) std::cerr << "cubic: " << stage << "\n";
@@ -64,7 +60,7 @@ void run(CubicCliOptions& o) {
     for (size_t k = 0; k < c.withAlignment.size(); ++k)
       human += fmt::format("  {:<7} {:>9.4f} | {:>9.4f}\n", spec.zones[k].name, c.withAlignment[k].mean, c.onTable[k].mean);
   }
-  for (const auto& line : writeCubicTestFiles(s, o.files)) human += "\n" + line;
+  for (const auto& line : writeCubicTestFiles(s, files)) human += "\n" + line;
   if (human.back() != '\n') human += "\n";
   emit(o, toJson(s), human, csv);
 }
@@ -85,22 +81,7 @@ void addCubicCommands(CLI::App& app) {
   auto o = std::make_shared<CubicCliOptions>();
   auto* cmd = app.add_subcommand("cubic", "cubic machining test (Li et al. 2021): NC program, machined surface, zone heights, sensitivities");
   addMachineOptions(*cmd, *o);
-  cmd->add_option("--test", o->test, "test piece (YAML) or bundled name (default seed001-cubic)");
-  cmd->add_option("--grid", o->study.gridSpacing, "grid spacing of the simulated surface [mm] (default 0.01)");
-  cmd->add_option("--inset", o->study.inset, "margin left out along each zone edge when zones are evaluated [mm] (default 1)");
-  cmd->add_option("--chord-tolerance", o->study.chordTolerance, "largest departure of the actual path from its chords [mm] (default 1e-6)");
-  cmd->add_flag("--sensitivities", o->study.sensitivities, "sensitivity k = E / epsilon of every zone to each error, with and without M_WC (the workpiece aligned with the "
-                "machine at the reference pose, and fixed to the table)");
-  cmd->add_option("--sensitivity-parameters", o->sensitivityParams, "errors for --sensitivities (default: the rotary axes' location errors)");
-  cmd->add_option("--sensitivity-grid", o->study.sensitivityGrid, "grid spacing for the sensitivities [mm] (default 0.02)");
-  cmd->add_option("--threads", o->study.threads, "threads (0 = all cores)")->capture_default_str();
-  cmd->add_option("--gcode", o->files.gcode, "write the NC program to FILE");
-  cmd->add_option("--cl", o->files.cl, "write the CL data (zone, tool tip, tool vector) to FILE.csv");
-  cmd->add_option("--map", o->files.map, "write the deviation map referenced to zone I to FILE.svg (zones, colour bar) or FILE.png");
-  cmd->add_option("--map-limit", o->mapLimit, "deviation shown at full colour (default 10 um, as Li et al. 2021 Fig. 16)");
-  cmd->add_option("--heights", o->files.heights, "write the machined heights to FILE.csv (um) or FILE.npy (float32, mm)");
-  cmd->add_option("--surface", o->files.surface, "write the machined surface to FILE.ply or FILE.stl (at most 1e6 vertices)");
-  cmd->add_option("--zones-out", o->files.zonesOut, "write the zone results (heights and tilts) to FILE.csv, for cubic-identify");
+  addSchemaOptions(*cmd, cubicTestSchema(), o->values);
   cmd->callback([o] { run(*o); });
 
   auto id = std::make_shared<CubicIdentifyCliOptions>();

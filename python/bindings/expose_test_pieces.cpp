@@ -25,8 +25,7 @@ py::dict gridOf(const HeightGrid& g) { return py::dict(py::arg("x0") = g.x0, py:
 
 void exposeTestPieces(MachineClass& machine) {
   machine
-      .def("cone", [](const PythonMachine& s, const OptionValues& options, const std::string& limitsYaml, const std::string& gcode,
-                      const std::string& cl) {
+      .def("cone", [](const PythonMachine& s, const OptionValues& options, const std::string& limitsYaml) {
         ConeStudyRequest request = coneStudyRequest(*s.machine, options);
         request.limitsYaml = limitsYaml;
         ConeStudy r;
@@ -34,25 +33,20 @@ void exposeTestPieces(MachineClass& machine) {
           py::gil_scoped_release release;
           r = coneStudy(s, request);
         }
-        writeConeFiles(r, {gcode, cl});
+        writeConeFiles(r, coneFiles(options));
         return toPython(toJson(r));
       })
       .def("cone_preset_name", [](const PythonMachine& s) { return conePresetName(*s.machine); })
-      .def("cubic", [](const PythonMachine& s, const std::string& test, double grid, double inset, bool sensitivities,
-                       const std::vector<std::string>& parameters, double sensitivityGrid, int threads) {
-        CubicTestRequest o;
-        o.spec = loadCubicTestSpec(test);
-        o.gridSpacing = grid;
-        o.inset = inset;
-        o.sensitivities = sensitivities;
-        o.sensitivityParameters = parameters;
-        o.sensitivityGrid = sensitivityGrid;
-        o.threads = threads;
+      .def("cubic", [](const PythonMachine& s, const OptionValues& options) {
+        const CubicTestFiles files = cubicTestFiles(options);
+        checkCubicTestFiles(files);
+        const CubicTestRequest o = cubicTestRequest(options);
         CubicTestStudy r;
         {
           py::gil_scoped_release release;
           r = cubicTestStudy(s, o);
         }
+        writeCubicTestFiles(r, files);
         py::dict out = toPython(toJson(r));
         out["grid"] = gridOf(r.actual.grid);
         out["heights_um"] = heightArray(r.actual, 1e3);

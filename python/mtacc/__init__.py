@@ -341,23 +341,29 @@ class Machine:
         centre_text = None if centre is None else ",".join(repr(float(c)) for c in centre)
         options = _options(preset=preset, alpha=alpha, beta=beta, radius=radius, centre=centre_text, gamma=gamma, face_milling=face_milling,
                            points=points, chord_tolerance=chord_tolerance, branch=branch, feed=feed, single_errors=single_errors,
-                           monte_carlo=monte_carlo, limits=None if isinstance(limits, Mapping) else limits, seed=seed)
-        result = self._core.cone(options, limits_yaml, _text(gcode), _text(cl))
+                           monte_carlo=monte_carlo, limits=None if isinstance(limits, Mapping) else limits, seed=seed, gcode=gcode, cl=cl)
+        result = self._core.cone(options, limits_yaml)
         return _with_arrays(result, ("path", "phi_deg"), ("path", "points_mm"), ("path", "tools"), ("path", "normals"),
                             ("path", "normals_machine"), ("path", "q"), ("deviation_um",), ("raw_deviation_um",),
                             ("single_errors", "*", "deviation_um"), ("single_errors", "*", "raw_deviation_um"),
                             ("monte_carlo", "form_errors_um"), ("monte_carlo", "drawn", "values"))
 
-    def cubic(self, test="seed001-cubic", grid=0.01, inset=1.0, sensitivities=False, parameters=None,
-              sensitivity_grid=0.02, threads=0):
+    def cubic(self, test=None, grid=None, inset=None, chord_tolerance=None, sensitivities=None, sensitivity_parameters=None,
+              sensitivity_grid=None, threads=None, gcode=None, cl=None, map=None, map_limit=None, heights=None, surface=None,
+              zones_out=None):
         """The cubic machining test of Li et al. 2021 (as `mtacc cubic --json`): per zone the clamped axes, the
         deviation E (machined minus error-free surface) and the surface referenced to zone I, as mean
         height (um) and tilts (um/mm); with sensitivities, k = E / epsilon of each error with and
         without M_WC. Adds numpy arrays (ny, nx), row j at y = y0 + (j + 0.5) spacing: "heights_um"
         (the machined surface about the nominal face), "referenced_deviation_um", and per error
         "sensitivity_maps"[name]["with_alignment" | "on_table"] (mm/mm or mm/rad); "tool_tips": the CL
-        points (n, 3) of each zone."""
-        return self._core.cubic(str(test), grid, inset, sensitivities, list(parameters or []), sensitivity_grid, threads)
+        points (n, 3) of each zone. The keyword arguments are `mtacc cubic`'s options, with its defaults
+        (lengths in mm; map_limit with its unit, "10 um"); gcode, cl, map, heights, surface and zones_out
+        name files to write as the command does."""
+        return self._core.cubic(_options(test=test, grid=grid, inset=inset, chord_tolerance=chord_tolerance, sensitivities=sensitivities,
+                                         sensitivity_parameters=sensitivity_parameters, sensitivity_grid=sensitivity_grid,
+                                         threads=threads, gcode=gcode, cl=cl, map=map, map_limit=map_limit, heights=heights,
+                                         surface=surface, zones_out=zones_out))
 
     def cubic_identify(self, zones, parameters, test=None, noise=None, threads=None, errors_out=None):
         """Errors from the zone results of a cubic machining test (CSV: zone,height_um[,slope_x_um_per_mm,

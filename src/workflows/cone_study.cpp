@@ -53,7 +53,9 @@ const OptionSchema& coneSchema() {
         .high = 1e6, .outOfRange = "must be from 0 to 1,000,000 samples"},
        {"limits", OptionKind::Text, "Error limits file for the Monte Carlo (default: Bossoni 2009 Table 3.9)"},
        {.key = "seed", .kind = OptionKind::Count, .help = "Random seed of the Monte Carlo", .defaultText = "1", .low = 0, .high = 2147483647,
-        .outOfRange = "must be from 0 to 2147483647"}}};
+        .outOfRange = "must be from 0 to 2147483647"},
+       {"gcode", OptionKind::Text, "Write the NC program of the path to FILE"},
+       {"cl", OptionKind::Text, "Write the CL data (phi, TCP, tool vector, surface normal) to FILE.csv"}}};
   return schema;
 }
 

@@ -54,7 +54,44 @@ nlohmann::json planeJson(const ZonePlane& p, double unit) {
 
 }  // namespace
 
-CubicTestSpec loadCubicTestSpec(const std::string& pathOrName) { return loadCubicTest(pathOrName); }
+const OptionSchema& cubicTestSchema() {
+  static const OptionSchema schema{
+      "cubic",
+      {{.key = "test", .kind = OptionKind::Text, .help = "Test piece (YAML) or bundled name", .defaultText = "seed001-cubic"},
+       {.key = "grid", .kind = OptionKind::Number, .help = "Grid spacing of the simulated surface [mm]", .defaultText = "0.01"},
+       {.key = "inset", .kind = OptionKind::Number, .help = "Margin left out along each zone edge when zones are evaluated [mm]",
+        .defaultText = "1"},
+       {.key = "chord_tolerance", .kind = OptionKind::Number, .help = "Largest departure of the actual path from its chords [mm]",
+        .defaultText = "1e-6"},
+       {"sensitivities", OptionKind::Flag, "Sensitivity k = E / epsilon of every zone to each error, with and without M_WC (the workpiece "
+                                           "aligned with the machine at the reference pose, and fixed to the table)"},
+       {"sensitivity_parameters", OptionKind::List, "Errors for the sensitivities (default: the rotary axes' location errors)"},
+       {.key = "sensitivity_grid", .kind = OptionKind::Number, .help = "Grid spacing for the sensitivities [mm]", .defaultText = "0.02"},
+       threadsOption(),
+       {"gcode", OptionKind::Text, "Write the NC program to FILE"},
+       {"cl", OptionKind::Text, "Write the CL data (zone, tool tip, tool vector) to FILE.csv"},
+       {"map", OptionKind::Text, "Write the deviation map referenced to zone I to FILE.svg (zones, colour bar) or FILE.png"},
+       {.key = "map_limit", .kind = OptionKind::Text, .help = "Deviation shown at full colour (as Li et al. 2021 Fig. 16)",
+        .defaultText = "10 um"},
+       {"heights", OptionKind::Text, "Write the machined heights to FILE.csv (um) or FILE.npy (float32, mm)"},
+       {"surface", OptionKind::Text, "Write the machined surface to FILE.ply or FILE.stl (at most 1e6 vertices)"},
+       {"zones_out", OptionKind::Text, "Write the zone results (heights and tilts) to FILE.csv, for cubic-identify"}}};
+  return schema;
+}
+
+CubicTestRequest cubicTestRequest(const OptionValues& values) {
+  const OptionReader read(cubicTestSchema(), values);
+  CubicTestRequest r;
+  r.spec = loadCubicTest(*read.text("test"));
+  r.gridSpacing = *read.number("grid");
+  r.inset = *read.number("inset");
+  r.chordTolerance = *read.number("chord_tolerance");
+  r.sensitivities = read.flag("sensitivities");
+  r.sensitivityParameters = read.list("sensitivity_parameters");
+  r.sensitivityGrid = *read.number("sensitivity_grid");
+  r.threads = *read.count("threads");
+  return r;
+}
 
 CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestRequest& options) {
   const auto require = [](bool ok, const char* key, const char* what) {

@@ -3,6 +3,7 @@
 #include "mtacc/workflows/budget.hpp"
 #include "mtacc/workflows/cone_study.hpp"
 #include "mtacc/workflows/cubic_identification.hpp"
+#include "mtacc/workflows/cubic_test.hpp"
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/stiffness.hpp"
 #include "mtacc/workflows/thermal_drift.hpp"
@@ -11,7 +12,7 @@ namespace mtacc {
 
 const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
   static const std::map<std::string, const OptionSchema*> schemas{
-      {"budget", &budgetSchema()}, {"cone", &coneSchema()}, {"cubic-identify", &cubicIdentificationSchema()}, {"drift", &driftTestSchema()}, {"identify", &identificationSchema()}, {"observability", &observabilitySchema()}, {"stiffness", &stiffnessSchema()}};
+      {"budget", &budgetSchema()}, {"cone", &coneSchema()}, {"cubic", &cubicTestSchema()}, {"cubic-identify", &cubicIdentificationSchema()}, {"drift", &driftTestSchema()}, {"identify", &identificationSchema()}, {"observability", &observabilitySchema()}, {"stiffness", &stiffnessSchema()}};
   return schemas;
 }
 

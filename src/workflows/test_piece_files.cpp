@@ -6,6 +6,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text_file.hpp"
+#include "mtacc/core/units.hpp"
 #include "mtacc/io/cone_program.hpp"
 #include "mtacc/io/cubic_program.hpp"
 #include "mtacc/io/surface_files.hpp"
@@ -23,6 +24,13 @@ std::string formatOf(const std::string& path, const std::string& key, std::initi
     list += std::string(list.empty() ? "" : ", ") + "." + ext;
   }
   throw InputError(InputLocation{"", 0, key}, "'" + path + "': expected a file ending in " + list);
+}
+
+// The deviation shown at full colour, mm.
+double mapLimitOf(const CubicTestFiles& files) {
+  const double limit = parseQuantityAs(files.mapLimit, Dimension::Length, "map_limit");
+  if (!(limit >= 1e-6 && limit <= 10)) throw InputError(InputLocation{"", 0, "map_limit"}, "must be from 1 nm to 10 mm");
+  return limit;
 }
 
 class Written {
@@ -46,11 +54,25 @@ std::vector<std::string> writeConeFiles(const ConeStudy& s, const ConeFiles& fil
   return std::move(write).lines();
 }
 
+ConeFiles coneFiles(const OptionValues& values) {
+  const OptionReader read(coneSchema(), values);
+  return {read.text("gcode").value_or(""), read.text("cl").value_or("")};
+}
+
 void checkCubicTestFiles(const CubicTestFiles& files) {
   if (!files.map.empty()) formatOf(files.map, "map", {"svg", "png"});
   if (!files.heights.empty()) formatOf(files.heights, "heights", {"csv", "npy"});
   if (!files.surface.empty()) formatOf(files.surface, "surface", {"ply", "stl"});
-  if (!(files.mapLimit >= 1e-6 && files.mapLimit <= 10)) throw InputError(InputLocation{"", 0, "map_limit"}, "must be from 1 nm to 10 mm");
+  mapLimitOf(files);
+}
+
+CubicTestFiles cubicTestFiles(const OptionValues& values) {
+  const OptionReader read(cubicTestSchema(), values);
+  CubicTestFiles f;
+  for (auto [key, field] : {std::pair{"gcode", &f.gcode}, {"cl", &f.cl}, {"map", &f.map}, {"map_limit", &f.mapLimit}, {"heights", &f.heights},
+                            {"surface", &f.surface}, {"zones_out", &f.zonesOut}})
+    *field = read.text(key).value_or("");
+  return f;
 }
 
 std::vector<std::string> writeCubicTestFiles(const CubicTestStudy& s, const CubicTestFiles& files) {
@@ -62,7 +84,7 @@ std::vector<std::string> writeCubicTestFiles(const CubicTestStudy& s, const Cubi
   if (!files.cl.empty()) write(files.cl, cubicClData(spec, s.path), "cl", "CL data");
   if (!files.map.empty()) {
     const auto referenced = referencedDeviation(s);
-    const ColourMap colours{files.mapLimit, 1200};
+    const ColourMap colours{mapLimitOf(files), 1200};
     std::vector<ZonePlane> measured;
     for (const auto& z : s.zones) measured.push_back(z.measured);
     const std::string title = fmt::format("{}: machined minus error-free surface, referenced to zone {}", m.name, spec.zones[s.referenceZone].name);

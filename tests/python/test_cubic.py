@@ -67,7 +67,7 @@ def test_cli_and_api_alike_and_files_open(cli, table5, tmp_path):
 
 def test_sensitivities_and_plots():
     m = mtacc.Machine("tilting-table", alignment="machine")
-    r = m.cubic(grid=0.1, sensitivities=True, parameters=["dxBY", "betaBY"], sensitivity_grid=0.1)
+    r = m.cubic(grid=0.1, sensitivities=True, sensitivity_parameters=["dxBY", "betaBY"], sensitivity_grid=0.1)
     k = {s["parameter"]: s for s in r["sensitivities"]}
     # Seed 001 extraction §7.2: dxBY gives -0.5 mm/mm in every tilted zone, with or without M_WC.
     assert [z["k"] for z in k["dxBY"]["with_alignment"][1:]] == pytest.approx([-0.5] * 8, abs=0.02)
@@ -85,3 +85,17 @@ def test_bad_input_writes_nothing(cli, tmp_path):
     assert out.returncode != 0 and "cannot be machined" in out.stderr and not nc.exists()
     with pytest.raises(mtacc.InputError, match="grid"):
         mtacc.Machine("tilting-table").cubic(grid=0)
+
+
+def test_python_writes_the_files_the_command_writes(cli, tmp_path):
+    # One schema for both front ends: the same keys name the same files, with the same contents.
+    names = {"gcode": "cubic.nc", "cl": "cl.csv", "zones_out": "zones.csv", "heights": "heights.csv"}
+    by_cli, by_python = tmp_path / "cli", tmp_path / "python"
+    by_cli.mkdir(), by_python.mkdir()
+    flags = [arg for key, name in names.items() for arg in ("--" + key.replace("_", "-"), str(by_cli / name))]
+    subprocess.run([cli, "cubic", "tilting-table", "--grid", "0.5", "--chord-tolerance", "1e-5", *flags], check=True, capture_output=True)
+    mtacc.Machine("tilting-table").cubic(grid=0.5, chord_tolerance=1e-5, **{key: by_python / name for key, name in names.items()})
+    for name in names.values():
+        assert (by_python / name).read_text() == (by_cli / name).read_text(), name
+    with pytest.raises(mtacc.InputError, match=r"map: '.*x\.txt': expected a file ending in \.svg, \.png"):
+        mtacc.Machine("tilting-table").cubic(grid=0.5, map=tmp_path / "x.txt")

@@ -11,14 +11,14 @@ import mtacc
 from mtacc import _mtacc
 
 # The machine and its set-up are the Python Machine's constructor; --json, -o, --strict and
-# --rows (of the printed table) shape the CLI's output; errors_out, gcode and cl are files written from the result (both
-# front ends have them); series_points
+# --rows (of the printed table) shape the CLI's output; errors_out is a file written by the front end (both have it); series_points
 # adds the curves to Python's result, for plots (the report's).
 CLI_ONLY = {"help", "machine", "errors", "alignment", "load", "thermal", "json", "output", "strict", "rows"}
-BOTH_FRONT_ENDS = {"errors_out", "gcode", "cl"}
+BOTH_FRONT_ENDS = {"errors_out"}
 PYTHON_ONLY = {"series_points"}
 METHODS = {"budget": mtacc.Machine.budget, "stiffness": mtacc.Machine.stiffness, "identify": mtacc.Machine.identify, "observability": mtacc.Machine.observability, "drift": mtacc.drift_test,
-           "cubic-identify": mtacc.Machine.cubic_identify, "cone": mtacc.Machine.cone}
+           "cubic-identify": mtacc.Machine.cubic_identify, "cone": mtacc.Machine.cone,
+           "cubic": mtacc.Machine.cubic}
 
 
 def cli_keys(cli, command):

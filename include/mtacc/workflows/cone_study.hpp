@@ -30,8 +30,8 @@ struct ConeStudyRequest {
   std::function<void(int, int)> progress;  // Monte Carlo samples done, total
 };
 
-// The options of `cone`, declared once (angles in deg, lengths in mm), and the request they
-// describe for `machine`: a preset's set-up (preset "family": this machine's, Bossoni 2009
+// The options of `cone`, declared once (angles in deg, lengths in mm; the files to write are read
+// by test_piece_files.hpp's coneFiles), and the request they describe for `machine`: a preset's set-up (preset "family": this machine's, Bossoni 2009
 // §3.6) or the cone as given. The study checks the values' ranges; throws InputError naming the key.
 const OptionSchema& coneSchema();
 ConeStudyRequest coneStudyRequest(const Machine& machine, const OptionValues& values);

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/procedures/zone_planes.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
@@ -60,8 +61,10 @@ struct CubicTestStudy {
   std::vector<CubicSensitivity> sensitivities;
 };
 
-// A cubic test description (docs/file-formats.md "Cubic machining tests") or a bundled test's name.
-CubicTestSpec loadCubicTestSpec(const std::string& pathOrName);
+// The options of `cubic`, declared once: the study's (read by cubicTestRequest) and the files to
+// write (test_piece_files.hpp: cubicTestFiles). Lengths in mm.
+const OptionSchema& cubicTestSchema();
+CubicTestRequest cubicTestRequest(const OptionValues& values);
 
 // Throws InputError for a spec or option out of range and for a zone the machine cannot reach.
 CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestRequest& options);

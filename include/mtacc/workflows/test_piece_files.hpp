@@ -15,11 +15,13 @@ struct ConeFiles {
   std::string cl;     // the CL data: phi, TCP, tool vector, surface normal (CSV)
 };
 std::vector<std::string> writeConeFiles(const ConeStudy& study, const ConeFiles& files);
+// The files named in a `cone` command's values (coneSchema's gcode and cl).
+ConeFiles coneFiles(const OptionValues& values);
 
 struct CubicTestFiles {
   std::string gcode, cl;    // the NC program and the CL data (zone, tool tip, tool vector)
   std::string map;          // the deviation referenced to the reference zone: .svg (zones, colour bar) or .png
-  double mapLimit = 0.01;   // mm: the deviation shown at full colour
+  std::string mapLimit = "10 um";  // the deviation shown at full colour
   std::string heights;      // the machined heights: .csv (um) or .npy (float32, mm)
   std::string surface;      // the machined surface: .ply or .stl, at most 1e6 vertices
   std::string zonesOut;     // the zone results (heights and tilts) for cubic-identify (CSV)
@@ -28,6 +30,8 @@ struct CubicTestFiles {
 // names no format it can be written in, or a limit out of range: called before the study, so
 // that a run that cannot write computes nothing.
 void checkCubicTestFiles(const CubicTestFiles& files);
+// The files named in a `cubic` command's values (cubicTestSchema's file keys).
+CubicTestFiles cubicTestFiles(const OptionValues& values);
 std::vector<std::string> writeCubicTestFiles(const CubicTestStudy& study, const CubicTestFiles& files);
 
 }  // namespace mtacc
