@@ -20,7 +20,8 @@ const OptionSchema& schema() {
                                {.key = "share", .kind = OptionKind::Number, .help = "share", .defaultText = "0.1", .low = 0, .high = 1,
                                 .lowExcluded = true, .outOfRange = "must be above 0 and at most 1"},
                                {.key = "threads", .kind = OptionKind::Count, .help = "threads", .defaultText = "0", .low = 0,
-                                .high = 1024, .outOfRange = "must be from 0 to 1024"}}};
+                                .high = 1024, .outOfRange = "must be from 0 to 1024"},
+                               {"repeat", OptionKind::Count, "a count without a range"}}};
   return s;
 }
 
@@ -56,7 +57,7 @@ TEST(OptionSchema, ValuesAreReadInTheirKindAndUnit) {
 
 TEST(OptionSchema, EachRefusalNamesItsKey) {
   EXPECT_EQ(refusal({{"speed", {"1"}}}, [](const OptionReader&) {}),
-            "speed: not an option of test; its options are: files, name, fast, step, share, threads");
+            "speed: not an option of test; its options are: files, name, fast, step, share, threads, repeat");
   EXPECT_EQ(refusal({{"name", {"a", "b"}}}, [](const OptionReader&) {}), "name: given more than once");
   EXPECT_EQ(refusal({{"fast", {"yes"}}}, [](const OptionReader& r) { r.flag("fast"); }), "fast: expected true or false, not 'yes'");
   EXPECT_EQ(refusal({{"step", {"0.5 nm"}}}, [](const OptionReader& r) { r.quantity("step"); }), "step: must be from 1 nm to 1 mm");
@@ -65,6 +66,9 @@ TEST(OptionSchema, EachRefusalNamesItsKey) {
   EXPECT_EQ(refusal({{"share", {"nan"}}}, [](const OptionReader& r) { r.number("share"); }), "share: not a finite number: 'nan'");
   EXPECT_EQ(refusal({{"threads", {"1.5"}}}, [](const OptionReader& r) { r.count("threads"); }), "threads: expected a whole number, not '1.5'");
   EXPECT_EQ(refusal({{"threads", {"1025"}}}, [](const OptionReader& r) { r.count("threads"); }), "threads: must be from 0 to 1024");
+  // A whole number beyond an int, where no range is declared: refused, not converted with overflow.
+  EXPECT_EQ(refusal({{"repeat", {"1e12"}}}, [](const OptionReader& r) { r.count("repeat"); }),
+            "repeat: '1e12' is out of range: at most 2147483647 in size");
 }
 
 TEST(OptionSchema, APositionalKeyMustBeGiven) {

@@ -14,15 +14,13 @@ namespace mtacc::cli {
 namespace {
 
 struct FitCliOptions : MachineOptions {
-  ComponentFitRequest request;
-  std::string breaks, period, errorsOut;
+  OptionValues values;
+  std::string errorsOut;
 };
 
-void run(FitCliOptions& o) {
-  if (!o.breaks.empty())
-    for (const auto& b : splitList(o.breaks)) o.request.breaks.push_back(parseNumber(b, "--breaks"));
-  if (!o.period.empty()) o.request.period = parseNumber(o.period, "--period");
-  const auto s = fitComponentFile(loadMachineSetup(o.source), o.request);
+void run(const FitCliOptions& o) {
+  const ComponentFitRequest request = componentFitRequest(o.values);
+  const auto s = fitComponentFile(loadMachineSetup(o.source), request);
   const auto j = toJson(s);
   if (!o.errorsOut.empty()) writeIdentifiedErrors(o.errorsOut, *s.machine, s.errors, identificationRecord(s), "--errors-out");
   const std::string unit = j["unit"], posUnit = j["position_unit"];
@@ -31,7 +29,7 @@ void run(FitCliOptions& o) {
                                   j["iso_name"].get<std::string>(), j["axis"].get<std::string>(), s.data.file, s.curve.positions.size(),
                                   s.data.runs.forward.cols());
   for (const auto& c : s.corrections) human += "  corrected: " + c + "\n";
-  human += fmt::format("\nFit: degree {}, breaks", o.request.degree);
+  human += fmt::format("\nFit: degree {}, breaks", request.degree);
   for (const double b : f["breaks"]) human += fmt::format(" {:g}", b);
   human += fmt::format(" {}; {} terms kept", posUnit, s.fit.trend.coefficients.size());
   if (!s.fit.removed.empty()) human += ", removed as not significant: " + fmt::format("{}", fmt::join(s.fit.removed, " "));
@@ -49,14 +47,14 @@ void run(FitCliOptions& o) {
   }
   if (!s.disturbances.readings.empty()) {
     human += fmt::format("\n{} disturbed reading(s) (beyond {:g} robust standard deviations of their position)", s.disturbances.readings.size(),
-                         o.request.disturbanceThreshold);
+                         request.disturbanceThreshold);
     if (s.disturbances.interval) human += fmt::format(", recurring every {:.1f} min", *s.disturbances.interval / 60.0);
     human += "\n";
   }
   if (!s.disturbances.unsettledRuns.empty())
     human += fmt::format("\nRuns 1 to {} have not settled: their mean lies beyond {:g} robust standard deviations of the run means{}\n",
-                         s.disturbances.unsettledRuns.size(), o.request.disturbanceThreshold,
-                         o.request.removeDisturbed ? " (left out)" : " (--remove-disturbed leaves them out)");
+                         s.disturbances.unsettledRuns.size(), request.disturbanceThreshold,
+                         request.removeDisturbed ? " (left out)" : " (--remove-disturbed leaves them out)");
   human += "\n" + std::string(o.errorsOut.empty() ? "Error function (machine YAML, under errors:):\n" + s.yaml
                                                  : "The machine's errors with the fitted function written to " + o.errorsOut + "\n");
   emit(o, j, human, csv);
@@ -68,16 +66,7 @@ void addFitCommand(CLI::App& app) {
   auto o = std::make_shared<FitCliOptions>();
   auto* cmd = app.add_subcommand("fit", "fit a component error to its direct-measurement runs (the 1991 BCR report: C1 piecewise polynomial)");
   addMachineOptions(*cmd, *o);
-  cmd->add_option("data", o->request.file, "component runs CSV (docs/file-formats.md \"Component runs\")")->required();
-  cmd->add_option("--breaks", o->breaks, "fixed breaks in the axis unit (mm or deg), e.g. 0,50,100,200; default: --pieces");
-  cmd->add_option("--pieces", o->request.pieces, "equal intervals over the measured range (default: about 100 mm or 30 deg each)");
-  cmd->add_option("--degree", o->request.degree, "1 (piecewise linear) or 2 (C1 quadratic, default)");
-  cmd->add_option("--significance", o->request.significance, "stepwise removal level of the t-test (default 0.05; 0 keeps every term)");
-  cmd->add_option("--period", o->period, "a periodic term of this wavelength (axis unit), fitted with the trend");
-  cmd->add_option("--period-zero", o->request.periodZero, "position where the periodic term starts (axis unit, default 0)");
-  cmd->add_option("--disturbance-threshold", o->request.disturbanceThreshold,
-                  "flag readings beyond this many robust standard deviations (default 5)");
-  cmd->add_flag("--remove-disturbed", o->request.removeDisturbed, "leave the flagged readings out of the means");
+  addSchemaOptions(*cmd, componentFitSchema(), o->values);
   cmd->add_option("--errors-out", o->errorsOut,
                   "write the machine's errors with the fitted function in place, its coefficients' covariance and the data's hash "
                   "(an errors file that --errors reads), atomically");

@@ -10,14 +10,8 @@ namespace mtacc::python {
 
 void exposeDirectMeasurements(MachineClass& machine) {
   machine
-      .def("fit_component", [](const PythonMachine& s, const std::string& file, const std::vector<double>& breaks, int pieces, int degree,
-                               double significance, const py::object& period, double periodZero, double threshold, bool removeDisturbed,
-                               const std::string& errorsOut) {
-        ComponentFitRequest r{.file = file, .breaks = breaks, .pieces = pieces, .degree = degree, .significance = significance};
-        if (!period.is_none()) r.period = period.cast<double>();
-        r.periodZero = periodZero;
-        r.disturbanceThreshold = threshold;
-        r.removeDisturbed = removeDisturbed;
+      .def("fit_component", [](const PythonMachine& s, const OptionValues& options, const std::string& errorsOut) {
+        const ComponentFitRequest r = componentFitRequest(options);
         const auto study = fitComponentFile(s, r);
         if (!errorsOut.empty()) writeIdentifiedErrors(errorsOut, *study.machine, study.errors, identificationRecord(study), "errors_out");
         return toPython(toJson(study));

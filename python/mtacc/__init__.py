@@ -375,16 +375,16 @@ class Machine:
                            noise=noise, threads=threads)
         return self._core.cubic_identify(options, _text(errors_out))
 
-    def fit_component(self, path, breaks=None, pieces=0, degree=2, significance=0.05, period=None, period_zero=0.0,
-                      disturbance_threshold=5.0, remove_disturbed=False, errors_out=None):
+    def fit_component(self, data, breaks=None, pieces=None, degree=None, significance=None, period=None, period_zero=None,
+                      disturbance_threshold=None, remove_disturbed=None, errors_out=None):
         """A component error fitted to its direct-measurement runs (the 1991 BCR report), as `mtacc fit --json`: the
         runs, their means, the C1 piecewise-polynomial fit (breaks in mm or deg) with its uncertainty,
         the terms removed by the stepwise test, flagged readings, and "yaml", the machine YAML entry.
         errors_out: a path for this machine's errors with the fitted function in place, its coefficients'
         covariance and the data file's hash (an errors file, as `mtacc fit --errors-out`)."""
-        return self._core.fit_component(str(path), [float(b) for b in (breaks or [])], int(pieces), int(degree),
-                                        float(significance), period, float(period_zero), float(disturbance_threshold),
-                                        bool(remove_disturbed), _text(errors_out))
+        options = _options(data=data, breaks=breaks, pieces=pieces, degree=degree, significance=significance, period=period,
+                           period_zero=period_zero, disturbance_threshold=disturbance_threshold, remove_disturbed=remove_disturbed)
+        return self._core.fit_component(options, _text(errors_out))
 
     def stiffness(self, samples=None):
         """The finite-stiffness changes of the errors (the 1991 BCR report) at this machine's workpiece load, and the

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "mtacc/core/input_error.hpp"
@@ -101,6 +102,7 @@ std::optional<int> OptionReader::count(const std::string& key) const {
   if (!value) return std::nullopt;
   const double v = parseNumber(*value, key);
   if (v != std::floor(v)) throw InputError({"", 0, key}, "expected a whole number, not '" + *value + "'");
+  if (std::abs(v) > std::numeric_limits<int>::max()) throw InputError({"", 0, key}, "'" + *value + "' is out of range: at most 2147483647 in size");
   requireInRange(f, v);
   return static_cast<int>(v);
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/core/text_file.hpp"
@@ -33,6 +34,40 @@ std::vector<double> chooseBreaks(const Axis& axis, const std::vector<double>& po
 }
 
 }  // namespace
+
+const OptionSchema& componentFitSchema() {
+  static const OptionSchema schema{
+      "fit",
+      {{.key = "data", .kind = OptionKind::Text, .help = "Component runs CSV (docs/file-formats.md \"Component runs\")", .positional = true},
+       {"breaks", OptionKind::List, "Fixed breaks in the axis unit (mm or deg), e.g. 0,50,100,200; default: pieces"},
+       {.key = "pieces", .kind = OptionKind::Count, .help = "Equal intervals over the measured range (0: about 100 mm or 30 deg each)",
+        .defaultText = "0", .low = 0, .high = 10000, .outOfRange = "must be from 0 (about 100 mm or 30 deg each) to 10000"},
+       {.key = "degree", .kind = OptionKind::Count, .help = "1 (piecewise linear) or 2 (C1 piecewise quadratic)", .defaultText = "2", .low = 1,
+        .high = 2, .outOfRange = "1 (piecewise linear) or 2 (C1 piecewise quadratic)"},
+       {.key = "significance", .kind = OptionKind::Number, .help = "Stepwise removal level of the t-test (0 keeps every term)",
+        .defaultText = "0.05"},
+       {"period", OptionKind::Number, "A periodic term of this wavelength (axis unit), fitted with the trend"},
+       {.key = "period_zero", .kind = OptionKind::Number, .help = "Position where the periodic term starts (axis unit)", .defaultText = "0"},
+       {.key = "disturbance_threshold", .kind = OptionKind::Number, .help = "Flag readings beyond this many robust standard deviations",
+        .defaultText = "5"},
+       {"remove_disturbed", OptionKind::Flag, "Leave the flagged readings out of the means"}}};
+  return schema;
+}
+
+ComponentFitRequest componentFitRequest(const OptionValues& values) {
+  const OptionReader read(componentFitSchema(), values);
+  ComponentFitRequest r;
+  r.file = *read.text("data");
+  for (const auto& b : read.list("breaks")) r.breaks.push_back(parseNumber(b, "breaks"));
+  r.pieces = *read.count("pieces");
+  r.degree = *read.count("degree");
+  r.significance = *read.number("significance");
+  r.period = read.number("period");
+  r.periodZero = *read.number("period_zero");
+  r.disturbanceThreshold = *read.number("disturbance_threshold");
+  r.removeDisturbed = read.flag("remove_disturbed");
+  return r;
+}
 
 ComponentFitStudy fitComponentFile(const MachineSetup& setup, const ComponentFitRequest& r) {
   if (r.degree != 1 && r.degree != 2) fail("degree", "1 (piecewise linear) or 2 (C1 piecewise quadratic, seed 003)");

@@ -1,6 +1,7 @@
 #include "mtacc/workflows/option_schemas.hpp"
 
 #include "mtacc/workflows/budget.hpp"
+#include "mtacc/workflows/component_fit.hpp"
 #include "mtacc/workflows/cone_study.hpp"
 #include "mtacc/workflows/cubic_identification.hpp"
 #include "mtacc/workflows/cubic_test.hpp"
@@ -12,7 +13,7 @@ namespace mtacc {
 
 const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
   static const std::map<std::string, const OptionSchema*> schemas{
-      {"budget", &budgetSchema()}, {"cone", &coneSchema()}, {"cubic", &cubicTestSchema()}, {"cubic-identify", &cubicIdentificationSchema()}, {"drift", &driftTestSchema()}, {"identify", &identificationSchema()}, {"observability", &observabilitySchema()}, {"stiffness", &stiffnessSchema()}};
+      {"budget", &budgetSchema()}, {"cone", &coneSchema()}, {"cubic", &cubicTestSchema()}, {"cubic-identify", &cubicIdentificationSchema()}, {"drift", &driftTestSchema()}, {"fit", &componentFitSchema()}, {"identify", &identificationSchema()}, {"observability", &observabilitySchema()}, {"stiffness", &stiffnessSchema()}};
   return schemas;
 }
 

@@ -18,7 +18,7 @@ BOTH_FRONT_ENDS = {"errors_out"}
 PYTHON_ONLY = {"series_points"}
 METHODS = {"budget": mtacc.Machine.budget, "stiffness": mtacc.Machine.stiffness, "identify": mtacc.Machine.identify, "observability": mtacc.Machine.observability, "drift": mtacc.drift_test,
            "cubic-identify": mtacc.Machine.cubic_identify, "cone": mtacc.Machine.cone,
-           "cubic": mtacc.Machine.cubic}
+           "cubic": mtacc.Machine.cubic, "fit": mtacc.Machine.fit_component}
 
 
 def cli_keys(cli, command):

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mtacc/io/component_runs_csv.hpp"
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/measurement/component_fit.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
@@ -28,6 +29,11 @@ struct ComponentFitRequest {
   double disturbanceThreshold = 5.0;  // robust standard deviations
   bool removeDisturbed = false;       // leave the flagged readings and unsettled runs out of the means
 };
+
+// The options of `fit`, declared once (positions in the axis unit, mm or deg), and the request
+// they describe; throws InputError naming the key.
+const OptionSchema& componentFitSchema();
+ComponentFitRequest componentFitRequest(const OptionValues& values);
 
 struct ComponentFitStudy {
   std::shared_ptr<const Machine> machine;
