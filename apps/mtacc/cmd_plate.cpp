@@ -41,18 +41,18 @@ void run(const PlateCliOptions& o) {
 }
 
 struct PlateIdentifyCliOptions : MachineOptions {
-  std::vector<std::string> files;
-  double piece = 100.0;
+  OptionValues values;
   std::string errorsOut;
 };
 
 void runIdentify(const PlateIdentifyCliOptions& o) {
-  const auto s = identifyPlateFiles(loadMachineSetup(o.source), o.files, o.piece);
+  const PlateIdentificationRequest request = plateIdentificationRequest(o.values);
+  const auto s = identifyPlateFiles(loadMachineSetup(o.source), request.files, request.pieceLength);
   const auto j = toJson(s);
   if (!o.errorsOut.empty()) writeIdentifiedErrors(o.errorsOut, *s.machine, s.identified, identificationRecord(s), "--errors-out");
   std::string human = fmt::format("{} plates, {} readings; {} parameters (component functions of X, Y, Z in pieces of {:g} mm, "
                                   "squareness) + 3 per plate; rank {} of {}\n",
-                                  o.files.size(), s.result.readings, s.parameters.size(), o.piece, s.result.observability.rank,
+                                  request.files.size(), s.result.readings, s.parameters.size(), request.pieceLength, s.result.observability.rank,
                                   s.result.names.size());
   human += s.weighted ? fmt::format("residual / the probes' stated noise: {:.3f}\n\n", s.result.sigma)
                       : fmt::format("residual standard deviation {:.3f} um (no probe 2S stated)\n\n", s.result.sigma * 1e3);
@@ -83,8 +83,7 @@ void addPlateCommand(CLI::App& app) {
   auto io = std::make_shared<PlateIdentifyCliOptions>();
   auto* identify = app.add_subcommand("plate-identify", "component errors and squareness from several measured plates (the 1991 BCR report §7.7)");
   addMachineOptions(*identify, *io);
-  identify->add_option("files", io->files, "plate measurement CSVs, one per placement")->required();
-  identify->add_option("--piece", io->piece, "length of the pieces of the identified functions [mm] (default 100)");
+  addSchemaOptions(*identify, plateIdentificationSchema(), io->values);
   identify->add_option("--errors-out", io->errorsOut,
                        "write the identified functions as an errors file with the record of the data (as identify's), atomically");
   identify->callback([io] { runIdentify(*io); });

@@ -47,12 +47,14 @@ void exposeMeasurements(MachineClass& machine) {
         if (!errorsOut.empty()) writeIdentifiedErrors(errorsOut, out, "errors_out");
         return toPython(toJson(out));
       })
-      .def("identify_plates", [](const PythonMachine& s, const std::vector<std::string>& files, double piece) {
+      .def("identify_plates", [](const PythonMachine& s, const OptionValues& options, const std::string& errorsOut) {
+        const PlateIdentificationRequest request = plateIdentificationRequest(options);
         PlateIdentificationStudy study;
         {
           py::gil_scoped_release release;
-          study = identifyPlateFiles(s, files, piece);
+          study = identifyPlateFiles(s, request.files, request.pieceLength);
         }
+        if (!errorsOut.empty()) writeIdentifiedErrors(errorsOut, *study.machine, study.identified, identificationRecord(study), "errors_out");
         return toPython(toJson(study));
       })
       .def("compare_plate", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(comparePlateFile(s, path))); })

@@ -457,12 +457,13 @@ class Machine:
                                           float(acceleration), float(jerk_time_ms), per_axis(kv), per_axis(feed_forward),
                                           float(clock_offset_ms), int(seed), str(format))
 
-    def identify_plates(self, files, piece_length=100.0):
-        """The component functions of X, Y, Z (C1 piecewise, pieces of about piece_length mm) and the
+    def identify_plates(self, files, piece=None, errors_out=None):
+        """The component functions of X, Y, Z (C1 piecewise, pieces of about `piece` mm, default 100) and the
         squareness from measured plates, one file per placement, as `mtacc plate-identify --json`:
         estimates with uncertainties (um, urad) and whether the plates determine each, the
-        observability findings, and "yaml", the identified model as an errors file (Machine(errors=...) reads it)."""
-        return self._core.identify_plates([str(f) for f in files], float(piece_length))
+        observability findings, and "yaml", the identified model as an errors file (Machine(errors=...) reads it).
+        errors_out: a path to write that model to with the record of the data, as `--errors-out`."""
+        return self._core.identify_plates(_options(files=list(files), piece=piece), _text(errors_out))
 
     def simulate_plate(self, output, origin, axes=((1, 0, 0), (0, 1, 0)), stylus=(0, 0, 0), plate=(9, 9, 50.0),
                        features="all", noise="0 um", probe=None, simulation=None, seed=1, pose=None):

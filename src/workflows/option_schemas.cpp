@@ -6,6 +6,7 @@
 #include "mtacc/workflows/cubic_identification.hpp"
 #include "mtacc/workflows/cubic_test.hpp"
 #include "mtacc/workflows/identification.hpp"
+#include "mtacc/workflows/plates.hpp"
 #include "mtacc/workflows/stiffness.hpp"
 #include "mtacc/workflows/thermal_drift.hpp"
 
@@ -13,7 +14,7 @@ namespace mtacc {
 
 const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
   static const std::map<std::string, const OptionSchema*> schemas{
-      {"budget", &budgetSchema()}, {"cone", &coneSchema()}, {"cubic", &cubicTestSchema()}, {"cubic-identify", &cubicIdentificationSchema()}, {"drift", &driftTestSchema()}, {"fit", &componentFitSchema()}, {"identify", &identificationSchema()}, {"observability", &observabilitySchema()}, {"stiffness", &stiffnessSchema()}};
+      {"budget", &budgetSchema()}, {"cone", &coneSchema()}, {"cubic", &cubicTestSchema()}, {"cubic-identify", &cubicIdentificationSchema()}, {"drift", &driftTestSchema()}, {"fit", &componentFitSchema()}, {"identify", &identificationSchema()}, {"observability", &observabilitySchema()}, {"plate-identify", &plateIdentificationSchema()}, {"stiffness", &stiffnessSchema()}};
   return schemas;
 }
 

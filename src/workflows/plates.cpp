@@ -68,9 +68,23 @@ nlohmann::json toJson(const PlateComparison& c) {
           {"beyond_bound", c.beyond}};
 }
 
+const OptionSchema& plateIdentificationSchema() {
+  static const OptionSchema schema{
+      "plate-identify",
+      {{.key = "files", .kind = OptionKind::List, .help = "Plate measurement CSVs, one per placement", .positional = true},
+       {.key = "piece", .kind = OptionKind::Number, .help = "Length of the pieces of the identified functions [mm]", .defaultText = "100",
+        .low = 1, .high = 10000, .outOfRange = "a piece length from 1 to 10000 mm"}}};
+  return schema;
+}
+
+PlateIdentificationRequest plateIdentificationRequest(const OptionValues& values) {
+  const OptionReader read(plateIdentificationSchema(), values);
+  return {read.list("files"), *read.number("piece")};
+}
+
 PlateIdentificationStudy identifyPlateFiles(const MachineSetup& setup, const std::vector<std::string>& files, double pieceLength) {
   if (files.empty()) throw InputError(InputLocation{"", 0, "files"}, "no plate measurements");
-  if (!(pieceLength >= 1.0 && pieceLength <= 10000.0)) throw InputError(InputLocation{"", 0, "piece"}, "a piece length from 1 to 10000 mm");
+  requireInRange(plateIdentificationSchema().at("piece"), pieceLength);
   PlateIdentificationStudy s;
   s.machine = setup.machine;
   s.files = files;

@@ -18,7 +18,8 @@ BOTH_FRONT_ENDS = {"errors_out"}
 PYTHON_ONLY = {"series_points"}
 METHODS = {"budget": mtacc.Machine.budget, "stiffness": mtacc.Machine.stiffness, "identify": mtacc.Machine.identify, "observability": mtacc.Machine.observability, "drift": mtacc.drift_test,
            "cubic-identify": mtacc.Machine.cubic_identify, "cone": mtacc.Machine.cone,
-           "cubic": mtacc.Machine.cubic, "fit": mtacc.Machine.fit_component}
+           "cubic": mtacc.Machine.cubic, "fit": mtacc.Machine.fit_component,
+           "plate-identify": mtacc.Machine.identify_plates}
 
 
 def cli_keys(cli, command):
@@ -32,7 +33,8 @@ def cli_keys(cli, command):
         if longs:
             keys.add(longs[0][2:].replace("-", "_"))
     positional = re.search(r"^Usage: \S+ \S+ \[OPTIONS\] (.*)$", text, flags=re.M)
-    keys |= set(positional.group(1).split()) if positional else set()
+    # "machine data", or "machine [files...]" for a positional that takes several
+    keys |= {re.sub(r"[\[\]]|\.\.\.", "", word) for word in positional.group(1).split()} if positional else set()
     return keys
 
 

@@ -83,12 +83,19 @@ def test_identify_from_plates(cli, tmp_path):
         path = tmp_path / f"p{k}.csv"
         m.simulate_plate(path, origin=origin, axes=axes, stylus=stylus, noise=f"{probe[0] / 2} um", probe=probe, seed=k + 1)
         files.append(str(path))
-    r = m.identify_plates(files, piece_length=175)
+    r = m.identify_plates(files, piece=175)
     assert r["weighted"] and r["readings"] == 6 * 81 * 2
     assert r["findings"]
     assert any(not e["determined"] for e in r["estimates"])
-    out = subprocess.run([cli, "plate-identify", "maho", *files, "--piece", "175", "--json"], capture_output=True, text=True, check=True)
+    by_cli, by_python = tmp_path / "cli.yaml", tmp_path / "python.yaml"
+    out = subprocess.run([cli, "plate-identify", "maho", *files, "--piece", "175", "--json", "--errors-out", str(by_cli)],
+                         capture_output=True, text=True, check=True)
     assert json.loads(out.stdout) == r
+    # The identified model written by Python (which had no errors_out) is the command's.
+    m.identify_plates(files, piece=175, errors_out=by_python)
+    assert dict(mtacc.Machine("maho", errors=by_python).errors) == dict(mtacc.Machine("maho", errors=by_cli).errors)
+    with pytest.raises(mtacc.InputError, match="piece: a piece length from 1 to 10000 mm"):
+        m.identify_plates(files, piece=0.5)
     path = tmp_path / "identified.yaml"
     path.write_text(r["yaml"])
     assert mtacc.Machine("maho", errors=path).tcp_errors(np.zeros((1, 5))).shape == (1, 6)

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/identification/plate_identification.hpp"
 #include "mtacc/io/plate_csv.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
@@ -66,6 +67,14 @@ struct PlateIdentificationStudy {
   std::string yaml;
 };
 PlateIdentificationStudy identifyPlateFiles(const MachineSetup& setup, const std::vector<std::string>& files, double pieceLength = 100.0);
+
+// The options of `plate-identify`, declared once, and what they give.
+struct PlateIdentificationRequest {
+  std::vector<std::string> files;  // one plate measurement per placement
+  double pieceLength = 100.0;      // mm
+};
+const OptionSchema& plateIdentificationSchema();
+PlateIdentificationRequest plateIdentificationRequest(const OptionValues& values);
 nlohmann::json toJson(const PlateIdentificationStudy& study);
 
 }  // namespace mtacc
