@@ -33,25 +33,20 @@ double mapLimitOf(const CubicTestFiles& files) {
   return limit;
 }
 
-class Written {
- public:
-  void operator()(const std::string& path, const std::string& content, const std::string& key, const std::string& what) {
-    writeFileAtomically(path, content, key);
-    lines_.push_back(what + " written: " + path);
-  }
-  std::vector<std::string> lines() && { return std::move(lines_); }
-
- private:
-  std::vector<std::string> lines_;
-};
+// Writes `content` to `path` and says so in `written`.
+void writeAndNote(std::vector<std::string>& written, const std::string& path, const std::string& content, const std::string& key,
+                  const std::string& what) {
+  writeFileAtomically(path, content, key);
+  written.push_back(what + " written: " + path);
+}
 
 }  // namespace
 
 std::vector<std::string> writeConeFiles(const ConeStudy& s, const ConeFiles& files) {
-  Written write;
-  if (!files.cl.empty()) write(files.cl, coneClData(s.path), "cl", "CL data");
-  if (!files.gcode.empty()) write(files.gcode, coneNcProgram(*s.machine, s.options.spec, s.motion.q, s.options.feed), "gcode", "NC program");
-  return std::move(write).lines();
+  std::vector<std::string> written;
+  if (!files.cl.empty()) writeAndNote(written, files.cl, coneClData(s.path), "cl", "CL data");
+  if (!files.gcode.empty()) writeAndNote(written, files.gcode, coneNcProgram(*s.machine, s.options.spec, s.motion.q, s.options.feed), "gcode", "NC program");
+  return written;
 }
 
 ConeFiles coneFiles(const OptionValues& values) {
@@ -79,29 +74,29 @@ std::vector<std::string> writeCubicTestFiles(const CubicTestStudy& s, const Cubi
   checkCubicTestFiles(files);
   const Machine& m = *s.machine;
   const CubicTestSpec& spec = s.options.spec;
-  Written write;
-  if (!files.gcode.empty()) write(files.gcode, cubicNcProgram(m, spec, s.path), "gcode", "NC program");
-  if (!files.cl.empty()) write(files.cl, cubicClData(spec, s.path), "cl", "CL data");
+  std::vector<std::string> written;
+  if (!files.gcode.empty()) writeAndNote(written, files.gcode, cubicNcProgram(m, spec, s.path), "gcode", "NC program");
+  if (!files.cl.empty()) writeAndNote(written, files.cl, cubicClData(spec, s.path), "cl", "CL data");
   if (!files.map.empty()) {
     const auto referenced = referencedDeviation(s);
     const ColourMap colours{mapLimitOf(files), 1200};
     std::vector<ZonePlane> measured;
     for (const auto& z : s.zones) measured.push_back(z.measured);
     const std::string title = fmt::format("{}: machined minus error-free surface, referenced to zone {}", m.name, spec.zones[s.referenceZone].name);
-    write(files.map, formatOf(files.map, "map", {"svg", "png"}) == "png" ? heightMapPng(referenced, colours)
+    writeAndNote(written, files.map, formatOf(files.map, "map", {"svg", "png"}) == "png" ? heightMapPng(referenced, colours)
                                                                          : zoneMapSvg(referenced, colours, spec, measured, title),
           "map", "surface map");
   }
   if (!files.heights.empty())
-    write(files.heights, formatOf(files.heights, "heights", {"csv", "npy"}) == "csv" ? heightMapCsv(s.actual) : heightMapNpy(s.actual),
+    writeAndNote(written, files.heights, formatOf(files.heights, "heights", {"csv", "npy"}) == "csv" ? heightMapCsv(s.actual) : heightMapNpy(s.actual),
           "heights", "heights");
   if (!files.surface.empty()) {
     const int stride = exportStride(s.actual.grid);
-    write(files.surface, formatOf(files.surface, "surface", {"ply", "stl"}) == "ply" ? heightMapPly(s.actual, stride) : heightMapStl(s.actual, stride),
+    writeAndNote(written, files.surface, formatOf(files.surface, "surface", {"ply", "stl"}) == "ply" ? heightMapPly(s.actual, stride) : heightMapStl(s.actual, stride),
           "surface", fmt::format("surface (every {} cell{})", stride, stride > 1 ? "s" : ""));
   }
-  if (!files.zonesOut.empty()) write(files.zonesOut, zoneResultsCsv(zoneResults(s)), "zones_out", "zone results");
-  return std::move(write).lines();
+  if (!files.zonesOut.empty()) writeAndNote(written, files.zonesOut, zoneResultsCsv(zoneResults(s)), "zones_out", "zone results");
+  return written;
 }
 
 }  // namespace mtacc
