@@ -22,12 +22,12 @@ void run(const DecomposeCliOptions& o) {
   const auto r = decomposeRecordedSet(loadMachineSetup(o.source), loadDecompositionSetWithDriftFrame(o.set, o.driftFrame, "--drift-frame"));
   const auto j = toJson(r, o.seriesPoints);
   std::string human = fmt::format("{} tests; motion errors fitted at {:g} mm/min (Legendre degree {} in the normalised {}), {} interpolation\n\n",
-                                  r.tests.size(), j["reference_feed_mm_min"].get<double>(), r.set.degree, j["parameter"].get<std::string>(),
+                                  r.tests.size(), j["reference_feed_mm_per_min"].get<double>(), r.set.degree, j["parameter"].get<std::string>(),
                                   j["interpolation"].get<std::string>());
   human += fmt::format("{:>9} {:>9} | {:>6} {:>6} {:>6} | {:>6} {:>6} {:>6} {:>6} {:>6} | {:>20} | {:>20}\n", "feed", "offset", "c %",
                        "qs %", "d %", "c %", "l %", "m %", "td %", "d %", "drift x y z um", "d RMS x y z um");
   std::string csv =
-      "feed_mm_min,clock_offset_ms,samples_used,contouring_pct,quasi_static_pct,dynamic_pct,split_contouring_pct,link_pct,motion_pct,"
+      "feed_mm_per_min,clock_offset_ms,samples_used,contouring_pct,quasi_static_pct,dynamic_pct,split_contouring_pct,link_pct,motion_pct,"
       "drift_pct,split_dynamic_pct,drift_x_um,drift_y_um,drift_z_um,contouring_max_x_um,contouring_max_y_um,contouring_max_z_um,"
       "quasi_static_max_x_um,quasi_static_max_y_um,quasi_static_max_z_um,dynamic_max_x_um,dynamic_max_y_um,dynamic_max_z_um,"
       "dynamic_rms_x_um,dynamic_rms_y_um,dynamic_rms_z_um\n";
@@ -36,11 +36,11 @@ void run(const DecomposeCliOptions& o) {
     const auto& p = t["split_shares_percent"];
     const auto drift = t["drift_um"].get<std::vector<double>>(), rms = t["dynamic_rms_um"].get<std::vector<double>>();
     human += fmt::format("{:>9.0f} {:>6.3f} ms | {:>6.1f} {:>6.1f} {:>6.1f} | {:>6.1f} {:>6.1f} {:>6.1f} {:>6.1f} {:>6.1f} | {:>6.2f} {:>6.2f} {:>6.2f} | {:>6.3f} {:>6.3f} {:>6.3f}\n",
-                         t["feed_mm_min"].get<double>(), t["clock_offset_ms"].get<double>(), s["contouring"].get<double>(),
+                         t["feed_mm_per_min"].get<double>(), t["clock_offset_ms"].get<double>(), s["contouring"].get<double>(),
                          s["quasi_static"].get<double>(), s["dynamic"].get<double>(), p["contouring"].get<double>(), p["link"].get<double>(),
                          p["motion"].get<double>(), p["drift"].get<double>(), p["dynamic"].get<double>(), drift[0], drift[1], drift[2], rms[0],
                          rms[1], rms[2]);
-    std::vector<double> row{t["feed_mm_min"].get<double>(), t["clock_offset_ms"].get<double>(), t["samples_used"].get<double>(),
+    std::vector<double> row{t["feed_mm_per_min"].get<double>(), t["clock_offset_ms"].get<double>(), t["samples_used"].get<double>(),
                             s["contouring"].get<double>(), s["quasi_static"].get<double>(), s["dynamic"].get<double>(),
                             p["contouring"].get<double>(), p["link"].get<double>(), p["motion"].get<double>(), p["drift"].get<double>(),
                             p["dynamic"].get<double>()};
@@ -57,7 +57,7 @@ void run(const DecomposeCliOptions& o) {
                          j["link_uncertainty"]["parameters"].size());
     for (const auto& t : j["tests"]) {
       const auto max = t["link_uncertainty_um"]["max"].get<std::vector<double>>(), rms = t["link_uncertainty_um"]["rms"].get<std::vector<double>>();
-      human += fmt::format("{:>9.0f} mm/min: max {:.3f} {:.3f} {:.3f} um, RMS {:.3f} {:.3f} {:.3f} um\n", t["feed_mm_min"].get<double>(), max[0],
+      human += fmt::format("{:>9.0f} mm/min: max {:.3f} {:.3f} {:.3f} um, RMS {:.3f} {:.3f} {:.3f} um\n", t["feed_mm_per_min"].get<double>(), max[0],
                            max[1], max[2], rms[0], rms[1], rms[2]);
     }
   }

@@ -46,7 +46,7 @@ void run(const StiffnessOptions& o) {
   for (const auto& [key, label] : {std::pair{"geometric", "geometric errors alone"}, std::pair{"stiffness_alone", "stiffness changes alone"},
                                    std::pair{"added_by_stiffness", "added by the stiffness changes"}}) {
     const auto& e = j["largest_tcp_error"][key];
-    human += fmt::format("  {:<32} {:8.3f} um at {}\n", label, e["um"].get<double>(), poseText(e["pose"]));
+    human += fmt::format("  {:<32} {:8.3f} um at {}\n", label, e["position_error_um"].get<double>(), poseText(e["pose"]));
   }
   emit(o.machine, j, human, csv);
 }

@@ -25,5 +25,5 @@ if __name__ == "__main__":
     print(f"TCP error at the first pose: {err[0, :3].round(3)} um")
     print(f"largest single error: {budget['entries'][0]['error']}, cone form error {cone['form_error_um']:.2f} um")
     print("cubic test zone heights referenced to zone I [um]:",
-          ", ".join(f"{z['name']} {z['measured_um']['mean']:.2f}" for z in cubic["zones"]))
+          ", ".join(f"{z['name']} {z['measured']['mean_um']:.2f}" for z in cubic["zones"]))
     fig.savefig("map.svg")

@@ -601,8 +601,7 @@ class Structure:
         for s, row in enumerate(rows):
             for i, a in enumerate("xyz"):
                 for k, b in enumerate("xyz"):
-                    magnitude, phase = row[f"H{a}{b}"]
-                    h[s, i, k] = magnitude * np.exp(1j * np.radians(phase))
+                    h[s, i, k] = row["magnitude_um_per_n"][f"H{a}{b}"] * np.exp(1j * np.radians(row["phase_deg"][f"H{a}{b}"]))
         return h
 
     def frf_method(self, at=None):

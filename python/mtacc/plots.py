@@ -534,7 +534,7 @@ def _extent(grid, shape):
 def _zone_outlines(ax, result, labels=None):
     half = result["zone_size_mm"] / 2
     for k, z in enumerate(result["zones"]):
-        x, y = z["centre"]
+        x, y = z["centre_mm"]
         ax.add_patch(matplotlib.patches.Rectangle((x - half, y - half), 2 * half, 2 * half, fill=False, lw=0.8,
                                                   edgecolor="#333"))
         text = z["name"] if labels is None else f'{z["name"]}\n{labels[k]}'
@@ -552,7 +552,7 @@ def cubic_layout(result, every=20):
         passes = tips.reshape(-1, 2, 3)[::every]
         for p in passes:
             ax.plot(p[:, 0], p[:, 1], color="#1f77b4", lw=0.6)
-        x, y = z["centre"]
+        x, y = z["centre_mm"]
         i, j, _ = z["tool_vector"]
         if abs(i) + abs(j) > 1e-9:
             ax.annotate("", xy=(x + 8 * i, y + 8 * j), xytext=(x, y), arrowprops=dict(arrowstyle="->", color="#d62728"))
@@ -573,7 +573,7 @@ def cubic_surface_map(result, limit_um=None):
     fig, ax = plt.subplots(figsize=(6.2, 5.2))
     image = ax.imshow(dev, origin="lower", extent=_extent(result["grid"], dev.shape), cmap="RdBu_r", vmin=-limit,
                       vmax=limit, interpolation="antialiased")
-    _zone_outlines(ax, result, [f'{z["measured_um"]["mean"]:.2f} µm' for z in result["zones"]])
+    _zone_outlines(ax, result, [f'{z["measured"]["mean_um"]:.2f} µm' for z in result["zones"]])
     fig.colorbar(image, ax=ax, label="height deviation [µm]")
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
@@ -587,9 +587,9 @@ def cubic_zone_bars(with_alignment, on_table):
     in the workpiece frame, and the surface referenced to zone I, which agree (Li et al. 2021 L243)."""
     names = [z["name"] for z in with_alignment["zones"]]
     x = np.arange(len(names))
-    series = [("E with M_WC", [z["deviation_um"]["mean"] for z in with_alignment["zones"]], "#1f77b4"),
-              ("E without M_WC", [z["deviation_um"]["mean"] for z in on_table["zones"]], "#ff7f0e"),
-              ("without M_WC, referenced to zone I", [z["measured_um"]["mean"] for z in on_table["zones"]], "#2ca02c")]
+    series = [("E with M_WC", [z["deviation"]["mean_um"] for z in with_alignment["zones"]], "#1f77b4"),
+              ("E without M_WC", [z["deviation"]["mean_um"] for z in on_table["zones"]], "#ff7f0e"),
+              ("without M_WC, referenced to zone I", [z["measured"]["mean_um"] for z in on_table["zones"]], "#2ca02c")]
     fig, ax = plt.subplots(figsize=(7.5, 3.4))
     for k, (label, values, colour) in enumerate(series):
         ax.bar(x + (k - 1) * 0.27, values, 0.27, label=label, color=colour)
@@ -803,7 +803,7 @@ def decomposition_along_path(test, title=None):
         ax.set_ylabel(f"{direction} [µm]")
     axes[0].legend(fontsize=8, ncol=5, loc="lower center", bbox_to_anchor=(0.5, 1.0))
     axes[-1].set_xlabel(f"normalised path u (one instrument sample in {series['stride']})")
-    fig.suptitle(title or f"Errors along the path at {test['feed_mm_min']:.0f} mm/min (Figs 9-10 form)")
+    fig.suptitle(title or f"Errors along the path at {test['feed_mm_per_min']:.0f} mm/min (Figs 9-10 form)")
     fig.tight_layout()
     return fig
 
@@ -814,7 +814,7 @@ def decomposition_over_feeds(result, title=None):
     direction (Tables 2-3 form), and the dynamic RMS per direction on log axes with the power laws
     of eq. 23 (Fig. 11 form)."""
     tests = result["tests"]
-    feeds = np.array([t["feed_mm_min"] for t in tests])
+    feeds = np.array([t["feed_mm_per_min"] for t in tests])
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
     ax = axes[0]
     bottom = np.zeros(len(tests))

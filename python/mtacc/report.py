@@ -328,9 +328,9 @@ def cubic_section(machine_path, errors, load):
     out += figure(plots.cubic_zone_bars(aligned, on_table), "Zone mean heights with and without M_WC")
     out += table(["zone", "axes", "E with M_WC [µm]", "tilt x, y [µm/mm]", "E without M_WC [µm]",
                   "without M_WC, ref. zone I [µm]"],
-                 [[a["name"], fmt_pose({k: v for k, v in a["axes"].items()}), f'{a["deviation_um"]["mean"]:.3f}',
-                   f'{a["deviation_um"]["slope_x"]:.4f}, {a["deviation_um"]["slope_y"]:.4f}',
-                   f'{t["deviation_um"]["mean"]:.3f}', f'{t["measured_um"]["mean"]:.3f}']
+                 [[a["name"], fmt_pose({k: v for k, v in a["axes"].items()}), f'{a["deviation"]["mean_um"]:.3f}',
+                   f'{a["deviation"]["slope_x_um_per_mm"]:.4f}, {a["deviation"]["slope_y_um_per_mm"]:.4f}',
+                   f'{t["deviation"]["mean_um"]:.3f}', f'{t["measured"]["mean_um"]:.3f}']
                   for a, t in zip(aligned["zones"], on_table["zones"])])
     out += figure(plots.cubic_sensitivity_maps(aligned), "Sensitivity k = E / ε of each location error of the rotary "
                                                          "axes over the block (Li et al. 2021 Figs 10 and 12); white: |k| below 0.05 mm/mm or 1 mm/rad, "
@@ -385,7 +385,7 @@ def stiffness_section(result):
                    f"{t['load_factor']:.3g}", f"{t['largest']:.3f} {t['unit']}"]
                   for t in result["terms"]], left=2)
     out += table(["largest TCP position error", "µm", "at"],
-                 [[label, f"{largest[key]['um']:.3f}", fmt_pose(largest[key]["pose"])]
+                 [[label, f"{largest[key]['position_error_um']:.3f}", fmt_pose(largest[key]["pose"])]
                   for key, label in (("geometric", "geometric errors alone"), ("stiffness_alone", "stiffness changes alone"),
                                      ("added_by_stiffness", "added by the stiffness changes"))], left=1)
     out += f"<p class='meta'>Over {result['poses']} poses, {result['samples_per_axis']} positions per axis.</p>"
@@ -447,7 +447,7 @@ def decomposition_section(result):
     tests = result["tests"]
     out = ("<h2>Error decomposition (Andolfatto et al. 2011)</h2><p>The tool relative to the workpiece measured along one trajectory at "
            f"{len(tests)} feeds, split into servo contouring (c), link (l), motion (m), thermal drift (td) and dynamic (d) "
-           f"errors; motion errors fitted on the {result['reference_feed_mm_min']:g} mm/min test (Legendre degree "
+           f"errors; motion errors fitted on the {result['reference_feed_mm_per_min']:g} mm/min test (Legendre degree "
            f"{result['degree']} in the normalised {result['parameter']}"
            + (f"; {result['reference_samples_left_out']} samples where its axes accelerate left out" if result["reference_samples_left_out"] else
               "; every sample")
@@ -458,14 +458,14 @@ def decomposition_section(result):
         out += (f"<p>Link errors from an identification ({len(result['link_uncertainty']['parameters'])} parameters): their standard "
                 f"uncertainty along the path is at most {worst[0]:.3f}, {worst[1]:.3f}, {worst[2]:.3f} um in x, y, z (k = 1).</p>")
     out += figure(plots.decomposition_over_feeds(result), "Shares, largest errors and dynamic RMS over the feeds")
-    slowest, fastest = min(tests, key=lambda t: t["feed_mm_min"]), max(tests, key=lambda t: t["feed_mm_min"])
+    slowest, fastest = min(tests, key=lambda t: t["feed_mm_per_min"]), max(tests, key=lambda t: t["feed_mm_per_min"])
     for t in [slowest] if slowest is fastest else [slowest, fastest]:
         if "series" in t:
-            out += figure(plots.decomposition_along_path(t), f"The contributions along the path at {t['feed_mm_min']:.0f} mm/min")
+            out += figure(plots.decomposition_along_path(t), f"The contributions along the path at {t['feed_mm_per_min']:.0f} mm/min")
     rows = []
     for t in tests:
         s, p = t["shares_percent"], t["split_shares_percent"]
-        rows.append([f"{t['feed_mm_min']:.0f}", f"{t['clock_offset_ms']:.3f}" + ("" if t["clock_offset_estimated"] else " (given)"),
+        rows.append([f"{t['feed_mm_per_min']:.0f}", f"{t['clock_offset_ms']:.3f}" + ("" if t["clock_offset_estimated"] else " (given)"),
                      f"{s['contouring']:.1f} / {s['quasi_static']:.1f} / {s['dynamic']:.1f}",
                      " / ".join(f"{p[k]:.1f}" for k in ("contouring", "link", "motion", "drift", "dynamic")),
                      " ".join(f"{v:.2f}" for v in t["drift_um"]), " ".join(f"{v:.3f}" for v in t["dynamic_rms_um"])])

@@ -166,7 +166,7 @@ nlohmann::json kinsJson(const LinuxcncKinematicsFit& fit) {
   };
   const auto um = [](const Vec3& mm) { return nlohmann::json{mm.x() * 1e3, mm.y() * 1e3, mm.z() * 1e3}; };
   return {{"applicable", true}, {"kins", fit.actual.name()}, {"file", "linuxcnc-kins.hal"},
-          {"pins", pins(fit.actual)}, {"nominal_pins", pins(fit.nominal)},
+          {"pins_mm", pins(fit.actual)}, {"nominal_pins_mm", pins(fit.nominal)},
           {"sign", {{"tilt", fit.sign[0]}, {"c", fit.sign[1]}}},
           {"world_origin_mm", {fit.worldOrigin.x(), fit.worldOrigin.y(), fit.worldOrigin.z()}},
           {"work_offset_um", um(fit.workOffset)},

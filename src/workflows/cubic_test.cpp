@@ -47,9 +47,9 @@ std::vector<std::string> rotaryLocationErrors(const Machine& m) {
   return names;
 }
 
-nlohmann::json planeJson(const ZonePlane& p, double unit) {
-  return {{"mean", p.mean * unit}, {"slope_x", p.slopeX * unit}, {"slope_y", p.slopeY * unit},
-          {"residual_peak_to_valley", p.residualPeakToValley * unit}, {"cells", p.cells}};
+nlohmann::json planeJson(const ZonePlane& p) {
+  return {{"mean_um", p.mean * 1e3}, {"slope_x_um_per_mm", p.slopeX * 1e3}, {"slope_y_um_per_mm", p.slopeY * 1e3},
+          {"residual_peak_to_valley_um", p.residualPeakToValley * 1e3}, {"cells", p.cells}};
 }
 
 }  // namespace
@@ -173,11 +173,11 @@ nlohmann::json toJson(const CubicTestStudy& s) {
   for (size_t k = 0; k < s.zones.size(); ++k) {
     const auto& z = s.zones[k];
     zones.push_back({{"name", z.name},
-                     {"centre", {spec.zones[k].x, spec.zones[k].y}},
+                     {"centre_mm", {spec.zones[k].x, spec.zones[k].y}},
                      {"tool_vector", vectorJson(spec.zones[k].toolVector)},
                      {"axes", poseJson(m, z.clamped.data())},
-                     {"deviation_um", planeJson(z.deviation, 1e3)},
-                     {"measured_um", planeJson(z.measured, 1e3)}});
+                     {"deviation", planeJson(z.deviation)},
+                     {"measured", planeJson(z.measured)}});
   }
   nlohmann::json j = {{"machine", m.name},
                       {"alignment", m.alignment == WorkpieceAlignment::Machine ? "machine" : "table"},
@@ -194,9 +194,7 @@ nlohmann::json toJson(const CubicTestStudy& s) {
                       {"cutter_moves", s.cutterMoves},
                       {"inset_mm", s.options.inset},
                       {"reference_zone", spec.zones[s.referenceZone].name},
-                      {"zones", zones},
-                      {"units", "heights in um; slopes in um/mm (deviation: machined minus error-free surface; measured: "
-                                "the machined surface referenced to the reference zone's plane)"}};
+                      {"zones", zones}};
   if (!s.sensitivities.empty()) {
     nlohmann::json k = nlohmann::json::array();
     for (const auto& c : s.sensitivities) {

@@ -127,17 +127,17 @@ nlohmann::json toJson(const FrfResult& r) {
   j["method"] = r.method;
   j["damping_coupling"] = r.dampingCoupling;
   j["warnings"] = r.warnings;
-  j["units"] = {{"magnitude", "um/N"}, {"phase", "deg"}};
   j["frf"] = nlohmann::json::array();
   for (size_t s = 0; s < r.frequencies.size(); ++s) {
-    nlohmann::json row;
-    row["frequency_hz"] = r.frequencies[s];
+    nlohmann::json magnitude, phase;
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k) {
         const auto v = r.frf[s](i, k);
-        row[std::string("H") + kAxes[i] + kAxes[k]] = {std::abs(v) * 1e6, std::arg(v) / kDeg};
+        const std::string term = std::string("H") + kAxes[i] + kAxes[k];
+        magnitude[term] = std::abs(v) * 1e6;
+        phase[term] = std::arg(v) / kDeg;
       }
-    j["frf"].push_back(row);
+    j["frf"].push_back({{"frequency_hz", r.frequencies[s]}, {"magnitude_um_per_n", magnitude}, {"phase_deg", phase}});
   }
   j["static_compliance_um_per_n"] = nlohmann::json::array();
   for (int i = 0; i < 3; ++i)

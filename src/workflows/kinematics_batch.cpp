@@ -56,16 +56,15 @@ nlohmann::json toJson(const ForwardResult& r) {
   nlohmann::json j;
   j["machine"] = m.name;
   j["nominal"] = r.nominal;
-  j["units"] = {{"axes", "mm, deg"}, {"tcp", "mm"}, {"position_error", "um"}, {"orientation_error", "urad"}};
   j["poses"] = nlohmann::json::array();
   for (Eigen::Index i = 0; i < r.q.rows(); ++i) {
     const Vec3 e = r.error.row(i).head<3>().transpose() * 1e3;
     const Vec3 a = r.error.row(i).tail<3>().transpose() * 1e6;
     j["poses"].push_back({{"pose", poseJson(m, r.q.row(i).data())},
-                          {"tcp", vectorJson(r.tool.positions.row(i).transpose())},
+                          {"tcp_mm", vectorJson(r.tool.positions.row(i).transpose())},
                           {"tool_direction", vectorJson(r.tool.directions.row(i).transpose())},
-                          {"position_error", vectorJson(e)},
-                          {"orientation_error", vectorJson(a)}});
+                          {"position_error_um", vectorJson(e)},
+                          {"orientation_error_urad", vectorJson(a)}});
   }
   j["max_position_error_um"] = r.maxPositionError * 1e3;
   return j;

@@ -135,7 +135,7 @@ nlohmann::json toJson(const PlateIdentificationStudy& s) {
           {"readings", s.result.readings},
           {"degrees_of_freedom", s.result.degreesOfFreedom},
           {"weighted", !s.result.names.empty() && s.weighted},
-          {"sigma", s.weighted ? nlohmann::json(s.result.sigma) : nlohmann::json(s.result.sigma * 1e3)},
+          {s.weighted ? "sigma_over_probe_noise" : "sigma_um", s.weighted ? s.result.sigma : s.result.sigma * 1e3},
           {"rank", s.result.observability.rank},
           {"estimates", estimates},
           {"findings", s.result.observability.findings()},

@@ -143,7 +143,7 @@ nlohmann::json seriesJson(const DecomposedTest& test, const std::vector<double>&
 nlohmann::json toJson(const RecordedDecomposition& r, size_t seriesPoints) {
   const auto um = [](const Vec3& v) { return nlohmann::json::array({v.x() * 1e3, v.y() * 1e3, v.z() * 1e3}); };
   nlohmann::json j;
-  j["reference_feed_mm_min"] = r.tests[static_cast<size_t>(r.set.referenceTest)].feed;
+  j["reference_feed_mm_per_min"] = r.tests[static_cast<size_t>(r.set.referenceTest)].feed;
   j["degree"] = r.set.degree;
   j["parameter"] = r.set.parameter == MotionParameter::Path ? "path" : "time";
   j["interpolation"] = r.set.interpolation == Interpolation::CubicSpline ? "cubic" : "linear";
@@ -154,7 +154,7 @@ nlohmann::json toJson(const RecordedDecomposition& r, size_t seriesPoints) {
     const auto& a = r.alignment[k];
     const auto& s = r.shares[k];
     j["tests"].push_back({
-        {"feed_mm_min", r.tests[k].feed},
+        {"feed_mm_per_min", r.tests[k].feed},
         {"clock_offset_ms", a.offset * 1e3},
         {"clock_offset_estimated", a.estimated},
         {"alignment_rms_misfit", a.rmsMisfit},

@@ -96,7 +96,7 @@ nlohmann::json toJson(const StiffnessSummary& s) {
   }
   j["samples_per_axis"] = s.samplesPerAxis;
   j["poses"] = s.poses;
-  auto largest = [&](const LargestTcpError& e) { return nlohmann::json{{"um", toDisplay(e.value, Dimension::Length)}, {"pose", poseJson(m, e.pose.data())}}; };
+  auto largest = [&](const LargestTcpError& e) { return nlohmann::json{{"position_error_um", toDisplay(e.value, Dimension::Length)}, {"pose", poseJson(m, e.pose.data())}}; };
   j["largest_tcp_error"] = {{"geometric", largest(s.geometric)}, {"stiffness_alone", largest(s.stiffness)}, {"added_by_stiffness", largest(s.change)}};
   return j;
 }

@@ -124,7 +124,7 @@ nlohmann::json toJson(const MotionSimulationResult& s) {
   const auto um = [](const Vec3& v) { return nlohmann::json::array({v.x() * 1e3, v.y() * 1e3, v.z() * 1e3}); };
   nlohmann::json j{{"ball_mm", {s.ball.x(), s.ball.y(), s.ball.z()}}, {"set", s.setFile}, {"feeds", nlohmann::json::array()}};
   for (const auto& f : s.feeds)
-    j["feeds"].push_back({{"feed_mm_min", f.feed},
+    j["feeds"].push_back({{"feed_mm_per_min", f.feed},
                           {"duration_s", f.duration},
                           {"instrument_samples", f.instrumentSamples},
                           {"contouring_max_um", um(f.contouringMax)},

@@ -30,10 +30,10 @@ def test_fk_and_errors(cli, poses_csv):
     data = run_json(cli, "fk", "tilting-table", "--poses", poses_csv)
     assert len(data["poses"]) == len(POSES)
     for k, row in enumerate(data["poses"]):
-        assert row["tcp"] == pos[k].tolist()
+        assert row["tcp_mm"] == pos[k].tolist()
         assert row["tool_direction"] == tool[k].tolist()
-        assert row["position_error"] == err[k, :3].tolist()
-        assert row["orientation_error"] == err[k, 3:].tolist()
+        assert row["position_error_um"] == err[k, :3].tolist()
+        assert row["orientation_error_urad"] == err[k, 3:].tolist()
 
 
 def test_ik(cli):
@@ -87,7 +87,7 @@ def test_errors_set_through_python_equal_an_errors_file(cli, tmp_path):
     by_name.errors["δxBY"] = "10 um"
     assert by_name.errors["X0B"] == pytest.approx(-0.010)
     data = run_json(cli, "errors", "tilting-table", "--errors", str(errors), "--pose", "X=10,Y=20,Z=30,B=-15,C=45")
-    assert data["poses"][0]["position_error"] == from_file.tcp_errors(POSES[:1])[0, :3].tolist()
+    assert data["poses"][0]["position_error_um"] == from_file.tcp_errors(POSES[:1])[0, :3].tolist()
 
 
 def test_sensitivity_coefficient(cli):

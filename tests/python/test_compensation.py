@@ -90,7 +90,7 @@ def test_linuxcnc_kinematics_parameters(cli, tmp_path, machine, kins, named):
     r = mtacc.Machine(machine, errors=str(errors)).compensation_tables(nodes=(3, 3, 3))["linuxcnc_kins"]
     assert r["applicable"] and r["kins"] == kins and r["file"] == "linuxcnc-kins.hal"
     setp = [line.split() for line in (tmp_path / "out" / "linuxcnc-kins.hal").read_text().splitlines() if not line.startswith("#")]
-    assert {pin.removeprefix(kins + "."): float(value) for _, pin, value in setp} == pytest.approx(r["pins"], abs=1e-7)
+    assert {pin.removeprefix(kins + "."): float(value) for _, pin, value in setp} == pytest.approx(r["pins_mm"], abs=1e-7)
     # What the pins cannot carry and the reversal are named, in the CLI's table as in the JSON.
     assert [left.split(" (")[0] for left in r["not_carried"][:-1]] == named
     assert r["not_carried"][-1] == "the reversal terms of EXX (the kinematics have no direction of motion)"

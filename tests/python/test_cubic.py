@@ -32,9 +32,9 @@ def test_cli_and_api_alike_and_files_open(cli, table5, tmp_path):
     data = json.loads(out.stdout)
     api = mtacc.Machine("tilting-table", table5, alignment="machine").cubic(grid=0.05)
     for a, b in zip(data["zones"], api["zones"]):
-        assert a["name"] == b["name"] and a["measured_um"]["mean"] == pytest.approx(b["measured_um"]["mean"], abs=1e-12)
+        assert a["name"] == b["name"] and a["measured"]["mean_um"] == pytest.approx(b["measured"]["mean_um"], abs=1e-12)
     # Seed 001 §9.1 (extraction): zone II-1 of Table 5 with M_WC, -5.398 um.
-    assert data["zones"][1]["deviation_um"]["mean"] == pytest.approx(-5.398, abs=0.005)
+    assert data["zones"][1]["deviation"]["mean_um"] == pytest.approx(-5.398, abs=0.005)
     heights = np.load(files["npy"])
     assert heights.dtype == np.float32 and heights.shape == (960, 960)
     assert np.allclose(heights * 1e3, api["heights_um"], atol=1e-6)

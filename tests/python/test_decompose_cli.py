@@ -18,7 +18,7 @@ def test_the_recorded_virtual_machine_decomposes_into_what_was_injected(cli, tmp
     simulated = run(cli, "simulate", "motion", "inclined-a-table", "--program", str(PROGRAM), "--feeds", "1000,3240,10498",
                     "--structure", "wcayfxzt-compact", "--noise", "0.2um", "--kv", "40", "--feed-forward", "0.99",
                     "-o", str(tmp_path))
-    assert [f["feed_mm_min"] for f in simulated["feeds"]] == [1000, 3240, 10498]
+    assert [f["feed_mm_per_min"] for f in simulated["feeds"]] == [1000, 3240, 10498]
     assert simulated["ball_mm"] == pytest.approx([70, 40, 60], abs=1e-9)
     assert all(f["dynamic_max_um"][0] > 0.5 for f in simulated["feeds"])
     decomposed = run(cli, "decompose", "inclined-a-table", simulated["set"])
@@ -46,7 +46,7 @@ def test_the_python_module_gives_what_the_commands_give(cli, tmp_path):
     simulated = machine.simulate_motion(PROGRAM, tmp_path / "py", feeds=[1000, 5832], structure="wcayfxzt-compact")
     decomposed = machine.decompose(simulated["set"])
     assert decomposed == run(cli, "decompose", "inclined-a-table", simulated["set"])
-    assert [t["feed_mm_min"] for t in decomposed["tests"]] == [1000, 5832]
+    assert [t["feed_mm_per_min"] for t in decomposed["tests"]] == [1000, 5832]
 
 
 def test_the_report_section_shows_every_feed(tmp_path):

@@ -32,9 +32,9 @@ def test_the_load_scales_the_changes_and_the_geometric_errors_stay():
     # load to first order (second order: (30 urad)^2 x 1 m, about 1 nm).
     app_d = mtacc.Machine("maho")
     grid = app_d.working_volume_grid(3)
-    assert full["largest_tcp_error"]["geometric"]["um"] == pytest.approx(np.linalg.norm(app_d.tcp_errors(grid)[:, :3], axis=1).max())
+    assert full["largest_tcp_error"]["geometric"]["position_error_um"] == pytest.approx(np.linalg.norm(app_d.tcp_errors(grid)[:, :3], axis=1).max())
     assert half["largest_tcp_error"]["geometric"] == full["largest_tcp_error"]["geometric"]
-    assert half["largest_tcp_error"]["stiffness_alone"]["um"] == pytest.approx(0.5 * full["largest_tcp_error"]["stiffness_alone"]["um"],
+    assert half["largest_tcp_error"]["stiffness_alone"]["position_error_um"] == pytest.approx(0.5 * full["largest_tcp_error"]["stiffness_alone"]["position_error_um"],
                                                                                abs=2e-3)
 
 

@@ -29,8 +29,8 @@ def test_the_warm_machine_puts_the_tool_the_expansion_further(cli, tmp_path):
     state.write_text(STATE)
     for x in (0.0, 250.0, 600.0):
         pose = f"X={x},Y=100,Z=50"
-        cold = run(cli, "fk", "three-axis-vertical", "--pose", pose)["poses"][0]["tcp"]
-        warm = run(cli, "fk", "three-axis-vertical", "--pose", pose, "--thermal", str(state))["poses"][0]["tcp"]
+        cold = run(cli, "fk", "three-axis-vertical", "--pose", pose)["poses"][0]["tcp_mm"]
+        warm = run(cli, "fk", "three-axis-vertical", "--pose", pose, "--thermal", str(state))["poses"][0]["tcp_mm"]
         # The table's own errors turn the expansion's direction by micro-radians: a second-order change.
         assert np.subtract(warm, cold) == pytest.approx([expansion(x), 0, 0], abs=1e-6)
 
@@ -132,8 +132,8 @@ def test_the_spindle_drift_model_of_a_drift_test_moves_the_warm_spindle(cli, tmp
     y = summary["spindle"]["directions"][1]
     assert 20 < y["drift"] < 35 and 0.2 < y["sigma"] < 0.5, "tens of um of Y drift for an 11.5 K warmer head, to 0.3 um"
     for pose in ("X=0,Y=0,Z=0", "X=300,Y=200,Z=250"):
-        cold = run(cli, "fk", "three-axis-vertical", "--pose", pose)["poses"][0]["tcp"]
-        warm = run(cli, "fk", "three-axis-vertical", "--pose", pose, "--thermal", str(state))["poses"][0]["tcp"]
+        cold = run(cli, "fk", "three-axis-vertical", "--pose", pose)["poses"][0]["tcp_mm"]
+        warm = run(cli, "fk", "three-axis-vertical", "--pose", pose, "--thermal", str(state))["poses"][0]["tcp_mm"]
         # The machine's angular errors (up to 15 urad) turn the drift (under 30 um): below 0.5 nm.
         assert np.subtract(warm, cold) * 1e3 == pytest.approx(summary["spindle"]["at_tcp_um"], abs=5e-4)
     section = report.thermal_section(summary)
