@@ -85,15 +85,4 @@ std::string poseCsvHeader(const Machine& m) {
   return s;
 }
 
-void addToolLengthOption(CLI::App& cmd, std::string& toolLengths) {
-  cmd.add_option("--tool-length", toolLengths, "lengths of the tools named by G43 H<n>, e.g. 1=0,2=35.5 (mm beyond the machine's tool)");
-}
-
-std::map<int, double> parseToolLengths(const std::string& text) {
-  std::map<int, double> lengths;
-  for (const auto& a : parseAssignments(text, "--tool-length"))
-    lengths[parseCount(a.name, "--tool-length", 0, 9999)] = parseNumber(a.value, "--tool-length " + a.name);
-  return lengths;
-}
-
 }  // namespace mtacc::cli

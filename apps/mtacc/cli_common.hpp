@@ -51,10 +51,6 @@ std::string poseCsvHeader(const Machine& m);
 // `errorsOut` the identified errors file written there; warnings on stderr, and StrictFailure
 // after them when `strict`.
 void emitIdentification(const MachineOptions& o, const IdentificationStudy& out, bool strict, const std::string& errorsOut);
-// --tool-length: the lengths of the tools a program names by G43 H<n> ("1=0,2=35.5", mm beyond
-// the machine file's tool), and its text parsed.
-void addToolLengthOption(CLI::App& cmd, std::string& toolLengths);
-std::map<int, double> parseToolLengths(const std::string& text);
 // --errors-out of identify and cubic-identify.
 void addErrorsOutOption(CLI::App& cmd, std::string& errorsOut);
 

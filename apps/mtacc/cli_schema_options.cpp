@@ -33,7 +33,7 @@ void addSchemaOptions(CLI::App& cmd, const OptionSchema& schema, OptionValues& v
     else
       cmd.add_option_function<std::string>(flag, [&values, key](const std::string& given) { values[key] = {given}; }, help)
           ->type_name(typeName(field))
-          ->required(field.positional);
+          ->required(field.positional || field.required);
   }
 }
 

@@ -8,24 +8,13 @@
 #include <unistd.h>
 
 #include "cmd_compensate.hpp"
-#include "mtacc/core/input_error.hpp"
 
 namespace mtacc::cli {
 namespace {
 
 void run(const CompensateOptions& o) {
-  if (o.program.empty() == o.tables.empty())
-    throw InputError({"", 0, "--program/--tables"}, "give --program IN.nc (a compensated program) or --tables DIR (controller tables)");
-  if (o.everySeconds > 0 && o.tables.empty()) throw InputError({"", 0, "--every"}, "rewrites controller tables: give --tables DIR");
-  if (!o.tables.empty()) return runCompensationTables(o);
-  if (o.gcode.empty()) throw InputError({"", 0, "--gcode"}, "give the file to write the compensated program to (--gcode OUT.nc)");
-  ProgramCompensationRequest request;
-  request.programFile = o.program;
-  request.toolLengths = parseToolLengths(o.toolLengths);
-  request.options.tolerance = o.toleranceUm * 1e-3;
-  request.options.directionTolerance = o.directionToleranceUrad * 1e-6;
-  request.checkErrorsFile = o.checkErrors;
-  request.outputFile = o.gcode;
+  if (compensateOutput(o.values) == CompensateOutput::Tables) return runCompensationTables(o);
+  ProgramCompensationRequest request = programCompensationRequest(o.values);
   request.outputKey = "--gcode";
   // On a terminal, progress on one line, ended before anything else is printed (an error too).
   struct ProgressLine {
@@ -44,7 +33,8 @@ void run(const CompensateOptions& o) {
   const auto j = toJson(r);
   const auto& c = r.compensated;
   const auto& d = r.deviation;
-  std::string human = fmt::format("{}: {} lines, {} moves, {} points written to {}\n", o.program, r.lines, r.moves, c.written, o.gcode);
+  std::string human = fmt::format("{}: {} lines, {} moves, {} points written to {}\n", request.programFile, r.lines, r.moves, c.written,
+                                  request.outputFile);
   human += "largest correction:";
   for (const auto& [axis, value] : j["largest_correction_um_urad"].items())
     human += fmt::format(" {} {:.2f}", axis, value.get<double>());
@@ -81,31 +71,7 @@ void addCompensateCommand(CLI::App& app) {
   auto o = std::make_shared<CompensateOptions>();
   auto* cmd = app.add_subcommand("compensate", "compensate an axis program (G-code) for the machine's errors");
   addMachineOptions(*cmd, *o);
-  cmd->add_option("--program", o->program, "the G-code program to compensate (axis positions in mm and deg)");
-  cmd->add_option("--gcode", o->gcode, "write the compensated program to FILE");
-  addToolLengthOption(*cmd, o->toolLengths);
-  cmd->add_option("--tolerance", o->toleranceUm, "TCP deviation allowed between written points, arc chords included [um]")
-      ->capture_default_str()
-      ->check(CLI::Range(0.01, 1000.0));
-  cmd->add_option("--direction-tolerance", o->directionToleranceUrad, "tool direction deviation allowed between written points [urad]")
-      ->capture_default_str()
-      ->check(CLI::Range(0.01, 10000.0));
-  cmd->add_option("--check-errors", o->checkErrors,
-                  "program: also run the program, as written and compensated, on this errors file's machine (the machine as measured "
-                  "again, or a simulation's truth)");
-  cmd->add_option("--tables", o->tables, "write the correction grid, its one-axis functions and the controllers' files (Siemens, HEIDENHAIN, LinuxCNC, TwinCAT/ISG) to DIR");
-  cmd->add_option("--check-program", o->checkProgram, "tables: also check each table along this program's feed moves (G-code)");
-  cmd->add_option("--nodes", o->nodes, "tables: nodes along X, Y, Z over their travel")->capture_default_str();
-  cmd->add_option("--pose", o->pose, "tables: the other axes' positions, e.g. B=0,C=0 (mm, deg; default 0)");
-  cmd->add_option("--functions", o->functions, "tables: one-axis functions kept, the largest first")->capture_default_str()->check(CLI::Range(1, 9));
-  cmd->add_option("--linuxcnc-type", o->linuxcncType, "tables: LinuxCNC COMP_FILE_TYPE, 1 (trims) or 0 (positions)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1));
-  cmd->add_option("--every", o->everySeconds,
-                  "tables with --thermal: read the thermal state again and rewrite the tables every SECONDS (a controller reads them "
-                  "every 60), until stopped (Ctrl-C, SIGTERM) or --updates")
-      ->check(CLI::Range(0.01, 86400.0));
-  cmd->add_option("--updates", o->updates, "with --every: stop after this many writes (default: when stopped)")->check(CLI::Range(1, 1000000));
+  addSchemaOptions(*cmd, compensateSchema(), o->values);
   cmd->callback([o] { run(*o); });
 }
 

@@ -4,18 +4,12 @@
 #include <string>
 
 #include "cli_common.hpp"
-#include "mtacc/workflows/compensation.hpp"
+#include "mtacc/workflows/compensate_options.hpp"
 
 namespace mtacc::cli {
 
 struct CompensateOptions : MachineOptions {
-  std::string program, gcode, toolLengths, checkErrors;
-  std::string tables, nodes = "21,21,21", pose, checkProgram;
-  int functions = 9, linuxcncType = 1;
-  double everySeconds = 0.0;  // tables: 0 once; else rewritten each period
-  int updates = 0;            // with everySeconds: 0 until a stop signal
-  double toleranceUm = ProgramCompensationOptions{}.tolerance * 1e3;
-  double directionToleranceUrad = ProgramCompensationOptions{}.directionTolerance * 1e6;
+  OptionValues values;  // compensateSchema()'s
 };
 
 // --tables DIR: written once, or with --every rewritten for the thermal state each period.

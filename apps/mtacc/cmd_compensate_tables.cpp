@@ -10,22 +10,11 @@
 
 #include "cmd_compensate.hpp"
 #include "mtacc/core/input_error.hpp"
-#include "mtacc/core/text.hpp"
 
 namespace mtacc::cli {
 namespace {
 
-CompensationTablesRequest tablesRequest(const CompensateOptions& o) {
-  CompensationTablesRequest request;
-  const auto counts = splitList(o.nodes);
-  if (counts.size() != 3) throw InputError({"", 0, "--nodes"}, "give the nodes along X, Y, Z, e.g. 21,21,21");
-  for (size_t a = 0; a < 3; ++a) request.grid.counts[a] = parseCount(counts[a], "--nodes", 2, 1000);
-  if (!o.pose.empty()) request.grid.pose = poseFromText(loadMachineSetup(o.source), o.pose, "--pose", true);
-  request.oneAxisFunctions = o.functions;
-  request.linuxcncType = o.linuxcncType;
-  request.checkProgram = o.checkProgram;
-  return request;
-}
+std::string folderOf(const CompensateOptions& o) { return *OptionReader(compensateSchema(), o.values).text("tables"); }
 
 void emitTables(const CompensateOptions& o, const CompensationTablesResult& r) {
   const auto j = toJson(r);
@@ -33,7 +22,7 @@ void emitTables(const CompensateOptions& o, const CompensationTablesResult& r) {
   for (const auto& [axis, value] : j["grid"]["pose"].items())
     if (axis != "X" && axis != "Y" && axis != "Z") others += fmt::format("{}{}={:g}", others.empty() ? " with " : ", ", axis, value.get<double>());
   std::string human = fmt::format("Correction tables for {}: {} x {} x {} nodes over the travel of X, Y, Z{}; written to {}/\n", r.setup.machine->name,
-                                  r.grid.counts[0], r.grid.counts[1], r.grid.counts[2], others, o.tables);
+                                  r.grid.counts[0], r.grid.counts[1], r.grid.counts[2], others, folderOf(o));
   human += fmt::format("TCP position error left over {} points (nodes and midpoints), um:  largest (rms)\n", r.gridResidual.samples);
   human += fmt::format("  {:<30} {:9.3f} ({:.3f})\n", "uncorrected", r.gridResidual.beforeMax * 1e3, r.gridResidual.beforeRms * 1e3);
   std::string csv = "format,after_max_um,after_rms_um,before_max_um,before_rms_um,moving_forward_max_um,moving_backward_max_um\n";
@@ -56,7 +45,7 @@ void emitTables(const CompensateOptions& o, const CompensationTablesResult& r) {
       for (const auto& left : t["not_carried"]) human += fmt::format("  {:<30} not carried: {}\n", "", left.get<std::string>());
     if (t.contains("along_program"))
       human += fmt::format("  {:<30} {:9.3f} ({:.3f})   along {} (uncorrected {:.3f}; moving as programmed {:.3f})\n", "",
-                           t["along_program"]["after_max_um"].get<double>(), t["along_program"]["after_rms_um"].get<double>(), o.checkProgram,
+                           t["along_program"]["after_max_um"].get<double>(), t["along_program"]["after_rms_um"].get<double>(), r.checkProgram->file,
                            t["along_program"]["before_max_um"].get<double>(), t["along_program"].value("moving_as_programmed_max_um", 0.0));
     csv += fmt::format("{},{},{},{},{},{},{}\n", t["format"].get<std::string>(), res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
                        res["before_max_um"].get<double>(), res["before_rms_um"].get<double>(), res.value("moving_forward_max_um", 0.0),
@@ -78,7 +67,7 @@ void emitTables(const CompensateOptions& o, const CompensationTablesResult& r) {
     for (const auto& left : k["not_carried"]) human += fmt::format("  {:<30} not carried: {}\n", "", left.get<std::string>());
     if (k.contains("along_program"))
       human += fmt::format("  {:<30} {:9.3f} ({:.3f})   along {} (uncorrected {:.3f})\n", "", k["along_program"]["after_max_um"].get<double>(),
-                           k["along_program"]["after_rms_um"].get<double>(), o.checkProgram, k["along_program"]["before_max_um"].get<double>());
+                           k["along_program"]["after_rms_um"].get<double>(), r.checkProgram->file, k["along_program"]["before_max_um"].get<double>());
     csv += fmt::format("{},{},{},{},{},{},{}\n", format, res["after_max_um"].get<double>(), res["after_rms_um"].get<double>(),
                        res["before_max_um"].get<double>(), res["before_rms_um"].get<double>(), res.value("moving_forward_max_um", 0.0),
                        res.value("moving_backward_max_um", 0.0));
@@ -100,11 +89,14 @@ extern "C" void requestStop(int) { stopRequested = 1; }
 void runTablesPeriodically(const CompensateOptions& o) {
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
-  keepTablesCurrent(o.source, {tablesRequest(o), o.tables, o.everySeconds, o.updates}, [] { return stopRequested != 0; },
+  const OptionReader read(compensateSchema(), o.values);
+  const PeriodicTablesRequest request{compensationTablesRequest(loadMachineSetup(o.source), o.values), folderOf(o), *read.number("every"),
+                                      read.count("updates").value_or(0)};
+  keepTablesCurrent(o.source, request, [] { return stopRequested != 0; },
                     [&](int update, const CompensationTablesResult& r, std::optional<double> moved) {
                       emitTables(o, r);
                       std::cerr << fmt::format("mtacc: update {} at {:%H:%M:%S}: tables for {} written to {}/{}\n", update,
-                                               fmt::localtime(std::time(nullptr)), o.source.thermalFile, o.tables,
+                                               fmt::localtime(std::time(nullptr)), o.source.thermalFile, request.folder,
                                                moved ? fmt::format("; the grid moved by up to {:.3f} um since the last", *moved * 1e3) : "")
                                 << std::flush;
                     });
@@ -113,12 +105,13 @@ void runTablesPeriodically(const CompensateOptions& o) {
 }  // namespace
 
 void runCompensationTables(const CompensateOptions& o) {
-  if (o.everySeconds > 0) {
+  if (OptionReader(compensateSchema(), o.values).number("every")) {
     if (o.source.thermalFile.empty()) throw InputError({"", 0, "--every"}, "give --thermal STATE: the temperatures the tables follow");
     return runTablesPeriodically(o);
   }
-  const auto r = compensationTables(loadMachineSetup(o.source), tablesRequest(o));
-  writeCompensationTables(r, o.tables);
+  const MachineSetup setup = loadMachineSetup(o.source);
+  const auto r = compensationTables(setup, compensationTablesRequest(setup, o.values));
+  writeCompensationTables(r, folderOf(o));
   emitTables(o, r);
 }
 

@@ -5,27 +5,24 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
-#include "mtacc/core/input_error.hpp"
-#include "mtacc/core/text.hpp"
 #include "mtacc/workflows/program_deviation.hpp"
 
 namespace mtacc::cli {
 namespace {
 
 struct DeviationOptions : MachineOptions {
-  ProgramDeviationRequest request;
-  std::string toolLengths;
+  OptionValues values;
 };
 
-void run(DeviationOptions& o) {
-  o.request.toolLengths = parseToolLengths(o.toolLengths);
-  const auto r = programDeviationFile(loadMachineSetup(o.source), o.request);
+void run(const DeviationOptions& o) {
+  const ProgramDeviationRequest request = programDeviationRequest(o.values);
+  const auto r = programDeviationFile(loadMachineSetup(o.source), request);
   const auto j = toJson(r);
   const auto& d = r.deviation;
-  std::string human = fmt::format("{} on {} with {} non-zero errors{}, against {}:\n", o.request.programFile, r.setup.machine->name,
+  std::string human = fmt::format("{} on {} with {} non-zero errors{}, against {}:\n", request.programFile, r.setup.machine->name,
                                   j["non_zero_errors"].get<size_t>(), o.source.errorsFile.empty() ? "" : " (" + o.source.errorsFile + ")",
                                   r.intended ? "the nominal path of " + r.intended->file + " (closest point)" : "its own nominal path");
-  human += fmt::format("  {} samples along {} feed blocks, every {:g} mm of path{}\n", d.total.samples, d.blocks.size(), o.request.options.step,
+  human += fmt::format("  {} samples along {} feed blocks, every {:g} mm of path{}\n", d.total.samples, d.blocks.size(), request.options.step,
                        d.instantBlocks ? fmt::format(" ({} blocks of under 10 um passed in an instant, not sampled)", d.instantBlocks) : "");
   human += fmt::format("  TCP deviation   largest {:9.3f} um   rms {:9.3f} um\n", d.total.maxPosition * 1e3, d.total.rmsPosition * 1e3);
   human += fmt::format("  tool direction  largest {:9.3f} urad\n", d.total.maxDirection * 1e6);
@@ -48,11 +45,7 @@ void addDeviationCommand(CLI::App& app) {
   auto o = std::make_shared<DeviationOptions>();
   auto* cmd = app.add_subcommand("deviation", "a program run on the machine with its errors, against the path it was meant to cut");
   addMachineOptions(*cmd, *o);
-  cmd->add_option("--program", o->request.programFile, "the G-code program run (axis positions in mm and deg)")->required();
-  cmd->add_option("--intended", o->request.intendedFile,
-                  "the program whose nominal path was meant (e.g. the one compensated into --program); default: --program's own");
-  addToolLengthOption(*cmd, o->toolLengths);
-  cmd->add_option("--step", o->request.options.step, "nominal TCP path between samples [mm] (at least 4 a block)")->capture_default_str();
+  addSchemaOptions(*cmd, programDeviationSchema(), o->values);
   cmd->callback([o] { run(*o); });
 }
 

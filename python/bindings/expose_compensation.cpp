@@ -2,7 +2,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "mtacc/workflows/compensation.hpp"
+#include "mtacc/workflows/compensate_options.hpp"
 #include "mtacc/workflows/program_deviation.hpp"
 
 namespace mtacc::python {
@@ -10,14 +10,8 @@ namespace mtacc::python {
 void exposeCompensation(MachineClass& machine) {
   machine
       .def("compensation_tables",
-           [](const PythonMachine& s, const std::array<int, 3>& nodes, const std::string& pose, int functions, int linuxcncType,
-              const std::string& checkProgram) {
-             CompensationTablesRequest request;
-             request.checkProgram = checkProgram;
-             request.grid.counts = nodes;
-             if (!pose.empty()) request.grid.pose = poseFromText(s, pose, "pose", true);
-             request.oneAxisFunctions = functions;
-             request.linuxcncType = linuxcncType;
+           [](const PythonMachine& s, const OptionValues& options) {
+             const CompensationTablesRequest request = compensationTablesRequest(s, options);
              CompensationTablesResult r;
              {
                py::gil_scoped_release release;
@@ -29,24 +23,18 @@ void exposeCompensation(MachineClass& machine) {
              return toPython(j);
            })
       .def("deviation",
-           [](const PythonMachine& s, const std::string& program, const std::string& intended, const std::map<int, double>& toolLengths,
-              double step) {
+           [](const PythonMachine& s, const OptionValues& options) {
+             const ProgramDeviationRequest request = programDeviationRequest(options);
              ProgramDeviationResult r;
              {
                py::gil_scoped_release release;
-               r = programDeviationFile(s, {program, intended, toolLengths, {step}});
+               r = programDeviationFile(s, request);
              }
              return toPython(toJson(r));
            })
       .def("compensate_program",
-           [](const PythonMachine& s, const std::string& path, const std::map<int, double>& toolLengths, std::optional<double> tolerance,
-              std::optional<double> directionTolerance, const std::string& checkErrors) {
-             ProgramCompensationRequest request;
-             request.programFile = path;
-             request.toolLengths = toolLengths;
-             request.checkErrorsFile = checkErrors;
-             if (tolerance) request.options.tolerance = *tolerance;
-             if (directionTolerance) request.options.directionTolerance = *directionTolerance;
+           [](const PythonMachine& s, const OptionValues& options) {
+             const ProgramCompensationRequest request = programCompensationRequest(options);
              ProgramCompensationResult r;
              {
                py::gil_scoped_release release;

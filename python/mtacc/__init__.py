@@ -125,16 +125,17 @@ def _options(**given):
     return values
 
 
-def _pose_text(pose, key):
-    """{axis: mm or deg}, or the CLI's pose text itself, as the CLI's pose text "B=10.0,C=0.0"."""
-    if isinstance(pose, str):
-        return pose
-    if pose is not None and not isinstance(pose, Mapping):
-        raise InputError(f"{key}: expected {{axis: mm or deg}} or the text 'B=10,C=0', not {type(pose).__name__}")
+def _assignments(values, key):
+    """{name: number} ({axis: mm or deg}, {tool: mm}), or the CLI's text itself, as the CLI's text
+    "B=10.0,C=0.0"; None stays None (the workflow's default)."""
+    if values is None or isinstance(values, str):
+        return values
+    if not isinstance(values, Mapping):
+        raise InputError(f"{key}: expected {{name: number}} or the text 'B=10,C=0', not {type(values).__name__}")
     try:
-        return ",".join(f"{name}={float(value)!r}" for name, value in (pose or {}).items())
+        return ",".join(f"{name}={float(value)!r}" for name, value in values.items())
     except (TypeError, ValueError):
-        raise InputError(f"{key}: each axis's position must be a number (mm or deg)") from None
+        raise InputError(f"{key}: each value must be a number") from None
 
 
 class Errors(MutableMapping):
@@ -275,7 +276,7 @@ class Machine:
         commands that reach the pose on the machine with its errors (the inverse error model), with the
         nominal pose it started from and the residual (um, urad); near: a pose ({axis: mm or deg}) whose
         rotary angles the solution stays closest to, a free angle at a singular pose kept at its value."""
-        result, _ = self._core.ik([list(map(float, tcp))], [list(map(float, tool))], branch, all, with_errors, _pose_text(near, "near"))
+        result, _ = self._core.ik([list(map(float, tcp))], [list(map(float, tool))], branch, all, with_errors, _assignments(near, "near") or "")
         return result["solutions"]
 
     def ik_path(self, tcps, tools, branch="auto", with_errors=False):
@@ -392,18 +393,18 @@ class Machine:
         errors, of the changes alone and added by them, as `mtacc stiffness --json` (values in um or urad)."""
         return self._core.stiffness(_options(samples=samples))
 
-    def compensate_program(self, path, tool_lengths=None, tolerance=None, direction_tolerance=None, check_errors=None):
-        """The axis program (G-code) at `path` compensated for this machine's errors, as `mtacc compensate
-        --json`, plus "gcode", the compensated program's text. tool_lengths: {H number: mm beyond the
-        machine's tool} for G43 H<n>; tolerance (um) and direction_tolerance (urad): the deviation allowed
-        between written points (default 0.1 um and 5 urad). "deviation_before" and "deviation_after": the
-        TCP deviation from the program's nominal path on the machine with its errors, as written and
-        compensated; check_errors: an errors file of this machine (as measured again, or a simulation's
-        truth) both are also run on ("check")."""
-        lengths = {int(k): float(v) for k, v in (tool_lengths or {}).items()}
-        mm = None if tolerance is None else float(tolerance) * 1e-3
-        rad = None if direction_tolerance is None else float(direction_tolerance) * 1e-6
-        return self._core.compensate_program(str(path), lengths, mm, rad, _text(check_errors))
+    def compensate_program(self, program, tool_length=None, tolerance=None, direction_tolerance=None, check_errors=None):
+        """The axis program (G-code) at `program` compensated for this machine's errors, as `mtacc
+        compensate --json`, plus "gcode", the compensated program's text. tool_length: {H number: mm
+        beyond the machine's tool} for G43 H<n> (or the CLI's text "1=0,2=35.5"); tolerance (um) and
+        direction_tolerance (urad): the deviation allowed between written points (default 0.1 um and
+        5 urad). "deviation_before" and "deviation_after": the TCP deviation from the program's
+        nominal path on the machine with its errors, as written and compensated; check_errors: an
+        errors file of this machine (as measured again, or a simulation's truth) both are also run
+        on ("check")."""
+        return self._core.compensate_program(_options(program=program, tool_length=_assignments(tool_length, "tool_length"),
+                                                      tolerance=tolerance, direction_tolerance=direction_tolerance,
+                                                      check_errors=check_errors))
 
     def tcp_uncertainty(self, q):
         """(n, 3): the standard uncertainty (k = 1) of the TCP position [um] along x, y, z of the workpiece
@@ -412,22 +413,25 @@ class Machine:
         q: one pose (axes,) or many (n, axes) [mm, deg]. Raises InputError for errors no identification wrote."""
         return self._core.tcp_uncertainty(self._q(q))
 
-    def deviation(self, program, intended=None, tool_lengths=None, step=0.5):
+    def deviation(self, program, intended=None, tool_length=None, step=None):
         """The program (G-code) run on this machine with its errors, against the nominal path of
         `intended` (another program, at its closest point) or its own, as `mtacc deviation --json`:
         largest and RMS TCP deviation (um), tool direction (urad), per feed block ("blocks", by line),
-        sampled every `step` mm of nominal TCP path (at least 4 a block)."""
-        lengths = {int(k): float(v) for k, v in (tool_lengths or {}).items()}
-        return self._core.deviation(str(program), _text(intended), lengths, float(step))
+        sampled every `step` mm of nominal TCP path (at least 4 a block; default 0.5). tool_length:
+        {H number: mm beyond the machine's tool} for G43 H<n>, or the CLI's text "1=0,2=35.5"."""
+        return self._core.deviation(_options(program=program, intended=intended, tool_length=_assignments(tool_length, "tool_length"),
+                                             step=step))
 
-    def compensation_tables(self, nodes=(21, 21, 21), pose=None, functions=9, linuxcnc_type=1, check_program=None):
+    def compensation_tables(self, nodes=None, pose=None, functions=None, linuxcnc_type=None, check_program=None):
         """Controller tables for this machine, as `mtacc compensate --tables --json`: the correction grid
-        over X, Y, Z (`nodes` along each, over its travel) at `pose` of the other axes ({axis: mm or deg},
-        default 0), its reduction to at most `functions` one-axis functions and the LinuxCNC COMP_FILE of
-        each axis, each with the TCP error a controller applying it leaves ("residual", um), and along
-        `check_program` (G-code, "along_program") when given. "contents" holds each file's text by name."""
-        return self._core.compensation_tables([int(n) for n in nodes], _pose_text(pose, "pose"), int(functions), int(linuxcnc_type),
-                                              "" if check_program is None else str(check_program))
+        over X, Y, Z (`nodes` along each over its travel, default (21, 21, 21)) at `pose` of the other
+        axes ({axis: mm or deg}, default 0), its reduction to at most `functions` one-axis functions
+        (default 9) and the LinuxCNC COMP_FILE of each axis (linuxcnc_type 1, trims, or 0), each with
+        the TCP error a controller applying it leaves ("residual", um), and along `check_program`
+        (G-code, "along_program") when given. "contents" holds each file's text by name."""
+        nodes = None if nodes is None or isinstance(nodes, str) else ",".join(str(int(n)) for n in nodes)
+        return self._core.compensation_tables(_options(nodes=nodes, pose=_assignments(pose, "pose"), functions=functions,
+                                                       linuxcnc_type=linuxcnc_type, check_program=check_program))
 
     def compare_plate(self, path):
         """A measured hole or ball plate (CSV, docs/file-formats.md) against this machine's error model, as
@@ -476,7 +480,7 @@ class Machine:
                   "origin": f"{origin[0]}, {origin[1]}, {origin[2]} mm", "axes": f"{u[0]},{u[1]},{u[2]} / {v[0]},{v[1]},{v[2]}",
                   "stylus": f"{stylus[0]}, {stylus[1]}, {stylus[2]} mm"}
         if pose is not None:
-            layout["pose"] = _pose_text(pose, "pose")
+            layout["pose"] = _assignments(pose, "pose")
         if probe is not None:
             layout["probe"] = f"{probe[0]}, {probe[1]} um"
         if simulation is not None:

@@ -61,7 +61,7 @@ OptionReader::OptionReader(const OptionSchema& schema, const OptionValues& value
     if (f->kind != OptionKind::List && given.size() > 1) throw InputError({"", 0, key}, "given more than once");
   }
   for (const auto& f : schema.fields)
-    if (f.positional && !values.contains(f.key)) throw InputError({"", 0, f.key}, "is required");
+    if ((f.positional || f.required) && !values.contains(f.key)) throw InputError({"", 0, f.key}, "is required");
 }
 
 const OptionField& OptionReader::field(const std::string& key, OptionKind kind) const {

@@ -12,6 +12,7 @@
 #include <set>
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/core/text_file.hpp"
 
@@ -418,6 +419,16 @@ GcodeProgram parseGcodeProgram(std::string_view text, const std::string& file, c
 
 GcodeProgram readGcodeProgram(const std::string& path, const Machine& machine, const GcodeReadOptions& options) {
   return parseGcodeProgram(readTextFile(path), path, machine, options);
+}
+
+std::map<int, double> toolLengthsFromText(const std::string& text, const std::string& key) {
+  std::map<int, double> lengths;
+  for (const auto& a : parseAssignments(text, key)) lengths[parseCount(a.name, key, 0, 9999)] = parseNumber(a.value, key + " " + a.name);
+  return lengths;
+}
+
+OptionField toolLengthOption() {
+  return {"tool_length", OptionKind::Text, "lengths of the tools named by G43 H<n>, e.g. 1=0,2=35.5 (mm beyond the machine's tool)"};
 }
 
 }  // namespace mtacc

@@ -1,12 +1,14 @@
 #include "mtacc/workflows/option_schemas.hpp"
 
 #include "mtacc/workflows/budget.hpp"
+#include "mtacc/workflows/compensate_options.hpp"
 #include "mtacc/workflows/component_fit.hpp"
 #include "mtacc/workflows/cone_study.hpp"
 #include "mtacc/workflows/cubic_identification.hpp"
 #include "mtacc/workflows/cubic_test.hpp"
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/plates.hpp"
+#include "mtacc/workflows/program_deviation.hpp"
 #include "mtacc/workflows/stiffness.hpp"
 #include "mtacc/workflows/thermal_drift.hpp"
 
@@ -14,7 +16,18 @@ namespace mtacc {
 
 const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
   static const std::map<std::string, const OptionSchema*> schemas{
-      {"budget", &budgetSchema()}, {"cone", &coneSchema()}, {"cubic", &cubicTestSchema()}, {"cubic-identify", &cubicIdentificationSchema()}, {"drift", &driftTestSchema()}, {"fit", &componentFitSchema()}, {"identify", &identificationSchema()}, {"observability", &observabilitySchema()}, {"plate-identify", &plateIdentificationSchema()}, {"stiffness", &stiffnessSchema()}};
+      {"budget", &budgetSchema()},
+      {"compensate", &compensateSchema()},
+      {"cone", &coneSchema()},
+      {"cubic", &cubicTestSchema()},
+      {"cubic-identify", &cubicIdentificationSchema()},
+      {"deviation", &programDeviationSchema()},
+      {"drift", &driftTestSchema()},
+      {"fit", &componentFitSchema()},
+      {"identify", &identificationSchema()},
+      {"observability", &observabilitySchema()},
+      {"plate-identify", &plateIdentificationSchema()},
+      {"stiffness", &stiffnessSchema()}};
   return schemas;
 }
 

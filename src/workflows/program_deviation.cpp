@@ -19,6 +19,27 @@ GcodeProgram programWithFeedMoves(const std::string& file, const Machine& machin
 
 }  // namespace
 
+const OptionSchema& programDeviationSchema() {
+  static const OptionSchema schema{
+      "deviation",
+      {{.key = "program", .kind = OptionKind::Text, .help = "the G-code program run (axis positions in mm and deg)", .required = true},
+       {"intended", OptionKind::Text, "the program whose nominal path was meant (e.g. the one compensated into --program); default: --program's own"},
+       toolLengthOption(),
+       // its range (0.001 to 100 mm) is checked where the path is sampled
+       {"step", OptionKind::Number, "nominal TCP path between samples [mm] (at least 4 a block)", "0.5"}}};
+  return schema;
+}
+
+ProgramDeviationRequest programDeviationRequest(const OptionValues& values) {
+  const OptionReader read(programDeviationSchema(), values);
+  ProgramDeviationRequest r;
+  r.programFile = *read.text("program");
+  r.intendedFile = read.text("intended").value_or("");
+  r.toolLengths = toolLengthsFromText(read.text("tool_length").value_or(""), "tool_length");
+  r.options.step = *read.number("step");
+  return r;
+}
+
 ProgramDeviationResult programDeviationFile(const MachineSetup& setup, const ProgramDeviationRequest& request) {
   ProgramDeviationResult r{setup, programWithFeedMoves(request.programFile, *setup.machine, request.toolLengths), std::nullopt, {}, {}};
   if (!request.intendedFile.empty()) r.intended = programWithFeedMoves(request.intendedFile, *setup.machine, request.toolLengths);

@@ -36,11 +36,11 @@ def test_tool_lengths_and_tolerances(tmp_path):
     machine = mtacc.Machine("three-axis-vertical")
     with pytest.raises(mtacc.InputError, match=r"tool.nc:1: .*length of tool 2"):
         machine.compensate_program(program)
-    short, long = (machine.compensate_program(program, tool_lengths={2: length}) for length in (0.0, 100.0))
+    short, long = (machine.compensate_program(program, tool_length={2: length}) for length in (0.0, 100.0))
     # The pitch of X (EBX, 12.5 urad at X = 500) over a 100 mm longer tool: 1.25 um more correction of X.
     assert abs(long["largest_correction_um_urad"]["X"] - short["largest_correction_um_urad"]["X"]) == pytest.approx(1.25, abs=1e-3)
     with pytest.raises(mtacc.InputError, match="tolerance"):
-        machine.compensate_program(program, tool_lengths={2: 0.0}, tolerance=float("nan"))
+        machine.compensate_program(program, tool_length={2: 0.0}, tolerance=float("nan"))
 
 
 def test_bad_gcode_is_located(tmp_path):

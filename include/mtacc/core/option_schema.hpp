@@ -32,6 +32,7 @@ struct OptionField {
   bool lowExcluded = false;
   std::string outOfRange{};
   bool positional = false;  // the CLI takes it without a flag name; it must be given
+  bool required = false;    // a flag that must be given
 };
 
 // `threads`, as every workflow that takes it declares it (core/parallel.hpp: 0 = every core).

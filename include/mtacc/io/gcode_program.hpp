@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/compensation/nc_program.hpp"
 #include "mtacc/machine/machine.hpp"
 
@@ -47,5 +48,11 @@ class GcodeLineReader {
 GcodeProgram parseGcodeProgram(std::string_view text, const std::string& file, const Machine& machine,
                                const GcodeReadOptions& options = {});
 GcodeProgram readGcodeProgram(const std::string& path, const Machine& machine, const GcodeReadOptions& options = {});
+
+// "1=0,2=35.5": the lengths (mm beyond the machine file's tool) of the tools G43 H<n> names.
+// Throws InputError naming `key` for a tool number outside 0..9999 or a length not a number.
+std::map<int, double> toolLengthsFromText(const std::string& text, const std::string& key);
+// The option `tool_length` of the workflows that read a program, read by toolLengthsFromText.
+OptionField toolLengthOption();
 
 }  // namespace mtacc

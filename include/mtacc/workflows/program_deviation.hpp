@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mtacc/compensation/path_deviation.hpp"
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/io/gcode_program.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
@@ -31,6 +32,10 @@ struct ProgramDeviationResult {
   // of the residual; empty otherwise.
   std::vector<Vec3> uncertainty;
 };
+
+// program (required), intended, tool_length ("1=0,2=35.5", mm), step (mm).
+const OptionSchema& programDeviationSchema();
+ProgramDeviationRequest programDeviationRequest(const OptionValues& values);
 
 // Throws InputError naming the file and line of bad G-code, a program without feed moves, or
 // the option ("step") out of range.
