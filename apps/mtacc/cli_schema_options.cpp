@@ -10,7 +10,8 @@ namespace {
 std::string typeName(const OptionField& field) {
   switch (field.kind) {
     case OptionKind::Count: return "INT";
-    case OptionKind::Number: return "FLOAT";
+    case OptionKind::Number:
+    case OptionKind::Numbers: return "FLOAT";
     case OptionKind::Quantity: return field.dimension == Dimension::Length ? "LENGTH" : "ANGLE";
     default: return "TEXT";
   }
@@ -27,9 +28,10 @@ void addSchemaOptions(CLI::App& cmd, const OptionSchema& schema, OptionValues& v
     const std::string key = field.key;
     if (field.kind == OptionKind::Flag)
       cmd.add_flag_callback(flag, [&values, key] { values[key] = {"true"}; }, help);
-    else if (field.kind == OptionKind::List)
+    else if (field.kind == OptionKind::List || field.kind == OptionKind::Numbers)
       cmd.add_option_function<std::vector<std::string>>(flag, [&values, key](const std::vector<std::string>& given) { values[key] = given; },
-                                                        help);
+                                                        help)
+          ->type_name(typeName(field));
     else
       cmd.add_option_function<std::string>(flag, [&values, key](const std::string& given) { values[key] = {given}; }, help)
           ->type_name(typeName(field))

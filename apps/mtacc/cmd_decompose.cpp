@@ -12,15 +12,14 @@ namespace mtacc::cli {
 namespace {
 
 struct DecomposeCliOptions : MachineOptions {
-  std::string set;
-  size_t seriesPoints = 0;
-  std::string driftFrame;
+  OptionValues values;
   bool strict = false;
 };
 
 void run(const DecomposeCliOptions& o) {
-  const auto r = decomposeRecordedSet(loadMachineSetup(o.source), loadDecompositionSetWithDriftFrame(o.set, o.driftFrame, "--drift-frame"));
-  const auto j = toJson(r, o.seriesPoints);
+  const DecompositionRequest request = decompositionRequest(o.values);
+  const auto r = decomposeRecordedSet(loadMachineSetup(o.source), loadDecompositionSet(request));
+  const auto j = toJson(r, request.seriesPoints);
   std::string human = fmt::format("{} tests; motion errors fitted at {:g} mm/min (Legendre degree {} in the normalised {}), {} interpolation\n\n",
                                   r.tests.size(), j["reference_feed_mm_per_min"].get<double>(), r.set.degree, j["parameter"].get<std::string>(),
                                   j["interpolation"].get<std::string>());
@@ -75,11 +74,7 @@ void addDecomposeCommand(CLI::App& app) {
   auto o = std::make_shared<DecomposeCliOptions>();
   auto* cmd = app.add_subcommand("decompose", "recorded TCP errors over feeds split into contouring, link, motion, drift and dynamic errors (Andolfatto et al. 2011)");
   addMachineOptions(*cmd, *o);
-  cmd->add_option("set", o->set, "decomposition set (YAML, docs/file-formats.md \"Decomposition sets\")")->required();
-  cmd->add_option("--series", o->seriesPoints, "with --json: each test's contributions along the normalised path u, at most this many "
-                                               "points (every k-th sample)")->check(CLI::Range(0, 10000000));
-  cmd->add_option("--drift-frame", o->driftFrame,
-                  "where the drift is constant over a test: machine (Andolfatto et al. 2011's, the default) or workpiece; overrides the set's drift_frame");
+  addSchemaOptions(*cmd, decompositionSchema(), o->values);
   cmd->add_flag("--strict", o->strict, "exit with status 4 when a result is doubtful (offset at the search limit, instrument spikes)");
   cmd->callback([o] { run(*o); });
 }

@@ -11,32 +11,18 @@ namespace mtacc::python {
 
 void exposeDynamics(py::module_& mod, MachineClass& machine) {
   machine
-      .def("decompose", [](const PythonMachine& s, const std::string& setFile, size_t seriesPoints, const std::string& driftFrame) {
-        const auto set = loadDecompositionSetWithDriftFrame(setFile, driftFrame, "drift_frame");
+      .def("decompose", [](const PythonMachine& s, const OptionValues& options) {
+        const DecompositionRequest request = decompositionRequest(options);
+        const auto set = loadDecompositionSet(request);
         RecordedDecomposition result;
         {
           py::gil_scoped_release release;
           result = decomposeRecordedSet(s, set);
         }
-        return toPython(toJson(result, seriesPoints));
+        return toPython(toJson(result, request.seriesPoints));
       })
-      .def("simulate_motion", [](const PythonMachine& s, const std::string& program, const std::string& folder, const std::vector<double>& feeds,
-                                 const std::string& structure, const std::string& noise, double acceleration, double jerkTimeMs,
-                                 const std::vector<double>& kv, const std::vector<double>& feedForward, double clockOffsetMs, std::uint64_t seed,
-                                 const std::string& format) {
-        MotionSimulationRequest request;
-        request.program = program;
-        request.folder = folder;
-        if (!feeds.empty()) request.feeds = feeds;
-        request.structure = structure;
-        request.noise = parseQuantityAs(noise, Dimension::Length, "noise");
-        request.limits.acceleration = acceleration;
-        request.limits.jerkTime = jerkTimeMs * 1e-3;
-        request.positionGains = kv;
-        request.feedForwards = feedForward;
-        request.format = signalFormatNamed(format, "format");
-        request.clockOffset = clockOffsetMs * 1e-3;
-        request.seed = seed;
+      .def("simulate_motion", [](const PythonMachine& s, const OptionValues& options) {
+        const MotionSimulationRequest request = motionSimulationRequest(options);
         MotionSimulationResult simulation;
         {
           py::gil_scoped_release release;

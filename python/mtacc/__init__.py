@@ -439,27 +439,26 @@ class Machine:
         the misalignment removed, and the residual's k = 2 bound when the file states the 2S values."""
         return self._core.compare_plate(str(path))
 
-    def decompose(self, set_file, series_points=0, drift_frame=None):
+    def decompose(self, set, series=None, drift_frame=None):
         """Andolfatto et al. 2011's decomposition of recorded signals (a decomposition set, docs/file-formats.md), as
         `mtacc decompose --json`: per feed the clock offset (ms), shares of eq. 21 with both denominators,
         drift, maxima and dynamic RMS (um), and the power law of the dynamic RMS over the feeds. With
-        series_points > 0, each test's contributions along the normalised path u ("series", um). drift_frame:
+        series > 0, each test's contributions along the normalised path u ("series", um), at most that
+        many points. drift_frame:
         "machine" (Andolfatto et al. 2011's: the drift constant in the machine frame) or "workpiece"; default the set's
         drift_frame, else machine. Warnings (an offset at its search limit, instrument spikes): result["warnings"]."""
-        return self._core.decompose(str(set_file), int(series_points), _text(drift_frame))
+        return self._core.decompose(_options(set=set, series=series, drift_frame=drift_frame))
 
-    def simulate_motion(self, program, output, feeds=None, structure="", noise="0.2 um", acceleration=3000.0,
-                        jerk_time_ms=20.0, kv=40.0, feed_forward=0.99, clock_offset_ms=18.0, seed=1, format="csv"):
+    def simulate_motion(self, program, output, feeds=None, structure=None, noise=None, seed=None, acceleration=None, jerk_time_ms=None,
+                        kv=None, feed_forward=None, format=None, clock_offset_ms=None):
         """Andolfatto et al. 2011's virtual machine runs the G-code `program` at each feed (mm/min, FGROUP; default the
         seed's ladder) and writes the command, encoder, instrument and truth signals (format "csv" or
         "npy") and set.yaml into `output`, as `mtacc simulate motion --json`. `structure`: a structure
         model for the dynamic error. `kv` (1/s) and `feed_forward`: one number for every axis or a list
-        with one per commanded axis."""
-        def per_axis(value):
-            return [float(v) for v in value] if isinstance(value, (list, tuple)) else [float(value)]
-        return self._core.simulate_motion(str(program), str(output), [float(f) for f in (feeds or [])], str(structure), str(noise),
-                                          float(acceleration), float(jerk_time_ms), per_axis(kv), per_axis(feed_forward),
-                                          float(clock_offset_ms), int(seed), str(format))
+        with one per commanded axis. noise: the instrument's, e.g. "0.2 um" (the default)."""
+        return self._core.simulate_motion(_options(program=program, output=output, feeds=feeds, structure=structure, noise=noise, seed=seed,
+                                                   acceleration=acceleration, jerk_time_ms=jerk_time_ms, kv=kv, feed_forward=feed_forward,
+                                                   format=format, clock_offset_ms=clock_offset_ms))
 
     def identify_plates(self, files, piece=None, errors_out=None):
         """The component functions of X, Y, Z (C1 piecewise, pieces of about `piece` mm, default 100) and the

@@ -595,7 +595,7 @@ def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=
     drift_results = [drift_test(f, series_points=DRIFT_SERIES_POINTS) for f in drift]
     component_results = [machine.fit_component(f) for f in components]
     plate_results = [machine.compare_plate(f) for f in plates]
-    decomposition_result = machine.decompose(decomposition, series_points=DECOMPOSITION_SERIES_POINTS) if decomposition else None
+    decomposition_result = machine.decompose(decomposition, series=DECOMPOSITION_SERIES_POINTS) if decomposition else None
     step("machine")
     parts = [f"<h1>Accuracy report: {html.escape(machine.name)}</h1>",
              f'<p class="meta">{html.escape(machine.file)} · structure {html.escape(machine.structure)} · '

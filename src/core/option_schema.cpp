@@ -49,7 +49,7 @@ OptionSchema OptionSchema::subset(std::string subsetName, const std::vector<std:
 std::string optionHelp(const OptionField& f) {
   std::string help = f.help;
   if (f.kind == OptionKind::Quantity) help += f.dimension == Dimension::Length ? " (a length with its unit, e.g. 0.5um)" : " (an angle with its unit, e.g. 10urad)";
-  if (f.kind == OptionKind::List) help += " (comma-separated, or the option repeated)";
+  if (f.kind == OptionKind::List || f.kind == OptionKind::Numbers) help += " (comma-separated, or the option repeated)";
   if (!f.defaultText.empty()) help += "; default " + f.defaultText;
   return help;
 }
@@ -58,7 +58,7 @@ OptionReader::OptionReader(const OptionSchema& schema, const OptionValues& value
   for (const auto& [key, given] : values) {
     const OptionField* f = schema.find(key);
     if (!f) throw InputError({"", 0, key}, fmt::format("not an option of {}; its options are: {}", schema.name, fmt::join(schema.keys(), ", ")));
-    if (f->kind != OptionKind::List && given.size() > 1) throw InputError({"", 0, key}, "given more than once");
+    if (f->kind != OptionKind::List && f->kind != OptionKind::Numbers && given.size() > 1) throw InputError({"", 0, key}, "given more than once");
   }
   for (const auto& f : schema.fields)
     if ((f.positional || f.required) && !values.contains(f.key)) throw InputError({"", 0, f.key}, "is required");
@@ -79,13 +79,24 @@ std::optional<std::string> OptionReader::scalar(const OptionField& f) const {
 
 std::optional<std::string> OptionReader::text(const std::string& key) const { return scalar(field(key, OptionKind::Text)); }
 
-std::vector<std::string> OptionReader::list(const std::string& key) const {
-  const OptionField& f = field(key, OptionKind::List);
+std::vector<std::string> OptionReader::items(const OptionField& f) const {
   std::vector<std::string> out;
-  const auto it = values_.find(key);
+  const auto it = values_.find(f.key);
   const std::vector<std::string> given = it != values_.end() ? it->second : splitList(f.defaultText);
   for (const auto& value : given)
     for (auto& item : splitList(value)) out.push_back(std::move(item));
+  return out;
+}
+
+std::vector<std::string> OptionReader::list(const std::string& key) const { return items(field(key, OptionKind::List)); }
+
+std::vector<double> OptionReader::numbers(const std::string& key) const {
+  const OptionField& f = field(key, OptionKind::Numbers);
+  std::vector<double> out;
+  for (const auto& item : items(f)) {
+    out.push_back(parseNumber(item, key));
+    requireInRange(f, out.back());
+  }
   return out;
 }
 

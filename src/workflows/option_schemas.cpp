@@ -9,8 +9,10 @@
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/plates.hpp"
 #include "mtacc/workflows/program_deviation.hpp"
+#include "mtacc/workflows/recorded_decomposition.hpp"
 #include "mtacc/workflows/stiffness.hpp"
 #include "mtacc/workflows/thermal_drift.hpp"
+#include "mtacc/workflows/virtual_motion.hpp"
 
 namespace mtacc {
 
@@ -21,12 +23,14 @@ const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
       {"cone", &coneSchema()},
       {"cubic", &cubicTestSchema()},
       {"cubic-identify", &cubicIdentificationSchema()},
+      {"decompose", &decompositionSchema()},
       {"deviation", &programDeviationSchema()},
       {"drift", &driftTestSchema()},
       {"fit", &componentFitSchema()},
       {"identify", &identificationSchema()},
       {"observability", &observabilitySchema()},
       {"plate-identify", &plateIdentificationSchema()},
+      {"simulate motion", &motionSimulationSchema()},
       {"stiffness", &stiffnessSchema()}};
   return schemas;
 }

@@ -40,10 +40,27 @@ AlignedTest alignedTest(const MachineSetup& setup, const DecompositionSet& set, 
 
 }  // namespace
 
-DecompositionSet loadDecompositionSetWithDriftFrame(const std::string& path, const std::string& driftFrame, const std::string& key) {
+const OptionSchema& decompositionSchema() {
+  static const OptionSchema schema{
+      "decompose",
+      {{.key = "set", .kind = OptionKind::Text, .help = "decomposition set (YAML, docs/file-formats.md \"Decomposition sets\")", .positional = true},
+       {.key = "series", .kind = OptionKind::Count,
+        .help = "with --json: each test's contributions along the normalised path u, at most this many points (every k-th sample)",
+        .defaultText = "0", .low = 0, .high = 10000000, .outOfRange = "must be from 0 to 10000000"},
+       {"drift_frame", OptionKind::Text,
+        "where the drift is constant over a test: machine (Andolfatto et al. 2011's, the default) or workpiece; overrides the set's drift_frame"}}};
+  return schema;
+}
+
+DecompositionRequest decompositionRequest(const OptionValues& values) {
+  const OptionReader read(decompositionSchema(), values);
+  return {*read.text("set"), read.text("drift_frame"), static_cast<size_t>(*read.count("series"))};
+}
+
+DecompositionSet loadDecompositionSet(const DecompositionRequest& request) {
   std::optional<DriftFrame> frame;
-  if (!driftFrame.empty()) frame = parseDriftFrame(driftFrame, InputLocation{"", 0, key});
-  auto set = loadDecompositionSet(path);
+  if (request.driftFrame) frame = parseDriftFrame(*request.driftFrame, InputLocation{"", 0, "drift_frame"});
+  auto set = loadDecompositionSet(request.set);
   if (frame) set.driftFrame = *frame;
   return set;
 }

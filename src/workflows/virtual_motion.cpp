@@ -46,6 +46,51 @@ std::vector<double> perAxis(const std::vector<double>& values, const std::vector
 
 }  // namespace
 
+const OptionSchema& motionSimulationSchema() {
+  static const OptionSchema schema{
+      "simulate motion",
+      {{.key = "program", .kind = OptionKind::Text, .help = "NC program (G-code) in axis positions; its F words are replaced by each feed",
+        .required = true},
+       {.key = "output", .kind = OptionKind::Text, .help = "Directory to write the signal files and set.yaml into", .required = true},
+       {.key = "feeds", .kind = OptionKind::Numbers, .help = "feeds in mm/min (FGROUP: mm and deg on one path length)",
+        .defaultText = "1000,1800,3240,5832,10498,18896", .low = 1e-3, .high = 1e6, .outOfRange = "each must be from 0.001 to 1e6 mm/min"},
+       {"structure", OptionKind::Text, "structure model (YAML or bundled name, e.g. wcayfxzt-compact) for the dynamic error"},
+       {.key = "noise", .kind = OptionKind::Quantity, .help = "Standard deviation of the instrument's noise per component", .defaultText = "0.2 um",
+        .low = 0, .high = 1, .outOfRange = "must be from 0 to 1 mm"},
+       {.key = "seed", .kind = OptionKind::Count, .help = "Random seed of the noise", .defaultText = "1", .low = 0, .high = 2147483647,
+        .outOfRange = "must be from 0 to 2147483647"},
+       {.key = "acceleration", .kind = OptionKind::Number, .help = "interpolator's acceleration limit, path units/s^2", .defaultText = "3000",
+        .low = 1e-3, .high = 1e7, .outOfRange = "must be from 0.001 to 1e7"},
+       {.key = "jerk_time_ms", .kind = OptionKind::Number, .help = "moving-average filter of the interpolator, ms", .defaultText = "20", .low = 0,
+        .high = 1000, .outOfRange = "must be from 0 to 1000 ms"},
+       {.key = "kv", .kind = OptionKind::Numbers, .help = "position loop gain, 1/s: one for every axis or one per axis, e.g. 40,45,50,35,30",
+        .defaultText = "40", .low = 1e-3, .high = 1e4, .outOfRange = "each must be from 0.001 to 10000 1/s"},
+       {.key = "feed_forward", .kind = OptionKind::Numbers, .help = "velocity feed-forward, 0..1: one for every axis or one per axis",
+        .defaultText = "0.99", .low = 0, .high = 1, .outOfRange = "each must be from 0 to 1"},
+       {"format", OptionKind::Text, "signal files: csv or npy (NumPy structured arrays)", "csv"},
+       {.key = "clock_offset_ms", .kind = OptionKind::Number, .help = "offset of the command recording's clock, ms", .defaultText = "18",
+        .low = -1e4, .high = 1e4, .outOfRange = "must be from -10000 to 10000 ms"}}};
+  return schema;
+}
+
+MotionSimulationRequest motionSimulationRequest(const OptionValues& values) {
+  const OptionReader read(motionSimulationSchema(), values);
+  MotionSimulationRequest r;
+  r.program = *read.text("program");
+  r.folder = *read.text("output");
+  r.feeds = read.numbers("feeds");
+  r.structure = read.text("structure").value_or("");
+  r.noise = *read.quantity("noise");
+  r.seed = static_cast<std::uint64_t>(*read.count("seed"));
+  r.limits.acceleration = *read.number("acceleration");
+  r.limits.jerkTime = *read.number("jerk_time_ms") * 1e-3;
+  r.positionGains = read.numbers("kv");
+  r.feedForwards = read.numbers("feed_forward");
+  r.format = signalFormatNamed(*read.text("format"), "format");
+  r.clockOffset = *read.number("clock_offset_ms") * 1e-3;
+  return r;
+}
+
 MotionSimulationResult simulateMotion(const MachineSetup& setup, const MotionSimulationRequest& request) {
   const auto& machine = *setup.machine;
   const auto program = readGcodeProgram(request.program, machine);

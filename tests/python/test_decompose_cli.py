@@ -57,7 +57,7 @@ def test_the_report_section_shows_every_feed(tmp_path):
     section = report.decomposition_section(machine.decompose(simulated["set"]))
     assert "<svg" in section and "Error decomposition (Andolfatto et al. 2011)" in section
     assert all(f">{feed}</td>" in section for feed in ("1000", "3240", "10498"))
-    along = report.decomposition_section(machine.decompose(simulated["set"], series_points=1000))
+    along = report.decomposition_section(machine.decompose(simulated["set"], series=1000))
     assert along.count("<svg") == section.count("<svg") + 2
     assert "The contributions along the path at 1000 mm/min" in along and "at 10498 mm/min" in along
 

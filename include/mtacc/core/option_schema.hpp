@@ -14,6 +14,7 @@ namespace mtacc {
 enum class OptionKind {
   Text,      // one string (a path, a name)
   List,      // strings, each value split at commas ("a,b" and "a", "b" alike)
+  Numbers,   // real numbers, given as a List is, each within [low, high]
   Flag,      // true when given
   Count,     // a whole number within [low, high]
   Number,    // a real number within [low, high]
@@ -68,6 +69,7 @@ class OptionReader {
 
   std::optional<std::string> text(const std::string& key) const;
   std::vector<std::string> list(const std::string& key) const;
+  std::vector<double> numbers(const std::string& key) const;
   bool flag(const std::string& key) const;
   std::optional<int> count(const std::string& key) const;
   std::optional<double> number(const std::string& key) const;
@@ -76,6 +78,7 @@ class OptionReader {
  private:
   const OptionField& field(const std::string& key, OptionKind kind) const;
   std::optional<std::string> scalar(const OptionField& f) const;
+  std::vector<std::string> items(const OptionField& f) const;
 
   const OptionSchema& schema_;
   const OptionValues& values_;

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/io/decomposition_set_yaml.hpp"
 #include "mtacc/procedures/recorded_test.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
@@ -34,9 +35,19 @@ struct RecordedDecomposition {
   std::vector<std::string> warnings;
 };
 
-// The set at `path` with its drift frame replaced by `driftFrame` ("machine" or "workpiece"; as
-// the set says when empty), which is checked before the set's files are read (an error names `key`).
-DecompositionSet loadDecompositionSetWithDriftFrame(const std::string& path, const std::string& driftFrame, const std::string& key);
+// set (the decomposition set's file), series (points of each test's contributions along u in the
+// JSON, 0: none), drift_frame ("machine" or "workpiece"; as the set says when not given).
+struct DecompositionRequest {
+  std::string set;
+  std::optional<std::string> driftFrame;
+  size_t seriesPoints = 0;
+};
+const OptionSchema& decompositionSchema();
+DecompositionRequest decompositionRequest(const OptionValues& values);
+
+// The request's set with its drift frame replaced, which is checked before the set's files are
+// read (an error names drift_frame).
+DecompositionSet loadDecompositionSet(const DecompositionRequest& request);
 
 // The errors file's model is taken as the identified link errors (delta_l = its TCP minus the
 // nominal TCP at the encoder positions); without one, delta_l = 0 and the reference test's fit

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/io/recorded_signal.hpp"
 #include "mtacc/virtual_controller/motion_interpolator.hpp"
 #include "mtacc/virtual_controller/virtual_recording.hpp"
@@ -46,6 +47,11 @@ struct MotionSimulationResult {
   std::vector<SimulatedFeed> feeds;
   std::string setFile;
 };
+
+// The options of `simulate motion`: program, output, feeds (mm/min), structure, noise, seed,
+// acceleration, jerk_time_ms, kv, feed_forward, format, clock_offset_ms.
+const OptionSchema& motionSimulationSchema();
+MotionSimulationRequest motionSimulationRequest(const OptionValues& values);
 
 // Throws InputError naming the program's file and line, the structure file, or the option
 // (kv, feed_forward for lists of the wrong length).
