@@ -11,15 +11,15 @@ namespace mtacc::cli {
 namespace {
 
 struct EvaluateCliOptions : MachineOptions {
-  std::string data;
+  OptionValues values;
 };
 
-void emitRTest(const EvaluateCliOptions& o, const RTestRunEvaluation& e) {
+void emitRTest(const EvaluateCliOptions& o, const std::string& data, const RTestRunEvaluation& e) {
   const auto& r = e.result;
   const Axis& axis = e.machine->axes[static_cast<size_t>(r.movingAxis)];
   const double unit = axis.isRotary() ? 1.0 / kDeg : 1.0;
   std::string human = fmt::format("R-test run '{}' ({} poses, {} from {:g} to {:g} {}) from {}\n\n", e.run.name, e.run.poses(), axis.name,
-                                  r.position.minCoeff() * unit, r.position.maxCoeff() * unit, axis.isRotary() ? "deg" : "mm", o.data);
+                                  r.position.minCoeff() * unit, r.position.maxCoeff() * unit, axis.isRotary() ? "deg" : "mm", data);
   const auto& a = r.aboutTheAxis;
   human += fmt::format("{:>10}  {:>9} {:>9} {:>9}", axis.name, "dX", "dY", "dZ");
   if (a) human += fmt::format("  {:>9} {:>9} {:>9}", "radial", "axial", "tangent.");
@@ -52,14 +52,15 @@ void emitRTest(const EvaluateCliOptions& o, const RTestRunEvaluation& e) {
 }
 
 void run(const EvaluateCliOptions& o) {
-  const auto evaluation = evaluateMeasurementFile(loadMachineSetup(o.source), o.data);
-  if (const auto* rtest = std::get_if<RTestRunEvaluation>(&evaluation)) return emitRTest(o, *rtest);
+  const std::string data = *OptionReader(evaluationSchema(), o.values).text("data");
+  const auto evaluation = evaluateMeasurementFile(loadMachineSetup(o.source), data);
+  if (const auto* rtest = std::get_if<RTestRunEvaluation>(&evaluation)) return emitRTest(o, data, *rtest);
   const auto& e = std::get<CircularEvaluation>(evaluation);
   const auto& r = e.result;
   const auto& g = r.diagnostics;
   const Vec3 ecc = r.eccentricity.eccentricity * 1e3;
   std::string human = fmt::format("Ballbar run '{}' ({} points, L = {:g} mm) from {}\n\n", e.run.name, e.run.poses(),
-                                  e.run.setup.length, o.data);
+                                  e.run.setup.length, data);
   human += fmt::format("Eccentricity (least-squares first harmonics)  x {:8.3f}  y {:8.3f}  z {:8.3f} um\n\n", ecc.x(), ecc.y(),
                        ecc.z());
   human += "ISO 230-4                 circular deviation G   radial deviation F (min .. max)\n";
@@ -94,7 +95,7 @@ void addEvaluateCommand(CLI::App& app) {
   auto o = std::make_shared<EvaluateCliOptions>();
   auto* cmd = app.add_subcommand("evaluate", "ISO 230-4 evaluation and diagnostics of a ballbar file, or an R-test run about its axis");
   addMachineOptions(*cmd, *o);
-  cmd->add_option("data", o->data, "Ballbar or R-test CSV (docs/file-formats.md)")->required();
+  addSchemaOptions(*cmd, evaluationSchema(), o->values);
   cmd->callback([o] { run(*o); });
 }
 

@@ -12,15 +12,16 @@ namespace mtacc::cli {
 namespace {
 
 struct PlateCliOptions : MachineOptions {
-  std::string data;
+  OptionValues values;
 };
 
 void run(const PlateCliOptions& o) {
-  const auto c = comparePlateFile(loadMachineSetup(o.source), o.data);
+  const std::string data = *OptionReader(plateComparisonSchema(), o.values).text("data");
+  const auto c = comparePlateFile(loadMachineSetup(o.source), data);
   const auto j = toJson(c);
   const auto& p = c.measurement.placement;
   std::string human = fmt::format("Plate {} x {} (pitch {:g} mm) from {}, reference feature at ({:g}, {:g}, {:g}) mm\n\n", c.measurement.plate.rows,
-                                  c.measurement.plate.columns, c.measurement.plate.pitch, o.data, p.origin.x(), p.origin.y(), p.origin.z());
+                                  c.measurement.plate.columns, c.measurement.plate.pitch, data, p.origin.x(), p.origin.y(), p.origin.z());
   human += fmt::format("{:>4} {:>4} {:>9} {:>9} | {:>9} {:>9} | {:>9} {:>9} | {:>9} {:>9}   (deviations along u, v in um)\n", "row", "col",
                        "u mm", "v mm", "measured", "", "model", "", "residual", "");
   std::string csv = "row,column,u_mm,v_mm,measured_u_um,measured_v_um,model_u_um,model_v_um,residual_u_um,residual_v_um\n";
@@ -77,7 +78,7 @@ void addPlateCommand(CLI::App& app) {
   auto o = std::make_shared<PlateCliOptions>();
   auto* cmd = app.add_subcommand("plate", "a measured hole or ball plate against the machine's error model (the 1991 BCR report)");
   addMachineOptions(*cmd, *o);
-  cmd->add_option("data", o->data, "plate measurement CSV (docs/file-formats.md \"Plate measurements\")")->required();
+  addSchemaOptions(*cmd, plateComparisonSchema(), o->values);
   cmd->callback([o] { run(*o); });
 
   auto io = std::make_shared<PlateIdentifyCliOptions>();

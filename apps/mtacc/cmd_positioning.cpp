@@ -10,16 +10,17 @@ namespace mtacc::cli {
 namespace {
 
 struct PositioningCliOptions : MachineOptions {
-  std::string data;
+  OptionValues values;
 };
 
 void run(const PositioningCliOptions& o) {
-  const auto e = evaluatePositioningFile(o.data);
+  const std::string data = *OptionReader(positioningSchema(), o.values).text("data");
+  const auto e = evaluatePositioningFile(data);
   const auto& r = e.result;
   const auto u = positioningUnits(e.test.axis);
   const double s = u.deviationScale;
   std::string human = fmt::format("ISO 230-2 positioning test '{}' ({} axis, {} targets x {} cycles each way) from {}\n\n", e.test.name,
-                                  e.test.axis == PositioningAxis::Linear ? "linear" : "rotary", r.positions.size(), r.cycles, o.data);
+                                  e.test.axis == PositioningAxis::Linear ? "linear" : "rotary", r.positions.size(), r.cycles, data);
   human += fmt::format("{:>12} {:>9} {:>9} {:>9} {:>9} {:>8} {:>8} {:>8} {:>8} {:>8}   ({})\n", fmt::format("target {}", u.target),
                        "mean ↑", "mean ↓", "mean", "B_i", "s ↑", "s ↓", "R ↑", "R ↓", "R_i", u.deviation);
   std::string csv = "# ISO 230-2 axis values, " + std::string(u.deviation) + "\n";
@@ -60,7 +61,7 @@ void addPositioningCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("positioning", "ISO 230-2 accuracy and repeatability of positioning of a linear or rotary axis");
   cmd->alias("iso230-2");
   addOutputOptions(*cmd, *o);
-  cmd->add_option("data", o->data, "ISO 230-2 KEY=value file or CSV target,cycle,forward,backward (docs/file-formats.md)")->required();
+  addSchemaOptions(*cmd, positioningSchema(), o->values);
   cmd->callback([o] { run(*o); });
 }
 

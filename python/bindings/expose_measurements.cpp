@@ -24,8 +24,12 @@ void exposeMeasurements(MachineClass& machine) {
         return toPython(toJson(simulatePlan(s, plan, o)));
       })
       .def("read_measurement", [](const PythonMachine& s, const std::string& path) { return toPython(runJson(*s.machine, readMeasurementFile(s, path))); })
-      .def("evaluate_ballbar", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(evaluateBallbarFile(s, path))); })
-      .def("evaluate_rtest", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(evaluateRTestFile(s, path))); })
+      .def("evaluate_ballbar", [](const PythonMachine& s, const OptionValues& options) {
+        return toPython(toJson(evaluateBallbarFile(s, *OptionReader(evaluationSchema(), options).text("data"))));
+      })
+      .def("evaluate_rtest", [](const PythonMachine& s, const OptionValues& options) {
+        return toPython(toJson(evaluateRTestFile(s, *OptionReader(evaluationSchema(), options).text("data"))));
+      })
       .def("xy_circle", [](const PythonMachine& s) {
         const auto r = xyCircleTest(s);
         return r ? toPython(toJson(*r)) : py::none().cast<py::object>();
@@ -57,7 +61,9 @@ void exposeMeasurements(MachineClass& machine) {
         if (!errorsOut.empty()) writeIdentifiedErrors(errorsOut, *study.machine, study.identified, identificationRecord(study), "errors_out");
         return toPython(toJson(study));
       })
-      .def("compare_plate", [](const PythonMachine& s, const std::string& path) { return toPython(toJson(comparePlateFile(s, path))); })
+      .def("compare_plate", [](const PythonMachine& s, const OptionValues& options) {
+        return toPython(toJson(comparePlateFile(s, *OptionReader(plateComparisonSchema(), options).text("data"))));
+      })
       .def("simulate_plate", [](const PythonMachine& s, const std::string& output, const std::map<std::string, std::string>& layout,
                                 const std::string& noise, std::uint64_t seed) {
         PlateSimulationRequest r{.output = output, .layout = {}, .noise = noise, .seed = seed};

@@ -10,7 +10,9 @@
 namespace mtacc::python {
 
 void exposeThermal(py::module_& mod) {
-  mod.def("positioning", [](const std::string& path) { return toPython(toJson(evaluatePositioningFile(path))); }, py::arg("path"));
+  mod.def("positioning", [](const OptionValues& options) {
+    return toPython(toJson(evaluatePositioningFile(*OptionReader(positioningSchema(), options).text("data"))));
+  });
   mod.def("thermal_state", [](const std::string& machine, const std::string& thermal, int points) {
     return toPython(thermalStateSummary({machine, "", "", std::nullopt, thermal}, points));
   });

@@ -51,11 +51,11 @@ def as_json(result):
     return result
 
 
-def positioning(path):
+def positioning(data):
     """ISO 230-2 evaluation of a positioning-test file (KEY=value or CSV, docs/file-formats.md),
     as `mtacc positioning --json`: per-target means, reversal, s and R, the axis values A, B, E, M,
     R (keys "A_forward", "A", ... in "axis_values") and the deviations, in um or arcsec ("unit")."""
-    return _positioning(str(path))
+    return _positioning(_options(data=data))
 
 
 def thermal_state(machine, path, points=101):
@@ -433,11 +433,11 @@ class Machine:
         return self._core.compensation_tables(_options(nodes=nodes, pose=_assignments(pose, "pose"), functions=functions,
                                                        linuxcnc_type=linuxcnc_type, check_program=check_program))
 
-    def compare_plate(self, path):
+    def compare_plate(self, data):
         """A measured hole or ball plate (CSV, docs/file-formats.md) against this machine's error model, as
         `mtacc plate --json`: per feature the measured and modelled deviations and the residual (um) with
         the misalignment removed, and the residual's k = 2 bound when the file states the 2S values."""
-        return self._core.compare_plate(str(path))
+        return self._core.compare_plate(_options(data=data))
 
     def decompose(self, set, series=None, drift_frame=None):
         """Andolfatto et al. 2011's decomposition of recorded signals (a decomposition set, docs/file-formats.md), as
@@ -514,18 +514,18 @@ class Machine:
         and the instrument's set-up (a ballbar's "length_mm")."""
         return self._core.read_measurement(str(path))
 
-    def evaluate_ballbar(self, path):
+    def evaluate_ballbar(self, data):
         """ISO 230-4 evaluation (circular deviations G, F, H in um), eccentricity (um) and diagnostics of
         a ballbar CSV file (as `mtacc evaluate --json`)."""
-        return self._core.evaluate_ballbar(str(path))
+        return self._core.evaluate_ballbar(_options(data=data))
 
-    def evaluate_rtest(self, path):
+    def evaluate_rtest(self, data):
         """An R-test run about the axis that moves (ISO 10791-6, as `mtacc evaluate --json`): the axis
         ("moving_axis", its "position" in mm or deg), the sphere's displacement per pose in machine X, Y,
         Z (["readings_um"], (n, 3)) and its range ("range_um"); where the sphere travels around the axis
         (a table axis), "about_the_axis": the fitted line and per pose the radial, axial and tangential
         components ["radial_axial_tangential_um"] (n, 3) with their ranges."""
-        return _with_arrays(self._core.evaluate_rtest(str(path)), ("position",), ("readings_um",), ("q",),
+        return _with_arrays(self._core.evaluate_rtest(_options(data=data)), ("position",), ("readings_um",), ("q",),
                             ("about_the_axis", "radial_axial_tangential_um"))
 
     def observability(self, plan, data=None, parameters=None, setup=None, noise=None, from_nominal=None, threads=None):

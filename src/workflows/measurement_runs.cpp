@@ -203,6 +203,12 @@ RTestRunEvaluation evaluateRTestFile(const MachineSetup& setup, const std::strin
   return evaluateRTestRun(setup, file, readMeasurementCsv(setup.nominal(), file));
 }
 
+const OptionSchema& evaluationSchema() {
+  static const OptionSchema schema{
+      "evaluate", {{.key = "data", .kind = OptionKind::Text, .help = "Ballbar or R-test CSV (docs/file-formats.md)", .positional = true}}};
+  return schema;
+}
+
 std::variant<CircularEvaluation, RTestRunEvaluation> evaluateMeasurementFile(const MachineSetup& setup, const std::string& file) {
   auto run = readMeasurementCsv(setup.nominal(), file);
   if (run.instrument == Instrument::Ballbar) return evaluateBallbarRun(setup, file, std::move(run));

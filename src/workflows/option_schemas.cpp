@@ -7,7 +7,9 @@
 #include "mtacc/workflows/cubic_identification.hpp"
 #include "mtacc/workflows/cubic_test.hpp"
 #include "mtacc/workflows/identification.hpp"
+#include "mtacc/workflows/measurement_runs.hpp"
 #include "mtacc/workflows/plates.hpp"
+#include "mtacc/workflows/positioning.hpp"
 #include "mtacc/workflows/program_deviation.hpp"
 #include "mtacc/workflows/recorded_decomposition.hpp"
 #include "mtacc/workflows/stiffness.hpp"
@@ -26,10 +28,13 @@ const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
       {"decompose", &decompositionSchema()},
       {"deviation", &programDeviationSchema()},
       {"drift", &driftTestSchema()},
+      {"evaluate", &evaluationSchema()},
       {"fit", &componentFitSchema()},
       {"identify", &identificationSchema()},
       {"observability", &observabilitySchema()},
+      {"plate", &plateComparisonSchema()},
       {"plate-identify", &plateIdentificationSchema()},
+      {"positioning", &positioningSchema()},
       {"simulate motion", &motionSimulationSchema()},
       {"stiffness", &stiffnessSchema()}};
   return schemas;

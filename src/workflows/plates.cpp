@@ -23,6 +23,12 @@ PlatePoses measuredPlatePoses(const KinematicModel& nominal, const PlateMeasurem
 
 }  // namespace
 
+const OptionSchema& plateComparisonSchema() {
+  static const OptionSchema schema{
+      "plate", {{.key = "data", .kind = OptionKind::Text, .help = "plate measurement CSV (docs/file-formats.md \"Plate measurements\")", .positional = true}}};
+  return schema;
+}
+
 PlateComparison comparePlateFile(const MachineSetup& setup, const std::string& path) {
   PlateComparison c;
   c.machine = setup.machine;

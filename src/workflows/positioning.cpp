@@ -10,6 +10,14 @@ PositioningUnits positioningUnits(PositioningAxis axis) {
   return {1.0 / kArcsec, "arcsec", 1.0 / kDeg, "deg"};
 }
 
+const OptionSchema& positioningSchema() {
+  static const OptionSchema schema{
+      "positioning",
+      {{.key = "data", .kind = OptionKind::Text, .help = "ISO 230-2 KEY=value file or CSV target,cycle,forward,backward (docs/file-formats.md)",
+        .positional = true}}};
+  return schema;
+}
+
 PositioningEvaluation evaluatePositioningFile(const std::string& path) {
   PositioningEvaluation e;
   e.file = path;

@@ -22,6 +22,8 @@ PYTHON_ONLY = {"series_points"}
 CLI_ONLY_OF = {"compensate": {"gcode", "tables", "every", "updates"}}
 METHODS = {"compensate": (mtacc.Machine.compensate_program, mtacc.Machine.compensation_tables), "deviation": mtacc.Machine.deviation,
            "decompose": mtacc.Machine.decompose, "simulate motion": mtacc.Machine.simulate_motion,
+           "evaluate": (mtacc.Machine.evaluate_ballbar, mtacc.Machine.evaluate_rtest), "plate": mtacc.Machine.compare_plate,
+           "positioning": mtacc.positioning,
            "budget": mtacc.Machine.budget, "stiffness": mtacc.Machine.stiffness, "identify": mtacc.Machine.identify, "observability": mtacc.Machine.observability, "drift": mtacc.drift_test,
            "cubic-identify": mtacc.Machine.cubic_identify, "cone": mtacc.Machine.cone,
            "cubic": mtacc.Machine.cubic, "fit": mtacc.Machine.fit_component,

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/measurement/circular_evaluation.hpp"
 #include "mtacc/measurement/rtest_evaluation.hpp"
 #include "mtacc/measurement/simulation.hpp"
@@ -84,5 +85,7 @@ nlohmann::json toJson(const RTestRunEvaluation& evaluation);
 // `mtacc evaluate`: a ballbar run's circular evaluation or an R-test run's, by the file's
 // instrument; any other instrument is refused.
 std::variant<CircularEvaluation, RTestRunEvaluation> evaluateMeasurementFile(const MachineSetup& setup, const std::string& file);
+// data: the run's file.
+const OptionSchema& evaluationSchema();
 
 }  // namespace mtacc

@@ -28,6 +28,8 @@ struct PlateComparison {
 
 // Throws InputError naming the file, UnreachablePose naming the feature.
 PlateComparison comparePlateFile(const MachineSetup& setup, const std::string& path);
+// data: the plate measurement's file.
+const OptionSchema& plateComparisonSchema();
 // Deviations in um, positions in mm.
 nlohmann::json toJson(const PlateComparison& comparison);
 

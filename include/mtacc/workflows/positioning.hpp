@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/procedures/iso230_2.hpp"
 
 namespace mtacc {
@@ -17,6 +18,8 @@ struct PositioningEvaluation {
 // Reads the file (docs/file-formats.md "Positioning tests") and evaluates it; throws InputError
 // naming the file.
 PositioningEvaluation evaluatePositioningFile(const std::string& path);
+// data: the test's file.
+const OptionSchema& positioningSchema();
 
 // Deviations in um (linear) or arcsec (rotary), targets in mm or deg; "unit" and "target_unit"
 // name them.
