@@ -6,36 +6,36 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
-#include "mtacc/workflows/dynamics.hpp"
+#include "mtacc/workflows/dynamics_options.hpp"
 
 namespace mtacc::cli {
 namespace {
 
 struct DynamicsCliOptions : MachineOptions {
-  std::string model, at, method = "auto", quantity = "Hx/X", axes = "Y,Z", grid = "20x20", compare;
-  double from = 0, to = 200, step = 1;
-  int count = 12;
+  std::string model;
+  OptionValues values;  // the subcommand's schema's
 };
 
 void modes(const DynamicsCliOptions& o) {
   const auto model = loadStructureModel(o.model);
-  const auto r = structureModes(model, structurePositions(model, o.at));
+  const auto r = structureModes(model, structurePositionsOf(model, structureModesSchema(), o.values));
+  const int count = modesCount(o.values);
   std::string human = fmt::format("{}: {} bodies, {} DOF\n{:>4} {:>10} {:>10} {:>8}  dominant motion (kinetic energy)\n",
                                   model.name, model.bodies.size(), model.dofs(), "mode", "f [Hz]", "f_d [Hz]", "zeta [%]");
   std::string csv = "mode,frequency_hz,damped_frequency_hz,damping_ratio,body,dof\n";
-  for (Eigen::Index k = 0; k < std::min<Eigen::Index>(o.count, r.undamped.frequencies.size()); ++k) {
+  for (Eigen::Index k = 0; k < std::min<Eigen::Index>(count, r.undamped.frequencies.size()); ++k) {
     const auto i = static_cast<size_t>(k);
     const DampedMode d = i < r.damped.size() ? r.damped[i] : DampedMode{0, 0};
     human += fmt::format("{:>4} {:>10.2f} {:>10.2f} {:>8.2f}  {} {}\n", k + 1, r.undamped.frequencies[k], d.frequency,
                          d.dampingRatio * 100, r.bodies[i], r.dofs[i]);
     csv += fmt::format("{},{},{},{},{},{}\n", k + 1, r.undamped.frequencies[k], d.frequency, d.dampingRatio, r.bodies[i], r.dofs[i]);
   }
-  emit(o, toJson(r, o.count), human, csv);
+  emit(o, toJson(r, count), human, csv);
 }
 
 void frf(const DynamicsCliOptions& o) {
   const auto model = loadStructureModel(o.model);
-  const auto r = structureFrf(model, {structurePositions(model, o.at), frequencyGrid(o.from, o.to, o.step), o.method});
+  const auto r = structureFrf(model, structureFrfRequest(model, o.values));
   static const char* kAxes = "xyz";
   std::string csv = "frequency_hz";
   for (int i = 0; i < 3; ++i)
@@ -51,7 +51,7 @@ void frf(const DynamicsCliOptions& o) {
   }
   const Eigen::Matrix3d st = r.staticCompliance * 1e6;
   std::string human = fmt::format("{}: 3x3 FRF of the TCP relative to the workpiece, {} frequencies {:g}-{:g} Hz ({})\n",
-                                  model.name, r.frequencies.size(), o.from, o.to,
+                                  model.name, r.frequencies.size(), r.frequencies.front(), r.frequencies.back(),
                                   r.method == "modal" ? "modal sum over all modes" : "direct solve");
   for (const auto& w : r.warnings) human += "warning: " + w + "\n";
   human += fmt::format("static compliance [um/N]:\n  {:9.5f} {:9.5f} {:9.5f}\n  {:9.5f} {:9.5f} {:9.5f}\n  {:9.5f} {:9.5f} {:9.5f}\n",
@@ -63,7 +63,7 @@ void frf(const DynamicsCliOptions& o) {
 
 void accel(const DynamicsCliOptions& o) {
   const auto model = loadStructureModel(o.model);
-  const auto r = structureAcceleration(model, structurePositions(model, o.at));
+  const auto r = structureAcceleration(model, structurePositionsOf(model, structureAccelerationSchema(), o.values));
   std::string human = fmt::format("{}: quasi-static TCP displacement per axis acceleration [um/g_n] (Bossoni 2009 Table 7.1 form)\n{:>8}",
                                   model.name, "");
   std::string csv = "response";
@@ -83,16 +83,13 @@ void accel(const DynamicsCliOptions& o) {
 }
 
 void map(const DynamicsCliOptions& o) {
-  const auto axes = splitList(o.axes), grid = splitList(o.grid, 'x');
-  if (axes.size() != 2) throw InputError(InputLocation{"", 0, "--axes"}, "expected two axes, e.g. --axes Y,Z");
-  if (grid.size() != 2) throw InputError(InputLocation{"", 0, "--grid"}, "expected e.g. --grid 20x20");
   std::vector<StructureModel> models = {loadStructureModel(o.model)};
-  if (!o.compare.empty()) models.push_back(loadStructureModel(o.compare));
+  if (const auto compare = mapComparison(o.values)) models.push_back(loadStructureModel(*compare));
   nlohmann::json j;
-  std::string human, csv = "model," + axes[0] + "_mm," + axes[1] + "_mm,value\n";
+  std::string human, csv;
   for (const auto& m : models) {
-    const MapRequest request{o.quantity, {axes[0], axes[1], parseCount(grid[0], "--grid", 2, 1000),
-                                          parseCount(grid[1], "--grid", 2, 1000), structurePositions(m, o.at)}};
+    const MapRequest request = structureMapRequest(m, o.values);
+    if (csv.empty()) csv = "model," + request.grid.axisA + "_mm," + request.grid.axisB + "_mm,value\n";
     const auto r = structureMap(m, request);
     const auto& s = r.map.statistics;
     human += fmt::format("{}: {} over {} x {} positions in {}-{} [{}]\n  min {:.3f}  lower quartile {:.3f}  median {:.3f}  "
@@ -111,35 +108,20 @@ void map(const DynamicsCliOptions& o) {
 }  // namespace
 
 void addDynamicsCommand(CLI::App& app) {
-  auto o = std::make_shared<DynamicsCliOptions>();
   auto* dyn = app.add_subcommand("dynamics", "Rigid-body structural dynamics of a structure model (Bossoni 2009 part II)");
   dyn->require_subcommand(1);
-  auto common = [&](CLI::App* c) {
+  const auto add = [dyn](const char* name, const char* help, const OptionSchema& schema, void (*run)(const DynamicsCliOptions&)) {
+    auto o = std::make_shared<DynamicsCliOptions>();
+    auto* c = dyn->add_subcommand(name, help);
     c->add_option("model", o->model, "Structure model (YAML) or bundled name, e.g. tzyx-arm-x")->required();
-    c->add_option("--at", o->at, "Axis positions in mm, e.g. Y=400,Z=-300 (others 0)");
     addOutputOptions(*c, *o);
+    addSchemaOptions(*c, schema, o->values);
+    c->callback([o, run] { run(*o); });
   };
-  auto* m = dyn->add_subcommand("modes", "Undamped and damped modes");
-  common(m);
-  m->add_option("--count", o->count, "Modes to list")->capture_default_str()->check(CLI::Range(1, 100000));
-  m->callback([o] { modes(*o); });
-  auto* f = dyn->add_subcommand("frf", "3x3 FRF of the TCP relative to the workpiece and the static compliance");
-  common(f);
-  f->add_option("--from", o->from, "First frequency, Hz")->capture_default_str();
-  f->add_option("--to", o->to, "Last frequency, Hz")->capture_default_str();
-  f->add_option("--step", o->step, "Frequency step, Hz")->capture_default_str();
-  f->add_option("--method", o->method, "auto (the modal sum where the damping is proportional, else direct), modal or direct")->capture_default_str();
-  f->callback([o] { frf(*o); });
-  auto* a = dyn->add_subcommand("accel", "Quasi-static response to the acceleration of each axis, um/g_n");
-  common(a);
-  a->callback([o] { accel(*o); });
-  auto* p = dyn->add_subcommand("map", "A quantity over a grid of two axes, with distribution statistics");
-  common(p);
-  p->add_option("--quantity", o->quantity, "Hx/X (um/g), Cxx (um/N) or f1 (Hz)")->capture_default_str();
-  p->add_option("--axes", o->axes, "The two axes of the grid")->capture_default_str();
-  p->add_option("--grid", o->grid, "Positions per axis")->capture_default_str();
-  p->add_option("--compare", o->compare, "A second model evaluated on the same grid");
-  p->callback([o] { map(*o); });
+  add("modes", "Undamped and damped modes", structureModesSchema(), modes);
+  add("frf", "3x3 FRF of the TCP relative to the workpiece and the static compliance", structureFrfSchema(), frf);
+  add("accel", "Quasi-static response to the acceleration of each axis, um/g_n", structureAccelerationSchema(), accel);
+  add("map", "A quantity over a grid of two axes, with distribution statistics", structureMapSchema(), map);
 }
 
 }  // namespace mtacc::cli

@@ -3,7 +3,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "mtacc/workflows/dynamics.hpp"
+#include "mtacc/workflows/dynamics_options.hpp"
 #include "mtacc/workflows/recorded_decomposition.hpp"
 #include "mtacc/workflows/virtual_motion.hpp"
 
@@ -35,19 +35,20 @@ void exposeDynamics(py::module_& mod, MachineClass& machine) {
       .def(py::init([](const std::string& pathOrName) { return loadStructureModel(pathOrName); }), py::arg("model"))
       .def_readonly("name", &StructureModel::name)
       .def("positions", [](const StructureModel& m, const std::string& at) { return structurePositions(m, at); })
-      .def("modes", [](const StructureModel& m, const std::string& at, int count) {
-        return toPython(toJson(structureModes(m, structurePositions(m, at)), count));
+      .def("modes", [](const StructureModel& m, const OptionValues& options) {
+        return toPython(toJson(structureModes(m, structurePositionsOf(m, structureModesSchema(), options)), modesCount(options)));
       })
-      .def("frf", [](const StructureModel& m, const std::vector<double>& frequencies, const std::string& at, const std::string& method) {
-        return toPython(toJson(structureFrf(m, {structurePositions(m, at), frequencies, method})));
+      .def("frf", [](const StructureModel& m, const std::vector<double>& frequencies, const OptionValues& options) {
+        FrfRequest request = structureFrfRequest(m, options);
+        request.frequencies = frequencies;
+        return toPython(toJson(structureFrf(m, request)));
       })
-      .def("acceleration_response", [](const StructureModel& m, const std::string& at) {
-        return toPython(toJson(structureAcceleration(m, structurePositions(m, at))));
+      .def("acceleration_response", [](const StructureModel& m, const OptionValues& options) {
+        return toPython(toJson(structureAcceleration(m, structurePositionsOf(m, structureAccelerationSchema(), options))));
       })
-      .def("map", [](const StructureModel& m, const std::string& quantity, const std::string& axisA, const std::string& axisB,
-                     int countA, int countB, const std::string& at) {
+      .def("map", [](const StructureModel& m, const OptionValues& options) {
         MapResult r;
-        const MapRequest request{quantity, {axisA, axisB, countA, countB, structurePositions(m, at)}};
+        const MapRequest request = structureMapRequest(m, options);
         {
           py::gil_scoped_release release;
           r = structureMap(m, request);

@@ -571,10 +571,6 @@ class Machine:
         return self._core.tilted_circle()
 
 
-def _at(at):
-    return ",".join(f"{k}={v!r}" for k, v in (at or {}).items())
-
-
 class Structure:
     """A rigid-body structure model (Bossoni 2009 part II); axis positions `at` as {axis: mm}."""
 
@@ -586,20 +582,22 @@ class Structure:
     axes = property(lambda self: self._description["axes"])
     bodies = property(lambda self: self._description["bodies"])
 
-    def modes(self, at=None, count=1000):
-        """As `mtacc dynamics modes --json`: per mode its frequencies [Hz], damping ratio, dominant body and
-        DOF, and "shape" an ndarray (6 x bodies,), mass-normalised [m, rad per sqrt(kg)], whose entries
-        result["dofs"] labels "<body>.x", ".y", ".z", ".rx", ".ry", ".rz"."""
-        result = _with_arrays(self._core.modes(_at(at), count), ("modes", "*", "shape"))
+    def modes(self, at=None, count=None):
+        """As `mtacc dynamics modes --json`: the first `count` modes (default 12), per mode its
+        frequencies [Hz], damping ratio, dominant body and DOF, and "shape" an ndarray (6 x bodies,),
+        mass-normalised [m, rad per sqrt(kg)], whose entries result["dofs"] labels "<body>.x", ".y",
+        ".z", ".rx", ".ry", ".rz"."""
+        result = _with_arrays(self._core.modes(_options(at=_assignments(at, "at"), count=count)), ("modes", "*", "shape"))
         result["dofs"] = [f"{b['name']}.{d}" for b in self.bodies for d in ("x", "y", "z", "rx", "ry", "rz")]
         return result
 
-    def frf(self, frequencies, at=None, method="auto"):
+    def frf(self, frequencies, at=None, method=None):
         """(n, 3, 3) complex FRF of the TCP relative to the workpiece [um/N], H[s, i, k] the
-        displacement along i per force along k (x, y, z) at frequencies[s] [Hz].
-        method: "auto" (the modal sum where the damping is proportional, where it is exact; else
-        the direct solve), "modal" or "direct". frf_method(at) says which "auto" uses."""
-        rows = self._core.frf(list(map(float, frequencies)), _at(at), method)["frf"]
+        displacement along i per force along k (x, y, z) at frequencies[s] [Hz] (the CLI's --from,
+        --to and --step make such a grid). method: "auto" (the default: the modal sum where the
+        damping is proportional, where it is exact; else the direct solve), "modal" or "direct".
+        frf_method(at) says which "auto" uses."""
+        rows = self._core.frf(list(map(float, frequencies)), _options(at=_assignments(at, "at"), method=method))["frf"]
         h = np.empty((len(rows), 3, 3), complex)
         for s, row in enumerate(rows):
             for i, a in enumerate("xyz"):
@@ -610,23 +608,26 @@ class Structure:
     def frf_method(self, at=None):
         """The method "auto" computes the FRF with at these positions ("modal" or "direct"), and the
         damping's coupling of the modes (0 for proportional damping)."""
-        r = self._core.frf([1.0], _at(at), "auto")
+        r = self._core.frf([1.0], _options(at=_assignments(at, "at")))
         return r["method"], r["damping_coupling"]
 
     def acceleration_response(self, at=None):
         """As `mtacc dynamics accel --json`: {"Hx": {axis: um/g_n}, ...} (Bossoni 2009 Table 7.1 form)."""
-        return self._core.acceleration_response(_at(at))["response_um_per_g"]
+        return self._core.acceleration_response(_options(at=_assignments(at, "at")))["response_um_per_g"]
 
-    def map(self, quantity="Hx/X", axes=("Y", "Z"), grid=(20, 20), at=None):
-        """As `mtacc dynamics map --json`: a quantity ("Hx/X" um/g, "Cxx" um/N, "f1" Hz; result["unit"]) over
-        a grid of two axes across their travel, with its statistics. grid: (na, nb) positions of
-        axes[0] and axes[1]. result["a_mm"] (na,), result["b_mm"] (nb,), result["values"] (na, nb)
-        with values[i, k] at a_mm[i], b_mm[k] (numpy.meshgrid's indexing="ij")."""
-        try:
-            na, nb = (int(n) for n in grid)
-            if (na, nb) != tuple(grid):
-                raise ValueError
-        except (TypeError, ValueError):
-            raise InputError(f"grid: expected two whole numbers of positions (na, nb), e.g. (20, 20), not {grid!r}") from None
-        result = self._core.map(quantity, axes[0], axes[1], na, nb, _at(at))
+    def map(self, quantity=None, axes=None, grid=None, at=None):
+        """As `mtacc dynamics map --json`: a quantity ("Hx/X" um/g, the default; "Cxx" um/N, "f1" Hz;
+        result["unit"]) over a grid of two axes (default ("Y", "Z")) across their travel, with its
+        statistics. grid: (na, nb) positions of axes[0] and axes[1] (default (20, 20)), or the CLI's
+        text "20x20". result["a_mm"] (na,), result["b_mm"] (nb,), result["values"] (na, nb) with
+        values[i, k] at a_mm[i], b_mm[k] (numpy.meshgrid's indexing="ij")."""
+        if grid is not None and not isinstance(grid, str):
+            try:
+                na, nb = (int(n) for n in grid)
+                if (na, nb) != tuple(grid):
+                    raise ValueError
+            except (TypeError, ValueError):
+                raise InputError(f"grid: expected two whole numbers of positions (na, nb), e.g. (20, 20), not {grid!r}") from None
+            grid = f"{na}x{nb}"
+        result = self._core.map(_options(quantity=quantity, axes=axes, grid=grid, at=_assignments(at, "at")))
         return _with_arrays(result, ("a_mm",), ("b_mm",), ("values",))

@@ -6,6 +6,7 @@
 #include "mtacc/workflows/cone_study.hpp"
 #include "mtacc/workflows/cubic_identification.hpp"
 #include "mtacc/workflows/cubic_test.hpp"
+#include "mtacc/workflows/dynamics_options.hpp"
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
 #include "mtacc/workflows/plates.hpp"
@@ -28,6 +29,10 @@ const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
       {"decompose", &decompositionSchema()},
       {"deviation", &programDeviationSchema()},
       {"drift", &driftTestSchema()},
+      {"dynamics accel", &structureAccelerationSchema()},
+      {"dynamics frf", &structureFrfSchema()},
+      {"dynamics map", &structureMapSchema()},
+      {"dynamics modes", &structureModesSchema()},
       {"evaluate", &evaluationSchema()},
       {"fit", &componentFitSchema()},
       {"identify", &identificationSchema()},

@@ -129,8 +129,10 @@ def test_maps_return_ndarrays_in_a_documented_order():
     # values[i, k] at a_mm[i], b_mm[k]: the corner is the compliance at those positions.
     corner = s.map("Cxx", axes=("Y", "Z"), grid=(2, 2), at={"X": 0})["values"][1, 0]
     assert r["values"][2, 0] == pytest.approx(corner, rel=1e-12)
+    # The CLI's text is the same grid; a grid of fractional positions is refused, not rounded.
+    assert np.array_equal(s.map("Cxx", axes=("Y", "Z"), grid="2x2", at={"X": 0})["values"], s.map("Cxx", axes=("Y", "Z"), grid=(2, 2), at={"X": 0})["values"])
     with pytest.raises(mtacc.InputError, match=r"grid: expected two whole numbers"):
-        s.map(grid="20x20")
+        s.map(grid=(2.5, 3))
     m = mtacc.Machine("tilting-table")
     fig, data = plots.volumetric_error_map(m, ("X", "Y"), samples=5, return_data=True)
     assert data["errors"].shape == (5, 5, 6) and data["magnitude"].shape == (5, 5)
