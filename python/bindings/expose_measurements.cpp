@@ -6,6 +6,7 @@
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/identified_errors.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
+#include "mtacc/workflows/simulation_options.hpp"
 #include "mtacc/workflows/plates.hpp"
 #include "mtacc/workflows/report_paths.hpp"
 
@@ -13,16 +14,9 @@ namespace mtacc::python {
 
 void exposeMeasurements(MachineClass& machine) {
   machine
-      .def("simulate", [](const PythonMachine& s, const std::string& plan, const py::object& noise, std::uint64_t seed,
-                          const std::string& outputDir, const std::string& setupErrors) {
-        SimulationOptions o;
-        o.noise = quantity(noise, Dimension::Length, "noise");
-        o.setupErrors = parseSetupErrors(setupErrors, "setup");
-        o.seed = seed;
-        o.output = outputDir;
-        o.outputIsFolder = true;
-        return toPython(toJson(simulatePlan(s, plan, o)));
-      })
+      .def("simulate", [](const PythonMachine& s, const OptionValues& options) { return toPython(toJson(simulatePlanRuns(s, options))); })
+      .def("simulate_ballbar", [](const PythonMachine& s, const OptionValues& options) { return toPython(toJson(simulateBallbar(s, options))); })
+      .def("simulate_rtest", [](const PythonMachine& s, const OptionValues& options) { return toPython(toJson(simulateRTest(s, options))); })
       .def("read_measurement", [](const PythonMachine& s, const std::string& path) { return toPython(runJson(*s.machine, readMeasurementFile(s, path))); })
       .def("evaluate_ballbar", [](const PythonMachine& s, const OptionValues& options) {
         return toPython(toJson(evaluateBallbarFile(s, *OptionReader(evaluationSchema(), options).text("data"))));

@@ -125,6 +125,16 @@ def _options(**given):
     return values
 
 
+def _vector(value):
+    """(x, y, z) as the CLI's text "x,y,z"; text and None as they are."""
+    return value if value is None or isinstance(value, str) else ",".join(repr(float(v)) for v in value)
+
+
+def _setup_text(setup):
+    """Set-up errors {name: "10 um"} as the CLI's text "xW=10 um"; text and None as they are."""
+    return setup if setup is None or isinstance(setup, str) else ",".join(f"{name}={value}" for name, value in setup.items())
+
+
 def _assignments(values, key):
     """{name: number} ({axis: mm or deg}, {tool: mm}), or the CLI's text itself, as the CLI's text
     "B=10.0,C=0.0"; None stays None (the workflow's default)."""
@@ -499,14 +509,36 @@ class Machine:
         """The Bossoni 2009 §3.6 preset of this machine's family, or None."""
         return self._core.cone_preset_name()
 
-    def simulate(self, plan, noise="0 um", seed=1, output_dir=None, setup=None):
+    def simulate(self, plan, noise=None, seed=None, output=None, setup=None):
         """Every run of a test plan (YAML path or bundled name) simulated on this machine with its errors,
-        as `mtacc simulate plan --json`; with output_dir, also written as measurement CSV files. `noise`
-        is a length ("0.5 um") or a number in mm; `setup`: set-up errors with units {name: "10 um"}
+        as `mtacc simulate plan --json`; with output (a folder), also written as measurement CSV files.
+        `noise` is a length ("0.5 um", default 0); `setup`: set-up errors with units {name: "10 um"}
         (xT yT zT xW yW zW aN bN cN dL), as `--setup`. A tool ball off the TCP is a key of each
         of the plan's runs (`tool_ball: [0 mm, 0 mm, -50 mm]`), not an argument: runs differ."""
-        text = ",".join(f"{name}={value}" for name, value in (setup or {}).items())
-        return self._core.simulate(str(plan), noise, seed, _text(output_dir), text)
+        return self._core.simulate(_options(plan=plan, noise=noise, seed=seed, output=output, setup=_setup_text(setup)))
+
+    def simulate_ballbar(self, noise=None, seed=None, setup=None, output=None, tool_ball=None, plane=None, centre=None, radius=None,
+                         points=None, feed=None, pose=None, one_direction=None, lag=None, backlash=None, spike=None, spike_time=None):
+        """An ISO 230-4 ballbar circle simulated on this machine, as `mtacc simulate ballbar --json`
+        (written to `output`, a CSV, when given): in `plane` (XY, the default; YZ, ZX) about the work
+        ball `centre` (mm, workpiece frame), bar length `radius` ("100 mm"), `points` per direction
+        (360), both directions unless one_direction, at `feed` mm/min; the other axes at `pose`
+        ({axis: mm or deg}); servo lag, backlash and reversal spikes per axis as the CLI's text
+        ("X=1ms", "X=5um", "Y=4um") with their decay `spike_time` (s)."""
+        return self._core.simulate_ballbar(_options(noise=noise, seed=seed, setup=_setup_text(setup), output=output, tool_ball=_vector(tool_ball),
+                                                    plane=plane, centre=_vector(centre), radius=radius, points=points, feed=feed,
+                                                    pose=_assignments(pose, "pose"), one_direction=one_direction, lag=lag, backlash=backlash,
+                                                    spike=spike, spike_time=spike_time))
+
+    def simulate_rtest(self, sphere, noise=None, seed=None, setup=None, output=None, tool_ball=None, axis=None, from_=None, to=None,
+                       points=None, pose=None, probe=None):
+        """An R-test (or with probe=True touch-probe) run on the `sphere` (mm, workpiece frame) while the
+        rotary `axis` (C, the default) steps through `points` angles (12) `from_` ("0 deg") `to`
+        ("330 deg"; the CLI's --from and --to), as `mtacc simulate rtest --json` (written to `output`,
+        a CSV, when given); the other axes at `pose`."""
+        return self._core.simulate_rtest(_options(sphere=_vector(sphere), noise=noise, seed=seed, setup=_setup_text(setup), output=output,
+                                                  tool_ball=_vector(tool_ball), axis=axis, **{"from": from_}, to=to, points=points,
+                                                  pose=_assignments(pose, "pose"), probe=probe))
 
     def read_measurement(self, path):
         """A measurement CSV file (docs/file-formats.md) as one run of `simulate`'s result: "q" its

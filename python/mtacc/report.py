@@ -194,7 +194,7 @@ def identification_section(machine, plan, obs, data=(), measured=()):
             out += (f"<p>{len(files)} measured runs, read from: {html.escape(', '.join(os.path.basename(f) for f in files))}. "
                     "The errors not identified are held at the values of the machine file (or --errors), listed below.</p>")
         else:
-            runs = machine.simulate(plan, noise="0.5 um", seed=1, output_dir=tmp)["runs"]
+            runs = machine.simulate(plan, noise="0.5 um", seed=1, output=tmp)["runs"]
             files = [r["file"] for r in runs]
             out += (f"<p><b>Simulated data:</b> the {len(runs)} runs of the plan were simulated from the errors this report "
                     "was given, with 0.5 µm reading noise, and identified back holding every other error at its true "

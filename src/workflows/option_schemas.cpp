@@ -13,6 +13,7 @@
 #include "mtacc/workflows/positioning.hpp"
 #include "mtacc/workflows/program_deviation.hpp"
 #include "mtacc/workflows/recorded_decomposition.hpp"
+#include "mtacc/workflows/simulation_options.hpp"
 #include "mtacc/workflows/stiffness.hpp"
 #include "mtacc/workflows/thermal_drift.hpp"
 #include "mtacc/workflows/virtual_motion.hpp"
@@ -40,7 +41,10 @@ const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
       {"plate", &plateComparisonSchema()},
       {"plate-identify", &plateIdentificationSchema()},
       {"positioning", &positioningSchema()},
+      {"simulate ballbar", &ballbarSimulationSchema()},
       {"simulate motion", &motionSimulationSchema()},
+      {"simulate plan", &planSimulationSchema()},
+      {"simulate rtest", &rtestSimulationSchema()},
       {"stiffness", &stiffnessSchema()}};
   return schemas;
 }

@@ -181,3 +181,20 @@ def test_single_pose_calls_follow_a_changed_error():
     assert not np.allclose(machine.tcp_errors(POSES[0]), before)
     assert np.array_equal(machine.tcp_errors(POSES[0]), fresh.tcp_errors(POSES[0]))
     assert np.array_equal(machine.fk(POSES), fresh.fk(POSES))
+
+
+def test_simulated_runs(cli, tmp_path):
+    # The same keys through both front ends, the same runs (files and summary alike).
+    machine = mtacc.Machine("tilting-table")
+    py = machine.simulate_ballbar(output=tmp_path / "py.csv", plane="YZ", radius="150 mm", points=90, pose={"B": -30}, noise="0.3 um",
+                                  seed=4, lag="Y=1ms", setup={"xW": "10 um"})
+    data = run_json(cli, "simulate", "ballbar", "tilting-table", "-o", str(tmp_path / "cli.csv"), "--plane", "YZ", "--radius", "150mm",
+                    "--points", "90", "--pose", "B=-30", "--noise", "0.3um", "--seed", "4", "--lag", "Y=1ms", "--setup", "xW=10um")
+    assert (tmp_path / "py.csv").read_text() == (tmp_path / "cli.csv").read_text()
+    assert [r.pop("file") for r in py["runs"]] == [str(tmp_path / "py.csv")] and [r.pop("file") for r in data["runs"]] == [str(tmp_path / "cli.csv")]
+    assert py == data
+    py = machine.simulate_rtest((100, 50, 80), axis="B", from_="-60 deg", to="60 deg", points=5, probe=True)
+    data = run_json(cli, "simulate", "rtest", "tilting-table", "-o", str(tmp_path / "r.csv"), "--sphere", "100,50,80", "--axis", "B",
+                    "--from", "-60deg", "--to", "60deg", "--points", "5", "--probe")
+    assert [r.pop("file") for r in py["runs"]] == [None] and [r.pop("file") for r in data["runs"]] == [str(tmp_path / "r.csv")]
+    assert py == data

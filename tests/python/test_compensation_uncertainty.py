@@ -35,7 +35,7 @@ def test_the_k2_bound_holds_the_residual_at_95_percent_of_the_positions(tmp_path
     inside = []
     for seed in range(1, DRAWS + 1):
         folder = tmp_path / f"draw{seed}"
-        machine.simulate(plan, noise=NOISE, seed=seed, output_dir=folder)
+        machine.simulate(plan, noise=NOISE, seed=seed, output=folder)
         model_file = folder / "identified.yaml"
         machine.identify(sorted(folder.glob("*.csv")), plan=plan, errors_out=model_file)
         model = mtacc.Machine(name, errors=model_file)
@@ -50,7 +50,7 @@ def test_the_k2_bound_holds_the_residual_at_95_percent_of_the_positions(tmp_path
 def test_the_report_maps_the_uncertainty_of_an_identified_model(cli, tmp_path):
     import subprocess
     machine = mtacc.Machine("tilting-table")
-    machine.simulate("tilting-table-rtest", noise=NOISE, seed=1, output_dir=tmp_path / "runs")
+    machine.simulate("tilting-table-rtest", noise=NOISE, seed=1, output=tmp_path / "runs")
     model = tmp_path / "identified.yaml"
     machine.identify(sorted((tmp_path / "runs").glob("*.csv")), plan="tilting-table-rtest", errors_out=model)
     for errors, shown in ((model, True), (None, False)):

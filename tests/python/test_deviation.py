@@ -159,7 +159,7 @@ def test_a_compensation_from_an_identified_model_holds_on_the_truth(cli, tmp_pat
     (tmp_path / "truth.yaml").write_text("errors:\n" + "\n".join(lines + [unmodelled]) + "\n")
     (tmp_path / "unmodelled.yaml").write_text("errors:\n" + unmodelled + "\n")
     truth = mtacc.Machine(name, errors=tmp_path / "truth.yaml")
-    truth.simulate(plan, noise="0.3 um", seed=4, output_dir=tmp_path / "runs")
+    truth.simulate(plan, noise="0.3 um", seed=4, output=tmp_path / "runs")
     identified = tmp_path / "identified.yaml"
     truth.identify(sorted((tmp_path / "runs").glob("*.csv")), plan=plan, errors_out=identified, from_nominal=True)
     subprocess.run([cli, "cone", name, "--gcode", str(tmp_path / "cone.nc")], check=True, capture_output=True)

@@ -14,7 +14,7 @@ CLI = os.environ.get("MTACC_CLI", "mtacc")
 
 def test_api_and_cli_identify_alike(tmp_path):
     m = mtacc.Machine("tilting-table")
-    runs = m.simulate("tilting-table-rtest", noise="0.5 um", seed=3, output_dir=tmp_path)["runs"]
+    runs = m.simulate("tilting-table-rtest", noise="0.5 um", seed=3, output=tmp_path)["runs"]
     files = [r["file"] for r in runs]
     assert files == [str(tmp_path / (r["name"] + ".csv")) for r in runs]
     params = ["X0B", "Z0B", "A0B", "C0B", "X0C", "Y0C", "A0C", "B0C", "C0Y", "A0Z", "B0Z"]
@@ -36,7 +36,7 @@ def test_api_and_cli_identify_alike(tmp_path):
 
 def test_noise_argument_and_warnings(tmp_path):
     m = mtacc.Machine("tilting-table")
-    files = [r["file"] for r in m.simulate("tilting-table-rtest", noise="0.5 um", output_dir=tmp_path)["runs"]]
+    files = [r["file"] for r in m.simulate("tilting-table-rtest", noise="0.5 um", output=tmp_path)["runs"]]
     params = ["X0B", "Z0B", "A0B", "C0B", "X0C", "Y0C", "A0C", "B0C", "C0Y", "A0Z", "B0Z"]
     # A stated noise a tenth of the true one: the residuals cannot be explained by it.
     doubtful = m.identify(files, params, noise="0.05 um")
@@ -49,7 +49,7 @@ def test_noise_argument_and_warnings(tmp_path):
 
 def test_unidentifiable_set_is_refused(tmp_path):
     m = mtacc.Machine("tilting-table")
-    files = [r["file"] for r in m.simulate("tilting-table-rtest", output_dir=tmp_path)["runs"]]
+    files = [r["file"] for r in m.simulate("tilting-table-rtest", output=tmp_path)["runs"]]
     with pytest.raises(mtacc.InputError, match="B0B and B0C act alike"):
         m.identify(files, ["B0B", "B0C"])
 
@@ -71,7 +71,7 @@ def test_held_errors_are_named_and_from_nominal_holds_them_at_zero(tmp_path):
     # errors only. Against the machine file's values the other errors are already right (and
     # named as held); against the nominal machine they are missing and the fit says so.
     m = mtacc.Machine("tilting-table")
-    files = [r["file"] for r in m.simulate("tilting-table-rtest", noise="0.5 um", seed=5, output_dir=tmp_path)["runs"]]
+    files = [r["file"] for r in m.simulate("tilting-table-rtest", noise="0.5 um", seed=5, output=tmp_path)["runs"]]
     held = m.identify(files, plan="tilting-table-rtest")
     assert "EXX.cyc" in held["held"] and "X0B" not in held["held"]
     out = subprocess.run([CLI, "identify", "tilting-table", "--plan", "tilting-table-rtest", "--data", *files],
@@ -84,7 +84,7 @@ def test_held_errors_are_named_and_from_nominal_holds_them_at_zero(tmp_path):
 
 def test_simulate_takes_set_up_errors_as_the_cli_does(tmp_path):
     m = mtacc.Machine("tilting-table")
-    api = m.simulate("tilting-table-rtest", noise="0.5 um", seed=2, setup={"xW": "10 um", "zT": "-5 um"}, output_dir=tmp_path / "api")
+    api = m.simulate("tilting-table-rtest", noise="0.5 um", seed=2, setup={"xW": "10 um", "zT": "-5 um"}, output=tmp_path / "api")
     subprocess.run([CLI, "simulate", "plan", "tilting-table", "--plan", "tilting-table-rtest", "--noise", "0.5um", "--seed", "2",
                     "--setup", "xW=10um,zT=-5um", "-o", str(tmp_path / "cli")], capture_output=True, text=True, check=True)
     for run in api["runs"]:
@@ -105,7 +105,7 @@ def test_plan_names_component_terms_the_errors_do_not_define(tmp_path):
     truth.write_text("errors:\n  X0C: -5 um\n  Y0C: 4 um\n"
                      "  ECC:\n    harmonics: {terms: [{order: 2, amplitude: 8 urad, phase: 30 deg}]}\n"
                      "  EXX:\n    linear: {value: 3 um, over: 800 mm}\n")
-    files = [r["file"] for r in mtacc.Machine("tilting-table", errors=truth).simulate("tilting-table-rtest", output_dir=tmp_path)["runs"]]
+    files = [r["file"] for r in mtacc.Machine("tilting-table", errors=truth).simulate("tilting-table-rtest", output=tmp_path)["runs"]]
     plan = tmp_path / "plan.yaml"
     rtest = (pathlib.Path(__file__).parents[2] / "data" / "plans" / "tilting-table-rtest.yaml").read_text()
     plan.write_text(re.sub(r"(?m)^parameters: .*$", "parameters: [X0C, Y0C, ECC.h2, EXX.c1]", rtest))

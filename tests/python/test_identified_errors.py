@@ -78,7 +78,7 @@ def test_identified_errors_round_trip(cli, tmp_path, case):
 
 def test_python_writes_the_same_file(tmp_path):
     m = mtacc.Machine("tilting-table")
-    m.simulate("tilting-table-rtest", noise="0.2 um", output_dir=tmp_path / "data")
+    m.simulate("tilting-table-rtest", noise="0.2 um", output=tmp_path / "data")
     files = sorted((tmp_path / "data").glob("*.csv"))
     out = tmp_path / "id.yaml"
     r = m.identify(files, plan="tilting-table-rtest", errors_out=out)
@@ -136,7 +136,7 @@ def test_degrees_of_freedom_and_sigma_on_a_small_problem(tmp_path):
         "  - name: c\n    sphere: {axis: C, from: 0 deg, to: 300 deg, points: 6, spheres: [[120 mm, 0 mm, 60 mm]]}\n"
         "    estimate: [xW, yW, zW]\n")
     m = mtacc.Machine("tilting-table")
-    m.simulate(tmp_path / "small.yaml", noise="0.5 um", seed=3, output_dir=tmp_path / "runs")
+    m.simulate(tmp_path / "small.yaml", noise="0.5 um", seed=3, output=tmp_path / "runs")
     r = m.identify(sorted((tmp_path / "runs").glob("*.csv")), plan=tmp_path / "small.yaml")
     assert r["readings"] == 18 and len(r["estimates"]) == 7
     assert r["degrees_of_freedom"] == 11

@@ -25,7 +25,7 @@ def test_predicted_uncertainty_is_the_spread_of_the_estimates(tmp_path, machine)
     estimates = {name: [] for name in u}
     for seed in range(1, DRAWS + 1):
         folder = tmp_path / f"draw{seed}"
-        m.simulate(case["plan"], noise=f"{NOISE_UM} um", seed=seed, output_dir=folder)
+        m.simulate(case["plan"], noise=f"{NOISE_UM} um", seed=seed, output=folder)
         result = m.identify(sorted(folder.glob("*.csv")), plan=case["plan"])
         for e in result["estimates"]:
             if e["parameter"] in estimates:
@@ -55,7 +55,7 @@ def test_the_proposed_set_is_identifiable_and_reproduces_the_truth(tmp_path):
     assert [e["parameter"] for e in r["prediction"]["estimates"] if not e["setup"]] == kept
     # The full truth (every parameter named) simulated; identified with the proposal alone, the
     # others held at zero: the readings are reproduced to the noise.
-    m.simulate("tilting-table-rtest", noise=f"{NOISE_UM} um", seed=3, output_dir=tmp_path)
+    m.simulate("tilting-table-rtest", noise=f"{NOISE_UM} um", seed=3, output=tmp_path)
     fit = m.identify(sorted(tmp_path.glob("*.csv")), parameters=kept, from_nominal=True)
     assert fit["quality"]["p_value"] > 0.01
     assert fit["sigma_um"] == pytest.approx(NOISE_UM, rel=0.1)

@@ -66,7 +66,7 @@ def test_report_identifies_from_measured_files(tmp_path, artifacts):
     # the files, the goodness of fit fails, and the residuals point at the runs that turn B.
     truth = mtacc.Machine("tilting-table")
     truth.errors["EXB.h2c"] = "10 um"
-    truth.simulate("tilting-table-rtest", noise="0.5 um", seed=2, output_dir=tmp_path / "data")
+    truth.simulate("tilting-table-rtest", noise="0.5 um", seed=2, output=tmp_path / "data")
     files = sorted((tmp_path / "data").glob("*.csv"))
     page = pathlib.Path(report.build_report("tilting-table", str(tmp_path / "out"), samples=3, plan="tilting-table-rtest",
                                             data=files))

@@ -19,7 +19,7 @@ def evaluate(tmp_path, errors):
     plan = tmp_path / "plan.yaml"
     plan.write_text(PLAN)
     m = mtacc.Machine("tilting-table", errors=errors)
-    m.simulate(plan, output_dir=tmp_path / "data")
+    m.simulate(plan, output=tmp_path / "data")
     return m.evaluate_rtest(tmp_path / "data" / "rtest-C.csv")
 
 
