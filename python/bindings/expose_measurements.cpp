@@ -58,12 +58,7 @@ void exposeMeasurements(MachineClass& machine) {
       .def("compare_plate", [](const PythonMachine& s, const OptionValues& options) {
         return toPython(toJson(comparePlateFile(s, *OptionReader(plateComparisonSchema(), options).text("data"))));
       })
-      .def("simulate_plate", [](const PythonMachine& s, const std::string& output, const std::map<std::string, std::string>& layout,
-                                const std::string& noise, std::uint64_t seed) {
-        PlateSimulationRequest r{.output = output, .layout = {}, .noise = noise, .seed = seed};
-        for (const auto& [key, value] : layout) plateLayoutField(r.layout, key) = value;
-        simulatePlateFile(s, r);
-      });
+      .def("simulate_plate", [](const PythonMachine& s, const OptionValues& options) { simulatePlateFile(s, plateSimulationRequest(options)); });
 }
 
 }  // namespace mtacc::python

@@ -478,32 +478,36 @@ class Machine:
         errors_out: a path to write that model to with the record of the data, as `--errors-out`."""
         return self._core.identify_plates(_options(files=list(files), piece=piece), _text(errors_out))
 
-    def simulate_plate(self, output, origin, axes=((1, 0, 0), (0, 1, 0)), stylus=(0, 0, 0), plate=(9, 9, 50.0),
-                       features="all", noise="0 um", probe=None, simulation=None, seed=1, pose=None):
+    def simulate_plate(self, output, origin, axes=None, stylus=None, plate=None, features=None, pose=None, probe=None, simulation=None,
+                       noise=None, seed=None):
         """Writes the plate measurement this machine with its errors gives (as `mtacc simulate plate`):
-        reference feature at `origin` (mm, workpiece frame), plate axes u, v, stylus (mm, tool frame),
-        plate = (rows, columns, pitch mm); probe = (2S_u, 2S_v) and simulation 2S in um, to state in the file;
-        pose: the axes that stay, {"B": 0, "C": 0} (mm, deg) or "B=0,C=0"."""
-        u, v = axes
-        layout = {"plate": f"{plate[0]} x {plate[1]}, pitch {plate[2]} mm", "features": str(features),
-                  "origin": f"{origin[0]}, {origin[1]}, {origin[2]} mm", "axes": f"{u[0]},{u[1]},{u[2]} / {v[0]},{v[1]},{v[2]}",
-                  "stylus": f"{stylus[0]}, {stylus[1]}, {stylus[2]} mm"}
-        if pose is not None:
-            layout["pose"] = _assignments(pose, "pose")
-        if probe is not None:
-            layout["probe"] = f"{probe[0]}, {probe[1]} um"
-        if simulation is not None:
-            layout["simulation"] = f"{simulation} um"
-        self._core.simulate_plate(str(output), layout, str(noise), int(seed))
+        reference feature at `origin` (mm, workpiece frame), plate axes u, v (default ((1, 0, 0),
+        (0, 1, 0))), stylus (mm, tool frame), plate = (rows, columns, pitch mm) (default (9, 9, 50));
+        probe = (2S_u, 2S_v) and simulation 2S in um, to state in the file; pose: the axes that
+        stay, {"B": 0, "C": 0} (mm, deg); noise a length ("0.3 um", default 0). Each may also be the
+        CLI's text."""
+        def text(value, form):
+            return value if value is None or isinstance(value, str) else form(value)
+        self._core.simulate_plate(_options(
+            output=output, origin=text(origin, lambda o: f"{o[0]}, {o[1]}, {o[2]} mm"),
+            axes=text(axes, lambda a: f"{a[0][0]},{a[0][1]},{a[0][2]} / {a[1][0]},{a[1][1]},{a[1][2]}"),
+            stylus=text(stylus, lambda t: f"{t[0]}, {t[1]}, {t[2]} mm"), plate=text(plate, lambda p: f"{p[0]} x {p[1]}, pitch {p[2]} mm"),
+            features=features, pose=_assignments(pose, "pose"), probe=text(probe, lambda p: f"{p[0]}, {p[1]} um"),
+            simulation=text(simulation, lambda v: f"{v} um"), noise=noise, seed=seed))
 
-    def simulate_component(self, component, output, step=10.0, runs=20, noise="", abbe_offset=(0.0, 0.0, 0.0),
-                           disturbance="", disturbance_interval=1800.0, settling="", settling_time=600.0, seed=1):
+    def simulate_component(self, component, output, step=None, runs=None, noise=None, abbe_offset=None, instrument=None, reading_time=None,
+                           disturbance=None, disturbance_interval=None, settling=None, settling_time=None, seed=None):
         """Writes direct-measurement runs of one component (the 1991 BCR report name or ISO) simulated from this
-        machine's errors to `output`, as `mtacc simulate component`; `settling` (e.g. "2 arcsec") adds a
-        drift at the start that dies away with the time constant `settling_time` (s)."""
-        self._core.simulate_component(str(component), str(output), float(step), int(runs), str(noise),
-                                      [float(v) for v in abbe_offset], str(disturbance), float(disturbance_interval),
-                                      str(settling), float(settling_time), int(seed))
+        machine's errors to `output`, as `mtacc simulate component`: every `step` mm or deg (10) over
+        the travel, `runs` (20) each way, with `noise` one reading's (e.g. "0.5 arcsec"), measured at
+        `abbe_offset` (dx, dy, dz mm) from the carriage; `disturbance` (e.g. "1.5 arcsec") every
+        `disturbance_interval` s, and `settling` a drift at the start that dies away with the time
+        constant `settling_time` (s)."""
+        abbe = abbe_offset if abbe_offset is None or isinstance(abbe_offset, str) else f"{','.join(repr(float(v)) for v in abbe_offset)} mm"
+        self._core.simulate_component(_options(component=component, output=output, step=step, runs=runs, noise=noise, abbe_offset=abbe,
+                                               instrument=instrument, reading_time=reading_time, disturbance=disturbance,
+                                               disturbance_interval=disturbance_interval, settling=settling, settling_time=settling_time,
+                                               seed=seed))
 
     def cone_preset_name(self):
         """The Bossoni 2009 §3.6 preset of this machine's family, or None."""

@@ -35,6 +35,46 @@ std::vector<double> chooseBreaks(const Axis& axis, const std::vector<double>& po
 
 }  // namespace
 
+const OptionSchema& componentSimulationSchema() {
+  static const OptionSchema schema{
+      "simulate component",
+      {{.key = "component", .kind = OptionKind::Text, .help = "component error: the 1991 BCR report name (xrx, ztz, ...) or ISO (EAX, EZZ)",
+        .required = true},
+       {.key = "output", .kind = OptionKind::Text, .help = "CSV to write (atomically)", .required = true},
+       {"step", OptionKind::Number, "step between positions over the travel (mm or deg)", "10"},
+       {"runs", OptionKind::Count, "runs, each forward and backward", "20"},
+       {"noise", OptionKind::Text, "standard deviation of one reading, e.g. 0.5arcsec or 0.2um; default none"},
+       {"abbe_offset", OptionKind::Text, "measuring point relative to the carriage centroid, e.g. 0,60,110mm (translations)"},
+       {"instrument", OptionKind::Text, "instrument named in the file (e.g. levels, laser)"},
+       {"reading_time", OptionKind::Number, "seconds per reading", "6"},
+       {"disturbance", OptionKind::Text, "a periodic disturbance of one reading, e.g. 1.5arcsec (the lubrication pump)"},
+       {"disturbance_interval", OptionKind::Number, "seconds between disturbances", "1800"},
+       {"settling", OptionKind::Text, "a drift at the start that dies away, e.g. 2arcsec (the machine settling)"},
+       {"settling_time", OptionKind::Number, "seconds: the settling drift's time constant", "600"},
+       {.key = "seed", .kind = OptionKind::Count, .help = "random seed", .defaultText = "1", .low = 0, .high = 2147483647,
+        .outOfRange = "must be from 0 to 2147483647"}}};
+  return schema;
+}
+
+ComponentSimulationRequest componentSimulationRequest(const OptionValues& values) {
+  const OptionReader read(componentSimulationSchema(), values);
+  ComponentSimulationRequest r;
+  r.component = *read.text("component");
+  r.output = *read.text("output");
+  r.step = *read.number("step");
+  r.runs = *read.count("runs");
+  r.noise = read.text("noise").value_or("");
+  if (const auto abbe = read.text("abbe_offset")) r.abbeOffset = parseLengths(*abbe, "abbe_offset");
+  r.instrument = read.text("instrument").value_or("");
+  r.readingTime = *read.number("reading_time");
+  r.disturbance = read.text("disturbance").value_or("");
+  r.disturbanceInterval = *read.number("disturbance_interval");
+  r.settling = read.text("settling").value_or("");
+  r.settlingTime = *read.number("settling_time");
+  r.seed = static_cast<std::uint64_t>(*read.count("seed"));
+  return r;
+}
+
 const OptionSchema& componentFitSchema() {
   static const OptionSchema schema{
       "fit",

@@ -42,8 +42,10 @@ const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
       {"plate-identify", &plateIdentificationSchema()},
       {"positioning", &positioningSchema()},
       {"simulate ballbar", &ballbarSimulationSchema()},
+      {"simulate component", &componentSimulationSchema()},
       {"simulate motion", &motionSimulationSchema()},
       {"simulate plan", &planSimulationSchema()},
+      {"simulate plate", &plateSimulationSchema()},
       {"simulate rtest", &rtestSimulationSchema()},
       {"stiffness", &stiffnessSchema()}};
   return schemas;

@@ -23,6 +23,35 @@ PlatePoses measuredPlatePoses(const KinematicModel& nominal, const PlateMeasurem
 
 }  // namespace
 
+const OptionSchema& plateSimulationSchema() {
+  static const OptionSchema schema{
+      "simulate plate",
+      {{.key = "output", .kind = OptionKind::Text, .help = "CSV to write (atomically)", .required = true},
+       {.key = "origin", .kind = OptionKind::Text, .help = "reference feature in the workpiece frame, e.g. -350,-455,-160mm", .required = true},
+       {"axes", OptionKind::Text, "plate u and v axes in the workpiece frame", "1,0,0 / 0,1,0"},
+       {"stylus", OptionKind::Text, "probe tip relative to the TCP, tool frame", "0,0,0 mm"},
+       {"plate", OptionKind::Text, "plate layout", "9 x 9, pitch 50 mm"},
+       {"features", OptionKind::Text, "all or outer", "all"},
+       {"pose", OptionKind::Text, "positions of the axes that stay, e.g. B=0,C=0"},
+       {"probe", OptionKind::Text, "2S of the probe along u and v to state in the file, e.g. '1.1, 0.8 um'"},
+       {"simulation", OptionKind::Text, "2S of the model's prediction to state in the file, e.g. '6.3 um'"},
+       {"noise", OptionKind::Text, "standard deviation of each measured coordinate", "0 um"},
+       {.key = "seed", .kind = OptionKind::Count, .help = "random seed", .defaultText = "1", .low = 0, .high = 2147483647,
+        .outOfRange = "must be from 0 to 2147483647"}}};
+  return schema;
+}
+
+PlateSimulationRequest plateSimulationRequest(const OptionValues& values) {
+  const OptionReader read(plateSimulationSchema(), values);
+  PlateSimulationRequest r;
+  r.output = *read.text("output");
+  for (const char* key : {"origin", "axes", "stylus", "plate", "features", "pose", "probe", "simulation"})
+    if (const auto text = read.text(key)) plateLayoutField(r.layout, key) = *text;
+  r.noise = *read.text("noise");
+  r.seed = static_cast<std::uint64_t>(*read.count("seed"));
+  return r;
+}
+
 const OptionSchema& plateComparisonSchema() {
   static const OptionSchema schema{
       "plate", {{.key = "data", .kind = OptionKind::Text, .help = "plate measurement CSV (docs/file-formats.md \"Plate measurements\")", .positional = true}}};

@@ -72,5 +72,9 @@ struct ComponentSimulationRequest {
   std::uint64_t seed = 1;
 };
 ComponentRunsFile simulateComponentFile(const MachineSetup& setup, const ComponentSimulationRequest& request);
+// The options of `simulate component`, by the request's fields' names; the values are checked
+// where the runs are simulated.
+const OptionSchema& componentSimulationSchema();
+ComponentSimulationRequest componentSimulationRequest(const OptionValues& values);
 
 }  // namespace mtacc

@@ -53,6 +53,9 @@ struct PlateSimulationRequest {
 // The measurement the machine with its errors would give (features at their nominal places),
 // written atomically to `output`; returns it.
 PlateMeasurement simulatePlateFile(const MachineSetup& setup, const PlateSimulationRequest& request);
+// The options of `simulate plate`: output, the layout's fields by their names, noise, seed.
+const OptionSchema& plateSimulationSchema();
+PlateSimulationRequest plateSimulationRequest(const OptionValues& values);
 
 // The component functions of X, Y, Z (C1 piecewise, pieces of about `pieceLength` mm) and the
 // squareness identified from measured plates (seed 003 §7.7): each file one placement, read
