@@ -28,6 +28,9 @@ void exposeBudget(MachineClass& machine) {
         }
         return toPython(toJson(r));
       })
+      .def("sensitivity", [](const PythonMachine& s, const OptionValues& options) {
+        return toPython(toJson(sensitivities(s, sensitivityRequest(s, options))));
+      })
       .def("stiffness", [](const PythonMachine& s, const OptionValues& options) {
         return toPython(toJson(summariseStiffness(s, stiffnessSamples(options))));
       });

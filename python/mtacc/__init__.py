@@ -306,6 +306,15 @@ class Machine:
         names, J = self._core.jacobian(self._q(q), list(params or []))
         return names, (J[0] if q.ndim == 1 else J)
 
+    def sensitivity(self, pose, direction=None, parameters=None, epsilon_length=None, epsilon_angle=None):
+        """As `mtacc sensitivity --json`: how every error parameter (or those named) moves the TCP at
+        `pose` ({axis: mm or deg}, or the CLI's text), per unit of the parameter, and the coefficient
+        k = E / epsilon (Li et al. 2021 eq. 15) along `direction` (x, y, z; default the tool
+        direction), first order and with the exact model at epsilon_length ("10 um") or
+        epsilon_angle ("30 urad")."""
+        return self._core.sensitivity(_options(pose=_assignments(pose, "pose"), direction=_vector(direction), parameters=parameters,
+                                               epsilon_length=epsilon_length, epsilon_angle=epsilon_angle))
+
     def sensitivity_coefficient(self, q, parameter, epsilon, direction):
         """Li et al. 2021 eq. 15: k = E / epsilon with the exact model, at one pose q (axes,) [mm, deg]
         within travel; epsilon in mm/rad or with a unit ("10 um"); E is the TCP deviation along

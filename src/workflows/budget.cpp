@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/jacobian.hpp"
 
@@ -100,6 +101,29 @@ double parameterStep(const Machine& m, const ErrorModel& errors, const Parameter
 }
 
 }  // namespace
+
+const OptionSchema& sensitivitySchema() {
+  static const OptionSchema schema{
+      "sensitivity",
+      {{.key = "pose", .kind = OptionKind::Text, .help = "axis positions, e.g. X=10,Y=0,Z=5,B=-15,C=30 (mm, deg)", .required = true},
+       {"direction", OptionKind::Text, "direction of E (surface normal) i,j,k in the workpiece frame; default: tool direction"},
+       {"parameters", OptionKind::List, "parameter names or aliases; default: all"},
+       {"epsilon_length", OptionKind::Quantity, "epsilon of length parameters for k = E/eps", "10 um"},
+       {.key = "epsilon_angle", .kind = OptionKind::Quantity, .help = "epsilon of angular parameters for k = E/eps", .defaultText = "30 urad",
+        .dimension = Dimension::Angle}}};
+  return schema;
+}
+
+SensitivityRequest sensitivityRequest(const MachineSetup& setup, const OptionValues& values) {
+  const OptionReader read(sensitivitySchema(), values);
+  SensitivityRequest r;
+  r.q = poseFromText(setup, *read.text("pose"), "pose");
+  if (const auto direction = read.text("direction")) r.direction = parseVector(*direction, "direction");
+  r.parameters = read.list("parameters");
+  r.epsilonLength = *read.quantity("epsilon_length");
+  r.epsilonAngle = *read.quantity("epsilon_angle");
+  return r;
+}
 
 SensitivityResult sensitivities(const MachineSetup& setup, const SensitivityRequest& request) {
   const Machine& m = *setup.machine;

@@ -41,6 +41,7 @@ const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
       {"plate", &plateComparisonSchema()},
       {"plate-identify", &plateIdentificationSchema()},
       {"positioning", &positioningSchema()},
+      {"sensitivity", &sensitivitySchema()},
       {"simulate ballbar", &ballbarSimulationSchema()},
       {"simulate component", &componentSimulationSchema()},
       {"simulate motion", &motionSimulationSchema()},

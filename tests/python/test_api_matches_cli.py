@@ -100,6 +100,7 @@ def test_sensitivity_coefficient(cli):
     k_a0b = machine.sensitivity_coefficient([0, 0, 100, -30, 0], "A0B", "30 urad", n)
     assert data["parameters"][0]["k_exact"] == k_x0c           # um/um
     assert data["parameters"][1]["k_exact"] == k_a0b * 1e-3    # um/urad from mm/rad
+    assert machine.sensitivity({"X": 0, "Y": 0, "Z": 100, "B": -30, "C": 0}, direction=(-0.5, 0, 0.866), parameters=["X0C", "A0B"]) == data
 
 
 def test_check_and_cone(cli, as_json):

@@ -30,7 +30,7 @@ METHODS = {"compensate": (mtacc.Machine.compensate_program, mtacc.Machine.compen
            "dynamics accel": mtacc.Structure.acceleration_response, "dynamics map": mtacc.Structure.map,
            "simulate ballbar": mtacc.Machine.simulate_ballbar, "simulate rtest": mtacc.Machine.simulate_rtest,
            "simulate plan": mtacc.Machine.simulate, "simulate plate": mtacc.Machine.simulate_plate,
-           "simulate component": mtacc.Machine.simulate_component,
+           "simulate component": mtacc.Machine.simulate_component, "sensitivity": mtacc.Machine.sensitivity,
            "budget": mtacc.Machine.budget, "stiffness": mtacc.Machine.stiffness, "identify": mtacc.Machine.identify, "observability": mtacc.Machine.observability, "drift": mtacc.drift_test,
            "cubic-identify": mtacc.Machine.cubic_identify, "cone": mtacc.Machine.cone,
            "cubic": mtacc.Machine.cubic, "fit": mtacc.Machine.fit_component,

@@ -67,6 +67,10 @@ struct SensitivityResult {
 };
 
 SensitivityResult sensitivities(const MachineSetup& setup, const SensitivityRequest& request);
+// pose (required), direction, parameters, epsilon_length, epsilon_angle; the pose read against
+// the machine of `setup`.
+const OptionSchema& sensitivitySchema();
+SensitivityRequest sensitivityRequest(const MachineSetup& setup, const OptionValues& values);
 
 // k = E / epsilon of the error `name` alone at exactly `epsilon` (mm or rad, not zero) at pose `q`
 // (mm, rad; within travel), along `direction` (seed 001 eq. 15).
