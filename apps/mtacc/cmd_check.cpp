@@ -21,10 +21,11 @@ std::string travelText(const Axis& a) {
 }
 
 struct CheckOptions : MachineOptions {
-  bool parameters = false;
+  OptionValues values;
 };
 
 void run(const CheckOptions& o) {
+  const bool listParameters = OptionReader(checkSchema(), o.values).flag("parameters");
   const auto c = checkMachine(loadMachineSetup(o.source));
   const Machine& m = *c.setup.machine;
   std::string human = fmt::format("Machine    {}\nFile       {}\nStructure  {}  (tool first: {})\n", m.name, m.sourceFile,
@@ -57,7 +58,7 @@ void run(const CheckOptions& o) {
   for (const auto& p : c.nonZero)
     human += fmt::format("  {:<10} {:>10.3f} {}\n", p.name, toDisplay(parameterValue(c.setup.errors, p), p.dimension),
                          displayUnit(p.dimension));
-  if (o.parameters) {
+  if (listParameters) {
     human += "Every parameter, by the axis it belongs to (identify, observability and sensitivity take these names):\n";
     for (size_t axis = 0; axis < m.axes.size(); ++axis) {
       std::string names;
@@ -66,7 +67,7 @@ void run(const CheckOptions& o) {
       if (!names.empty()) human += fmt::format("  {:<4}{}\n", m.axes[axis].name, names);
     }
   }
-  if (o.parameters && !c.zeroOffsets.empty()) {
+  if (listParameters && !c.zeroOffsets.empty()) {
     human += "Zero offsets about each rotary axis's own line (the position it takes when commanded 0):\n";
     for (const auto& z : c.zeroOffsets) human += "  " + z + "\n";
   }
@@ -88,7 +89,7 @@ void addCheckCommand(CLI::App& app) {
   auto o = std::make_shared<CheckOptions>();
   auto* cmd = app.add_subcommand("check", "validate a machine and print its kinematic chain and error parameters");
   addMachineOptions(*cmd, *o);
-  cmd->add_flag("--parameters", o->parameters, "list every error parameter by name (the JSON always holds them)");
+  addSchemaOptions(*cmd, checkSchema(), o->values);
   cmd->callback([o] { run(*o); });
 }
 

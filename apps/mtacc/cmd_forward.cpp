@@ -3,32 +3,21 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
-#include "mtacc/core/input_error.hpp"
-#include "mtacc/workflows/kinematics_batch.hpp"
+#include "mtacc/workflows/kinematics_options.hpp"
 
 namespace mtacc::cli {
 namespace {
 
 struct ForwardCliOptions : MachineOptions {
-  std::string pose;
-  std::string posesFile;
-  bool nominal = false;
-  bool withTcp = false;  // errors: the TCP and tool direction columns too, as fk prints them
+  OptionValues values;
 };
 
 void runForward(const ForwardCliOptions& o, bool errorsCommand) {
-  const bool errorsOnly = errorsCommand && !o.withTcp;
+  const OptionSchema& schema = errorsCommand ? errorsSchema() : forwardSchema();
+  const bool errorsOnly = errorsCommand && !OptionReader(schema, o.values).flag("with_tcp");
   const auto setup = loadMachineSetup(o.source);
   const Machine& m = *setup.machine;
-  if (o.pose.empty() == o.posesFile.empty())
-    throw InputError(InputLocation{"", 0, "--pose/--poses"}, "give exactly one of --pose AXIS=VALUE,... or --poses FILE.csv");
-  ForwardResult r;
-  if (!o.posesFile.empty()) {
-    r = forwardKinematicsOfFile(setup, o.posesFile, {o.nominal});
-  } else {
-    const auto q = poseFromText(setup, o.pose, "--pose");
-    r = forwardKinematics(setup, Eigen::Map<const JointMatrix>(q.data(), 1, static_cast<Eigen::Index>(q.size())), {}, {o.nominal});
-  }
+  const ForwardResult r = forwardKinematicsOf(setup, schema, o.values);
   std::string human = errorsOnly ? fmt::format("{} | {:>8} {:>8} {:>8} {:>8} | {:>8} {:>8} {:>8}\n", poseHeader(m), "dx um",
                                                "dy um", "dz um", "|d| um", "ea urad", "eb urad", "ec urad")
                                  : fmt::format("{} | {:>11} {:>11} {:>11} | {:>7} {:>7} {:>7} | {:>8} {:>8} {:>8} {:>8} {:>8} {:>8}\n",
@@ -51,7 +40,7 @@ void runForward(const ForwardCliOptions& o, bool errorsCommand) {
     csv += fmt::format("{},{},{},{},{},{}\n", e.x(), e.y(), e.z(), a.x(), a.y(), a.z());
   }
   human += fmt::format("{} pose(s); largest TCP position error {:.3f} um{}\n", r.q.rows(), r.maxPositionError * 1e3,
-                       o.nominal ? " (nominal machine)" : "");
+                       r.nominal ? " (nominal machine)" : "");
   emit(o, toJson(r), human, csv);
 }
 
@@ -63,12 +52,7 @@ void addForwardCommands(CLI::App& app) {
     auto* cmd = errorsOnly ? app.add_subcommand("errors", "TCP position and orientation errors at axis positions")
                            : app.add_subcommand("fk", "forward kinematics: tool relative to the workpiece at axis positions");
     addMachineOptions(*cmd, *o);
-    cmd->add_option("--pose", o->pose, "axis positions, e.g. X=10,Y=0,Z=5,B=-15,C=30 (mm, deg)");
-    cmd->add_option("--poses", o->posesFile, "CSV with one column per axis (mm, deg), optional <axis>_dir columns");
-    if (errorsOnly)
-      cmd->add_flag("--with-tcp", o->withTcp, "also the TCP (mm) and tool direction columns, as fk prints them");
-    else
-      cmd->add_flag("--nominal", o->nominal, "ignore the errors (nominal machine)");
+    addSchemaOptions(*cmd, errorsOnly ? errorsSchema() : forwardSchema(), o->values);
     cmd->callback([o, errorsOnly] { runForward(*o, errorsOnly); });
   }
 }

@@ -2,33 +2,19 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
-#include "mtacc/core/input_error.hpp"
-#include "mtacc/core/text.hpp"
-#include "mtacc/workflows/kinematics_batch.hpp"
+#include "mtacc/workflows/kinematics_options.hpp"
 
 namespace mtacc::cli {
 namespace {
 
 struct InverseCliOptions : MachineOptions {
-  std::string tcp, tool = "0,0,1", targetsFile, branch = "auto", near;
-  bool all = false, withErrors = false;
+  OptionValues values;
 };
 
 void run(const InverseCliOptions& o) {
   const auto setup = loadMachineSetup(o.source);
   const Machine& m = *setup.machine;
-  if (o.tcp.empty() == o.targetsFile.empty())
-    throw InputError(InputLocation{"", 0, "--tcp/--targets"}, "give exactly one of --tcp x,y,z or --targets FILE.csv");
-  InverseRequest request = o.targetsFile.empty() ? InverseRequest{} : inverseTargetsOfFile(o.targetsFile);
-  request.options.branch = parseTiltBranch(o.branch);
-  if (!o.near.empty()) request.options.hint = poseFromText(setup, o.near, "--near", true);
-  request.all = o.all;
-  request.withErrors = o.withErrors;
-  if (!o.tcp.empty()) {
-    request.positions.push_back(parseVector(o.tcp, "--tcp"));
-    request.directions.push_back(parseVector(o.tool, "--tool"));
-  }
-  const auto r = inverseKinematics(setup, request);
+  const auto r = inverseKinematics(setup, inverseRequest(setup, o.values));
   std::string human = poseHeader(m) + "   notes\n";
   std::string csv = poseCsvHeader(m) + "singular,within_travel\n";
   for (const auto& s : r.solutions) {
@@ -61,17 +47,7 @@ void addInverseCommand(CLI::App& app) {
   auto o = std::make_shared<InverseCliOptions>();
   auto* cmd = app.add_subcommand("ik", "inverse kinematics: axis positions for a TCP position and tool direction");
   addMachineOptions(*cmd, *o);
-  cmd->add_option("--tcp", o->tcp, "TCP position x,y,z in the workpiece frame (mm)");
-  cmd->add_option("--tool", o->tool, "tool direction i,j,k (TCP towards spindle), default 0,0,1");
-  cmd->add_option("--targets", o->targetsFile, "CSV with columns x,y,z,i,j,k: solved as a continuous path");
-  cmd->add_option("--branch", o->branch, "tilt branch of the first pose: auto, positive or negative");
-  cmd->add_option("--near", o->near,
-                  "a pose to stay near, e.g. B=30,C=170 (mm, deg; axes not named 0): rotary angles closest to it, a free angle "
-                  "at a singular pose kept at its value");
-  cmd->add_flag("--with-errors", o->withErrors,
-                "the commands that reach the pose on the machine with its errors (the inverse error model), with the "
-                "residual");
-  cmd->add_flag("--all", o->all, "list every solution of a single target (including those beyond travel)");
+  addSchemaOptions(*cmd, inverseSchema(), o->values);
   cmd->callback([o] { run(*o); });
 }
 

@@ -3,34 +3,34 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "mtacc/workflows/kinematics_batch.hpp"
+#include "mtacc/workflows/kinematics_options.hpp"
 #include "mtacc/workflows/tcp_uncertainty.hpp"
 
 namespace mtacc::python {
 
 void exposeKinematics(MachineClass& machine) {
   machine
-      .def("fk", [](const PythonMachine& s, const Array& q, const py::object& dirs, bool nominal, bool errors, int threads) {
+      .def("fk", [](const PythonMachine& s, const Array& q, const py::object& dirs, const OptionValues& options, bool errors) {
         const auto joints_ = joints(*s.machine, q);
         const auto d = directions(dirs, joints_);
         const auto& [actual, nominalModel] = s.compiled();
+        ForwardOptions o = forwardOptions(errors ? errorsSchema() : forwardSchema(), options);
+        o.errors = errors;
         ForwardResult r;
         {
           py::gil_scoped_release release;
-          r = forwardKinematics(actual, nominalModel, joints_, d, {nominal, errors, threads});
+          r = forwardKinematics(actual, nominalModel, joints_, d, o);
         }
         if (!errors) return py::make_tuple(toArray(r.tool.positions), toArray(r.tool.directions));
         return py::make_tuple(toArray(r.error.leftCols<3>(), 1e3), toArray(r.error.rightCols<3>(), 1e6));
       })
+      // tcps and tools given: a path's targets, the options only how to solve them; else the
+      // options' own single target (tcp, tool).
       .def("ik", [](const PythonMachine& s, const std::vector<std::vector<double>>& tcps, const std::vector<std::vector<double>>& tools,
-                    const std::string& branch, bool all, bool withErrors, const std::string& near) {
-        InverseRequest request;
-        request.withErrors = withErrors;
-        if (!near.empty()) request.options.hint = poseFromText(s, near, "near", true);
-        for (const auto& p : tcps) request.positions.push_back(vec3(p, "tcp"));
-        for (const auto& t : tools) request.directions.push_back(vec3(t, "tool"));
-        request.options.branch = parseTiltBranch(branch);
-        request.all = all;
+                    const OptionValues& options) {
+        InverseRequest request = tcps.empty() ? inverseRequest(s, options) : inverseSolving(s, options);
+        for (const auto& p : tcps) request.positions.push_back(vec3(p, "tcps"));
+        for (const auto& t : tools) request.directions.push_back(vec3(t, "tools"));
         const auto& [actual, nominalModel] = s.compiled();
         const auto r = inverseKinematics(actual, nominalModel, request);
         std::vector<const std::vector<double>*> rows;

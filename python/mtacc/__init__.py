@@ -265,35 +265,36 @@ class Machine:
         q = np.asarray(q, dtype=float)
         return q.reshape(1, -1) if q.ndim == 1 else q
 
-    def fk(self, q, directions=None, nominal=False, threads=0):
+    def fk(self, q, directions=None, nominal=None, threads=None):
         """TCP positions (n, 3) [mm] and tool directions (n, 3) in the workpiece frame.
         q: one pose (axes,) or many (n, axes) [mm, deg]; threads: 0 for every core, else that many.
         The batch is the fast path: many poses in one call run in C++ (below a microsecond a pose).
         One pose a call costs a few microseconds: the compiled model is kept between calls until an
         error is changed."""
-        return self._core.fk(self._q(q), directions, nominal, False, threads)
+        return self._core.fk(self._q(q), directions, _options(nominal=nominal, threads=threads), False)
 
-    def tcp_errors(self, q, directions=None, threads=0):
+    def tcp_errors(self, q, directions=None, threads=None):
         """(n, 6): the TCP's position error dx dy dz [um] and orientation error (rotation vector) [urad],
         actual minus nominal, in the workpiece frame. q: one pose (axes,) or many (n, axes) [mm, deg];
         directions: None (every axis standing still, reversal errors not applied) or an int array of
         q's shape with the sign of each axis's motion (+1, -1, 0); threads: 0 for every core."""
-        position, orientation = self._core.fk(self._q(q), directions, False, True, threads)
+        position, orientation = self._core.fk(self._q(q), directions, _options(threads=threads), True)
         return np.hstack([position, orientation])
 
-    def ik(self, tcp, tool=(0, 0, 1), branch="auto", all=False, with_errors=False, near=None):
+    def ik(self, tcp, tool=None, branch=None, all=None, with_errors=None, near=None):
         """Solutions for one TCP [mm] and tool direction, as `mtacc ik --json` lists them; with_errors: the
         commands that reach the pose on the machine with its errors (the inverse error model), with the
         nominal pose it started from and the residual (um, urad); near: a pose ({axis: mm or deg}) whose
         rotary angles the solution stays closest to, a free angle at a singular pose kept at its value."""
-        result, _ = self._core.ik([list(map(float, tcp))], [list(map(float, tool))], branch, all, with_errors, _assignments(near, "near") or "")
+        result, _ = self._core.ik([], [], _options(tcp=_vector(tcp), tool=_vector(tool), branch=branch, all=all, with_errors=with_errors,
+                                                   near=_assignments(near, "near")))
         return result["solutions"]
 
-    def ik_path(self, tcps, tools, branch="auto", with_errors=False):
+    def ik_path(self, tcps, tools, branch=None, with_errors=None):
         """Axis positions (n, axes) [mm, deg] along a continuous path through the TCPs (n, 3) [mm] with the
         tool directions (n, 3) (unit vectors, workpiece frame); with_errors: on the machine with its
         errors (as `ik`)."""
-        _, q = self._core.ik(np.asarray(tcps, float).tolist(), np.asarray(tools, float).tolist(), branch, False, with_errors, "")
+        _, q = self._core.ik(np.asarray(tcps, float).tolist(), np.asarray(tools, float).tolist(), _options(branch=branch, with_errors=with_errors))
         return q
 
     def jacobian(self, q, params=None):

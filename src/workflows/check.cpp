@@ -25,6 +25,12 @@ std::string zeroOffsetExpression(const Machine& m, const Parameter& zero) {
 
 const char* axisTypeName(AxisType t) { return t == AxisType::Linear ? "linear" : t == AxisType::Rotary ? "rotary" : "spindle"; }
 
+const OptionSchema& checkSchema() {
+  static const OptionSchema schema{
+      "check", {{"parameters", OptionKind::Flag, "list every error parameter by name (the JSON always holds them)"}}};
+  return schema;
+}
+
 MachineCheck checkMachine(const MachineSetup& setup) {
   MachineCheck c{setup, parameterCatalogue(*setup.machine, setup.errors), nonZeroParameters(*setup.machine, setup.errors), 0, {}, {}, {}};
   for (const auto& p : c.parameters) c.locationCount += p.kind == ParameterKind::Location ? 1 : 0;

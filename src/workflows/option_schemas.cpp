@@ -1,6 +1,7 @@
 #include "mtacc/workflows/option_schemas.hpp"
 
 #include "mtacc/workflows/budget.hpp"
+#include "mtacc/workflows/check.hpp"
 #include "mtacc/workflows/compensate_options.hpp"
 #include "mtacc/workflows/component_fit.hpp"
 #include "mtacc/workflows/cone_study.hpp"
@@ -8,6 +9,7 @@
 #include "mtacc/workflows/cubic_test.hpp"
 #include "mtacc/workflows/dynamics_options.hpp"
 #include "mtacc/workflows/identification.hpp"
+#include "mtacc/workflows/kinematics_options.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
 #include "mtacc/workflows/plates.hpp"
 #include "mtacc/workflows/positioning.hpp"
@@ -23,6 +25,7 @@ namespace mtacc {
 const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
   static const std::map<std::string, const OptionSchema*> schemas{
       {"budget", &budgetSchema()},
+      {"check", &checkSchema()},
       {"compensate", &compensateSchema()},
       {"cone", &coneSchema()},
       {"cubic", &cubicTestSchema()},
@@ -30,6 +33,9 @@ const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
       {"decompose", &decompositionSchema()},
       {"deviation", &programDeviationSchema()},
       {"drift", &driftTestSchema()},
+      {"errors", &errorsSchema()},
+      {"fk", &forwardSchema()},
+      {"ik", &inverseSchema()},
       {"dynamics accel", &structureAccelerationSchema()},
       {"dynamics frf", &structureFrfSchema()},
       {"dynamics map", &structureMapSchema()},

@@ -21,8 +21,12 @@ PYTHON_ONLY = {"series_points"}
 # of the tables is a process that runs until it is stopped.
 # Python's frf takes the frequencies themselves (any array), where the CLI takes a grid of them;
 # Python maps a second model with that Structure's own map.
-CLI_ONLY_OF = {"compensate": {"gcode", "tables", "every", "updates"}, "dynamics frf": {"from", "to", "step"}, "dynamics map": {"compare"}}
-PYTHON_ONLY_OF = {"dynamics frf": {"frequencies"}}
+# Python gives poses and targets as arrays (q, directions; ik_path's tcps and tools) where the CLI
+# reads them from text or a file; what the CLI prints (check's parameter list, errors' TCP
+# columns) is in Python's result always.
+CLI_ONLY_OF = {"compensate": {"gcode", "tables", "every", "updates"}, "dynamics frf": {"from", "to", "step"}, "dynamics map": {"compare"},
+               "fk": {"pose", "poses"}, "errors": {"pose", "poses", "with_tcp"}, "ik": {"targets"}, "check": {"parameters"}}
+PYTHON_ONLY_OF = {"dynamics frf": {"frequencies"}, "fk": {"q", "directions"}, "errors": {"q", "directions"}, "ik": {"tcps", "tools"}}
 METHODS = {"compensate": (mtacc.Machine.compensate_program, mtacc.Machine.compensation_tables), "deviation": mtacc.Machine.deviation,
            "decompose": mtacc.Machine.decompose, "simulate motion": mtacc.Machine.simulate_motion,
            "evaluate": (mtacc.Machine.evaluate_ballbar, mtacc.Machine.evaluate_rtest), "plate": mtacc.Machine.compare_plate,
@@ -31,6 +35,8 @@ METHODS = {"compensate": (mtacc.Machine.compensate_program, mtacc.Machine.compen
            "simulate ballbar": mtacc.Machine.simulate_ballbar, "simulate rtest": mtacc.Machine.simulate_rtest,
            "simulate plan": mtacc.Machine.simulate, "simulate plate": mtacc.Machine.simulate_plate,
            "simulate component": mtacc.Machine.simulate_component, "sensitivity": mtacc.Machine.sensitivity,
+           "check": mtacc.Machine.check, "fk": mtacc.Machine.fk, "errors": mtacc.Machine.tcp_errors,
+           "ik": (mtacc.Machine.ik, mtacc.Machine.ik_path),
            "budget": mtacc.Machine.budget, "stiffness": mtacc.Machine.stiffness, "identify": mtacc.Machine.identify, "observability": mtacc.Machine.observability, "drift": mtacc.drift_test,
            "cubic-identify": mtacc.Machine.cubic_identify, "cone": mtacc.Machine.cone,
            "cubic": mtacc.Machine.cubic, "fit": mtacc.Machine.fit_component,

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
 namespace mtacc {
@@ -29,6 +30,8 @@ struct MachineCheck {
 };
 
 MachineCheck checkMachine(const MachineSetup& setup);
+// parameters: list every error parameter in the printed table (the JSON always holds them).
+const OptionSchema& checkSchema();
 nlohmann::json toJson(const MachineCheck& check);
 
 const char* axisTypeName(AxisType type);  // "linear", "rotary", "spindle"
