@@ -13,7 +13,8 @@ import time
 
 import numpy as np
 
-from . import InputError, Machine, UnreachablePose, plots
+from . import InputError, Machine, UnreachablePose, _options, plots
+from ._mtacc import option_fields as _option_fields, read_options as _read_options
 
 # Marks every figure as rendered (non-empty box) and records script errors, so that a
 # browser test can read the outcome from the DOM.
@@ -537,10 +538,17 @@ def thermal_section(state):
     return out
 
 
-def build_report(machine_path, output_dir=".", errors=None, samples=5, progress=None, plan=None, structure=None,
-                 compare=None, positioning=(), components=(), plates=(), load=None, decomposition=None, drift=(), thermal=None,
-                 data=()):
-    """Writes <output_dir>/<machine>-report.html atomically and returns its path."""
+def build_report(machine, output=None, errors=None, load=None, samples=None, plan=None, data=None, structure=None, compare=None,
+                 positioning=None, plate=None, component=None, drift=None, thermal=None, decomposition=None, progress=None):
+    """Writes <output>/<machine>-report.html atomically (output: a folder, default the current one)
+    and returns its path; the options as `mtacc report` takes them (each list one file or several),
+    progress(step) told of each step."""
+    o = _read_options("report", _options(output=output, errors=errors, load=load, samples=samples, plan=plan, data=data,
+                                         structure=structure, compare=compare, positioning=positioning, plate=plate,
+                                         component=component, drift=drift, thermal=thermal, decomposition=decomposition))
+    machine_path, output_dir, errors, load, samples = machine, o["output"], o["errors"], o["load"], o["samples"]
+    plan, data, structure, compare, positioning = o["plan"], o["data"], o["structure"], o["compare"], o["positioning"]
+    plates, components, drift, thermal, decomposition = o["plate"], o["component"], o["drift"], o["thermal"], o["decomposition"]
     start = time.perf_counter()
     steps = ["machine", "error budget", "volumetric error maps", "circular test", "5-axis circle", "cone frustum",
              "cubic machining test", "writing"]
@@ -737,35 +745,18 @@ def _write_atomically(target, text):
 
 
 def main(argv=None):
+    """The command line of `mtacc report` (the CLI runs this with its flags), made from the
+    report's option schema, as the CLI's are."""
     parser = argparse.ArgumentParser(prog="mtacc report", description="Write the HTML accuracy report of a machine.")
     parser.add_argument("machine", help="machine file, or the name of a bundled machine")
-    parser.add_argument("-o", "--output", default=".", help="output directory (default: current)")
-    parser.add_argument("--errors", help="errors file (default: the machine file's errors)")
-    parser.add_argument("--load", type=float, help="workpiece load in kg for the errors' stiffness changes "
-                                                   "(default: the errors' workpiece_load)")
-    parser.add_argument("--samples", type=int, default=5, help="positions per axis for the budget grid")
-    parser.add_argument("--plan", help="test plan (YAML or bundled name) to simulate, evaluate and identify from")
-    parser.add_argument("--data", action="append", default=[],
-                        help="measured file of the plan's runs (CSV) to identify from instead of simulating; may be given several times")
-    parser.add_argument("--structure", help="structure model (YAML or bundled name) for the dynamics section")
-    parser.add_argument("--compare", help="a second structure model to compare with")
-    parser.add_argument("--positioning", action="append", default=[],
-                        help="ISO 230-2 positioning-test file (KEY=value or CSV); may be given several times")
-    parser.add_argument("--plate", action="append", default=[],
-                        help="hole- or ball-plate measurement (CSV) to compare with the model; may be given several times")
-    parser.add_argument("--component", action="append", default=[],
-                        help="direct-measurement runs of a component (CSV) to fit and plot; may be given several times")
-    parser.add_argument("--decomposition", help="a decomposition set (YAML, Andolfatto et al. 2011) of recorded signals to decompose")
-    parser.add_argument("--drift", action="append", default=[],
-                        help="thermal drift test (CSV, ISO 230-3) to evaluate and plot; may be given several times")
-    parser.add_argument("--thermal", help="thermal state (YAML: the temperatures along the scales) the machine is evaluated at")
+    for field in _option_fields("report"):
+        names = ["--" + field["key"].replace("_", "-")] + (["-o"] if field["key"] == "output" else [])
+        several = field["kind"] in ("list", "numbers")
+        parser.add_argument(*names, dest=field["key"], action="append" if several else "store", help=field["help"])
     args = parser.parse_args(argv)
+    options = {key: value for key, value in vars(args).items() if key != "machine"}
     try:
-        path = build_report(args.machine, args.output, args.errors, args.samples,
-                            progress=lambda s: print(s, file=sys.stderr, flush=True), plan=args.plan,
-                            structure=args.structure, compare=args.compare, positioning=args.positioning, components=args.component, plates=args.plate,
-                            load=args.load, decomposition=args.decomposition, drift=args.drift, thermal=args.thermal,
-                            data=args.data)
+        path = build_report(args.machine, **options, progress=lambda s: print(s, file=sys.stderr, flush=True))
     except (InputError, UnreachablePose) as e:
         message = str(e)
         first = message.split(":", 1)[0]

@@ -15,6 +15,7 @@
 #include "mtacc/workflows/positioning.hpp"
 #include "mtacc/workflows/program_deviation.hpp"
 #include "mtacc/workflows/recorded_decomposition.hpp"
+#include "mtacc/workflows/report_paths.hpp"
 #include "mtacc/workflows/simulation_options.hpp"
 #include "mtacc/workflows/stiffness.hpp"
 #include "mtacc/workflows/thermal_drift.hpp"
@@ -47,6 +48,7 @@ const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
       {"plate", &plateComparisonSchema()},
       {"plate-identify", &plateIdentificationSchema()},
       {"positioning", &positioningSchema()},
+      {"report", &reportSchema()},
       {"sensitivity", &sensitivitySchema()},
       {"simulate ballbar", &ballbarSimulationSchema()},
       {"simulate component", &componentSimulationSchema()},

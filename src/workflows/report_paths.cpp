@@ -8,6 +8,28 @@
 #include "mtacc/kinematics/inverse.hpp"
 
 namespace mtacc {
+
+const OptionSchema& reportSchema() {
+  static const OptionSchema schema{
+      "report",
+      {{"output", OptionKind::Text, "output directory", "."},
+       {"errors", OptionKind::Text, "errors file (default: the machine file's)"},
+       {.key = "load", .kind = OptionKind::Number,
+        .help = "workpiece load in kg for the errors' stiffness changes (default: the errors' workpiece_load)", .low = 0, .high = 1e6,
+        .outOfRange = "must be from 0 to 1e6 kg"},
+       {"samples", OptionKind::Count, "positions per axis for the error budget", "5"},
+       {"plan", OptionKind::Text, "test plan to simulate, evaluate and identify from (e.g. tilting-table-rtest)"},
+       {"data", OptionKind::List, "the plan's measured files (CSV) to identify from, instead of simulating the plan"},
+       {"structure", OptionKind::Text, "structure model for the dynamics section (e.g. tzyx-arm-x)"},
+       {"compare", OptionKind::Text, "a second structure model to compare with (e.g. tzyx-arm-y)"},
+       {"positioning", OptionKind::List, "ISO 230-2 positioning-test files for the positioning section"},
+       {"plate", OptionKind::List, "plate measurements (the 1991 BCR report) to compare with the model, one section each"},
+       {"component", OptionKind::List, "direct-measurement runs (the 1991 BCR report) to fit and plot, one section each"},
+       {"drift", OptionKind::List, "thermal drift tests (ISO 230-3, the 1991 BCR report) to evaluate and plot, one section each"},
+       {"thermal", OptionKind::Text, "thermal state (YAML: the temperatures along the scales): the whole report is the warm machine's"},
+       {"decomposition", OptionKind::Text, "a decomposition set (Andolfatto et al. 2011 recorded signals) for the error-decomposition section"}}};
+  return schema;
+}
 namespace {
 
 double midTravel(const Axis& a) { return a.travel ? 0.5 * (a.travel->min + a.travel->max) : 0.0; }

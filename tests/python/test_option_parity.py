@@ -8,7 +8,7 @@ import subprocess
 import pytest
 
 import mtacc
-from mtacc import _mtacc
+from mtacc import _mtacc, report
 
 # The machine and its set-up are the Python Machine's constructor, a structure model Structure's; --json, -o, --strict and
 # --rows (of the printed table) shape the CLI's output; errors_out is a file written by the front end (both have it); series_points
@@ -26,7 +26,8 @@ PYTHON_ONLY = {"series_points"}
 # columns) is in Python's result always.
 CLI_ONLY_OF = {"compensate": {"gcode", "tables", "every", "updates"}, "dynamics frf": {"from", "to", "step"}, "dynamics map": {"compare"},
                "fk": {"pose", "poses"}, "errors": {"pose", "poses", "with_tcp"}, "ik": {"targets"}, "check": {"parameters"}}
-PYTHON_ONLY_OF = {"dynamics frf": {"frequencies"}, "fk": {"q", "directions"}, "errors": {"q", "directions"}, "ik": {"tcps", "tools"}}
+# build_report is a function: the machine is its first argument; progress tells a caller each step.
+PYTHON_ONLY_OF = {"report": {"machine", "progress"}, "dynamics frf": {"frequencies"}, "fk": {"q", "directions"}, "errors": {"q", "directions"}, "ik": {"tcps", "tools"}}
 METHODS = {"compensate": (mtacc.Machine.compensate_program, mtacc.Machine.compensation_tables), "deviation": mtacc.Machine.deviation,
            "decompose": mtacc.Machine.decompose, "simulate motion": mtacc.Machine.simulate_motion,
            "evaluate": (mtacc.Machine.evaluate_ballbar, mtacc.Machine.evaluate_rtest), "plate": mtacc.Machine.compare_plate,
@@ -36,7 +37,7 @@ METHODS = {"compensate": (mtacc.Machine.compensate_program, mtacc.Machine.compen
            "simulate plan": mtacc.Machine.simulate, "simulate plate": mtacc.Machine.simulate_plate,
            "simulate component": mtacc.Machine.simulate_component, "sensitivity": mtacc.Machine.sensitivity,
            "check": mtacc.Machine.check, "fk": mtacc.Machine.fk, "errors": mtacc.Machine.tcp_errors,
-           "ik": (mtacc.Machine.ik, mtacc.Machine.ik_path),
+           "ik": (mtacc.Machine.ik, mtacc.Machine.ik_path), "report": report.build_report,
            "budget": mtacc.Machine.budget, "stiffness": mtacc.Machine.stiffness, "identify": mtacc.Machine.identify, "observability": mtacc.Machine.observability, "drift": mtacc.drift_test,
            "cubic-identify": mtacc.Machine.cubic_identify, "cone": mtacc.Machine.cone,
            "cubic": mtacc.Machine.cubic, "fit": mtacc.Machine.fit_component,
@@ -61,6 +62,17 @@ def cli_keys(cli, command):
 
 def test_every_schema_has_a_python_method():
     assert set(_mtacc.option_schema_workflows()) == set(METHODS)
+
+
+def test_every_command_has_a_schema(cli):
+    # Each command of `mtacc --help`, a command with subcommands by each of them.
+    def commands(*path):
+        text = subprocess.run([cli, *path, "--help"], capture_output=True, text=True, check=True).stdout
+        if "Subcommands:" not in text:
+            return [" ".join(path)]
+        names = re.findall(r"^  ([a-z][a-z0-9-]*)", text.split("Subcommands:")[1], flags=re.M)
+        return [c for name in names for c in commands(*path, name)]
+    assert set(commands()) == set(_mtacc.option_schema_workflows())
 
 
 @pytest.mark.parametrize("workflow", sorted(METHODS))

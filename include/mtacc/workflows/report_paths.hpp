@@ -10,9 +10,15 @@
 #include <nlohmann/json.hpp>
 
 #include "mtacc/core/joint_matrix.hpp"
+#include "mtacc/core/option_schema.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
 namespace mtacc {
+
+// The options of `report` (built by the Python package, python/mtacc/report.py): where it goes,
+// the machine's set-up, and the measured files and models each adding a section. The values
+// are checked where each section reads them.
+const OptionSchema& reportSchema();
 
 struct CirclePathResult {
   std::shared_ptr<const Machine> machine;
