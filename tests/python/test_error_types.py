@@ -7,6 +7,7 @@ import pathlib
 import pytest
 
 import mtacc
+from mtacc import _mtacc, report
 
 DATA = pathlib.Path(__file__).resolve().parents[2] / "data"
 PROGRAM = str(DATA / "programs" / "seed004-capball.nc")
@@ -24,30 +25,66 @@ def arm():
     return mtacc.Structure(str(DATA / "structures" / "tzyx-arm-x.yaml"))
 
 
-CASES = {
-    "budget samples": lambda: three_axis().budget(samples=1),
+def maho():
+    return mtacc.Machine(str(DATA / "machines" / "maho.yaml"))
+
+
+NOT_A_RUN = str(DATA / "machines" / "maho.yaml")
+
+# One invalid option of each workflow, by the command's name.
+WORKFLOWS = {
+    "budget": lambda: three_axis().budget(samples=1),
+    "check": lambda: _mtacc.read_options("check", {"parameters": ["maybe"]}),
+    "compensate": lambda: three_axis().compensate_program(PROGRAM, tolerance=0),
+    "cone": lambda: tilting().cone(alpha=95),
+    "cubic": lambda: tilting().cubic(grid=0),
+    "cubic-identify": lambda: tilting().cubic_identify("missing-zones.csv", ["X0B"]),
+    "decompose": lambda: three_axis().decompose("missing-set.yaml", drift_frame="sideways"),
+    "deviation": lambda: three_axis().deviation(PROGRAM, step=0),
+    "drift": lambda: mtacc.drift_test(str(DATA / "thermal" / "z-axis-drift.csv"), folds=1),
+    "dynamics accel": lambda: arm().acceleration_response(at={"Q": 1}),
+    "dynamics frf": lambda: arm().frf([-5.0]),
+    "dynamics map": lambda: arm().map(grid=(1, 1)),
+    "dynamics modes": lambda: arm().modes(count=0),
+    "errors": lambda: tilting().tcp_errors([0] * 5, threads=-1),
+    "evaluate": lambda: maho().evaluate_ballbar(NOT_A_RUN),
+    "fk": lambda: tilting().fk([0] * 5, threads=-1),
+    "fit": lambda: maho().fit_component(str(DATA / "direct-measurements" / "maho-xtx.csv"), degree=3),
+    "identify": lambda: tilting().identify([]),
+    "ik": lambda: tilting().ik([0, 0, 100], near=3),
+    "observability": lambda: tilting().observability("no-such-plan"),
+    "plate": lambda: maho().compare_plate(NOT_A_RUN),
+    "plate-identify": lambda: maho().identify_plates([str(DATA / "plates" / "maho-xy-z292.csv")], piece=-1),
+    "positioning": lambda: mtacc.positioning(NOT_A_RUN),
+    "report": lambda: report.build_report("tilting-table", samples="many"),
+    "sensitivity": lambda: tilting().sensitivity({"Q": 1}),
+    "simulate ballbar": lambda: tilting().simulate_ballbar(points=0),
+    "simulate component": lambda: maho().simulate_component("qqq", "runs.csv"),
+    "simulate motion": lambda: three_axis().simulate_motion(PROGRAM, "unused", feeds=[-1]),
+    "simulate plan": lambda: tilting().simulate(str(DATA / "plans" / "tilting-table-rtest.yaml"), noise="-1 um"),
+    "simulate plate": lambda: maho().simulate_plate("plate.csv", origin=(0, "x", 0)),
+    "simulate rtest": lambda: tilting().simulate_rtest((100, 0, 50), points=0),
+    "stiffness": lambda: maho().stiffness(samples=2),
+}
+
+# Checks in other layers: the binding's conversions and the domain code under a workflow.
+OTHERS = {
     "working volume samples": lambda: three_axis().working_volume_grid(samples=1),
-    "cone angle": lambda: tilting().cone(alpha=95),
-    "cubic grid": lambda: tilting().cubic(grid=0),
-    "stiffness without load": lambda: mtacc.Machine(str(DATA / "machines" / "maho.yaml")).stiffness(samples=2),
     "tables nodes": lambda: three_axis().compensation_tables(nodes=(1, 1, 1)),
     "tables pose of another type": lambda: tilting().compensation_tables(pose=["B", 0]),
     "tables pose not a number": lambda: tilting().compensation_tables(pose={"B": "ten"}),
     "tables pose text": lambda: tilting().compensation_tables(pose="B=0,Q=1"),
-    "ik near": lambda: tilting().ik([0, 0, 100], near=3),
     "thermal points": lambda: mtacc.thermal_state("three-axis-vertical", str(DATA / "thermal" / "three-axis-vertical-warm.yaml"),
                                                   points=1),
-    "drift folds": lambda: mtacc.drift_test(str(DATA / "thermal" / "z-axis-drift.csv"), folds=1),
-    "positioning of another file": lambda: mtacc.positioning(str(DATA / "machines" / "maho.yaml")),
-    "deviation step": lambda: three_axis().deviation(PROGRAM, step=0),
-    "simulate noise": lambda: tilting().simulate(str(DATA / "plans" / "tilting-table-rtest.yaml"), noise="-1 um"),
-    "identify without data": lambda: tilting().identify([]),
     "ik path lengths": lambda: tilting().ik_path([[0, 0, 0]], [[0, 0, 1], [0, 0, 1]]),
     "sensitivity epsilon": lambda: tilting().sensitivity_coefficient([0] * 5, "X0Y", 0, (1, 0, 0)),
-    "motion feed": lambda: three_axis().simulate_motion(PROGRAM, "unused.csv", feeds=[-1]),
-    "frf frequency": lambda: arm().frf([-5.0]),
-    "map grid": lambda: arm().map(grid=(1, 1)),
 }
+
+CASES = {**WORKFLOWS, **OTHERS}
+
+
+def test_every_workflow_has_a_case():
+    assert set(WORKFLOWS) == set(_mtacc.option_schema_workflows())
 
 
 @pytest.mark.parametrize("case", sorted(CASES))
