@@ -4,8 +4,6 @@
 
 #include <sys/wait.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -13,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "test_helpers.hpp"
 #include "test_paths.hpp"
 
 namespace {
@@ -27,13 +26,6 @@ struct CliRun {
 
 class CliBadInput : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mtacc-cli-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   std::string write(const std::string& name, const std::string& text) {
     const auto p = dir_ / name;
     std::ofstream(p) << text;
@@ -61,7 +53,8 @@ class CliBadInput : public ::testing::Test {
     for (const auto& e : fs::directory_iterator(dir_)) EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos);
   }
 
-  fs::path dir_;
+  mtacc::test::TestFolder folder_{"mtacc-cli"};
+  const fs::path dir_ = folder_.dir();
 };
 
 // The bad-input cases of the C++ and Python tests start from the same small machine.

@@ -4,7 +4,6 @@
 // reader's and the workflow's errors.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -26,16 +25,13 @@ namespace fs = std::filesystem;
 class ComponentFitWorkflow : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mtacc-fit-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
     setup_.machine = test::bundled("maho");
     setup_.errors = loadMachineErrors(*setup_.machine);
   }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
-  fs::path dir_;
+  test::TestFolder folder_{"mtacc-fit"};
+  const fs::path dir_ = folder_.dir();
   MachineSetup setup_;
 };
 

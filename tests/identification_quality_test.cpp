@@ -3,7 +3,6 @@
 // data hardly determine, and neither fires on good data from a good plan.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +12,7 @@
 
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
+#include "test_helpers.hpp"
 
 namespace mtacc {
 namespace {
@@ -49,14 +49,10 @@ runs:
 class IdentificationQualityTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mtacc-quality-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
     write("modelled.yaml", kModelledErrors);
     write("zero.yaml", "errors: {}\n");
     write("good-plan.yaml", kGoodPlan);
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   std::string write(const std::string& name, const std::string& text) {
     std::ofstream(dir_ / name) << text;
@@ -81,7 +77,8 @@ class IdentificationQualityTest : public ::testing::Test {
     return identifyParameters(loadMachineSetup({"tilting-table", path("zero.yaml"), "", std::nullopt, ""}), request);
   }
 
-  fs::path dir_;
+  test::TestFolder folder_{"mtacc-quality"};
+  const fs::path dir_ = folder_.dir();
 };
 
 // A 1 % test flags 1 % of good data sets: over 20 noise draws, more than two flags would

@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -24,12 +23,6 @@ namespace fs = std::filesystem;
 
 class ProgramStreaming : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mtacc-streaming-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
   void write(const std::string& name, const std::string& text) const { std::ofstream(path(name), std::ios::binary) << text; }
   std::vector<std::string> files() const {
@@ -39,7 +32,8 @@ class ProgramStreaming : public ::testing::Test {
     return names;
   }
 
-  fs::path dir_;
+  test::TestFolder folder_{"mtacc-streaming"};
+  const fs::path dir_ = folder_.dir();
 };
 
 // A long 3-axis program, `bad` replacing line `at`.

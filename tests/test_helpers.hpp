@@ -1,5 +1,8 @@
 #pragma once
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
 
 #include <memory>
 #include <optional>
@@ -28,6 +31,27 @@ std::optional<E> thrown(F&& f) {
   ADD_FAILURE() << "no exception thrown";
   return std::nullopt;
 }
+
+// A folder of the running test's own (its name and the process's in the folder's name), removed
+// with everything in it when the test ends.
+class TestFolder {
+ public:
+  explicit TestFolder(const std::string& prefix)
+      : dir_(std::filesystem::temp_directory_path() /
+             (prefix + "-" + std::to_string(::getpid()) + "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
+    std::filesystem::create_directories(dir_);
+  }
+  ~TestFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(dir_, ignored);
+  }
+  TestFolder(const TestFolder&) = delete;
+  TestFolder& operator=(const TestFolder&) = delete;
+  const std::filesystem::path& dir() const { return dir_; }
+
+ private:
+  std::filesystem::path dir_;
+};
 
 inline std::shared_ptr<const Machine> bundled(const std::string& name) {
   return std::make_shared<const Machine>(loadMachine(name));

@@ -341,9 +341,12 @@ std::array<ReversalTrims, 3> roundedTrims(std::array<ReversalTrims, 3> trims, do
   return trims;
 }
 
+bool anyNonZero(const std::vector<double>& values) {
+  return std::any_of(values.begin(), values.end(), [](double v) { return v != 0.0; });
+}
+
 std::vector<AxisReversalTable> axisReversalTables(const Machine& machine, const CorrectionGrid& g, const std::array<ReversalTrims, 3>& trims,
                                                   const std::vector<RotaryPositioning>& rotary) {
-  const auto anyNonZero = [](const std::vector<double>& v) { return std::any_of(v.begin(), v.end(), [](double x) { return x != 0.0; }); };
   std::vector<AxisReversalTable> out;
   for (size_t a = 0; a < 3; ++a) {
     if (!anyNonZero(trims[a].forward) && !anyNonZero(trims[a].reverse)) continue;

@@ -49,8 +49,7 @@ std::vector<std::pair<std::string, std::string>> heidenhainTables(const OneAxisR
                                                      positions.size()));
     // Moving each way: the own column forward, BACKLASH backward.
     const ReversalTrims& reversal = trims[static_cast<size_t>(input)];
-    const bool backlash = std::any_of(reversal.forward.begin(), reversal.forward.end(), [](double t) { return t != 0.0; }) ||
-                          std::any_of(reversal.reverse.begin(), reversal.reverse.end(), [](double t) { return t != 0.0; });
+    const bool backlash = anyNonZero(reversal.forward) || anyNonZero(reversal.reverse);
     std::vector<double> backward;
     if (backlash) {
       if (reversal.forward.size() != positions.size() || reversal.reverse.size() != positions.size())

@@ -19,10 +19,6 @@ namespace {
 
 double argument(const Axis& axis, double q) { return axis.isRotary() ? q / kDeg : q; }
 
-bool anyNonZero(const std::vector<double>& values) {
-  return std::any_of(values.begin(), values.end(), [](double v) { return v != 0.0; });
-}
-
 void checkRoles(const Machine& m) {
   const InputLocation at{m.sourceFile, 0, "axes"};
   for (const Axis& axis : m.axes) {

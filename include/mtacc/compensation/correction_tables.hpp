@@ -135,6 +135,8 @@ std::string correctionGridCsv(const Machine& machine, const CorrectionGrid& grid
 struct ReversalTrims {
   std::vector<double> forward, reverse;
 };
+// True when a correction column (a trim, a table's values) holds anything to apply.
+bool anyNonZero(const std::vector<double>& values);
 ReversalTrims reversalTrims(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors, const CorrectionGrid& grid, int axis);
 // A standing correction with each axis's forward and reverse trims as the controller applies
 // them moving (linear between the nodes, the end values beyond): LinuxCNC's COMP_FILEs (each
