@@ -1,6 +1,7 @@
-"""Every number of every command's --json says its unit (docs/file-formats.md, "JSON output"):
-its key ends in a unit suffix, or it is listed here as dimensionless, or it is an axis position
-(mm or deg by the axis), or it sits beside a "unit" member that names the unit."""
+"""Every number of every command's --json says its unit, by the convention of docs/file-formats.md
+("JSON output"): a unit suffix on its key or on an enclosing key, a "unit" member (or a "units"
+list) of its object or of an enclosing one, or its key listed here as an axis position, as
+dimensionless or as in the identified parameters' units."""
 import json
 import pathlib
 import re
@@ -18,15 +19,15 @@ UNIT_SUFFIX = re.compile(r"_(mm|um|deg|rad|urad|arcsec|hz|s|ms|kg|C|per_K|percen
 
 # Counts, indices, ratios, signs, statistics of no unit, and unit vectors (directions).
 DIMENSIONLESS = {
-    "alignment_rms_misfit", "beyond_bound", "bins", "cells", "chi_square", "column", "columns", "condition", "correlation", "cutter_moves",
-    "damping_coupling", "damping_ratio", "degree", "degrees_of_freedom", "direction", "exponent", "features",
-    "first_problem_line", "first_sample_used", "fit_significance", "instant_blocks", "instrument_samples", "iterations",
-    "largest_relative_misfit", "line", "lines", "location_parameter_count", "moves", "nodes", "non_zero_errors",
-    "normals", "normals_machine", "not_converged", "p_value", "parameter_count", "parameters", "points", "poses",
-    "rank", "readings", "reference_samples_left_out", "row", "rows", "runs", "runs_each_way", "samples",
-    "samples_per_axis", "samples_used", "seed", "sense", "shape", "sigma_over_probe_noise", "sign", "singular", "singular_values", "singular_vectors",
-    "stiffness_changes", "stride", "tool_direction", "tool_vector", "tools", "u", "v", "workpiece_axes", "worst_blocks",
-    "written_points"}
+    "alignment_rms_misfit", "beyond_bound", "bins", "cells", "chi_square", "column", "columns", "condition",
+    "correlation", "cutter_moves", "damping_coupling", "damping_ratio", "degree", "degrees_of_freedom", "direction",
+    "exponent", "features", "first_problem_line", "first_sample_used", "fit_significance", "instant_blocks",
+    "instrument_samples", "iterations", "largest_relative_misfit", "line", "lines", "location_parameter_count",
+    "moves", "nodes", "non_zero_errors", "normals", "normals_machine", "not_converged", "p_value",
+    "parameter_count", "parameters", "points", "poses", "rank", "readings", "reference_samples_left_out", "row",
+    "rows", "runs", "runs_each_way", "samples", "samples_per_axis", "samples_used", "seed", "sense", "shape",
+    "sigma_over_probe_noise", "sign", "singular", "singular_values", "singular_vectors", "stiffness_changes",
+    "stride", "tool_direction", "tool_vector", "tools", "u", "v", "workpiece_axes", "worst_blocks", "written_points"}
 
 # Positions of the machine's axes, each in mm for a linear axis and deg for a rotary one: an
 # object keyed by axis name, an array in the machine's axis order, or the positions along one axis.

@@ -10,24 +10,26 @@ import pytest
 import mtacc
 from mtacc import _mtacc, report
 
-# The machine and its set-up are the Python Machine's constructor, a structure model Structure's; --json, -o, --strict and
-# --rows (of the printed table) shape the CLI's output; errors_out is a file written by the front end (both have it); series_points
-# adds the curves to Python's result, for plots (the report's).
+# Besides the schema's keys, each front end has a few of its own:
+# - The machine and its set-up are the Python Machine's constructor, a structure model the
+#   Structure's; --json, -o, --strict and --rows (of the printed table) shape the CLI's output.
+# - errors_out is a file either front end writes; series_points adds curves to Python's result,
+#   for the report's plots.
 CLI_ONLY = {"help", "machine", "model", "errors", "alignment", "load", "thermal", "json", "output", "strict", "rows"}
 BOTH_FRONT_ENDS = {"errors_out"}
 PYTHON_ONLY = {"series_points"}
-# Options of one workflow that only the CLI has, and why: Python returns the compensated program's
-# text ("gcode") and the tables' files ("contents") instead of writing them; the periodic rewrite
-# of the tables is a process that runs until it is stopped.
-# Python's frf takes the frequencies themselves (any array), where the CLI takes a grid of them;
-# Python maps a second model with that Structure's own map.
-# Python gives poses and targets as arrays (q, directions; ik_path's tcps and tools) where the CLI
-# reads them from text or a file; what the CLI prints (check's parameter list, errors' TCP
-# columns) is in Python's result always.
+# And a workflow's own:
+# - Python returns the compensated program's text ("gcode") and the tables' files ("contents")
+#   instead of writing them; the periodic rewrite of the tables runs until it is stopped.
+# - Python gives poses, targets and frequencies as arrays (fk's and errors' q and directions,
+#   ik_path's tcps and tools, frf's frequencies) where the CLI reads text, a file or a grid.
+# - What the CLI prints (check's parameter list, errors' TCP columns) is always in Python's result;
+#   Python maps a second structure with that Structure's own map.
+# - build_report is a function: the machine is its first argument; progress tells a caller each step.
 CLI_ONLY_OF = {"compensate": {"gcode", "tables", "every", "updates"}, "dynamics frf": {"from", "to", "step"}, "dynamics map": {"compare"},
                "fk": {"pose", "poses"}, "errors": {"pose", "poses", "with_tcp"}, "ik": {"targets"}, "check": {"parameters"}}
-# build_report is a function: the machine is its first argument; progress tells a caller each step.
-PYTHON_ONLY_OF = {"report": {"machine", "progress"}, "dynamics frf": {"frequencies"}, "fk": {"q", "directions"}, "errors": {"q", "directions"}, "ik": {"tcps", "tools"}}
+PYTHON_ONLY_OF = {"report": {"machine", "progress"}, "dynamics frf": {"frequencies"}, "fk": {"q", "directions"},
+                  "errors": {"q", "directions"}, "ik": {"tcps", "tools"}}
 METHODS = {"compensate": (mtacc.Machine.compensate_program, mtacc.Machine.compensation_tables), "deviation": mtacc.Machine.deviation,
            "decompose": mtacc.Machine.decompose, "simulate motion": mtacc.Machine.simulate_motion,
            "evaluate": (mtacc.Machine.evaluate_ballbar, mtacc.Machine.evaluate_rtest), "plate": mtacc.Machine.compare_plate,
