@@ -7,6 +7,12 @@ namespace mtacc {
 namespace {
 
 OptionField poseOption() { return {"pose", OptionKind::Text, "axis positions, e.g. X=10,Y=0,Z=5,B=-15,C=30 (mm, deg)"}; }
+// Empty text counts as not given, as an option left out does ("--pose ''").
+std::optional<std::string> givenText(const OptionReader& read, const char* key) {
+  auto text = read.text(key);
+  return text && !text->empty() ? text : std::nullopt;
+}
+
 OptionField posesOption() { return {"poses", OptionKind::Text, "CSV with one column per axis (mm, deg), optional <axis>_dir columns"}; }
 
 }  // namespace
@@ -49,8 +55,7 @@ ForwardOptions forwardOptions(const OptionSchema& schema, const OptionValues& va
 
 ForwardResult forwardKinematicsOf(const MachineSetup& setup, const OptionSchema& schema, const OptionValues& values) {
   const OptionReader read(schema, values);
-  const auto given = [&](const char* key) { return read.text(key).value_or("").empty() ? std::nullopt : read.text(key); };
-  const auto pose = given("pose"), poses = given("poses");
+  const auto pose = givenText(read, "pose"), poses = givenText(read, "poses");
   if (pose.has_value() == poses.has_value())
     throw InputError(InputLocation{"", 0, "--pose/--poses"}, "give exactly one of --pose AXIS=VALUE,... or --poses FILE.csv");
   const ForwardOptions options = forwardOptions(schema, values);
@@ -63,7 +68,7 @@ InverseRequest inverseSolving(const MachineSetup& setup, const OptionValues& val
   const OptionReader read(inverseSchema(), values);
   InverseRequest r;
   r.options.branch = parseTiltBranch(*read.text("branch"));
-  if (const auto near = read.text("near"); near && !near->empty()) r.options.hint = poseFromText(setup, *near, "near", true);
+  if (const auto near = givenText(read, "near")) r.options.hint = poseFromText(setup, *near, "near", true);
   r.all = read.flag("all");
   r.withErrors = read.flag("with_errors");
   return r;
@@ -71,8 +76,7 @@ InverseRequest inverseSolving(const MachineSetup& setup, const OptionValues& val
 
 InverseRequest inverseRequest(const MachineSetup& setup, const OptionValues& values) {
   const OptionReader read(inverseSchema(), values);
-  const auto given = [&](const char* key) { return read.text(key).value_or("").empty() ? std::nullopt : read.text(key); };
-  const auto tcp = given("tcp"), targets = given("targets");
+  const auto tcp = givenText(read, "tcp"), targets = givenText(read, "targets");
   if (tcp.has_value() == targets.has_value())
     throw InputError(InputLocation{"", 0, "--tcp/--targets"}, "give exactly one of --tcp x,y,z or --targets FILE.csv");
   InverseRequest r = targets ? inverseTargetsOfFile(*targets) : InverseRequest{};
