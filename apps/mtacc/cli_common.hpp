@@ -1,13 +1,13 @@
 #pragma once
-// Shared plumbing of the mtacc subcommands: the options every machine command takes, and the
+// Shared plumbing of the mtacc subcommands: their command line (command_line.hpp) and their
 // output (JSON, human tables, CSV). Each command parses its options, calls one workflow of the
 // library and formats its result.
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <map>
 #include <string>
 
+#include "command_line.hpp"
 #include "mtacc/core/option_schema.hpp"
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
@@ -26,17 +26,6 @@ struct MachineOptions {
   std::string output;
 };
 
-// Adds MACHINE, --errors, --alignment, --load, --json, -o to a subcommand.
-void addMachineOptions(CLI::App& cmd, MachineOptions& o);
-// A workpiece load in kg, 0 to 1e6 (--load).
-CLI::Validator loadInKg();
-// Adds a flag --key ('_' written '-') for each key of a workflow's schema, storing what is given
-// in `values` for the workflow's reader; `aliases` gives a key further flag names ("--params").
-void addSchemaOptions(CLI::App& cmd, const OptionSchema& schema, OptionValues& values,
-                      const std::map<std::string, std::string>& aliases = {});
-// Adds --json and -o only.
-void addOutputOptions(CLI::App& cmd, MachineOptions& o);
-
 // JSON to stdout (or -o); otherwise the human text to stdout and, with -o, the CSV.
 void emit(const MachineOptions& o, const nlohmann::json& json, const std::string& human, const std::string& csv);
 
@@ -52,28 +41,28 @@ std::string poseCsvHeader(const Machine& m);
 // after them when `strict`.
 void emitIdentification(const MachineOptions& o, const IdentificationStudy& out, bool strict, const std::string& errorsOut);
 // --errors-out of identify and cubic-identify.
-void addErrorsOutOption(CLI::App& cmd, std::string& errorsOut);
+void addErrorsOutOption(const CommandLine& cmd, std::string& errorsOut);
 
 // Registration of each subcommand.
-void addCheckCommand(CLI::App& app);
-void addForwardCommands(CLI::App& app);  // fk, errors
-void addInverseCommand(CLI::App& app);   // ik
-void addSensitivityCommand(CLI::App& app);
-void addBudgetCommand(CLI::App& app);
-void addReportCommand(CLI::App& app);
-void addConeCommand(CLI::App& app);
-void addSimulateCommand(CLI::App& app);       // simulate ballbar | rtest | plan
-void addEvaluateCommand(CLI::App& app);
-void addPositioningCommand(CLI::App& app);    // positioning (ISO 230-2)
-void addFitCommand(CLI::App& app);            // fit (seed 003 component fits)
-void addPlateCommand(CLI::App& app);          // plate (seed 003 hole plates)
-void addStiffnessCommand(CLI::App& app);      // stiffness (seed 003 finite stiffness)
-void addCompensateCommand(CLI::App& app);     // compensate (compensated programs)
-void addDeviationCommand(CLI::App& app);      // deviation (a program on a model, against its intended path)
-void addIdentifyCommands(CLI::App& app);      // identify, observability
-void addCubicCommands(CLI::App& app);         // cubic, cubic-identify
-void addDynamicsCommand(CLI::App& app);       // dynamics modes | frf | accel | map
-void addDecomposeCommand(CLI::App& app);      // decompose (seed 004 error decomposition)
-void addDriftCommand(CLI::App& app);          // drift (ISO 230-3 spindle drift test, seed 003 thermal)
+void addCheckCommand(const CommandLine& app);
+void addForwardCommands(const CommandLine& app);  // fk, errors
+void addInverseCommand(const CommandLine& app);   // ik
+void addSensitivityCommand(const CommandLine& app);
+void addBudgetCommand(const CommandLine& app);
+void addReportCommand(const CommandLine& app);
+void addConeCommand(const CommandLine& app);
+void addSimulateCommand(const CommandLine& app);       // simulate ballbar | rtest | plan
+void addEvaluateCommand(const CommandLine& app);
+void addPositioningCommand(const CommandLine& app);    // positioning (ISO 230-2)
+void addFitCommand(const CommandLine& app);            // fit (seed 003 component fits)
+void addPlateCommand(const CommandLine& app);          // plate (seed 003 hole plates)
+void addStiffnessCommand(const CommandLine& app);      // stiffness (seed 003 finite stiffness)
+void addCompensateCommand(const CommandLine& app);     // compensate (compensated programs)
+void addDeviationCommand(const CommandLine& app);      // deviation (a program on a model, against its intended path)
+void addIdentifyCommands(const CommandLine& app);      // identify, observability
+void addCubicCommands(const CommandLine& app);         // cubic, cubic-identify
+void addDynamicsCommand(const CommandLine& app);       // dynamics modes | frf | accel | map
+void addDecomposeCommand(const CommandLine& app);      // decompose (seed 004 error decomposition)
+void addDriftCommand(const CommandLine& app);          // drift (ISO 230-3 spindle drift test, seed 003 thermal)
 
 }  // namespace mtacc::cli

@@ -52,13 +52,13 @@ void run(const BudgetCliOptions& o) {
 
 }  // namespace
 
-void addBudgetCommand(CLI::App& app) {
+void addBudgetCommand(const CommandLine& app) {
   auto o = std::make_shared<BudgetCliOptions>();
-  auto* cmd = app.add_subcommand("budget", "error budget: largest TCP deviation of each error over the working volume");
-  addMachineOptions(*cmd, *o);
-  addSchemaOptions(*cmd, budgetSchema(), o->values);
-  cmd->add_option("--rows", o->rows, "rows to print (default 25)");
-  cmd->callback([o] { run(*o); });
+  auto cmd = app.subcommand("budget", "error budget: largest TCP deviation of each error over the working volume");
+  cmd.machineOptions(*o);
+  cmd.schemaOptions(budgetSchema(), o->values);
+  cmd.option("--rows", o->rows, "rows to print (default 25)");
+  cmd.callback([o] { run(*o); });
 }
 
 }  // namespace mtacc::cli

@@ -85,12 +85,12 @@ void run(const CheckOptions& o) {
 
 }  // namespace
 
-void addCheckCommand(CLI::App& app) {
+void addCheckCommand(const CommandLine& app) {
   auto o = std::make_shared<CheckOptions>();
-  auto* cmd = app.add_subcommand("check", "validate a machine and print its kinematic chain and error parameters");
-  addMachineOptions(*cmd, *o);
-  addSchemaOptions(*cmd, checkSchema(), o->values);
-  cmd->callback([o] { run(*o); });
+  auto cmd = app.subcommand("check", "validate a machine and print its kinematic chain and error parameters");
+  cmd.machineOptions(*o);
+  cmd.schemaOptions(checkSchema(), o->values);
+  cmd.callback([o] { run(*o); });
 }
 
 }  // namespace mtacc::cli

@@ -67,12 +67,12 @@ void run(const CompensateOptions& o) {
 
 }  // namespace
 
-void addCompensateCommand(CLI::App& app) {
+void addCompensateCommand(const CommandLine& app) {
   auto o = std::make_shared<CompensateOptions>();
-  auto* cmd = app.add_subcommand("compensate", "compensate an axis program (G-code) for the machine's errors");
-  addMachineOptions(*cmd, *o);
-  addSchemaOptions(*cmd, compensateSchema(), o->values);
-  cmd->callback([o] { run(*o); });
+  auto cmd = app.subcommand("compensate", "compensate an axis program (G-code) for the machine's errors");
+  cmd.machineOptions(*o);
+  cmd.schemaOptions(compensateSchema(), o->values);
+  cmd.callback([o] { run(*o); });
 }
 
 }  // namespace mtacc::cli

@@ -70,12 +70,12 @@ void run(const ConeCliOptions& o) {
 
 }  // namespace
 
-void addConeCommand(CLI::App& app) {
+void addConeCommand(const CommandLine& app) {
   auto o = std::make_shared<ConeCliOptions>();
-  auto* cmd = app.add_subcommand("cone", "5-axis cone-frustum test piece (Bossoni 2009): path, axis motions, error influence");
-  addMachineOptions(*cmd, *o);
-  addSchemaOptions(*cmd, coneSchema(), o->values);
-  cmd->callback([o] { run(*o); });
+  auto cmd = app.subcommand("cone", "5-axis cone-frustum test piece (Bossoni 2009): path, axis motions, error influence");
+  cmd.machineOptions(*o);
+  cmd.schemaOptions(coneSchema(), o->values);
+  cmd.callback([o] { run(*o); });
 }
 
 }  // namespace mtacc::cli

@@ -77,20 +77,20 @@ void identify(const CubicIdentifyCliOptions& o) {
 
 }  // namespace
 
-void addCubicCommands(CLI::App& app) {
+void addCubicCommands(const CommandLine& app) {
   auto o = std::make_shared<CubicCliOptions>();
-  auto* cmd = app.add_subcommand("cubic", "cubic machining test (Li et al. 2021): NC program, machined surface, zone heights, sensitivities");
-  addMachineOptions(*cmd, *o);
-  addSchemaOptions(*cmd, cubicTestSchema(), o->values);
-  cmd->callback([o] { run(*o); });
+  auto cmd = app.subcommand("cubic", "cubic machining test (Li et al. 2021): NC program, machined surface, zone heights, sensitivities");
+  cmd.machineOptions(*o);
+  cmd.schemaOptions(cubicTestSchema(), o->values);
+  cmd.callback([o] { run(*o); });
 
   auto id = std::make_shared<CubicIdentifyCliOptions>();
-  auto* idc = app.add_subcommand("cubic-identify", "errors from the zone results of a cubic machining test (Li et al. 2021 §7.3)");
-  addMachineOptions(*idc, *id);
-  addSchemaOptions(*idc, cubicIdentificationSchema(), id->values, {{"parameters", "--params"}});
-  idc->add_flag("--strict", id->strict, "exit with status 4 when the fit or the conditioning draws a warning");
-  addErrorsOutOption(*idc, id->errorsOut);
-  idc->callback([id] { identify(*id); });
+  auto idc = app.subcommand("cubic-identify", "errors from the zone results of a cubic machining test (Li et al. 2021 §7.3)");
+  idc.machineOptions(*id);
+  idc.schemaOptions(cubicIdentificationSchema(), id->values, {{"parameters", "--params"}});
+  idc.flag("--strict", id->strict, "exit with status 4 when the fit or the conditioning draws a warning");
+  addErrorsOutOption(idc, id->errorsOut);
+  idc.callback([id] { identify(*id); });
 }
 
 }  // namespace mtacc::cli

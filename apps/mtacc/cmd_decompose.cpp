@@ -70,13 +70,13 @@ void run(const DecomposeCliOptions& o) {
 
 }  // namespace
 
-void addDecomposeCommand(CLI::App& app) {
+void addDecomposeCommand(const CommandLine& app) {
   auto o = std::make_shared<DecomposeCliOptions>();
-  auto* cmd = app.add_subcommand("decompose", "recorded TCP errors over feeds split into contouring, link, motion, drift and dynamic errors (Andolfatto et al. 2011)");
-  addMachineOptions(*cmd, *o);
-  addSchemaOptions(*cmd, decompositionSchema(), o->values);
-  cmd->add_flag("--strict", o->strict, "exit with status 4 when a result is doubtful (offset at the search limit, instrument spikes)");
-  cmd->callback([o] { run(*o); });
+  auto cmd = app.subcommand("decompose", "recorded TCP errors over feeds split into contouring, link, motion, drift and dynamic errors (Andolfatto et al. 2011)");
+  cmd.machineOptions(*o);
+  cmd.schemaOptions(decompositionSchema(), o->values);
+  cmd.flag("--strict", o->strict, "exit with status 4 when a result is doubtful (offset at the search limit, instrument spikes)");
+  cmd.callback([o] { run(*o); });
 }
 
 }  // namespace mtacc::cli

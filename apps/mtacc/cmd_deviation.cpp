@@ -41,12 +41,12 @@ void run(const DeviationOptions& o) {
 
 }  // namespace
 
-void addDeviationCommand(CLI::App& app) {
+void addDeviationCommand(const CommandLine& app) {
   auto o = std::make_shared<DeviationOptions>();
-  auto* cmd = app.add_subcommand("deviation", "a program run on the machine with its errors, against the path it was meant to cut");
-  addMachineOptions(*cmd, *o);
-  addSchemaOptions(*cmd, programDeviationSchema(), o->values);
-  cmd->callback([o] { run(*o); });
+  auto cmd = app.subcommand("deviation", "a program run on the machine with its errors, against the path it was meant to cut");
+  cmd.machineOptions(*o);
+  cmd.schemaOptions(programDeviationSchema(), o->values);
+  cmd.callback([o] { run(*o); });
 }
 
 }  // namespace mtacc::cli

@@ -68,13 +68,13 @@ void run(const DriftCliOptions& o) {
 
 }  // namespace
 
-void addDriftCommand(CLI::App& app) {
+void addDriftCommand(const CommandLine& app) {
   auto o = std::make_shared<DriftCliOptions>();
-  auto* cmd = app.add_subcommand("drift", "thermal drift test (ISO 230-3, the 1991 BCR report: spindle, axis or the machine at rest): drift per "
+  auto cmd = app.subcommand("drift", "thermal drift test (ISO 230-3, the 1991 BCR report: spindle, axis or the machine at rest): drift per "
                                           "direction, hysteresis, the temperatures that predict it");
-  addSchemaOptions(*cmd, driftTestSchema(), o->values);
-  addOutputOptions(*cmd, *o);
-  cmd->callback([o] { run(*o); });
+  cmd.schemaOptions(driftTestSchema(), o->values);
+  cmd.outputOptions(*o);
+  cmd.callback([o] { run(*o); });
 }
 
 }  // namespace mtacc::cli

@@ -107,16 +107,16 @@ void map(const DynamicsCliOptions& o) {
 
 }  // namespace
 
-void addDynamicsCommand(CLI::App& app) {
-  auto* dyn = app.add_subcommand("dynamics", "Rigid-body structural dynamics of a structure model (Bossoni 2009 part II)");
-  dyn->require_subcommand(1);
+void addDynamicsCommand(const CommandLine& app) {
+  auto dyn = app.subcommand("dynamics", "Rigid-body structural dynamics of a structure model (Bossoni 2009 part II)");
+  dyn.requireSubcommand();
   const auto add = [dyn](const char* name, const char* help, const OptionSchema& schema, void (*run)(const DynamicsCliOptions&)) {
     auto o = std::make_shared<DynamicsCliOptions>();
-    auto* c = dyn->add_subcommand(name, help);
-    c->add_option("model", o->model, "Structure model (YAML) or bundled name, e.g. tzyx-arm-x")->required();
-    addOutputOptions(*c, *o);
-    addSchemaOptions(*c, schema, o->values);
-    c->callback([o, run] { run(*o); });
+    auto c = dyn.subcommand(name, help);
+    c.argument("model", o->model, "Structure model (YAML) or bundled name, e.g. tzyx-arm-x");
+    c.outputOptions(*o);
+    c.schemaOptions(schema, o->values);
+    c.callback([o, run] { run(*o); });
   };
   add("modes", "Undamped and damped modes", structureModesSchema(), modes);
   add("frf", "3x3 FRF of the TCP relative to the workpiece and the static compliance", structureFrfSchema(), frf);

@@ -91,12 +91,12 @@ void run(const EvaluateCliOptions& o) {
 
 }  // namespace
 
-void addEvaluateCommand(CLI::App& app) {
+void addEvaluateCommand(const CommandLine& app) {
   auto o = std::make_shared<EvaluateCliOptions>();
-  auto* cmd = app.add_subcommand("evaluate", "ISO 230-4 evaluation and diagnostics of a ballbar file, or an R-test run about its axis");
-  addMachineOptions(*cmd, *o);
-  addSchemaOptions(*cmd, evaluationSchema(), o->values);
-  cmd->callback([o] { run(*o); });
+  auto cmd = app.subcommand("evaluate", "ISO 230-4 evaluation and diagnostics of a ballbar file, or an R-test run about its axis");
+  cmd.machineOptions(*o);
+  cmd.schemaOptions(evaluationSchema(), o->values);
+  cmd.callback([o] { run(*o); });
 }
 
 }  // namespace mtacc::cli

@@ -55,22 +55,23 @@ void run(const FitCliOptions& o) {
     human += fmt::format("\nRuns 1 to {} have not settled: their mean lies beyond {:g} robust standard deviations of the run means{}\n",
                          s.disturbances.unsettledRuns.size(), request.disturbanceThreshold,
                          request.removeDisturbed ? " (left out)" : " (--remove-disturbed leaves them out)");
-  human += "\n" + std::string(o.errorsOut.empty() ? "Error function (machine YAML, under errors:):\n" + s.yaml
-                                                 : "The machine's errors with the fitted function written to " + o.errorsOut + "\n");
+  human += '\n';
+  human += o.errorsOut.empty() ? "Error function (machine YAML, under errors:):\n" + s.yaml
+                               : "The machine's errors with the fitted function written to " + o.errorsOut + "\n";
   emit(o, j, human, csv);
 }
 
 }  // namespace
 
-void addFitCommand(CLI::App& app) {
+void addFitCommand(const CommandLine& app) {
   auto o = std::make_shared<FitCliOptions>();
-  auto* cmd = app.add_subcommand("fit", "fit a component error to its direct-measurement runs (the 1991 BCR report: C1 piecewise polynomial)");
-  addMachineOptions(*cmd, *o);
-  addSchemaOptions(*cmd, componentFitSchema(), o->values);
-  cmd->add_option("--errors-out", o->errorsOut,
+  auto cmd = app.subcommand("fit", "fit a component error to its direct-measurement runs (the 1991 BCR report: C1 piecewise polynomial)");
+  cmd.machineOptions(*o);
+  cmd.schemaOptions(componentFitSchema(), o->values);
+  cmd.option("--errors-out", o->errorsOut,
                   "write the machine's errors with the fitted function in place, its coefficients' covariance and the data's hash "
                   "(an errors file that --errors reads), atomically");
-  cmd->callback([o] { run(*o); });
+  cmd.callback([o] { run(*o); });
 }
 
 }  // namespace mtacc::cli

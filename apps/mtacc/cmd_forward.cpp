@@ -46,14 +46,14 @@ void runForward(const ForwardCliOptions& o, bool errorsCommand) {
 
 }  // namespace
 
-void addForwardCommands(CLI::App& app) {
+void addForwardCommands(const CommandLine& app) {
   for (const bool errorsOnly : {false, true}) {
     auto o = std::make_shared<ForwardCliOptions>();
-    auto* cmd = errorsOnly ? app.add_subcommand("errors", "TCP position and orientation errors at axis positions")
-                           : app.add_subcommand("fk", "forward kinematics: tool relative to the workpiece at axis positions");
-    addMachineOptions(*cmd, *o);
-    addSchemaOptions(*cmd, errorsOnly ? errorsSchema() : forwardSchema(), o->values);
-    cmd->callback([o, errorsOnly] { runForward(*o, errorsOnly); });
+    auto cmd = errorsOnly ? app.subcommand("errors", "TCP position and orientation errors at axis positions")
+                           : app.subcommand("fk", "forward kinematics: tool relative to the workpiece at axis positions");
+    cmd.machineOptions(*o);
+    cmd.schemaOptions(errorsOnly ? errorsSchema() : forwardSchema(), o->values);
+    cmd.callback([o, errorsOnly] { runForward(*o, errorsOnly); });
   }
 }
 

@@ -74,8 +74,8 @@ void identify(const IdentifyCliOptions& o) {
 
 }  // namespace
 
-void addErrorsOutOption(CLI::App& cmd, std::string& errorsOut) {
-  cmd.add_option("--errors-out", errorsOut,
+void addErrorsOutOption(const CommandLine& cmd, std::string& errorsOut) {
+  cmd.option("--errors-out", errorsOut,
                  "Write the identified errors (the estimates merged onto the errors held, with a record of the data) "
                  "as an errors file that --errors reads");
 }
@@ -126,20 +126,20 @@ void emitIdentification(const MachineOptions& o, const IdentificationStudy& out,
   if (strict && !q.warnings.empty()) throw StrictFailure{q.warnings.size()};
 }
 
-void addIdentifyCommands(CLI::App& app) {
+void addIdentifyCommands(const CommandLine& app) {
   const std::map<std::string, std::string> aliases{{"parameters", "--params"}};
   auto o = std::make_shared<IdentifyCliOptions>();
-  auto* id = app.add_subcommand("identify", "Least-squares identification of error parameters from measurement files");
-  addMachineOptions(*id, *o);
-  addSchemaOptions(*id, identificationSchema(), o->values, aliases);
-  id->add_flag("--strict", o->strict, "Exit with status 4 when the fit or the conditioning draws a warning");
-  addErrorsOutOption(*id, o->errorsOut);
-  id->callback([o] { identify(*o); });
+  auto id = app.subcommand("identify", "Least-squares identification of error parameters from measurement files");
+  id.machineOptions(*o);
+  id.schemaOptions(identificationSchema(), o->values, aliases);
+  id.flag("--strict", o->strict, "Exit with status 4 when the fit or the conditioning draws a warning");
+  addErrorsOutOption(id, o->errorsOut);
+  id.callback([o] { identify(*o); });
 
-  auto* obs = app.add_subcommand("observability", "Which parameters a test plan can determine (SVD of its Jacobian)");
-  addMachineOptions(*obs, *o);
-  addSchemaOptions(*obs, observabilitySchema(), o->values, aliases);
-  obs->callback([o] { observability(*o); });
+  auto obs = app.subcommand("observability", "Which parameters a test plan can determine (SVD of its Jacobian)");
+  obs.machineOptions(*o);
+  obs.schemaOptions(observabilitySchema(), o->values, aliases);
+  obs.callback([o] { observability(*o); });
 }
 
 }  // namespace mtacc::cli

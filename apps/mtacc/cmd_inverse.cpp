@@ -43,12 +43,12 @@ void run(const InverseCliOptions& o) {
 
 }  // namespace
 
-void addInverseCommand(CLI::App& app) {
+void addInverseCommand(const CommandLine& app) {
   auto o = std::make_shared<InverseCliOptions>();
-  auto* cmd = app.add_subcommand("ik", "inverse kinematics: axis positions for a TCP position and tool direction");
-  addMachineOptions(*cmd, *o);
-  addSchemaOptions(*cmd, inverseSchema(), o->values);
-  cmd->callback([o] { run(*o); });
+  auto cmd = app.subcommand("ik", "inverse kinematics: axis positions for a TCP position and tool direction");
+  cmd.machineOptions(*o);
+  cmd.schemaOptions(inverseSchema(), o->values);
+  cmd.callback([o] { run(*o); });
 }
 
 }  // namespace mtacc::cli

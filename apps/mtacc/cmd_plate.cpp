@@ -74,20 +74,20 @@ void runIdentify(const PlateIdentifyCliOptions& o) {
 
 }  // namespace
 
-void addPlateCommand(CLI::App& app) {
+void addPlateCommand(const CommandLine& app) {
   auto o = std::make_shared<PlateCliOptions>();
-  auto* cmd = app.add_subcommand("plate", "a measured hole or ball plate against the machine's error model (the 1991 BCR report)");
-  addMachineOptions(*cmd, *o);
-  addSchemaOptions(*cmd, plateComparisonSchema(), o->values);
-  cmd->callback([o] { run(*o); });
+  auto cmd = app.subcommand("plate", "a measured hole or ball plate against the machine's error model (the 1991 BCR report)");
+  cmd.machineOptions(*o);
+  cmd.schemaOptions(plateComparisonSchema(), o->values);
+  cmd.callback([o] { run(*o); });
 
   auto io = std::make_shared<PlateIdentifyCliOptions>();
-  auto* identify = app.add_subcommand("plate-identify", "component errors and squareness from several measured plates (the 1991 BCR report §7.7)");
-  addMachineOptions(*identify, *io);
-  addSchemaOptions(*identify, plateIdentificationSchema(), io->values);
-  identify->add_option("--errors-out", io->errorsOut,
+  auto identify = app.subcommand("plate-identify", "component errors and squareness from several measured plates (the 1991 BCR report §7.7)");
+  identify.machineOptions(*io);
+  identify.schemaOptions(plateIdentificationSchema(), io->values);
+  identify.option("--errors-out", io->errorsOut,
                        "write the identified functions as an errors file with the record of the data (as identify's), atomically");
-  identify->callback([io] { runIdentify(*io); });
+  identify.callback([io] { runIdentify(*io); });
 }
 
 }  // namespace mtacc::cli

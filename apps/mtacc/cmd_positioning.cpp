@@ -56,13 +56,13 @@ void run(const PositioningCliOptions& o) {
 
 }  // namespace
 
-void addPositioningCommand(CLI::App& app) {
+void addPositioningCommand(const CommandLine& app) {
   auto o = std::make_shared<PositioningCliOptions>();
-  auto* cmd = app.add_subcommand("positioning", "ISO 230-2 accuracy and repeatability of positioning of a linear or rotary axis");
-  cmd->alias("iso230-2");
-  addOutputOptions(*cmd, *o);
-  addSchemaOptions(*cmd, positioningSchema(), o->values);
-  cmd->callback([o] { run(*o); });
+  auto cmd = app.subcommand("positioning", "ISO 230-2 accuracy and repeatability of positioning of a linear or rotary axis");
+  cmd.alias("iso230-2");
+  cmd.outputOptions(*o);
+  cmd.schemaOptions(positioningSchema(), o->values);
+  cmd.callback([o] { run(*o); });
 }
 
 }  // namespace mtacc::cli

@@ -21,7 +21,8 @@ struct ReportOptions {
 [[noreturn]] void run(const ReportOptions& o) {
   const std::string pythonDir = MTACC_PYTHON_DIR;
   const char* old = std::getenv("PYTHONPATH");
-  const std::string path = pythonDir + (old && *old ? ":" + std::string(old) : "");
+  std::string path = pythonDir;
+  if (old && *old) path.append(":").append(old);
   ::setenv("PYTHONPATH", path.c_str(), 1);
   std::vector<std::string> args{"/usr/bin/python3", "-m", "mtacc.report", o.machine};
   for (const auto& [key, given] : o.values)
@@ -40,12 +41,12 @@ struct ReportOptions {
 
 }  // namespace
 
-void addReportCommand(CLI::App& app) {
+void addReportCommand(const CommandLine& app) {
   auto o = std::make_shared<ReportOptions>();
-  auto* cmd = app.add_subcommand("report", "write the HTML accuracy report (self-contained, figures as SVG)");
-  cmd->add_option("machine", o->machine, "machine file, or the name of a bundled machine")->required();
-  addSchemaOptions(*cmd, reportSchema(), o->values, {{"output", "-o"}});
-  cmd->callback([o] { run(*o); });
+  auto cmd = app.subcommand("report", "write the HTML accuracy report (self-contained, figures as SVG)");
+  cmd.argument("machine", o->machine, "machine file, or the name of a bundled machine");
+  cmd.schemaOptions(reportSchema(), o->values, {{"output", "-o"}});
+  cmd.callback([o] { run(*o); });
 }
 
 }  // namespace mtacc::cli

@@ -36,12 +36,12 @@ void run(const SensitivityCliOptions& o) {
 
 }  // namespace
 
-void addSensitivityCommand(CLI::App& app) {
+void addSensitivityCommand(const CommandLine& app) {
   auto o = std::make_shared<SensitivityCliOptions>();
-  auto* cmd = app.add_subcommand("sensitivity", "TCP sensitivity to every error parameter at one pose");
-  addMachineOptions(*cmd, *o);
-  addSchemaOptions(*cmd, sensitivitySchema(), o->values, {{"parameters", "--params"}});
-  cmd->callback([o] { run(*o); });
+  auto cmd = app.subcommand("sensitivity", "TCP sensitivity to every error parameter at one pose");
+  cmd.machineOptions(*o);
+  cmd.schemaOptions(sensitivitySchema(), o->values, {{"parameters", "--params"}});
+  cmd.callback([o] { run(*o); });
 }
 
 }  // namespace mtacc::cli

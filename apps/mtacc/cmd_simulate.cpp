@@ -28,29 +28,29 @@ void report(const SimulateCliOptions& o, const SimulationResult& r) {
 
 // A simulation's command: the machine, its errors and --json, then the workflow's schema, whose
 // output the command must be given (Python may leave it out and keep the result alone).
-void addSimulation(CLI::App& simulate, const char* name, const char* help, const OptionSchema& schema,
+void addSimulation(const CommandLine& simulate, const char* name, const char* help, const OptionSchema& schema,
                    SimulationResult (*run)(const MachineSetup&, const OptionValues&)) {
   auto o = std::make_shared<SimulateCliOptions>();
-  auto* cmd = simulate.add_subcommand(name, help);
-  cmd->add_option("machine", o->source.machine, "Machine file or bundled name")->required();
-  cmd->add_option("--errors", o->source.errorsFile, "Error description (YAML); default: the machine file's errors");
-  cmd->add_flag("--json", o->json, "Summary as JSON on stdout");
-  addSchemaOptions(*cmd, schema, o->values, {{"output", "-o"}});
-  cmd->get_option("--output")->required();
-  cmd->callback([o, run] { report(*o, run(loadMachineSetup(o->source), o->values)); });
+  auto cmd = simulate.subcommand(name, help);
+  cmd.argument("machine", o->source.machine, "Machine file or bundled name");
+  cmd.option("--errors", o->source.errorsFile, "Error description (YAML); default: the machine file's errors");
+  cmd.flag("--json", o->json, "Summary as JSON on stdout");
+  cmd.schemaOptions(schema, o->values, {{"output", "-o"}});
+  cmd.requireOption("--output");
+  cmd.callback([o, run] { report(*o, run(loadMachineSetup(o->source), o->values)); });
 }
 
 }  // namespace
 
-void addSimulateCommand(CLI::App& app) {
-  auto* sim = app.add_subcommand("simulate", "Simulated measurement data (ballbar, R-test, a whole test plan)");
-  sim->require_subcommand(1);
-  addSimulation(*sim, "ballbar", "ISO 230-4 ballbar circle, both directions, with optional servo, backlash and reversal-spike disturbances",
+void addSimulateCommand(const CommandLine& app) {
+  auto sim = app.subcommand("simulate", "Simulated measurement data (ballbar, R-test, a whole test plan)");
+  sim.requireSubcommand();
+  addSimulation(sim, "ballbar", "ISO 230-4 ballbar circle, both directions, with optional servo, backlash and reversal-spike disturbances",
                 ballbarSimulationSchema(), simulateBallbar);
-  addSimulation(*sim, "rtest", "R-test (or touch probe) on a sphere while one rotary axis steps", rtestSimulationSchema(), simulateRTest);
-  addSimulateArtefactCommands(*sim);
-  addSimulateMotionCommand(*sim);
-  addSimulation(*sim, "plan", "Every run of a test plan, one CSV per run in a directory", planSimulationSchema(), simulatePlanRuns);
+  addSimulation(sim, "rtest", "R-test (or touch probe) on a sphere while one rotary axis steps", rtestSimulationSchema(), simulateRTest);
+  addSimulateArtefactCommands(sim);
+  addSimulateMotionCommand(sim);
+  addSimulation(sim, "plan", "Every run of a test plan, one CSV per run in a directory", planSimulationSchema(), simulatePlanRuns);
 }
 
 }  // namespace mtacc::cli

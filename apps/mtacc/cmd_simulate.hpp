@@ -1,10 +1,10 @@
 #pragma once
 // The subcommands of `mtacc simulate`, by what they simulate.
-#include <CLI/CLI.hpp>
+#include "command_line.hpp"
 
 namespace mtacc::cli {
 
-void addSimulateArtefactCommands(CLI::App& simulate);  // simulate component | plate
-void addSimulateMotionCommand(CLI::App& simulate);     // simulate motion
+void addSimulateArtefactCommands(const CommandLine& simulate);  // simulate component | plate
+void addSimulateMotionCommand(const CommandLine& simulate);     // simulate motion
 
 }  // namespace mtacc::cli

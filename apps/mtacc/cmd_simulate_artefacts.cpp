@@ -17,23 +17,23 @@ struct ArtefactCliOptions : MachineOptions {
   OptionValues values;
 };
 
-CLI::App* addArtefactCommand(CLI::App& simulate, const char* name, const char* help, const OptionSchema& schema, ArtefactCliOptions& o) {
-  auto* cmd = simulate.add_subcommand(name, help);
-  cmd->add_option("machine", o.source.machine, "machine file, or the name of a bundled machine")->required();
-  cmd->add_option("--errors", o.source.errorsFile, "errors file; default: the machine file's");
-  addSchemaOptions(*cmd, schema, o.values, {{"output", "-o"}});
+CommandLine addArtefactCommand(const CommandLine& simulate, const char* name, const char* help, const OptionSchema& schema, ArtefactCliOptions& o) {
+  auto cmd = simulate.subcommand(name, help);
+  cmd.argument("machine", o.source.machine, "machine file, or the name of a bundled machine");
+  cmd.option("--errors", o.source.errorsFile, "errors file; default: the machine file's");
+  cmd.schemaOptions(schema, o.values, {{"output", "-o"}});
   return cmd;
 }
 
 }  // namespace
 
-void addSimulateArtefactCommands(CLI::App& simulate) {
+void addSimulateArtefactCommands(const CommandLine& simulate) {
   auto component = std::make_shared<ArtefactCliOptions>();
-  auto* comp = addArtefactCommand(simulate, "component",
+  auto comp = addArtefactCommand(simulate, "component",
                                   "Direct-measurement runs of one component error (the 1991 BCR report), forward and backward",
                                   componentSimulationSchema(), *component);
-  comp->add_flag("--json", component->json, "the file written, its positions and runs as JSON");
-  comp->callback([component] {
+  comp.flag("--json", component->json, "the file written, its positions and runs as JSON");
+  comp.callback([component] {
     const ComponentSimulationRequest request = componentSimulationRequest(component->values);
     const auto f = simulateComponentFile(loadMachineSetup(component->source), request);
     if (component->json)
@@ -45,11 +45,11 @@ void addSimulateArtefactCommands(CLI::App& simulate) {
   });
 
   auto plate = std::make_shared<ArtefactCliOptions>();
-  auto* cmd = addArtefactCommand(simulate, "plate",
+  auto cmd = addArtefactCommand(simulate, "plate",
                                  "A hole-plate measurement (the 1991 BCR report): each feature as the machine with its errors measures it",
                                  plateSimulationSchema(), *plate);
-  cmd->add_flag("--json", plate->json, "the file written and its number of features as JSON");
-  cmd->callback([plate] {
+  cmd.flag("--json", plate->json, "the file written and its number of features as JSON");
+  cmd.callback([plate] {
     const PlateSimulationRequest request = plateSimulationRequest(plate->values);
     const auto m = simulatePlateFile(loadMachineSetup(plate->source), request);
     if (plate->json) std::cout << nlohmann::json{{"output", request.output}, {"features", m.features.size()}}.dump(2) << "\n";

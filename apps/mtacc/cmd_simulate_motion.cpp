@@ -18,16 +18,16 @@ struct MotionCliOptions : MachineOptions {
 
 }  // namespace
 
-void addSimulateMotionCommand(CLI::App& simulate) {
+void addSimulateMotionCommand(const CommandLine& simulate) {
   auto o = std::make_shared<MotionCliOptions>();
-  auto* motion = simulate.add_subcommand("motion", "Andolfatto et al. 2011's virtual machine: an NC program run at each feed of a ladder, with servo loops, "
+  auto motion = simulate.subcommand("motion", "Andolfatto et al. 2011's virtual machine: an NC program run at each feed of a ladder, with servo loops, "
                                                 "geometric errors, drift, structural deflection and instrument noise; the recorded signals, "
                                                 "the truth and the decomposition set written to a directory");
-  motion->add_option("machine", o->source.machine, "Machine file or bundled name")->required();
-  motion->add_option("--errors", o->source.errorsFile, "Error description (YAML); default: the machine file's errors");
-  motion->add_flag("--json", o->json, "Summary as JSON on stdout");
-  addSchemaOptions(*motion, motionSimulationSchema(), o->values, {{"output", "-o"}});
-  motion->callback([o] {
+  motion.argument("machine", o->source.machine, "Machine file or bundled name");
+  motion.option("--errors", o->source.errorsFile, "Error description (YAML); default: the machine file's errors");
+  motion.flag("--json", o->json, "Summary as JSON on stdout");
+  motion.schemaOptions(motionSimulationSchema(), o->values, {{"output", "-o"}});
+  motion.callback([o] {
     const auto s = simulateMotion(loadMachineSetup(o->source), motionSimulationRequest(o->values));
     if (o->json) {
       std::cout << toJson(s).dump(2) << "\n";

@@ -53,13 +53,13 @@ void run(const StiffnessOptions& o) {
 
 }  // namespace
 
-void addStiffnessCommand(CLI::App& app) {
+void addStiffnessCommand(const CommandLine& app) {
   auto o = std::make_shared<StiffnessOptions>();
-  auto* cmd = app.add_subcommand("stiffness",
+  auto cmd = app.subcommand("stiffness",
                                  "finite-stiffness changes of the errors (the 1991 BCR report) at the workpiece load, and the TCP errors they cause");
-  addMachineOptions(*cmd, o->machine);
-  addSchemaOptions(*cmd, stiffnessSchema(), o->values);
-  cmd->callback([o] { run(*o); });
+  cmd.machineOptions(o->machine);
+  cmd.schemaOptions(stiffnessSchema(), o->values);
+  cmd.callback([o] { run(*o); });
 }
 
 }  // namespace mtacc::cli

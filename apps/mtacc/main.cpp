@@ -1,5 +1,6 @@
 // mtacc: the command-line front end. One subcommand per workflow; errors end in one line on
 // stderr and a non-zero exit, and no output file is left behind.
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -62,26 +63,27 @@ int main(int argc, char** argv) {
   CLI::App app{"mtacc: geometric accuracy of multi-axis machine tools"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("mtacc ") + mtacc::version());
-  mtacc::cli::addCheckCommand(app);
-  mtacc::cli::addForwardCommands(app);
-  mtacc::cli::addInverseCommand(app);
-  mtacc::cli::addSensitivityCommand(app);
-  mtacc::cli::addBudgetCommand(app);
-  mtacc::cli::addConeCommand(app);
-  mtacc::cli::addCubicCommands(app);
-  mtacc::cli::addSimulateCommand(app);
-  mtacc::cli::addEvaluateCommand(app);
-  mtacc::cli::addPositioningCommand(app);
-  mtacc::cli::addFitCommand(app);
-  mtacc::cli::addPlateCommand(app);
-  mtacc::cli::addStiffnessCommand(app);
-  mtacc::cli::addCompensateCommand(app);
-  mtacc::cli::addDeviationCommand(app);
-  mtacc::cli::addIdentifyCommands(app);
-  mtacc::cli::addDynamicsCommand(app);
-  mtacc::cli::addDecomposeCommand(app);
-  mtacc::cli::addDriftCommand(app);
-  mtacc::cli::addReportCommand(app);
+  mtacc::cli::CommandLine commands(app);
+  mtacc::cli::addCheckCommand(commands);
+  mtacc::cli::addForwardCommands(commands);
+  mtacc::cli::addInverseCommand(commands);
+  mtacc::cli::addSensitivityCommand(commands);
+  mtacc::cli::addBudgetCommand(commands);
+  mtacc::cli::addConeCommand(commands);
+  mtacc::cli::addCubicCommands(commands);
+  mtacc::cli::addSimulateCommand(commands);
+  mtacc::cli::addEvaluateCommand(commands);
+  mtacc::cli::addPositioningCommand(commands);
+  mtacc::cli::addFitCommand(commands);
+  mtacc::cli::addPlateCommand(commands);
+  mtacc::cli::addStiffnessCommand(commands);
+  mtacc::cli::addCompensateCommand(commands);
+  mtacc::cli::addDeviationCommand(commands);
+  mtacc::cli::addIdentifyCommands(commands);
+  mtacc::cli::addDynamicsCommand(commands);
+  mtacc::cli::addDecomposeCommand(commands);
+  mtacc::cli::addDriftCommand(commands);
+  mtacc::cli::addReportCommand(commands);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
