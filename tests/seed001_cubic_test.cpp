@@ -14,6 +14,7 @@
 #include <regex>
 #include <sstream>
 
+#include "mtacc/core/decompositions.hpp"
 #include "mtacc/core/text.hpp"
 #include "mtacc/errors/aliases.hpp"
 #include "mtacc/io/cubic_program.hpp"

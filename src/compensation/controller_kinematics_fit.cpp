@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "mtacc/core/decompositions.hpp"
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/kinematics/forward.hpp"
 

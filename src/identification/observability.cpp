@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "mtacc/core/decompositions.hpp"
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/parallel.hpp"
 

@@ -1,11 +1,9 @@
 #include "mtacc/identification/plate_identification.hpp"
 
-#include <Eigen/QR>
-#include <Eigen/SVD>
-
 #include <cmath>
 #include <random>
 
+#include "mtacc/core/decompositions.hpp"
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/kinematics/jacobian.hpp"
 

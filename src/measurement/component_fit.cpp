@@ -2,11 +2,11 @@
 
 #include <boost/math/distributions/students_t.hpp>
 #include <Eigen/LU>
-#include <Eigen/QR>
 
 #include <algorithm>
 #include <cmath>
 
+#include "mtacc/core/decompositions.hpp"
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 

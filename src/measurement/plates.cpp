@@ -2,10 +2,9 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/QR>
-
 #include <cmath>
 
+#include "mtacc/core/decompositions.hpp"
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/kinematics/inverse.hpp"

@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "mtacc/core/decompositions.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/forward.hpp"
 

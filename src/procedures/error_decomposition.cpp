@@ -2,10 +2,10 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 
+#include "mtacc/core/decompositions.hpp"
 #include "mtacc/core/input_error.hpp"
 
 namespace mtacc {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "mtacc/core/decompositions.hpp"
 #include "mtacc/core/input_error.hpp"
 
 namespace mtacc {

@@ -19,10 +19,11 @@ failure (an exception the front end did not map), nothing on stdout, exactly one
 line on stderr equal to `mtacc: error: ` + expect, no file created or changed, the inputs
 untouched. At least 98 % of the cases must be located (file:line:, the option or the argument).
 
-Usage: run_corpus.py CLI [--bless] [--without-report]
+Usage: run_corpus.py CLI [--bless] [--without-report | --report-only]
   --bless           print each case's actual message instead of checking it
   --without-report  leave out the `report` cases, for a build without the Python module that
                     the report runs on (the count left out is printed)
+  --report-only     only the `report` cases: the rest run in the sanitizer build
 """
 import concurrent.futures
 import os
@@ -133,12 +134,16 @@ def check(cli, case):
 
 
 def main():
-    cli, bless, without_report = sys.argv[1], "--bless" in sys.argv[2:], "--without-report" in sys.argv[2:]
-    cases = [Case(p) for p in sorted((HERE / "cases").glob("*.case"))]
-    if without_report:
+    cli, options = sys.argv[1], sys.argv[2:]
+    bless = "--bless" in options
+    corpus = cases = [Case(p) for p in sorted((HERE / "cases").glob("*.case"))]
+    if "--without-report" in options:
         left_out = [c for c in cases if c.run.split()[0] == "report"]
         cases = [c for c in cases if c not in left_out]
         print(f"{len(left_out)} report cases left out: this build has no Python module")
+    elif "--report-only" in options:
+        cases = [c for c in cases if c.run.split()[0] == "report"]
+        print(f"{len(cases)} report cases only: the others run in the sanitizer build")
     workers = max(1, min(4, os.cpu_count() or 1))
     with concurrent.futures.ThreadPoolExecutor(workers) as pool:
         results = list(pool.map(lambda c: check(cli, c), cases))
@@ -151,10 +156,10 @@ def main():
             print(f"FAIL {case.path.name}")
             for p in problems:
                 print(f"    {p}")
-    unlocated = [c for c in cases if c.located.startswith("none")]
-    share = 1 - len(unlocated) / len(cases) if cases else 0
-    print(f"{len(cases)} cases, {len(cases) - failures} clean failures as expected, "
-          f"{100 * share:.1f} % located (file and line, the option or the argument)")
+    unlocated = [c for c in corpus if c.located.startswith("none")]
+    share = 1 - len(unlocated) / len(corpus) if corpus else 0
+    print(f"{len(cases)} cases, {len(cases) - failures} clean failures as expected; "
+          f"{100 * share:.1f} % of the corpus located (file and line, the option or the argument)")
     for c in unlocated:
         print(f"  not located: {c.name}: {c.located[len('none: '):]}")
     if share < LOCATED_SHARE:

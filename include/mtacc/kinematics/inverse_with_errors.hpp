@@ -10,8 +10,7 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/SVD>
-
+#include "mtacc/core/decompositions.hpp"
 #include "mtacc/kinematics/inverse.hpp"
 #include "mtacc/kinematics/kinematic_model.hpp"
 
