@@ -27,35 +27,35 @@ SEEDS = {
 }
 # Seeds whose printed numbers need a capability that is not built yet.
 PENDING = {
-    "001": "Its printed numbers are the test piece's Tables 1-2 (reproduced from mtacc's NC program "
-           "and CL data below). The machined and simulated zone heights of Figs 16 and 17 are not in "
-           "the text (only the colour limits of ±0.01 mm); the extraction's predictions from Table 5 "
-           "(§9.1) and the intentional errors of Section 5.3 (§9.2) are reproduced by "
-           "Seed001CubicTest.*, its equations by Seed001WorkpieceFrame.*.",
-    "003": "Its App. D tables are bundled as the Maho machine's errors; the values the extraction "
-           "computed from them (§8.3) are reproduced below, and the extraction's derived error grid "
-           "(§13 item 12) by Seed003AppendixD.DerivedGridOfSection13Item12. App. B.5's squareness and "
-           "§5.3's residual bounds are reproduced from their procedures. Not computed: the hole-plate "
-           "predictions of §5.3 (±12/±20 um at XY pos. 1, ±30/±25 um at XY pos. 8), because the plate "
-           "positions other than Z = 292 mm and the stylus offsets are not given (extraction §14), and "
-           "the 260 kg stiffness case of §5.4 (±20 um at XY pos. 1, ±25 um at XY pos. 8), whose measured "
-           "changes are only plotted (Figs 4.17-4.20): the model is built (Stiffness.*) and the bundled "
-           "data/stiffness/maho-260kg.yaml holds illustrative values. Its "
-           "Appendix A transforms are checked by Seed003AppendixA.*.",
-    "004": "Its Tables 1-4 are measurements of the authors' machine, not reproducible without "
-           "their signals (extraction §15); what the text allows is checked: the feed ladder below, "
-           "Table 1's row sums and stated shares (Seed004Statistics.R2/R3R4, which show that Table 1 "
-           "used the five-norm denominator, erratum E1), the power laws of Table 4 under reading A "
-           "(Seed004Statistics.R6, the extraction's fits; the paper prints no kappa or N) and its RMS "
-           "against Table 3's maxima (R7). The method's identities V1-V4, V12, V13 are "
+    "001": "Its printed numbers are the test piece's Tables 1-2: the zones' tool vectors and B/C angles, "
+           "written back through mtacc's NC program (input echoed below). The machined and simulated zone "
+           "heights of Figs 16 and 17 are not in the text (only the colour limits of ±0.01 mm); the "
+           "extraction's predictions from Table 5 (§9.1) and the intentional errors of Section 5.3 (§9.2) "
+           "are checked by Seed001CubicTest.*, its equations by Seed001WorkpieceFrame.*.",
+    "003": "Its App. D tables are bundled as the Maho machine's errors; the seed prints only their "
+           "coefficients (L5139), so the values the extraction computed from them (§8.3) check the data "
+           "entry (input echoed below), as does the extraction's derived error grid (§13 item 12, "
+           "Seed003AppendixD.DerivedGridOfSection13Item12). App. B.5's squareness and §5.3's residual "
+           "bounds are reproduced from their procedures. Not computed: the hole-plate predictions of §5.3 "
+           "(±12/±20 um at XY pos. 1, ±30/±25 um at XY pos. 8), because the plate positions other than "
+           "Z = 292 mm and the stylus offsets are not given (extraction §14), and the 260 kg stiffness case "
+           "of §5.4 (±20 um at XY pos. 1, ±25 um at XY pos. 8), whose measured changes are only plotted "
+           "(Figs 4.17-4.20): the model is built (Stiffness.*) and the bundled data/stiffness/maho-260kg.yaml "
+           "holds illustrative values. Its Appendix A transforms are checked by Seed003AppendixA.*.",
+    "004": "Its Tables 1-4 are measurements of the authors' machine, not reproducible without their "
+           "signals (extraction §15). The feed ladder is the rule the seed states (input echoed below); the "
+           "power laws of Table 4 under reading A are fitted by mtacc (Seed004Statistics.R6, against the "
+           "extraction's fits: the paper prints no kappa or N). The extraction's arithmetic on the paper's "
+           "own tables (R2-R4: Table 1's row sums, which show that it used the five-norm denominator, "
+           "erratum E1, and its stated shares; R7: Table 4's RMS against Table 3's maxima) calls no mtacc "
+           "code and stays in the extraction. The method's identities V1-V4, V12, V13 are "
            "Seed004Decomposition.*; the 18 ms delay in NC cycles and instrument samples (R8) is "
            "Seed004Alignment.R8*, the linear-interpolation bound a*T^2/8 (R9) UniformSpline.Seed004R9*. "
-           "On the virtual machine (own constants, wcayfxzt-compact structure) the clock offset, "
-           "contouring, quasi-static, drift and dynamic errors are recovered within V5, V6, V8-V11 "
-           "(V9 and V10 also with linear resampling, within 0.2 and 0.45 um), the link errors from 56 "
-           "static CapBall poses within V7, and both negative controls of V14 hold "
-           "(Seed004VirtualMachine.*).",
+           "On the virtual machine (own constants, wcayfxzt-compact structure) the clock offset, link "
+           "errors, quasi-static, drift and dynamic errors are recovered within V5, V7-V10 (self-consistent "
+           "below); V6, V11 and both negative controls of V14 hold (Seed004VirtualMachine.*).",
 }
+CATEGORIES = ["reproduced", "input echoed", "self-consistent", "known difference", "not computed"]
 FIELDS = ["seed", "where", "quantity", "printed", "mtacc", "difference", "unit", "verdict"]
 
 
@@ -112,14 +112,22 @@ def document(rows):
            "(`tests/reference_values.cpp`); the test `ReferenceResults.DocumentIsCurrent` fails when this "
            "file is not what the tests give. Do not edit it by hand: change the tests and run",
            "", "    /usr/bin/python3 scripts/reference_results.py build/tests/mtacc_tests docs/reference-results.md", "",
-           "Verdicts: **reproduced** within the stated tolerance; **known difference** with the reason found "
-           "(today's value is pinned by the test, so a change is noticed; one that starts to agree fails until "
-           "it is moved to reproduced); **not computed** with the reason. Difference = mtacc − printed. "
-           "The extractions in `../shared/reference/` give the derivations behind each reason.", "",
-           "| seed | reproduced | known difference | not computed |", "|---|---|---|---|"]
+           "Categories: **reproduced**: a computation of mtacc agrees, within the stated tolerance, with a number "
+           "the seed prints, from inputs the seed gives; **input echoed**: a number mtacc reads (or derives by a rule "
+           "the seed states) and writes back, checked so the data entry stays right but not a reproduction; "
+           "**self-consistent**: a value the seed gives (or the test's own truth), simulated and recovered by mtacc "
+           "itself, so the printed column holds the injected value; **known difference**: the reason found (today's "
+           "value is pinned by the test, so a change is noticed; one that starts to agree fails until it is moved to "
+           "reproduced); **not computed**: what input is missing and where the seed fails to give it, or what is not "
+           "built. Difference = mtacc − printed. The extractions in `../shared/reference/` give the derivations "
+           "behind each reason.", "",
+           "| seed | " + " | ".join(CATEGORIES) + " |", "|---" * (len(CATEGORIES) + 1) + "|"]
     for seed in SEEDS:
         counts = collections.Counter(verdict_kind(r["verdict"]) for r in by_seed.get(seed, []))
-        out.append(f"| {seed} | {counts['reproduced']} | {counts['known difference']} | {counts['not computed']} |")
+        unknown = set(counts) - set(CATEGORIES)
+        if unknown:
+            fail(f"seed {seed}: verdicts of no category: {sorted(unknown)}")
+        out.append(f"| {seed} | " + " | ".join(str(counts[c]) for c in CATEGORIES) + " |")
     for seed, (title, extraction) in SEEDS.items():
         out += ["", f"## {title}", "", f"Extraction: `{extraction}`."]
         if seed in PENDING:

@@ -32,6 +32,17 @@ void expectReproduced(const Printed& p, double mtacc, double tolerance, const st
   record(p, shown(p, mtacc), shown(p, mtacc - p.value), fmt::format("reproduced within {:g} ({})", tolerance, why));
 }
 
+void expectInputEchoed(const Printed& p, double mtacc, double tolerance, const std::string& why) {
+  EXPECT_NEAR(mtacc, p.value, tolerance) << p.where << ", " << p.quantity << " [" << p.unit << "]";
+  record(p, shown(p, mtacc), shown(p, mtacc - p.value), fmt::format("input echoed within {:g} ({})", tolerance, why));
+}
+
+void expectSelfConsistent(const Printed& injected, double recovered, double tolerance, const std::string& why) {
+  EXPECT_NEAR(recovered, injected.value, tolerance) << injected.where << ", " << injected.quantity << " [" << injected.unit << "]";
+  record(injected, shown(injected, recovered), shown(injected, recovered - injected.value),
+         fmt::format("self-consistent within {:g} ({})", tolerance, why));
+}
+
 void expectKnownDifference(const Printed& p, double mtacc, double today, double pin, const std::string& reason) {
   EXPECT_NEAR(mtacc, today, pin) << p.where << ", " << p.quantity << ": today's value changed";
   EXPECT_GT(std::abs(mtacc - p.value), halfDigit(p))

@@ -24,7 +24,18 @@ void expectReproduced(const Printed& printed, double mtacc, double tolerance, co
 // starts to agree has to be moved to expectReproduced.
 void expectKnownDifference(const Printed& printed, double mtacc, double today, double pin, const std::string& reason);
 
-// A printed number the library does not compute yet, listed with the reason.
+// Input echoed: a number the seed prints that mtacc reads (or derives from what it reads by a
+// rule the seed states) and writes back, e.g. a test piece's own geometry. Checked like a
+// reproduction, so the data entry stays right, but counted apart: it reproduces no computation.
+void expectInputEchoed(const Printed& printed, double mtacc, double tolerance, const std::string& why);
+
+// Self-consistent: `injected` (a value the seed gives, or the test's own truth) simulated by
+// mtacc and recovered by mtacc's identification or decomposition within `tolerance`. A useful
+// check of the method, not agreement with a published result.
+void expectSelfConsistent(const Printed& injected, double recovered, double tolerance, const std::string& why);
+
+// A printed number the library does not compute, listed with the reason: what input is
+// missing and where the seed fails to give it, or what is not built.
 void recordNotComputed(const Printed& printed, const std::string& reason);
 
 }  // namespace mtacc::test

@@ -1,7 +1,8 @@
 // Seed 004 (Andolfatto, Lavernhe, Mayer): the error decomposition of eqs. 6, 10-20 and the
 // statistics of eqs. 21-23. The identities V1-V4 and V12-V13 of the extraction
 // (seed004_error_decomposition.md §14.4) on series with every contribution present, and the
-// checks R1-R4, R6, R7 of its §16 that the paper's text allows.
+// checks R1 and R6 of its §16 that call mtacc (R2-R4 and R7 are arithmetic on the paper's own
+// tables and stay in the extraction).
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
@@ -243,38 +244,21 @@ TEST(Seed004Statistics, V13ExactPowerLawIsRecovered) {
   EXPECT_THROW(fitPowerLaw({1000}, {1}), InvalidInput);
 }
 
-// The feeds as printed (L325; Table 1, L346-351): 1000 * 1.8^k rounded to 1 mm/min.
+// The feeds as printed (L325; Table 1, L346-351): 1000 * 1.8^k rounded to 1 mm/min, the rule
+// the seed states written back (input echoed).
 TEST(Seed004Statistics, R1FeedLadder) {
   const double printed[] = {1000, 1800, 3240, 5832, 10498, 18896};
   const std::vector<double> feeds = geometricFeeds(1000, 1.8, 6);
   ASSERT_EQ(feeds.size(), 6u);
   for (size_t k = 0; k < 6; ++k)
-    test::expectReproduced({"004", "Section 4.3 and Table 1, L325 and L346-351", fmt::format("feed {} of 1000 mm/min * 1.8^k", k),
+    test::expectInputEchoed({"004", "Section 4.3 and Table 1, L325 and L346-351", fmt::format("feed {} of 1000 mm/min * 1.8^k", k),
                             printed[k], 0, "mm/min"},
                            feeds[k], 0.5, "the printed digit: 10497.6 and 18895.68 are printed rounded");
 }
 
-// Table 1 (L346-351) as printed: c, l, m, td, d in %.
-constexpr double kTable1[6][5] = {{1.1, 86.9, 11.4, 0.0, 0.6}, {1.7, 85.9, 11.3, 0.4, 0.7}, {2.4, 84.7, 11.1, 0.9, 0.9},
-                                  {3.9, 82.6, 10.8, 1.1, 1.5}, {6.5, 77.7, 10.2, 2.3, 3.3}, {9.5, 72.8, 9.5, 3.3, 4.8}};
-
-// R2: every row sums to 100 within the rounding of its five entries, so Table 1 used the
-// five-norm denominator (E1), the split that decompositionShares gives beside eq. 21.
-TEST(Seed004Statistics, R2Table1RowsSumTo100) {
-  for (const auto& row : kTable1) EXPECT_NEAR(row[0] + row[1] + row[2] + row[3] + row[4], 100.0, 0.1 + 1e-9);
-}
-
-// R3 (L341: c + d "from 1.7 % to 14.3 %") and R4 (L412: "nearly 5 %" dynamic at the top feed).
-TEST(Seed004Statistics, R3R4StatedSharesFollowFromTable1) {
-  EXPECT_NEAR(kTable1[0][0] + kTable1[0][4], 1.7, 1e-9);
-  EXPECT_NEAR(kTable1[5][0] + kTable1[5][4], 14.3, 1e-9);
-  EXPECT_EQ(kTable1[5][4], 4.8);
-}
-
 // Table 4 (L369-374), reading A of the extraction (§13.4): the last three numbers of each row
-// are the RMS of delta_d in x, y, z (um); Table 3 (L357-364) the maxima.
+// are the RMS of delta_d in x, y, z (um).
 constexpr double kTable4[6][3] = {{0.2, 0.2, 0.2}, {0.3, 0.3, 0.3}, {0.4, 0.4, 0.5}, {0.5, 0.8, 1.1}, {0.8, 1.9, 2.1}, {1.1, 2.7, 3.4}};
-constexpr double kTable3Dynamic[6][3] = {{1.1, 1.7, 3.1}, {1.5, 2.9, 3.2}, {1.2, 3.5, 5.4}, {1.8, 4.1, 7.1}, {3.0, 6.2, 8.9}, {3.7, 7.6, 10.4}};
 
 // R6 / V13: the power laws of eq. 23 fitted to Table 4 (all six feeds; the paper prints no kappa
 // or N, these are the extraction's fits). The values are printed to 0.1 um, so the fit is
@@ -289,20 +273,6 @@ TEST(Seed004Statistics, R6Table4PowerLaws) {
     EXPECT_NEAR(p.exponent, exponent[d], 0.001) << "direction " << d;
     EXPECT_NEAR(p.kappa / kappa[d], 1.0, 1e-3) << "direction " << d;
   }
-}
-
-// R7: under reading A every RMS lies below the maximum of the same direction and feed, at
-// 0.06 to 0.36 of it, as a peaky zero-mean signal has (reading B would give 0.73-0.83 in x).
-TEST(Seed004Statistics, R7Table4RmsBelowTable3Maxima) {
-  double smallest = 1.0, largest = 0.0;
-  for (int f = 0; f < 6; ++f)
-    for (int d = 0; d < 3; ++d) {
-      const double ratio = kTable4[f][d] / kTable3Dynamic[f][d];
-      smallest = std::min(smallest, ratio);
-      largest = std::max(largest, ratio);
-    }
-  EXPECT_NEAR(smallest, 0.06, 0.005);
-  EXPECT_NEAR(largest, 0.36, 0.005);
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include "mtacc/virtual_controller/motion_interpolator.hpp"
 #include "mtacc/procedures/recorded_test.hpp"
 #include "mtacc/virtual_controller/virtual_recording.hpp"
+#include "reference_values.hpp"
 #include "test_helpers.hpp"
 
 namespace mtacc {
@@ -211,10 +212,14 @@ RecoveryMisfits recoveryMisfits(Interpolation interpolation) {
 // (small) dynamic mean is taken by the motion fit and so leaves every other drift.
 TEST(Seed004VirtualMachine, V8ToV11QuasiStaticDriftAndDynamicErrorsRecovered) {
   const auto misfits = recoveryMisfits(Interpolation::CubicSpline);
+  const std::string where = "Virtual machine of extraction §14 (own constants)";
   for (size_t k = 0; k < kFeeds.size(); ++k) {
-    EXPECT_LT(misfits.quasiStatic[k], 0.1e-3) << kFeeds[k];           // V8
-    EXPECT_LT(misfits.drift[k], 0.05e-3) << kFeeds[k];                // V9 (cubic)
-    EXPECT_LT(misfits.dynamic[k], 1.1 * kNoise + 0.05e-3) << kFeeds[k];  // V10 (cubic)
+    test::expectSelfConsistent({"004", where + ", V8", fmt::format("RMS misfit of delta_qs at {:.0f} mm/min", kFeeds[k]), 0, 2, "um"},
+                               misfits.quasiStatic[k] * 1e3, 0.1, "V8");
+    test::expectSelfConsistent({"004", where + ", V9", fmt::format("drift misfit at {:.0f} mm/min", kFeeds[k]), 0, 2, "um"},
+                               misfits.drift[k] * 1e3, 0.05, "V9, cubic resampling");
+    test::expectSelfConsistent({"004", where + ", V10", fmt::format("RMS misfit of delta_d at {:.0f} mm/min", kFeeds[k]), 0, 2, "um"},
+                               misfits.dynamic[k] * 1e3, (1.1 * kNoise + 0.05e-3) * 1e3, "V10, cubic resampling: 1.1 x the noise + 0.05 um");
   }
   for (int d = 0; d < 3; ++d) EXPECT_NEAR(misfits.referenceDynamicRms[d], kNoise, 0.02e-3) << d;  // V11: the noise floor at the reference feed
 }
@@ -236,13 +241,14 @@ TEST(Seed004VirtualMachine, V5AndV6WithTheEstimatedOffset) {
   std::vector<AlignedTest> aligned;
   const auto decomposed = vm.decompose(std::nullopt, Interpolation::CubicSpline, aligned);
   for (size_t k = 0; k < decomposed.size(); ++k) {
-    EXPECT_NEAR(aligned[k].alignment.offset, kClockOffset, 0.5e-3) << kFeeds[k];  // V5 with servo lag
+    test::expectSelfConsistent({"004", "Virtual machine of extraction §14 (own constants), V5",
+                                fmt::format("clock offset estimated at {:.0f} mm/min", kFeeds[k]), kClockOffset * 1e3, 2, "ms"},
+                               aligned[k].alignment.offset * 1e3, 0.5, "V5 with servo lag");
     const auto& r = vm.feeds[k].recording;
     std::vector<Vec3> misfit;
     for (size_t i = 0; i < decomposed[k].contouring.size(); ++i)
       misfit.push_back(decomposed[k].contouring[i] - r.contouring[recordingIndex(r, aligned[k].test.time[i])]);
     EXPECT_LT(rmsOf(misfit).maxCoeff(), 0.5e-3) << kFeeds[k];  // V6, estimated shift
-    RecordProperty(fmt::format("estimated_offset_ms_at_{:.0f}", kFeeds[k]), fmt::format("{:.4f}", aligned[k].alignment.offset * 1e3));
   }
 }
 
@@ -348,9 +354,10 @@ TEST(Seed004VirtualMachine, V7LinkErrorsFromStaticPoses) {
   ASSERT_TRUE(result.converged) << result.solverReport;
   for (size_t k = 0; k < links.size(); ++k) {
     const bool length = links[k].first == "Y0C";
-    EXPECT_NEAR(result.values[static_cast<long>(k)], links[k].second, length ? 0.5e-3 : 5e-6) << links[k].first;
-    RecordProperty(links[k].first + (length ? "_error_um" : "_error_urad"),
-                   fmt::format("{:.2f}", (result.values[static_cast<long>(k)] - links[k].second) * (length ? 1e3 : 1e6)));
+    const double scale = length ? 1e3 : 1e6;
+    test::expectSelfConsistent({"004", "Virtual machine of extraction §14 (own constants), V7", links[k].first + " from 56 static CapBall poses",
+                                links[k].second * scale, 1, length ? "um" : "urad"},
+                               result.values[static_cast<long>(k)] * scale, length ? 0.5 : 5, "V7, with 0.4 um of noise");
   }
   for (size_t p = 0; p < 6; ++p) EXPECT_NEAR(result.values[static_cast<long>(links.size() + p)], setup[p], 0.5e-3) << p;
 }
