@@ -13,6 +13,7 @@ import collections
 import difflib
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -94,8 +95,8 @@ def recorded(binary):
 
 def first_line(where):
     """4202 for "L4202-4222": tables in the order of the source."""
-    digits = where.lstrip("L").split("-")[0]
-    return int(digits) if digits.isdigit() else 0
+    match = re.search(r"L(\d+)", where)
+    return int(match.group(1)) if match else 0
 
 
 def verdict_kind(verdict):

@@ -10,12 +10,16 @@ namespace mtacc::test {
 namespace {
 
 // Fields separated by tabs: seed, where, quantity, printed, mtacc, difference, unit, verdict.
-void record(const Printed& p, const std::string& mtacc, const std::string& difference, const std::string& verdict) {
+void recordRow(const std::string& seed, const std::string& where, const std::string& quantity, const std::string& printed,
+               const std::string& mtacc, const std::string& difference, const std::string& unit, const std::string& verdict) {
   static std::set<std::string> seen;
-  const std::string key = "reference " + p.where + " " + p.quantity;
+  const std::string key = "reference " + where + " " + quantity;
   EXPECT_TRUE(seen.insert(key).second) << key << " is recorded twice";
-  ::testing::Test::RecordProperty(key, fmt::format("{}\t{}\t{}\t{:.{}f}\t{}\t{}\t{}\t{}", p.seed, p.where, p.quantity, p.value,
-                                                   p.decimals, mtacc, difference, p.unit, verdict));
+  ::testing::Test::RecordProperty(key, fmt::format("{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}", seed, where, quantity, printed, mtacc, difference, unit, verdict));
+}
+
+void record(const Printed& p, const std::string& mtacc, const std::string& difference, const std::string& verdict) {
+  recordRow(p.seed, p.where, p.quantity, fmt::format("{:.{}f}", p.value, p.decimals), mtacc, difference, p.unit, verdict);
 }
 
 std::string shown(const Printed& p, double v) {
@@ -29,18 +33,18 @@ double halfDigit(const Printed& p) { return 0.5 * std::pow(10.0, -p.decimals); }
 
 void expectReproduced(const Printed& p, double mtacc, double tolerance, const std::string& why) {
   EXPECT_NEAR(mtacc, p.value, tolerance) << p.where << ", " << p.quantity << " [" << p.unit << "]";
-  record(p, shown(p, mtacc), shown(p, mtacc - p.value), fmt::format("reproduced within {:g} ({})", tolerance, why));
+  record(p, shown(p, mtacc), shown(p, mtacc - p.value), fmt::format("reproduced within {:.3g} ({})", tolerance, why));
 }
 
 void expectInputEchoed(const Printed& p, double mtacc, double tolerance, const std::string& why) {
   EXPECT_NEAR(mtacc, p.value, tolerance) << p.where << ", " << p.quantity << " [" << p.unit << "]";
-  record(p, shown(p, mtacc), shown(p, mtacc - p.value), fmt::format("input echoed within {:g} ({})", tolerance, why));
+  record(p, shown(p, mtacc), shown(p, mtacc - p.value), fmt::format("input echoed within {:.3g} ({})", tolerance, why));
 }
 
 void expectSelfConsistent(const Printed& injected, double recovered, double tolerance, const std::string& why) {
   EXPECT_NEAR(recovered, injected.value, tolerance) << injected.where << ", " << injected.quantity << " [" << injected.unit << "]";
   record(injected, shown(injected, recovered), shown(injected, recovered - injected.value),
-         fmt::format("self-consistent within {:g} ({})", tolerance, why));
+         fmt::format("self-consistent within {:.3g} ({})", tolerance, why));
 }
 
 void expectKnownDifference(const Printed& p, double mtacc, double today, double pin, const std::string& reason) {
@@ -48,6 +52,16 @@ void expectKnownDifference(const Printed& p, double mtacc, double today, double 
   EXPECT_GT(std::abs(mtacc - p.value), halfDigit(p))
       << p.where << ", " << p.quantity << " now reproduces the printed value: move it to expectReproduced";
   record(p, shown(p, mtacc), shown(p, mtacc - p.value), "known difference: " + reason);
+}
+
+void expectStatementHolds(const Statement& st, bool holds, const std::string& mtacc, const std::string& why) {
+  EXPECT_TRUE(holds) << st.where << ", " << st.quantity << ": " << st.printed << " does not hold for mtacc's " << mtacc;
+  recordRow(st.seed, st.where, st.quantity, st.printed, mtacc, "", "", "reproduced: " + why);
+}
+
+void expectStatementFails(const Statement& st, bool holds, const std::string& mtacc, const std::string& reason) {
+  EXPECT_FALSE(holds) << st.where << ", " << st.quantity << " now holds for mtacc's " << mtacc << ": move it to expectStatementHolds";
+  recordRow(st.seed, st.where, st.quantity, st.printed, mtacc, "", "", "known difference: " + reason);
 }
 
 void recordNotComputed(const Printed& p, const std::string& reason) { record(p, "", "", "not computed: " + reason); }

@@ -15,6 +15,18 @@ struct Printed {
   std::string unit;
 };
 
+// A statement the seed prints in words rather than as one number ("8.4 um lies between the
+// median and the upper quartile"), with what mtacc's computation says about it.
+struct Statement {
+  std::string seed, where, quantity;
+  std::string printed;  // the claim with the seed's numbers, "7.9 <= 8.4 <= 10.0"
+};
+// Reproduced when mtacc's computation bears the statement out (`holds`), which the test asserts.
+void expectStatementHolds(const Statement& statement, bool holds, const std::string& mtacc, const std::string& why);
+// A known difference: mtacc's computation contradicts the statement, for `reason`; asserted, so
+// one that starts to hold fails until it is moved to expectStatementHolds.
+void expectStatementFails(const Statement& statement, bool holds, const std::string& mtacc, const std::string& reason);
+
 // Reproduced: |mtacc - printed| <= tolerance, which `why` justifies (usually half the last
 // printed digit).
 void expectReproduced(const Printed& printed, double mtacc, double tolerance, const std::string& why);

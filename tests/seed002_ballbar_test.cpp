@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -106,6 +107,135 @@ TEST(Seed002Ballbar, Table5FirstOrderRelationsFromTheExactSimulation) {
     EXPECT_LT((eccentricity(model, nominal, "C", RotaryTestMode::Tangential, g) - e.ct).norm(), tol) << "C tangential";
     EXPECT_LT((eccentricity(model, nominal, "C", RotaryTestMode::Axial, g) - e.ca).norm(), tol) << "C axial";
   }
+}
+
+// Table 2's twelve tests, in Table 3's row order, with the seed's line of each row.
+struct TestRow {
+  const char* name;
+  const char* axis;
+  RotaryTestMode mode;
+  int line;
+};
+const TestRow kTwelveTests[] = {{"B radial", "B", RotaryTestMode::Radial, 1294},     {"B tangential", "B", RotaryTestMode::Tangential, 1311},
+                                {"B axial", "B", RotaryTestMode::Axial, 1328},       {"B X", "B", RotaryTestMode::X, 1345},
+                                {"B Y", "B", RotaryTestMode::Y, 1364},               {"B Z", "B", RotaryTestMode::Z, 1383},
+                                {"C radial", "C", RotaryTestMode::Radial, 1402},     {"C tangential", "C", RotaryTestMode::Tangential, 1419},
+                                {"C axial", "C", RotaryTestMode::Axial, 1436},       {"C X", "C", RotaryTestMode::X, 1453},
+                                {"C Y", "C", RotaryTestMode::Y, 1467},               {"C Z", "C", RotaryTestMode::Z, 1482}};
+
+// A deviation or mounting error "affects" a test when its dL trace moves by more than 0.05 um:
+// the first-order effects of §4's sizes are 2.18 um and more (reference §12.1), the second-order
+// ones about e^2 / L_B = 0.004 um.
+constexpr double kAffects = 0.05e-3;
+double largestChange(const MeasurementRun& run) { return run.readings.cwiseAbs().maxCoeff(); }
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out.empty() ? "none" : out;
+}
+
+// Table 3 (L1275-1502): the polar plots of dL in each of the twelve tests with each deviation
+// alone at +20 um or +0.005 deg (§4, L303); the printed result is which deviations change which
+// test (a plot drawn, or blank), transcribed in reference §12.1 (two cells of rows C X and C Y
+// survive only through the image numbering, i057 and i068). L_B 100, Z_C 100, R_B 200, R_C 50 mm.
+TEST(Seed002Ballbar, Table3WhichDeviationsChangeWhichOfTheTwelveTests) {
+  const std::map<std::string, std::vector<std::string>> printed{
+      {"B radial", {"dxBT", "dzBT", "betaXB", "betaYZ"}},
+      {"B tangential", {"dxBT", "dzBT", "betaXB", "betaYZ"}},
+      {"B axial", {"alphaXB", "gammaXB", "alphaYZ"}},
+      {"B X", {"dxBT", "dzBT", "betaXB", "betaYZ"}},
+      {"B Y", {"alphaXB", "gammaXB", "alphaYZ"}},
+      {"B Z", {"dxBT", "dzBT", "betaXB"}},
+      {"C radial", {"dxBT", "alphaBT", "alphaXB", "betaXB", "gammaXY", "alphaYZ", "betaYZ", "dxCZ", "dyCZ", "alphaCZ", "betaCZ"}},
+      {"C tangential", {"dxBT", "alphaBT", "alphaXB", "betaXB", "gammaXY", "alphaYZ", "betaYZ", "dxCZ", "dyCZ", "alphaCZ", "betaCZ"}},
+      {"C axial", {"alphaYZ", "betaYZ", "alphaCZ", "betaCZ"}},
+      {"C X", {"dxBT", "alphaBT", "alphaXB", "betaXB", "alphaYZ", "betaYZ", "dxCZ", "dyCZ", "alphaCZ", "betaCZ"}},
+      {"C Y", {"dxBT", "alphaBT", "alphaXB", "betaXB", "gammaXY", "alphaYZ", "betaYZ", "dxCZ", "dyCZ", "alphaCZ", "betaCZ"}},
+      {"C Z", {"alphaYZ", "betaYZ", "alphaCZ", "betaCZ"}}};
+  const auto machine = test::bundled("multitasking-b-c");
+  const auto nominal = compileNominal(machine);
+  const Geometry g{100, 100, 200, 50};
+  std::map<std::string, KinematicModel> models;
+  for (const char* name : kNames) {
+    const bool angle = name[0] == 'a' || name[0] == 'b' || name[0] == 'g';
+    models.emplace(name, compile(machine, seed002Errors(*machine, {{name, angle ? 0.005 * kDeg : 20e-3}})));
+  }
+  for (const auto& t : kTwelveTests) {
+    std::vector<std::string> affecting;
+    for (const char* name : kNames)
+      if (largestChange(simulatedTest(models.at(name), nominal, t.axis, t.mode, g)) > kAffects) affecting.push_back(name);
+    const auto& paper = printed.at(t.name);
+    const auto sorted = [&](std::vector<std::string> v) { return std::set<std::string>(v.begin(), v.end()); };
+    const bool same = sorted(affecting) == sorted(paper);
+    const test::Statement statement{"002", fmt::format("Table 3, L{}", t.line), fmt::format("deviations that change {}", t.name), joined(paper)};
+    if (std::string(t.name) == "C X" || std::string(t.name) == "C Y")
+      test::expectStatementFails(statement, same, joined(affecting),
+                                 "gammaXY: with the W ball set at the actual T ball (Eqs 11-12, L225) the C axis' X test sees "
+                                 "R_C gammaXY and its Y test nothing; the paper's pattern needs that set-up error left out "
+                                 "(reference §7); the 12-parameter identification is not affected");
+    else
+      test::expectStatementHolds(statement, same, joined(affecting), "the exact simulation, 0.05 um threshold");
+  }
+}
+
+// Table 4 (L1506-1586) and §4.1 (L329-360): each mounting error alone at 20 um (L332); xT yT zT
+// offset the T ball in the tool frame (Eq 15), xW yW zW the W ball from the actual T ball in the
+// C frame (Eq 16). Of the table only the B radial row survives (L1530-1549: plots for xW, zW, xT,
+// zT); the text states which tests the W ball leaves alone (L358) and that the C Y test is
+// disturbed by both balls (L368).
+TEST(Seed002Ballbar, Table4MountingErrorsAndTheChoiceOfTests) {
+  const auto machine = test::bundled("multitasking-b-c");
+  const auto nominal = compileNominal(machine);
+  const Geometry g{100, 100, 200, 50};
+  const std::pair<const char*, SetupParameter> mounting[] = {{"xW", SetupParameter::TargetX},   {"yW", SetupParameter::TargetY},
+                                                             {"zW", SetupParameter::TargetZ},   {"xT", SetupParameter::ToolBallX},
+                                                             {"yT", SetupParameter::ToolBallY}, {"zT", SetupParameter::ToolBallZ}};
+  // dL and eccentricity of each test with each mounting error alone.
+  auto withMounting = [&](const TestRow& t, SetupParameter p) {
+    BallbarRotarySpec spec;
+    spec.axis = t.axis;
+    spec.mode = t.mode;
+    spec.length = g.lB;
+    spec.toolBall = Vec3(0, 0, -(g.rB - 150.0));
+    spec.workBall = std::string(t.axis) == "B" ? Vec3(0, 0, g.zC) : Vec3(g.rC, 0, g.zC);
+    auto run = ballbarRotaryTest(nominal, spec);
+    run.setup.errors[static_cast<size_t>(p)] = 20e-3;
+    simulateRun(nominal, nominal, run);
+    return std::pair{largestChange(run), fitEccentricity(run).eccentricity.norm()};
+  };
+  std::vector<std::string> changesBRadial;
+  for (const auto& [name, p] : mounting)
+    if (withMounting(kTwelveTests[0], p).first > kAffects) changesBRadial.push_back(name);
+  test::expectStatementHolds({"002", "Table 4, L1530-1549", "mounting errors that change B radial", "xW, zW, xT, zT"},
+                             changesBRadial == std::vector<std::string>{"xW", "zW", "xT", "zT"}, joined(changesBRadial),
+                             "the W ball set at the actual T ball, its offset included (reference §6)");
+  // L358: the W ball's errors leave the eccentricity of the B X, B Y, B Z, C radial, C tangential
+  // and C axial tests (the chosen ones) alone; the T ball's move both kinds of test.
+  double wChosen = 0, tCartesian = 0, tCylindrical = 0;
+  for (const auto& t : kTwelveTests) {
+    const std::string n = t.name;
+    const bool chosen = n == "B X" || n == "B Y" || n == "B Z" || n == "C radial" || n == "C tangential" || n == "C axial";
+    const bool cartesian = t.mode == RotaryTestMode::X || t.mode == RotaryTestMode::Y || t.mode == RotaryTestMode::Z;
+    for (const auto& [name, p] : mounting) {
+      const double e = withMounting(t, p).second;
+      if (name[1] == 'W' && chosen) wChosen = std::max(wChosen, e);
+      if (name[1] == 'T') (cartesian ? tCartesian : tCylindrical) = std::max(cartesian ? tCartesian : tCylindrical, e);
+    }
+  }
+  test::expectStatementHolds({"002", "Section 4.1, L358", "W-ball mounting errors do not move the eccentricity of the six chosen tests",
+                              "0 in B X, B Y, B Z, C radial, C tangential, C axial"},
+                             wChosen < kAffects, fmt::format("largest {:.4f} um of 20 um", wChosen * 1e3), "the exact simulation, 0.05 um threshold");
+  test::expectStatementHolds({"002", "Section 4.1, L358", "T-ball mounting errors strongly affect the eccentricity in both coordinate systems",
+                              "strongly, Cartesian and cylindrical tests"},
+                             tCartesian > 10e-3 && tCylindrical > 10e-3,
+                             fmt::format("largest {:.1f} um (Cartesian), {:.1f} um (cylindrical) of 20 um", tCartesian * 1e3, tCylindrical * 1e3),
+                             "more than half the 20 um offset in both");
+  double wY = 0, tY = 0;
+  for (const auto& [name, p] : mounting) (name[1] == 'W' ? wY : tY) = std::max(name[1] == 'W' ? wY : tY, withMounting(kTwelveTests[10], p).second);
+  test::expectStatementHolds({"002", "Section 4.2, L368", "C Y test strongly affected by W- and T-ball mounting errors", "strongly, both balls"},
+                             wY > 10e-3 && tY > 10e-3, fmt::format("eccentricity {:.1f} um (W), {:.1f} um (T) of 20 um", wY * 1e3, tY * 1e3),
+                             "more than half the 20 um offset for each ball");
 }
 
 // §5.4 (L567-575): Table 7's initial deviations (L1758-1835); gammaXY is not given (0).

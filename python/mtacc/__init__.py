@@ -345,7 +345,7 @@ class Machine:
         """The cone-frustum test piece of Bossoni 2009 (as `mtacc cone --json`, whose options these keyword
         arguments are, with its defaults; angles in deg, lengths in mm): path, axis positions and their
         statistics, the form error of the machine's errors, each error alone, a Monte Carlo over limits.
-        preset: "tilting-table", "swivel-head", "double-pivot", "nas979" or "family" (this machine's).
+        preset: "tilting-table", "swivel-head", "double-pivot", "seed000-comparison", "nas979" or "family" (this machine's).
         gcode, cl: files to write the NC program and the CL data to, as `--gcode` and `--cl`.
         Arrays (n points, s samples, k limits): path["phi_deg"] (n,), path["points_mm"], ["tools"],
         ["normals"], ["normals_machine"] (n, 3), path["q"] (n, axes) [mm, deg]; "deviation_um" and

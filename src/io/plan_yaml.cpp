@@ -116,7 +116,7 @@ std::vector<MeasurementRun> generate(const Context& ctx, const KinematicModel& n
     const std::string k = key + ".cone";
     yamlin::rejectUnknownKeys(ctx, c, k, {"preset", "points", "branch", "feed"});
     const auto preset = conePreset(yamlin::scalar(ctx, c["preset"], k + ".preset"));
-    if (!preset) ctx.fail(c["preset"], k + ".preset", "unknown preset (tilting-table, swivel-head, double-pivot, nas979)");
+    if (!preset) ctx.fail(c["preset"], k + ".preset", "unknown preset (" + conePresetNames() + ")");
     const int n = count(ctx, c["points"], k + ".points", 360, 8);
     const double feed = feedOf(ctx, c["feed"], k + ".feed");
     return wrap([&] {

@@ -28,6 +28,9 @@ std::optional<ConeSpec> conePreset(const std::string& name) {
     s.alpha = -45 * kDeg;  // §3.6.2: upside-down, gamma 45 deg
     s.gamma = 45 * kDeg;
     s.centre = Vec3(0.0, 0.0, 0.0);
+  } else if (name == "seed000-comparison") {
+    s.radius = 44.8;  // Table 3.6 (L4202-4222), alpha and beta swapped in print (erratum, reference §6.3)
+    s.centre = Vec3(48.9, 0.0, 66.1);
   } else if (name == "nas979") {
     s.alpha = 15 * kDeg;  // 30 deg apex angle, 10 inch diameter, Z rises 1 inch over 180 deg (§2.1)
     s.beta = std::asin(0.1);
@@ -38,6 +41,8 @@ std::optional<ConeSpec> conePreset(const std::string& name) {
   }
   return s;
 }
+
+std::string conePresetNames() { return "tilting-table, swivel-head, double-pivot, seed000-comparison, nas979"; }
 
 std::optional<std::string> conePresetName(const Machine& machine) {
   int tool = 0, workpiece = 0;

@@ -34,7 +34,7 @@ nlohmann::json pointsJson(const std::vector<Vec3>& points) {
 const OptionSchema& coneSchema() {
   static const OptionSchema schema{
       "cone",
-      {{"preset", OptionKind::Text, "tilting-table, swivel-head, double-pivot (Bossoni 2009 §3.6), nas979, or family (this machine's)"},
+      {{"preset", OptionKind::Text, "tilting-table, swivel-head, double-pivot (Bossoni 2009 §3.6), seed000-comparison (its Table 3.6), nas979, or family (this machine's)"},
        {.key = "alpha", .kind = OptionKind::Number, .help = "Cone angle (half apex angle) [deg], negative: upside down", .defaultText = "45"},
        {.key = "beta", .kind = OptionKind::Number, .help = "Inclination of the cone axis [deg]", .defaultText = "30"},
        {.key = "radius", .kind = OptionKind::Number, .help = "TCP path radius [mm]", .defaultText = "40"},
@@ -69,7 +69,7 @@ ConeStudyRequest coneStudyRequest(const Machine& machine, const OptionValues& va
       preset = *family;
     }
     const auto spec = conePreset(*preset);
-    if (!spec) throw InputError(InputLocation{"", 0, "preset"}, "unknown preset '" + *preset + "' (tilting-table, swivel-head, double-pivot, nas979)");
+    if (!spec) throw InputError(InputLocation{"", 0, "preset"}, "unknown preset '" + *preset + "' (" + conePresetNames() + ", family)");
     r.spec = *spec;
   } else {
     r.spec.alpha = *read.number("alpha") * kDeg;

@@ -21,9 +21,11 @@ struct ConeSpec {
   bool faceMilling = false;                          // tool normal to the surface instead of along the slant
 };
 
-// Recommended set-ups of seed 000 §3.6 and the NAS 979 cone frustum (§2.1, Table 2.1).
-// Names: "tilting-table", "swivel-head", "double-pivot", "nas979". nullopt if unknown.
+// Recommended set-ups of seed 000 §3.6, the set-up cut at IWF for comparison (Table 3.6,
+// "seed000-comparison") and the NAS 979 cone frustum (§2.1, Table 2.1). nullopt if unknown.
 std::optional<ConeSpec> conePreset(const std::string& name);
+// "tilting-table, swivel-head, double-pivot, seed000-comparison, nas979"
+std::string conePresetNames();
 // The §3.6 preset for a machine's family: both rotary axes on the workpiece side
 // ("tilting-table"), both on the tool side ("double-pivot"), or one on each ("swivel-head");
 // nullopt unless the machine has exactly two rotary axes.
