@@ -16,6 +16,7 @@
 #include "mtacc/core/units.hpp"
 #include "yaml_input.hpp"
 #include "mtacc/errors/aliases.hpp"
+#include "mtacc/errors/axis_shift.hpp"
 
 namespace mtacc {
 namespace {
@@ -166,15 +167,21 @@ void readTerms(const Context& ctx, const Machine& m, const MotionComponent& t, c
   }
   if (node.IsSequence()) {  // blocks added in order (two of a kind: two polynomials, two tables)
     if (node.size() == 0) ctx.fail(node, key, "expected a value with a unit, a mapping of terms or a list of them");
-    for (const auto& block : node) readTerms(ctx, m, t, block, key, f, stiffness);
+    for (const auto& block : node) {
+      if (block.IsMap() && block["convention"]) ctx.fail(block["convention"], key + ".convention", "give the convention on the component's own mapping, not in a list");
+      readTerms(ctx, m, t, block, key, f, stiffness);
+    }
     return;
   }
-  yamlin::rejectUnknownKeys(ctx, node, key, {"constant", "linear", "polynomial", "harmonics", "cyclic", "table", "reversal", "piecewise", "stiffness"});
+  yamlin::rejectUnknownKeys(ctx, node, key,
+                            {"constant", "linear", "polynomial", "harmonics", "cyclic", "table", "reversal", "piecewise", "stiffness", "convention"});
   for (const auto& kv : node) {
     const auto type = kv.first.as<std::string>();
     const auto& v = kv.second;
     const std::string k = key + "." + type;
-    if (type == "constant") {
+    if (type == "convention") {
+      continue;  // read by shiftsTheAxisLine
+    } else if (type == "constant") {
       f.add(PolynomialTerm{0.0, 1.0, {yamlin::quantity(ctx, v, k, valueDim)}});
     } else if (type == "linear") {
       yamlin::rejectUnknownKeys(ctx, v, k, {"value", "over", "zero"});
@@ -259,6 +266,19 @@ void readTerms(const Context& ctx, const Machine& m, const MotionComponent& t, c
   }
 }
 
+// A rotary axis's radial error motion given with "convention: axis-shift" (seed 000's): the
+// motion shifts the axis line (errors/axis_shift.hpp). "translation", the default, is ISO 230-1's.
+bool shiftsTheAxisLine(const Context& ctx, const Machine& m, const MotionComponent& t, const YAML::Node& node, const std::string& key) {
+  if (!node.IsMap() || !node["convention"]) return false;
+  const auto convention = yamlin::scalar(ctx, node["convention"], key + ".convention");
+  if (convention == "translation") return false;
+  if (convention != "axis-shift") ctx.fail(node["convention"], key + ".convention", "expected 'translation' or 'axis-shift'");
+  if (!m.axes[static_cast<size_t>(t.axis)].isRotary() || t.component > 2)
+    ctx.fail(node["convention"], key + ".convention", "axis-shift applies to the translations EX, EY, EZ of a rotary axis");
+  if (node["stiffness"]) ctx.fail(node["stiffness"], key + ".stiffness", "a stiffness change of an axis-shift motion is not supported");
+  return true;
+}
+
 }  // namespace
 
 ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, const std::string& sourceName,
@@ -298,7 +318,17 @@ ErrorModel parseErrors(const Machine& machine, const std::string& yamlText, cons
       if (const auto it = termNamedBy.find(iso); it != termNamedBy.end())
         ctx.fail(kv.first, key, "its term " + it->second + " is named on its own too: give " + iso + "'s terms in one of the two forms");
       if (terms[0].sign < 0) ctx.fail(kv.first, key, "a negated alias of a component error is not supported");
-      readTerms(ctx, machine, *target, kv.second, key, f, model.stiffness);
+      if (shiftsTheAxisLine(ctx, machine, *target, kv.second, key)) {
+        std::array<ErrorFunction, 3> shift;
+        readTerms(ctx, machine, *target, kv.second, key, shift[static_cast<size_t>(target->component)], model.stiffness);
+        try {
+          addAxisShift(machine, target->axis, shift, model.axes[static_cast<size_t>(target->axis)]);
+        } catch (const InvalidInput& e) {
+          ctx.fail(kv.second, key, e.reason());
+        }
+      } else {
+        readTerms(ctx, machine, *target, kv.second, key, f, model.stiffness);
+      }
       continue;
     }
     for (const auto& term : terms) {
