@@ -19,8 +19,12 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Core>
+#include <array>
 #include <map>
+#include <random>
 
+#include "mtacc/kinematics/forward.hpp"
 #include "mtacc/procedures/cone.hpp"
 #include "reference_values.hpp"
 #include "test_helpers.hpp"
@@ -144,6 +148,101 @@ TEST_F(Seed000Table3_4, KnownDifferences) {
   for (const auto& e : entries)
     test::expectKnownDifference({"000", fmt::format("Table 3.4, L{}", e.line), e.label, e.printed, 1, "um"}, formError(e.yaml),
                                 e.today, 0.005, e.reason);
+}
+
+// The nominal machine with the machine frame's origin at o: the linear axes' frames start there
+// at home, so their angular errors turn what they carry about o (plus their own travel). The
+// element after the last linear axis of each chain is set back by o, so nothing nominal moves.
+std::shared_ptr<Machine> withMachineOrigin(const Machine& base, const Vec3& o) {
+  auto m = std::make_shared<Machine>(base);
+  for (const auto* chain : {&m->toolChain, &m->workpieceChain}) {
+    m->axes[static_cast<size_t>(chain->front())].offset += o;
+    size_t k = 0;
+    while (k < chain->size() && !m->axes[static_cast<size_t>((*chain)[k])].isRotary()) ++k;
+    if (k < chain->size()) m->axes[static_cast<size_t>((*chain)[k])].offset -= o;
+    else if (chain == &m->toolChain) m->toolOffset -= o;
+    else m->workpieceOffset -= o;
+  }
+  return m;
+}
+
+// The five tilts of linear axes (L4056-4060) depend on the lever arms, so on the machine frame's
+// origin, which the thesis does not give: fitted here (three coordinates against five printed
+// values) by a grid search refined tenfold twice, on the first-order deviation, which is affine
+// in the origin (checked). The outcome is recorded either way: a fit within the printed digit for
+// all five would support the conventions; what is left over measures how far they are off.
+TEST_F(Seed000Table3_4, LinearAxisTiltsWithTheMachineOriginFitted) {
+  const ConePath coarse = conePath(spec, 720);
+  const ConeMotion coarseMotion = coneMotion(nominal, spec, coarse);
+  struct Tilt {
+    int line;
+    const char* name;
+    const char* axis;
+    double printed, today;
+  };
+  const Tilt tilts[] = {{4056, "EAX", "X", 0.8, 1.278}, {4057, "EBY", "Y", 5.7, 4.943}, {4058, "EBX", "X", 2.8, 3.366},
+                        {4059, "ECX", "X", 0.9, 0.966}, {4060, "EAY", "Y", 4.2, 4.421}};
+  // Each tilt's deviation (um) as d0 + D o, o in mm.
+  std::vector<Eigen::VectorXd> d0;
+  std::vector<Eigen::MatrixXd> d;
+  auto deviation = [&](const Tilt& t, const Vec3& o) -> Eigen::VectorXd {
+    auto m = withMachineOrigin(*machine, o);
+    const auto errors = parseErrors(*m, "errors:\n  " + linear(t.name, t.axis, "30 urad") + "\n", "tilt");
+    const auto r = coneFormErrorFirstOrder(compile(m, errors), compileNominal(m), coarse, coarseMotion).deviation;
+    return Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size())) * 1e3;
+  };
+  const Vec3 probe(37, -52, 81);
+  std::mt19937_64 rng(5);
+  const auto moved = compileNominal(withMachineOrigin(*machine, probe));
+  for (int p = 0; p < 10; ++p) {
+    const auto q = test::randomPose(*machine, rng);
+    ASSERT_LT(poseError(toolInWorkpiece(moved, q.data()), toolInWorkpiece(nominal, q.data())).norm(), 1e-9) << "the origin moved the nominal machine";
+  }
+  for (const auto& t : tilts) {
+    d0.push_back(deviation(t, Vec3::Zero()));
+    Eigen::MatrixXd slope(d0.back().size(), 3);
+    for (int i = 0; i < 3; ++i) slope.col(i) = (deviation(t, 100 * Vec3::Unit(i)) - d0.back()) / 100;
+    d.push_back(slope);
+    ASSERT_LT((d0.back() + slope * probe - deviation(t, probe)).cwiseAbs().maxCoeff(), 1e-9) << t.name << ": not affine in the origin";
+  }
+  auto formErrors = [&](const Vec3& o) {
+    std::array<double, 5> pv;
+    for (size_t k = 0; k < 5; ++k) {
+      const Eigen::VectorXd e = d0[k] + d[k] * o;
+      pv[k] = e.maxCoeff() - e.minCoeff();
+    }
+    return pv;
+  };
+  auto misfit = [&](const Vec3& o) {
+    const auto pv = formErrors(o);
+    double sum = 0;
+    for (size_t k = 0; k < 5; ++k) sum += (pv[k] - tilts[k].printed) * (pv[k] - tilts[k].printed);
+    return sum;
+  };
+  Vec3 best = Vec3::Zero();
+  for (const double step : {100.0, 10.0, 1.0}) {
+    const Vec3 centre = best;
+    for (int i = -10; i <= 10; ++i)
+      for (int j = -10; j <= 10; ++j)
+        for (int k = -10; k <= 10; ++k) {
+          const Vec3 o = centre + step * Vec3(i, j, k);
+          if (misfit(o) < misfit(best)) best = o;
+        }
+  }
+  const auto pv = formErrors(best);
+  const std::string origin = fmt::format("the best machine origin, ({:.0f}, {:.0f}, {:.0f}) mm from the B/C pivot, fits 3 coordinates to 5 values", best.x(),
+                                         best.y(), best.z());
+  // A fit reproduces the table only if all five come within the printed digit.
+  bool allWithin = true;
+  for (size_t k = 0; k < 5; ++k) allWithin = allWithin && std::abs(pv[k] - tilts[k].printed) <= 0.1;
+  for (size_t k = 0; k < 5; ++k) {
+    const auto& t = tilts[k];
+    const test::Printed p{"000", fmt::format("Table 3.4, L{}", t.line), fmt::format("{} linear 30 urad, machine origin fitted", t.name), t.printed, 1, "um"};
+    if (allWithin)
+      test::expectReproduced(p, pv[k], 0.1, origin + " (a fit: 2 degrees of freedom left)");
+    else
+      test::expectKnownDifference(p, pv[k], t.today, 0.005, origin + ", and leaves these beyond the printed digit");
+  }
 }
 
 // The rotary error motions read as shifts of the axis line, the convention the reference found
