@@ -1,5 +1,6 @@
 // mtacc check MACHINE: validate the description and print the chain and its error parameters.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "cli_common.hpp"
 #include "mtacc/core/units.hpp"
@@ -31,7 +32,14 @@ void run(const CheckOptions& o) {
   std::string human = fmt::format("Machine    {}\nFile       {}\nStructure  {}  (tool first: {})\n", m.name, m.sourceFile,
                                   m.structure.text, m.structure.toolFirst());
   human += fmt::format("Tool chain       bed -> {} -> tool\n", chainText(m, m.toolChain));
-  human += fmt::format("Workpiece chain  bed -> {} -> workpiece\n\n", chainText(m, m.workpieceChain));
+  human += fmt::format("Workpiece chain  bed -> {} -> workpiece\n", chainText(m, m.workpieceChain));
+  const auto& k = c.machineClass;
+  human += fmt::format("Class            {} ({}; vertical ({:g}, {:g}, {:g})), BCR 1991 Table 2.2{}\n", k.linear.empty() ? "none" : k.linear,
+                       k.chains, m.vertical.x(), m.vertical.y(), m.vertical.z(),
+                       k.linear.empty() ? "" : ": " + k.example + "; bends while traversing: " + fmt::format("{}", fmt::join(k.typeDependentErrors, "; ")));
+  human += k.rotary ? fmt::format("Rotary class     {}, Table 2.3: {}\n", k.rotary, k.rotaryDescription) : std::string("Rotary class     none (Table 2.3)\n");
+  for (const auto& n : k.notes) human += "                 " + n + "\n";
+  human += "\n";
   human += fmt::format("{:<5} {:<8} {:<10} {:<26} {:<28} {:<22} {}\n", "axis", "type", "side", "direction",
                        "location / offset (mm)", "travel", "errors act in");
   std::string csv = "axis,type,side,dx,dy,dz,location_x,location_y,location_z,travel_min,travel_max,error_frame\n";

@@ -79,10 +79,11 @@ Machine parseMachine(const std::string& yamlText, const std::string& sourceName)
   const yamlin::Context ctx{sourceName};
   const auto root = yamlin::loadText(yamlText, sourceName);
   if (!root.IsMap()) ctx.fail(root, "", "a machine file must be a YAML mapping");
-  yamlin::rejectUnknownKeys(ctx, root, "", {"name", "structure", "axes", "spindle", "tool", "workpiece", "errors", "workpiece_load", "description", "source"});
+  yamlin::rejectUnknownKeys(ctx, root, "", {"name", "structure", "axes", "spindle", "tool", "workpiece", "vertical", "errors", "workpiece_load", "description", "source"});
 
   Machine m;
   m.sourceFile = sourceName;
+  if (root["vertical"]) m.vertical = yamlin::unitVector(ctx, root["vertical"], "vertical");
   m.name = yamlin::scalar(ctx, root["name"], "name");
   const auto structureNode = root["structure"];
   try {

@@ -32,7 +32,8 @@ const OptionSchema& checkSchema() {
 }
 
 MachineCheck checkMachine(const MachineSetup& setup) {
-  MachineCheck c{setup, parameterCatalogue(*setup.machine, setup.errors), nonZeroParameters(*setup.machine, setup.errors), 0, {}, {}, {}};
+  MachineCheck c{setup, parameterCatalogue(*setup.machine, setup.errors), nonZeroParameters(*setup.machine, setup.errors), 0, {}, {}, {},
+                 classifyMachine(*setup.machine)};
   for (const auto& p : c.parameters) c.locationCount += p.kind == ParameterKind::Location ? 1 : 0;
   const Machine& m = *setup.machine;
   for (int a = 0; a < static_cast<int>(m.axes.size()); ++a)
@@ -97,6 +98,15 @@ nlohmann::json toJson(const MachineCheck& c) {
   j["stiffness_changes"] = c.setup.errors.stiffness.size();
   j["workpiece_load_kg"] = c.setup.errors.workpieceLoad;
   j["zero_offsets"] = c.zeroOffsets;
+  const auto& k = c.machineClass;
+  j["classification"] = {{"chains", k.chains},
+                         {"linear_class", k.linear.empty() ? nlohmann::json(nullptr) : nlohmann::json(k.linear)},
+                         {"example", k.example},
+                         {"type_dependent_errors", k.typeDependentErrors},
+                         {"rotary_class", k.rotary == 0 ? nlohmann::json(nullptr) : nlohmann::json(k.rotary)},
+                         {"rotary_description", k.rotaryDescription},
+                         {"notes", k.notes},
+                         {"vertical_direction", vectorJson(m.vertical)}};
   j["location_errors_acting_alike"] = c.actingAlike;
   j["warnings"] = c.warnings;
   j["parameter_count"] = c.parameters.size();

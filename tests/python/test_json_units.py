@@ -25,9 +25,9 @@ DIMENSIONLESS = {
     "instrument_samples", "iterations", "largest_relative_misfit", "line", "lines", "location_parameter_count",
     "moves", "nodes", "non_zero_errors", "normals", "normals_machine", "not_converged", "p_value",
     "parameter_count", "parameters", "points", "poses", "rank", "readings", "reference_samples_left_out", "row",
-    "rows", "runs", "runs_each_way", "samples", "samples_per_axis", "samples_used", "seed", "sense", "shape",
+    "rotary_class", "rows", "runs", "runs_each_way", "samples", "samples_per_axis", "samples_used", "seed", "sense", "shape",
     "sigma_over_probe_noise", "sign", "singular", "singular_values", "singular_vectors", "stiffness_changes",
-    "stride", "tool_direction", "tool_vector", "tools", "u", "v", "workpiece_axes", "worst_blocks", "written_points"}
+    "stride", "tool_direction", "tool_vector", "tools", "u", "v", "vertical_direction", "workpiece_axes", "worst_blocks", "written_points"}
 
 # Positions of the machine's axes, each in mm for a linear axis and deg for a rotary one: an
 # object keyed by axis name, an array in the machine's axis order, or the positions along one axis.

@@ -63,6 +63,7 @@ struct Machine {
   Vec3 workpieceOffset = Vec3::Zero();  // workpiece origin in the last workpiece-chain frame (mm)
   WorkpieceAlignment alignment = WorkpieceAlignment::Table;
   std::vector<double> referencePose;  // commanded axes; used by WorkpieceAlignment::Machine
+  Vec3 vertical = Vec3::UnitZ();  // unit, the machine's up direction (seed 003's classification)
 
   int commandedCount() const;
   // The commanded axes' names in joint-vector order.

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mtacc/core/option_schema.hpp"
+#include "mtacc/machine/machine_class.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
 namespace mtacc {
@@ -27,6 +28,7 @@ struct MachineCheck {
   // tool across its line with no spindle element in the structure code, so that the spindle's
   // location errors (the pivot length among them) are not parameters.
   std::vector<std::string> warnings;
+  MachineClass machineClass;  // seed 003 Tables 2.2 and 2.3
 };
 
 MachineCheck checkMachine(const MachineSetup& setup);
