@@ -37,12 +37,10 @@ PENDING = {
            "coefficients (L5139), so the values the extraction computed from them (§8.3) check the data "
            "entry (input echoed below), as does the extraction's derived error grid (§13 item 12, "
            "Seed003AppendixD.DerivedGridOfSection13Item12). App. B.5's squareness and §5.3's residual "
-           "bounds are reproduced from their procedures. Not computed: the hole-plate predictions of §5.3 "
-           "(±12/±20 um at XY pos. 1, ±30/±25 um at XY pos. 8), because the plate positions other than "
-           "Z = 292 mm and the stylus offsets are not given (extraction §14), and the 260 kg stiffness case "
-           "of §5.4 (±20 um at XY pos. 1, ±25 um at XY pos. 8), whose measured changes are only plotted "
-           "(Figs 4.17-4.20): the model is built (Stiffness.*) and the bundled data/stiffness/maho-260kg.yaml "
-           "holds illustrative values. Its Appendix A transforms are checked by Seed003AppendixA.*.",
+           "bounds are reproduced from their procedures (with 2S_sim = 6.3 um as the report's input). The "
+           "plate predictions of §5.3-5.4 and 2S_sim itself are listed below as not computed: the stiffness "
+           "model is built (Stiffness.*) and the bundled data/stiffness/maho-260kg.yaml holds illustrative "
+           "values. Its Appendix A transforms are checked by Seed003AppendixA.*.",
     "004": "Its Tables 1-4 are measurements of the authors' machine, not reproducible without their "
            "signals (extraction §15). The feed ladder is the rule the seed states (input echoed below); the "
            "power laws of Table 4 under reading A are fitted by mtacc (Seed004Statistics.R6, against the "

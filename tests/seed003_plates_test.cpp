@@ -42,6 +42,27 @@ TEST(Seed003Plates, ResidualBudgetsOfSection7_5) {
   }
 }
 
+// The plate numbers of §5.3-5.4 that need the plate's place and the probes' styli: only Z = 292
+// mm is given for XY positions 1 and 8 (L3316, L3425), not their X and Y, and the stylus offsets
+// of probes 1-5 are not given (reference §14); 2S_sim is an upper limit with the largest partial
+// derivatives "considering the application" (L3332-3344), which depend on the same placement,
+// and the report lists neither them nor which instrument enters which component.
+TEST(Seed003Plates, PredictionsThatNeedThePlatesPlace) {
+  const std::string place = "the plate's X and Y at this position and the stylus offsets of probes 1-5 are not given (only Z = 292 mm, L3316)";
+  const test::Printed rows[] = {{"003", "§5.3 plate predictions, L3502-3507", "geometric errors, XY pos. 1, largest deviation (+-)", 12, 0, "um"},
+                                {"003", "§5.3 plate predictions, L3511-3514", "geometric errors, XY pos. 8, largest deviation (+-)", 30, 0, "um"},
+                                {"003", "§5.4 plate predictions, L3502-3507", "260 kg stiffness changes alone, XY pos. 1 (+-)", 20, 0, "um"},
+                                {"003", "§5.4 plate predictions, L3511-3514", "260 kg stiffness changes alone, XY pos. 8 (+-)", 25, 0, "um"}};
+  for (const auto& r : rows)
+    test::recordNotComputed(r, r.quantity.find("260 kg") == std::string::npos
+                                   ? place
+                                   : place + "; besides, the measured changes under 260 kg are only plotted (Figs 4.17-4.20)");
+  test::recordNotComputed({"003", "§5.3 uncertainty of the residuals, L3332", "2S_sim, simulated plate from the instrument uncertainties", 6.3, 1, "um"},
+                          "an upper limit with the largest partial derivatives over the plate (L3334-3344), which need the plate's place and "
+                          "the styli (not given); the report names no sensitivity or instrument per component, so it is an input of the "
+                          "residual bounds above");
+}
+
 TEST(Seed003Plates, SimulatedPlateMatchesTheFirstOrderModel) {
   // The exact simulation against the design matrix of the identification (first order) for
   // the Maho App. D errors: they differ by second-order terms only (below 0.01 um here).
