@@ -10,6 +10,7 @@
 #include <cmath>
 #include <random>
 
+#include "mtacc/core/units.hpp"
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/procedures/error_decomposition.hpp"
 #include "reference_values.hpp"
@@ -152,6 +153,39 @@ TEST(Seed004Decomposition, DirectionStatisticsAreMaximaOfMagnitudesAndRootMeanSq
   EXPECT_NEAR(s.rms.x(), std::sqrt(11.0 / 3), 1e-15);
   EXPECT_NEAR(s.rms.y(), std::sqrt(24.0 / 3), 1e-15);
   EXPECT_EQ(s.rms.z(), 0.0);
+}
+
+// L120 / Fig. 4: the contouring error is the deviation orthogonal to the commanded path. On a
+// straight path along x a constant deviation (a, b, c) keeps (0, b, c); on a circle in the xy
+// plane a deviation along the tangent vanishes and a radial one stays; where the path stands
+// still there is no tangent, so no orthogonal part (NaN, counted, left out of the statistics).
+TEST(Seed004Decomposition, ContouringErrorOrthogonalToThePathOfFig4) {
+  std::vector<Vec3> line, circle, deviation, along, radial;
+  for (int i = 0; i < 100; ++i) {
+    const double phi = 2 * kPi * i / 100;
+    line.push_back(Vec3(0.1 * i, 0, 0));
+    circle.push_back(Vec3(10 * std::cos(phi), 10 * std::sin(phi), 0));
+    deviation.push_back(Vec3(1e-3, 2e-3, -3e-3));
+    along.push_back(1e-3 * Vec3(-std::sin(phi), std::cos(phi), 0));
+    radial.push_back(1e-3 * Vec3(std::cos(phi), std::sin(phi), 0));
+  }
+  size_t undefined = 0;
+  for (const auto& v : orthogonalToPath(deviation, line, undefined)) EXPECT_LT((v - Vec3(0, 2e-3, -3e-3)).norm(), 1e-15);
+  EXPECT_EQ(undefined, 0u);
+  const auto tangential = orthogonalToPath(along, circle, undefined), normal = orthogonalToPath(radial, circle, undefined);
+  for (size_t i = 1; i + 1 < circle.size(); ++i) {  // the ends take one-sided differences, off by half a step's turn
+    EXPECT_LT(tangential[i].norm(), 1e-15) << i;  // central differences on a circle: the chord is parallel to the tangent
+    EXPECT_LT((normal[i] - radial[i]).norm(), 1e-15) << i;
+  }
+  std::vector<Vec3> still(line.begin(), line.end());
+  for (size_t i = 40; i < 60; ++i) still[i] = still[40];
+  const auto stopped = orthogonalToPath(deviation, still, undefined);
+  EXPECT_EQ(undefined, 18u);  // 41..58: both neighbours at the same point
+  EXPECT_FALSE(stopped[50].allFinite());
+  EXPECT_TRUE(stopped[40].allFinite());
+  const auto stats = directionStatistics(stopped);
+  EXPECT_NEAR(stats.maximum.y(), 2e-3, 1e-15);
+  EXPECT_NEAR(stats.rms.z(), 3e-3, 1e-15);
 }
 
 TEST(Seed004Decomposition, BadSeriesAreRefused) {

@@ -29,7 +29,8 @@ void run(const DecomposeCliOptions& o) {
       "feed_mm_per_min,clock_offset_ms,samples_used,contouring_pct,quasi_static_pct,dynamic_pct,split_contouring_pct,link_pct,motion_pct,"
       "drift_pct,split_dynamic_pct,drift_x_um,drift_y_um,drift_z_um,contouring_max_x_um,contouring_max_y_um,contouring_max_z_um,"
       "quasi_static_max_x_um,quasi_static_max_y_um,quasi_static_max_z_um,dynamic_max_x_um,dynamic_max_y_um,dynamic_max_z_um,"
-      "dynamic_rms_x_um,dynamic_rms_y_um,dynamic_rms_z_um\n";
+      "dynamic_rms_x_um,dynamic_rms_y_um,dynamic_rms_z_um,contouring_orthogonal_max_x_um,contouring_orthogonal_max_y_um,"
+      "contouring_orthogonal_max_z_um,contouring_orthogonal_undefined_samples\n";
   for (const auto& t : j["tests"]) {
     const auto& s = t["shares_percent"];
     const auto& p = t["split_shares_percent"];
@@ -44,9 +45,17 @@ void run(const DecomposeCliOptions& o) {
                             p["contouring"].get<double>(), p["link"].get<double>(), p["motion"].get<double>(), p["drift"].get<double>(),
                             p["dynamic"].get<double>()};
     row.insert(row.end(), drift.begin(), drift.end());
-    for (const char* key : {"contouring_max_um", "quasi_static_max_um", "dynamic_max_um", "dynamic_rms_um"})
+    for (const char* key : {"contouring_max_um", "quasi_static_max_um", "dynamic_max_um", "dynamic_rms_um", "contouring_orthogonal_max_um"})
       for (double v : t[key]) row.push_back(v);
+    row.push_back(t["contouring_orthogonal_undefined_samples"].get<double>());
     csv += fmt::format("{}\n", fmt::join(row, ","));
+  }
+  human += "\ncontouring error orthogonal to the commanded path (L120, Fig. 4; eq. 10's c is the whole difference), largest |x| |y| |z| um:\n";
+  for (const auto& t : j["tests"]) {
+    const auto c = t["contouring_orthogonal_max_um"].get<std::vector<double>>();
+    const auto undefined = t["contouring_orthogonal_undefined_samples"].get<size_t>();
+    human += fmt::format("{:>9.0f} mm/min: {:.3f} {:.3f} {:.3f}{}\n", t["feed_mm_per_min"].get<double>(), c[0], c[1], c[2],
+                         undefined ? fmt::format(" ({} samples where the path stands still have no tangent)", undefined) : std::string());
   }
   human += "\nshares: eq. 21 over |c| + |qs| + |d| (as printed), then the five-way split over its own five norms (Table 1, erratum E1)\n";
   human += "offset: the command sample stamped s belongs at encoder time s + offset; the mean of the dynamic error is booked as drift,\n"

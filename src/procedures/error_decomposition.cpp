@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "mtacc/core/decompositions.hpp"
 #include "mtacc/core/input_error.hpp"
@@ -115,7 +116,26 @@ std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>
       d.driftAlong[i] = toDriftFrame(i).transpose() * d.drift;
       d.dynamic[i] = rest.row(row).transpose() - d.driftAlong[i];
     }
+    d.contouringOrthogonal = orthogonalToPath(d.contouring, t.nominal, d.orthogonalUndefined);
     out.push_back(std::move(d));
+  }
+  return out;
+}
+
+std::vector<Vec3> orthogonalToPath(const std::vector<Vec3>& deviation, const std::vector<Vec3>& nominal, size_t& undefined, double still) {
+  const size_t n = nominal.size();
+  if (deviation.size() != n)
+    throw InvalidInput(fmt::format("{} deviations for {} samples of the path", deviation.size(), n));
+  std::vector<Vec3> out(n, Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+  undefined = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 step = nominal[std::min(i + 1, n - 1)] - nominal[i == 0 ? 0 : i - 1];
+    if (step.norm() < still) {
+      ++undefined;
+      continue;
+    }
+    const Vec3 tangent = step.normalized();
+    out[i] = deviation[i] - tangent * tangent.dot(deviation[i]);
   }
   return out;
 }
@@ -151,11 +171,14 @@ DecompositionShares decompositionShares(const DecomposedTest& test) {
 
 DirectionStatistics directionStatistics(const std::vector<Vec3>& series) {
   DirectionStatistics s;
+  size_t counted = 0;
   for (const Vec3& v : series) {
+    if (!v.allFinite()) continue;
     s.maximum = s.maximum.cwiseMax(v.cwiseAbs());
     s.rms += v.cwiseProduct(v);
+    ++counted;
   }
-  if (!series.empty()) s.rms = (s.rms / static_cast<double>(series.size())).cwiseSqrt();
+  if (counted > 0) s.rms = (s.rms / static_cast<double>(counted)).cwiseSqrt();
   return s;
 }
 

@@ -121,6 +121,7 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
   for (const auto& test : out.tests) {
     out.shares.push_back(decompositionShares(test));
     out.contouring.push_back(directionStatistics(test.contouring));
+    out.contouringOrthogonal.push_back(directionStatistics(test.contouringOrthogonal));
     std::vector<Vec3> quasiStatic(test.link.size());
     for (size_t i = 0; i < quasiStatic.size(); ++i) quasiStatic[i] = test.quasiStatic(i);
     out.quasiStatic.push_back(directionStatistics(quasiStatic));
@@ -188,6 +189,8 @@ nlohmann::json toJson(const RecordedDecomposition& r, size_t seriesPoints) {
          {{"contouring", s.splitContouring}, {"link", s.link}, {"motion", s.motion}, {"drift", s.drift}, {"dynamic", s.splitDynamic},
           {"over_printed_denominator", s.splitOverPrinted}}},
         {"contouring_max_um", um(r.contouring[k].maximum)},
+        {"contouring_orthogonal_max_um", um(r.contouringOrthogonal[k].maximum)},
+        {"contouring_orthogonal_undefined_samples", r.tests[k].orthogonalUndefined},
         {"quasi_static_max_um", um(r.quasiStatic[k].maximum)},
         {"dynamic_max_um", um(r.dynamic[k].maximum)},
         {"dynamic_rms_um", um(r.dynamic[k].rms)},

@@ -19,7 +19,7 @@ UNIT_SUFFIX = re.compile(r"_(mm|um|deg|rad|urad|arcsec|hz|s|ms|kg|C|per_K|percen
 
 # Counts, indices, ratios, signs, statistics of no unit, and unit vectors (directions).
 DIMENSIONLESS = {
-    "alignment_rms_misfit", "beyond_bound", "bins", "cells", "chi_square", "column", "columns", "condition",
+    "alignment_rms_misfit", "beyond_bound", "bins", "contouring_orthogonal_undefined_samples", "cells", "chi_square", "column", "columns", "condition",
     "correlation", "cutter_moves", "damping_coupling", "damping_ratio", "degree", "degrees_of_freedom", "direction",
     "exponent", "features", "first_problem_line", "first_sample_used", "fit_significance", "instant_blocks",
     "instrument_samples", "iterations", "largest_relative_misfit", "line", "lines", "location_parameter_count",

@@ -58,6 +58,11 @@ struct DecompositionOptions {
 struct DecomposedTest {
   double feed = 0.0;
   std::vector<Vec3> contouring;  // delta_c = chi_enc - chi_nom (eq. 10)
+  // The contouring error as L120 and Fig. 4 define it: delta_c's part orthogonal to the commanded
+  // path (its tangent from the nominal trace). NaN where the nominal path stands still (no tangent:
+  // in seed 004's chase-the-ball path |tau_nom| stays within 100 um), counted in orthogonalUndefined.
+  std::vector<Vec3> contouringOrthogonal;
+  size_t orthogonalUndefined = 0;
   std::vector<Vec3> link;        // delta_l, as given
   std::vector<Vec3> motion;      // delta_m: the reference test's fit at this test's normalised parameter
   Vec3 drift = Vec3::Zero();     // td (eq. 18), constant in the drift frame (eq. 19); 0 in the reference test
@@ -76,6 +81,12 @@ struct DecomposedTest {
 // no more samples than the fit has coefficients, or a reference index out of range.
 std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>& tests, const DecompositionOptions& options = {});
 
+// delta_c less its component along the tangent of the nominal path (central differences of the
+// nominal samples, one-sided at the ends); NaN where the path moves less than `still` (mm) over
+// the difference, with `undefined` counting those samples.
+std::vector<Vec3> orthogonalToPath(const std::vector<Vec3>& deviation, const std::vector<Vec3>& nominal, size_t& undefined,
+                                   double still = 1e-7);
+
 // Eq. 21: the mean over the samples of each contribution's norm over the sum of the norms, in %.
 // The printed denominator has three norms (c, qs, d); Table 1 splits qs into l, m, td and its
 // rows sum to 100 %, so it used five norms (erratum E1). Both are given; samples where every
@@ -92,7 +103,7 @@ struct DirectionStatistics {
   Vec3 maximum = Vec3::Zero();
   Vec3 rms = Vec3::Zero();
 };
-DirectionStatistics directionStatistics(const std::vector<Vec3>& series);
+DirectionStatistics directionStatistics(const std::vector<Vec3>& series);  // NaN samples left out
 
 // Eq. 23: value = kappa * feed^exponent, least squares on the logarithms. Throws
 // InvalidInput for fewer than two feeds, feeds all equal, or a value or feed <= 0.

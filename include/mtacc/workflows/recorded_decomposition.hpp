@@ -23,6 +23,7 @@ struct RecordedDecomposition {
   std::vector<std::vector<double>> pathFraction;  // per test and sample: u, the encoder path travelled over its whole (Figs 9-10's abscissa)
   std::vector<DecompositionShares> shares;
   std::vector<DirectionStatistics> contouring, quasiStatic, dynamic;
+  std::vector<DirectionStatistics> contouringOrthogonal;  // Fig. 4's, over the samples where the path has a tangent
   // With an identified errors file: the standard uncertainty (k = 1) of delta_l per test (its
   // maximum and RMS along the path, per direction), propagated from the record's covariance of
   // the parameters named in `linkParameters`; empty without a record.
