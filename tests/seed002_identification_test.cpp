@@ -1,5 +1,6 @@
-// Seed 002 §5.4: the numerical experiment. Table 6 (L1635-1748) eccentricities through the
-// closed-form identification Eqs 17-28 give Table 7's "identified" column (L1749-1838).
+// Seed 002 §5.4: the numerical experiment. Table 6 (L1635-1748) eccentricities, bundled as
+// data/ballbar/seed002-table6.yaml, through `mtacc multitasking`'s workflow (the closed-form
+// identification Eqs 17-28) give Table 7's "identified" column (L1749-1838).
 // Reference seed002_ballbar_multitasking.md §12.2: exact to the printed digits, so the
 // tolerance is half a unit of the last printed digit (0.005 um, 0.005 arcsec).
 #include <gtest/gtest.h>
@@ -8,23 +9,20 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/io/bundled_data.hpp"
 #include "mtacc/procedures/ballbar_seed002.hpp"
+#include "mtacc/workflows/multitasking_identification.hpp"
 #include "reference_values.hpp"
+#include "test_helpers.hpp"
 
 namespace mtacc {
 namespace {
 
 TEST(Seed002Identification, Table7FromTable6ThroughEqs17To28) {
   const double um = 1e-3;
-  Seed002Eccentricities e{};
-  e.bxEx = 16.63 * um, e.bxEz = -4.02 * um;
-  e.byEx = -11.24 * um, e.byEz = 10.05 * um;
-  e.caEx = 0.29 * um, e.caEy = 0.05 * um;
-  e.crEx = 25.73 * um, e.crEy = -19.59 * um;
-  e.cr1Ex = 26.89 * um, e.cr1Ey = -20.00 * um;
-  e.cr2Ex = 28.97 * um, e.cr2Ey = -23.26 * um;
-  const Seed002Setup s{360.0, 410.0, 50.0, 300.0, 340.0};  // L570 and the footnotes of Table 6
-  const auto d = identifySeed002(e, s);
+  // Table 6 and its set-up as bundled (data/ballbar/seed002-table6.yaml), through the workflow of
+  // `mtacc multitasking`.
+  const auto d = identifyMultitasking({{"data", {bundledDataDir() + "/ballbar/seed002-table6.yaml"}}}).deviations;
   const double as = 1.0 / kArcsec;
   struct Entry {
     int line;
@@ -42,6 +40,21 @@ TEST(Seed002Identification, Table7FromTable6ThroughEqs17To28) {
     test::expectReproduced({"002", "Table 7, L" + std::to_string(e.line), std::string(e.name) + " identified from Table 6", e.printed, 2,
                             e.unit},
                            e.computed, 0.005, "half the printed digit");
+}
+
+// The errors file it writes reads back on the bundled machine of this kind as the ISO errors of
+// the alias table (docs/conventions.md): dxBT is X0C1; the squareness alphaYZ turns the Y axis
+// and, with it, the B head (A0Y and A0B each take it), on top of the head's own alphaXB (A0B).
+TEST(Seed002Identification, ErrorsFileOfTheTwelveReadsBackOnTheMachine) {
+  test::TestFolder folder("multitasking");
+  const std::string out = (folder.dir() / "errors.yaml").string();
+  const auto r = identifyMultitasking({{"data", {bundledDataDir() + "/ballbar/seed002-table6.yaml"}}}, out);
+  const auto machine = test::bundled("multitasking-b-c");
+  const auto errors = loadErrors(*machine, out);
+  EXPECT_NEAR(parameterValue(errors, findParameter(*machine, errors, "X0C1")), r.deviations.dxBT, 1e-15);
+  EXPECT_NEAR(parameterValue(errors, findParameter(*machine, errors, "A0Y")), r.deviations.alphaYZ, 1e-18);
+  EXPECT_NEAR(parameterValue(errors, findParameter(*machine, errors, "A0B")), r.deviations.alphaXB + r.deviations.alphaYZ, 1e-18);
+  EXPECT_NEAR(parameterValue(errors, findParameter(*machine, errors, "B0C")), r.deviations.betaCZ, 1e-18);
 }
 
 TEST(Seed002Identification, UnseparableSetupIsRefused) {

@@ -8,8 +8,10 @@
 #include <cmath>
 #include <random>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/measurement/direct_measurement.hpp"
+#include "mtacc/workflows/direct_procedures.hpp"
 #include "reference_values.hpp"
 #include "test_helpers.hpp"
 
@@ -23,6 +25,29 @@ std::vector<double> sideReadings(const std::vector<double>& x, double slope) {
   const double middle = 0.5 * (x.front() + x.back()), half = 0.5 * (x.back() - x.front());
   for (const double v : x) y.push_back(slope * v + 0.8e-3 * std::cos(kPi * (v - middle) / half) + 0.3e-3 * std::pow((v - middle) / half, 2));
   return y;
+}
+
+// The front ends' `squareness` and `yry` (workflows/direct_procedures): the App. B.5 pair Y w.r.t.
+// X from its printed slopes, and eq. B.2 per position with one roll for all or one per position;
+// counts that do not match, an unknown side and set-ups less than 1 mm apart are refused.
+TEST(Seed003DirectMeasurement, SquarenessAndYryWorkflows) {
+  const auto s = squarenessFromOptions({{"aligned_to", {"x"}}, {"alpha", {"-0.1"}}, {"beta", {"12.6"}}, {"block", {"1.7"}}});
+  EXPECT_NEAR(s.squareness / kArcsec, -10.8, 1e-12);
+  EXPECT_THROW(squarenessFromOptions({{"aligned_to", {"y"}}, {"alpha", {"0"}}, {"beta", {"0"}}}), InputError);
+  const OptionValues yry{{"y", {"0", "250", "500"}}, {"ytz1", {"1", "2", "4"}}, {"ytz2", {"0", "-1", "3"}}, {"xrx", {"0.5"}}, {"x1", {"0"}},
+                         {"x2", {"552.691"}}};
+  const auto r = yryFromOptions(yry);
+  ASSERT_EQ(r.yry.size(), 3u);
+  EXPECT_DOUBLE_EQ(r.yry[1], yryFromStraightness(2e-3, -1e-3, 250, 0.5 * kArcsec, 0, 552.691));
+  auto perPosition = yry;
+  perPosition["xrx"] = {"0.5", "0.5", "0.5"};
+  EXPECT_EQ(yryFromOptions(perPosition).yry, r.yry);
+  auto ragged = yry;
+  ragged["ytz2"] = {"0", "1"};
+  EXPECT_THROW(yryFromOptions(ragged), InputError);
+  auto close = yry;
+  close["x2"] = {"0.5"};
+  EXPECT_THROW(yryFromOptions(close), InputError);
 }
 
 TEST(Seed003DirectMeasurement, SquarenessOfAppendixB5) {

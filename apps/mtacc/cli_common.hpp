@@ -64,5 +64,7 @@ void addCubicCommands(const CommandLine& app);         // cubic, cubic-identify
 void addDynamicsCommand(const CommandLine& app);       // dynamics modes | frf | accel | map
 void addDecomposeCommand(const CommandLine& app);      // decompose (seed 004 error decomposition)
 void addDriftCommand(const CommandLine& app);          // drift (ISO 230-3 spindle drift test, seed 003 thermal)
+void addMultitaskingCommand(const CommandLine& app);   // multitasking (seed 002 closed-form identification)
+void addDirectProcedureCommands(const CommandLine& app);  // squareness, yry (seed 003 App. B)
 
 }  // namespace mtacc::cli

@@ -75,6 +75,8 @@ int main(int argc, char** argv) {
   mtacc::cli::addEvaluateCommand(commands);
   mtacc::cli::addPositioningCommand(commands);
   mtacc::cli::addFitCommand(commands);
+  mtacc::cli::addDirectProcedureCommands(commands);
+  mtacc::cli::addMultitaskingCommand(commands);
   mtacc::cli::addPlateCommand(commands);
   mtacc::cli::addStiffnessCommand(commands);
   mtacc::cli::addCompensateCommand(commands);

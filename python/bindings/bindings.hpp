@@ -61,6 +61,7 @@ void exposeBudget(MachineClass& machine);
 void exposeTestPieces(MachineClass& machine);
 void exposeMeasurements(MachineClass& machine);
 void exposeDirectMeasurements(MachineClass& machine);
+void exposeProcedures(py::module_& mod);
 void exposeCompensation(MachineClass& machine);
 void exposeDynamics(py::module_& mod, MachineClass& machine);
 void exposeThermal(py::module_& mod);

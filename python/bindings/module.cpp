@@ -40,6 +40,7 @@ PYBIND11_MODULE(_mtacc, mod) {
   exposeTestPieces(machine);
   exposeMeasurements(machine);
   exposeDirectMeasurements(machine);
+  exposeProcedures(mod);
   exposeCompensation(machine);
   exposeDynamics(mod, machine);
   exposeThermal(mod);

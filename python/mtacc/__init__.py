@@ -30,9 +30,12 @@ from ._mtacc import Structure as _CoreStructure  # noqa: E402
 from ._mtacc import drift_test as _drift_test  # noqa: E402
 from ._mtacc import thermal_state as _thermal_state  # noqa: E402
 from ._mtacc import positioning as _positioning  # noqa: E402
+from ._mtacc import multitasking as _multitasking  # noqa: E402
+from ._mtacc import squareness as _squareness  # noqa: E402
+from ._mtacc import yry as _yry  # noqa: E402
 
 __all__ = ["__version__", "Machine", "Errors", "Structure", "InputError", "UnreachablePose", "positioning", "drift_test",
-           "thermal_state", "as_json"]
+           "thermal_state", "squareness", "yry", "multitasking", "as_json"]
 
 
 def as_json(result):
@@ -56,6 +59,33 @@ def positioning(data):
     as `mtacc positioning --json`: per-target means, reversal, s and R, the axis values A, B, E, M,
     R (keys "A_forward", "A", ... in "axis_values") and the deviations, in um or arcsec ("unit")."""
     return _positioning(_options(data=data))
+
+
+def squareness(aligned_to, alpha, beta, block=None):
+    """Squareness of two axes from a calibrated square probed along both sides (the 1991 BCR report
+    App. B.5), as `mtacc squareness --json`: aligned_to "x" or "z", the slopes alpha and beta of the
+    lines through the readings along the aligned side and the other, and the square's own
+    squareness block (all arcsec); "squareness_arcsec" and the "rule" applied."""
+    return _squareness(_options(aligned_to=aligned_to, alpha=alpha, beta=beta, block=block))
+
+
+def yry(y, ytz1, ytz2, xrx, x1, x2):
+    """The Y axis's yaw from two straightness runs of a straightedge at X = x1 and x2 (mm; the 1991
+    BCR report eq. B.2), as `mtacc yry --json`: y (mm), ytz1 and ytz2 (um, one per y), xrx (arcsec,
+    one value or one per y); "yry_arcsec" per y."""
+    def values(v):
+        return [float(x) for x in np.atleast_1d(v)]
+
+    return _yry(_options(y=values(y), ytz1=values(ytz1), ytz2=values(ytz2), xrx=values(xrx), x1=x1, x2=x2))
+
+
+def multitasking(data, errors_out=None):
+    """The twelve location errors of a multi-tasking machine with a B head and a C spindle from the
+    eccentricities of six ball-bar runs (Applied Sciences 10, 1811, Eqs 17-28), as
+    `mtacc multitasking --json`: data is the eccentricities file (docs/file-formats.md); per name of
+    the paper's Table 1 the value, its unit (um, arcsec) and the ISO errors it stands for
+    ("deviations"). errors_out: also write them as an errors file there."""
+    return _multitasking(_options(data=data), _text(errors_out))
 
 
 def thermal_state(machine, path, points=101):

@@ -7,10 +7,12 @@
 #include "mtacc/workflows/cone_study.hpp"
 #include "mtacc/workflows/cubic_identification.hpp"
 #include "mtacc/workflows/cubic_test.hpp"
+#include "mtacc/workflows/direct_procedures.hpp"
 #include "mtacc/workflows/dynamics_options.hpp"
 #include "mtacc/workflows/identification.hpp"
 #include "mtacc/workflows/kinematics_options.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
+#include "mtacc/workflows/multitasking_identification.hpp"
 #include "mtacc/workflows/plates.hpp"
 #include "mtacc/workflows/positioning.hpp"
 #include "mtacc/workflows/program_deviation.hpp"
@@ -44,6 +46,7 @@ const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
       {"evaluate", &evaluationSchema()},
       {"fit", &componentFitSchema()},
       {"identify", &identificationSchema()},
+      {"multitasking", &multitaskingSchema()},
       {"observability", &observabilitySchema()},
       {"plate", &plateComparisonSchema()},
       {"plate-identify", &plateIdentificationSchema()},
@@ -56,7 +59,9 @@ const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
       {"simulate plan", &planSimulationSchema()},
       {"simulate plate", &plateSimulationSchema()},
       {"simulate rtest", &rtestSimulationSchema()},
-      {"stiffness", &stiffnessSchema()}};
+      {"squareness", &squarenessSchema()},
+      {"stiffness", &stiffnessSchema()},
+      {"yry", &yrySchema()}};
   return schemas;
 }
 

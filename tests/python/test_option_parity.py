@@ -43,7 +43,8 @@ METHODS = {"compensate": (mtacc.Machine.compensate_program, mtacc.Machine.compen
            "budget": mtacc.Machine.budget, "stiffness": mtacc.Machine.stiffness, "identify": mtacc.Machine.identify, "observability": mtacc.Machine.observability, "drift": mtacc.drift_test,
            "cubic-identify": mtacc.Machine.cubic_identify, "cone": mtacc.Machine.cone,
            "cubic": mtacc.Machine.cubic, "fit": mtacc.Machine.fit_component,
-           "plate-identify": mtacc.Machine.identify_plates}
+           "plate-identify": mtacc.Machine.identify_plates, "squareness": mtacc.squareness, "yry": mtacc.yry,
+           "multitasking": mtacc.multitasking}
 
 
 def cli_keys(cli, command):
