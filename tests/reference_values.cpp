@@ -31,20 +31,26 @@ double halfDigit(const Printed& p) { return 0.5 * std::pow(10.0, -p.decimals); }
 
 }  // namespace
 
-void expectReproduced(const Printed& p, double mtacc, double tolerance, const std::string& why) {
+namespace {
+
+// The three categories judged by a tolerance around the printed (or injected) value.
+void expectWithin(const char* category, const Printed& p, double mtacc, double tolerance, const std::string& why) {
   EXPECT_NEAR(mtacc, p.value, tolerance) << p.where << ", " << p.quantity << " [" << p.unit << "]";
-  record(p, shown(p, mtacc), shown(p, mtacc - p.value), fmt::format("reproduced within {:.3g} ({})", tolerance, why));
+  record(p, shown(p, mtacc), shown(p, mtacc - p.value), fmt::format("{} within {:.3g} ({})", category, tolerance, why));
+}
+
+}  // namespace
+
+void expectReproduced(const Printed& p, double mtacc, double tolerance, const std::string& why) {
+  expectWithin("reproduced", p, mtacc, tolerance, why);
 }
 
 void expectInputEchoed(const Printed& p, double mtacc, double tolerance, const std::string& why) {
-  EXPECT_NEAR(mtacc, p.value, tolerance) << p.where << ", " << p.quantity << " [" << p.unit << "]";
-  record(p, shown(p, mtacc), shown(p, mtacc - p.value), fmt::format("input echoed within {:.3g} ({})", tolerance, why));
+  expectWithin("input echoed", p, mtacc, tolerance, why);
 }
 
 void expectSelfConsistent(const Printed& injected, double recovered, double tolerance, const std::string& why) {
-  EXPECT_NEAR(recovered, injected.value, tolerance) << injected.where << ", " << injected.quantity << " [" << injected.unit << "]";
-  record(injected, shown(injected, recovered), shown(injected, recovered - injected.value),
-         fmt::format("self-consistent within {:.3g} ({})", tolerance, why));
+  expectWithin("self-consistent", injected, recovered, tolerance, why);
 }
 
 void expectKnownDifference(const Printed& p, double mtacc, double today, double pin, const std::string& reason) {

@@ -220,13 +220,17 @@ TEST_F(Seed000Table3_4, LinearAxisTiltsWithTheMachineOriginFitted) {
     return sum;
   };
   Vec3 best = Vec3::Zero();
+  double bestMisfit = misfit(best);
   for (const double step : {100.0, 10.0, 1.0}) {
     const Vec3 centre = best;
     for (int i = -10; i <= 10; ++i)
       for (int j = -10; j <= 10; ++j)
         for (int k = -10; k <= 10; ++k) {
           const Vec3 o = centre + step * Vec3(i, j, k);
-          if (misfit(o) < misfit(best)) best = o;
+          if (const double m = misfit(o); m < bestMisfit) {
+            best = o;
+            bestMisfit = m;
+          }
         }
   }
   const auto pv = formErrors(best);
