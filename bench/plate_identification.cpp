@@ -1,7 +1,7 @@
 // Identification of the Maho machine's component errors from a seed 003 plate campaign: 24
 // placements of a 9 x 9 plate (cubePlacements), the 18 component functions of X, Y, Z as C1
 // piecewise quadratics and three squarenesses (plateParameters: 143 parameters) plus a translation
-// and rotation per plate, from 3888 coordinates with the probes' noise. mtacc's identifyFromPlates
+// and rotation per plate, from 3888 coordinates with the probes' noise. mtacc's identifyFromArtefacts
 // (design matrix from the exact model's Jacobians, weighted, one QR and the SVD of its R: solution,
 // covariance, observability) against NumPy + SciPy (bench/plate_scipy.py): the same linear model
 // with the design matrix built vectorised from the first-order F-matrix form of seed 003 §4.4
@@ -70,11 +70,12 @@ int main(int argc, char** argv) {
   const int X = machine->axisIndex("X"), Y = machine->axisIndex("Y"), Z = machine->axisIndex("Z");
   for (size_t k = 0; k < placements.size(); ++k) {
     const auto& p = placements[k];
-    const auto& poses = campaign.poses[k];
+    const auto& q = campaign[k].poses;
+    const auto& d = campaign[k].deviations;
     nlohmann::json features = nlohmann::json::array();
-    for (Eigen::Index h = 0; h < poses.q.rows(); ++h) {
-      const Eigen::Vector2d c = plate.centre(poses.features[static_cast<size_t>(h)].first, poses.features[static_cast<size_t>(h)].second);
-      features.push_back({poses.q(h, X), poses.q(h, Y), poses.q(h, Z), c.x(), c.y(), campaign.deviations[k](h, 0), campaign.deviations[k](h, 1)});
+    for (Eigen::Index h = 0; h < q.rows(); ++h) {
+      const Vec3 c = campaign[k].positions.row(h).transpose();
+      features.push_back({q(h, X), q(h, Y), q(h, Z), c.dot(p.u), c.dot(p.v), d(h, 0), d(h, 1)});
     }
     const Vec3 stylus = tool * p.stylus;
     data["placements"].push_back({{"u", {p.u.x(), p.u.y(), p.u.z()}},
@@ -88,12 +89,12 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(dir);
   const auto campaignFile = (dir / "campaign.json").string();
   std::ofstream(campaignFile) << data.dump();
-  // mtacc's own design matrix, weighted as identifyFromPlates weights it, for the baseline to compare its own against.
+  // mtacc's own design matrix, weighted as identifyFromArtefacts weights it, for the baseline to compare its own against.
   ErrorModel zero = shape;
   for (const auto& p : parameterCatalogue(*machine, zero)) setParameterValue(zero, p, 0.0);
-  Eigen::MatrixXd design = plateDesignMatrix(compile(machine, zero, parameters), campaign, 1);
+  Eigen::MatrixXd design = artefactDesignMatrix(compile(machine, zero, parameters), campaign, 1);
   for (Eigen::Index row = 0, k = 0; k < static_cast<Eigen::Index>(placements.size()); ++k)
-    for (size_t h = 0; h < campaign.poses[static_cast<size_t>(k)].features.size(); ++h, row += 2) {
+    for (Eigen::Index h = 0; h < campaign[static_cast<size_t>(k)].poses.rows(); ++h, row += 2) {
       design.row(row) /= noise[static_cast<size_t>(k)].x();
       design.row(row + 1) /= noise[static_cast<size_t>(k)].y();
     }
@@ -108,7 +109,7 @@ int main(int argc, char** argv) {
   auto timeMtacc = [&](int threads, std::vector<double>& into) {
     for (int k = 0; k < repeats; ++k) {
       const auto t0 = std::chrono::steady_clock::now();
-      result = identifyFromPlates(machine, shape, parameters, campaign, threads);
+      result = identifyFromArtefacts(machine, shape, parameters, campaign, threads);
       into.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
   };
@@ -141,7 +142,7 @@ int main(int argc, char** argv) {
              py["design_difference"].get<double>(), design.cwiseAbs().maxCoeff());
   fmt::print("estimates: largest difference {:.2g} standard uncertainties over the determined parameters; rank mtacc {} / NumPy {}\n", worst,
              result.observability.rank, py["rank"].get<int>());
-  fmt::print("mtacc identifyFromPlates (Jacobians, QR, SVD solve, covariance, observability), 1 thread: median "
+  fmt::print("mtacc identifyFromArtefacts (Jacobians, QR, SVD solve, covariance, observability), 1 thread: median "
              "{:.1f} ms over {} runs (half before, half after SciPy); 2 threads: median {:.1f} ms (target < 100 ms)\n",
              ours * 1e3, seconds.size(), median(secondsTwo) * 1e3);
   fmt::print("NumPy design matrix (vectorised F-matrix model) + scipy.linalg.svd solve, covariance and rank, 1 thread: median {:.1f} ms "

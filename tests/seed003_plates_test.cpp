@@ -8,12 +8,12 @@
 #include <Eigen/LU>
 
 #include <algorithm>
-#include <algorithm>
 #include <cmath>
 
 #include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/identification/plate_identification.hpp"
+#include "mtacc/workflows/artefacts.hpp"
 #include "reference_values.hpp"
 #include "test_helpers.hpp"
 
@@ -80,12 +80,10 @@ TEST(Seed003Plates, SimulatedPlateMatchesTheFirstOrderModel) {
   Eigen::VectorXd truth(static_cast<Eigen::Index>(params.size()));
   for (size_t k = 0; k < params.size(); ++k) truth[static_cast<Eigen::Index>(k)] = parameterValue(errors, params[k]);
   for (const size_t which : {size_t{0}, size_t{9}, size_t{20}}) {
-    PlateCampaign c;
-    c.plate = plate;
-    c.placements = {placements[which]};
-    c.poses = {platePoses(nominal, plate, placements[which])};
-    const auto simulated = simulatePlate(actual, nominal, plate, placements[which], c.poses[0]);
-    const Eigen::MatrixXd a = plateDesignMatrix(linear, c, 1);
+    const auto poses = platePoses(nominal, plate, placements[which]);
+    const auto simulated = simulatePlate(actual, nominal, plate, placements[which], poses);
+    const ArtefactCampaign c{plateCampaignPlacement(plate, placements[which], poses, simulated, Eigen::Vector2d::Zero())};
+    const Eigen::MatrixXd a = artefactDesignMatrix(linear, c, 1);
     const Eigen::VectorXd predicted = a.leftCols(truth.size()) * truth;
     // The design matrix predicts the raw (u, v) of each feature; the simulation refers them to
     // the reference feature, whose first-order prediction is predicted[0..1].
@@ -103,30 +101,34 @@ TEST(Seed003Plates, SimulatedPlateMatchesTheFirstOrderModel) {
 TEST(Seed003Plates, MeasuredPlateProcessing) {
   // A plate measured 1.2 K warm on a machine whose scales are 0.8 K warm, turned by 20 urad and
   // shifted: after the corrections and the misalignment removal only the features' own
-  // deviations remain, to second order (the rotation and the expansions acting on the features'
-  // own deviations and on each other: phi^2 |c| ~ 1e-7 mm).
-  Plate plate;
-  plate.rows = plate.columns = 3;
-  plate.pitch = 100;
-  std::vector<std::pair<int, int>> features;
+  // deviations remain, to second order: the two expansions (1.44e-5 and 0.92e-5) act on the
+  // features' own deviations (up to 3 um here) as well: below 2.4e-5 x 3e-3 = 7e-8 mm.
+  PlateMeasurement m;
+  m.plate.rows = m.plate.columns = 3;
+  m.plate.pitch = 100;
+  m.placement.origin = Vec3(-100.0, -300.0, 0.0);
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) features.emplace_back(r, c);
-  const PlateTemperatures t{.scale = 20.8, .plate = 21.2, .reference = 20.0, .scaleExpansion = 11.5e-6, .plateExpansion = 12e-6};
-  Eigen::MatrixX2d own(9, 2), measured(9, 2);
+    for (int c = 0; c < 3; ++c) m.features.emplace_back(r, c);
+  m.temperatures = {.scale = 20.8, .plate = 21.2, .reference = 20.0, .scaleExpansion = 11.5e-6, .plateExpansion = 12e-6};
+  Eigen::MatrixX2d own(9, 2);
+  m.measured.resize(9, 2);
   std::mt19937 rng(3);
   std::normal_distribution<double> g(0.0, 1e-3);
   for (int k = 0; k < 9; ++k) own.row(k) << g(rng), g(rng);
+  Eigen::MatrixX3d nominal = Eigen::MatrixX3d::Zero(9, 3), withOwn = nominal;
   for (int k = 0; k < 9; ++k) {
-    const Eigen::Vector2d c = plate.centre(features[static_cast<size_t>(k)].first, features[static_cast<size_t>(k)].second);
+    const Eigen::Vector2d c = m.plate.centre(m.features[static_cast<size_t>(k)].first, m.features[static_cast<size_t>(k)].second);
     const Eigen::Vector2d truePosition = c * (1 + 12e-6 * 1.2) + own.row(k).transpose();
     const Eigen::Vector2d turned = Eigen::Rotation2Dd(20e-6) * truePosition + Eigen::Vector2d(0.003, -0.002);
-    measured.row(k) = (turned / (1 + 11.5e-6 * 0.8)).transpose();
+    m.measured.row(k) = (turned / (1 + 11.5e-6 * 0.8)).transpose();
+    nominal.row(k).head<2>() = c.transpose();
+    withOwn.row(k).head<2>() = (c + own.row(k).transpose()).transpose();
   }
-  std::vector<Eigen::Vector2d> nominal;
-  for (const auto& f : features) nominal.push_back(plate.centre(f.first, f.second));
-  const auto d = plateDeviations(plate, features, measured, t);
-  const auto expected = withoutMisalignment(own, nominal);
-  EXPECT_LT((d - expected).cwiseAbs().maxCoeff(), 2e-7);
+  const auto a = artefactFromPlate(m);
+  const auto coordinates = artefactCoordinates(a);
+  const auto d = alignArtefact(coordinates.calibrated, coordinates.measured, ProbedDirections::InPlane, 2, {}).deviations;
+  const auto expected = alignArtefact(nominal, withOwn, ProbedDirections::InPlane, 2, {}).deviations;
+  EXPECT_LT((d - expected).cwiseAbs().maxCoeff(), 7e-8);
 }
 
 TEST(Seed003Plates, CampaignOfTwentyFourPositionsIdentifiesTheComponents) {
@@ -149,7 +151,7 @@ TEST(Seed003Plates, CampaignOfTwentyFourPositionsIdentifiesTheComponents) {
   const auto placements = cubePlacements(nominal, plate);
   const auto noise = seed003ProbeNoise(placements);
   const auto campaign = simulatePlateCampaign(actual, nominal, plate, placements, noise, 17);
-  const auto r = identifyFromPlates(machine, shape, parameters, campaign, 1);
+  const auto r = identifyFromArtefacts(machine, shape, parameters, campaign, 1);
   EXPECT_EQ(r.readings, 24 * 81 * 2);
   EXPECT_NEAR(r.sigma, 1.0, 0.1);  // the weighted residual matches the stated probe noise
   std::vector<Eigen::Index> determined;

@@ -1,4 +1,4 @@
-// mtacc simulate component | plate: direct measurements of one component error (the 1991 BCR report's levels,
+// mtacc simulate component | plate | artefact: direct measurements of one component error (the 1991 BCR report's levels,
 // laser and straightedge runs) and a hole-plate measurement, as the machine with its errors
 // gives them, in the formats `fit` and `plate` read.
 #include <fmt/format.h>
@@ -8,6 +8,7 @@
 #include "cli_common.hpp"
 #include "cmd_simulate.hpp"
 #include "mtacc/workflows/component_fit.hpp"
+#include "mtacc/workflows/artefacts.hpp"
 #include "mtacc/workflows/plates.hpp"
 
 namespace mtacc::cli {
@@ -54,6 +55,18 @@ void addSimulateArtefactCommands(const CommandLine& simulate) {
     const auto m = simulatePlateFile(loadMachineSetup(plate->source), request);
     if (plate->json) std::cout << nlohmann::json{{"output", request.output}, {"features", m.features.size()}}.dump(2) << "\n";
     else std::cout << fmt::format("{} features -> {}\n", m.features.size(), request.output);
+  });
+
+  auto artefact = std::make_shared<ArtefactCliOptions>();
+  auto art = addArtefactCommand(simulate, "artefact",
+                                "A calibrated artefact's measurement: each feature of a layout file probed on the machine with its errors",
+                                artefactSimulationSchema(), *artefact);
+  art.flag("--json", artefact->json, "the file written and its number of features as JSON");
+  art.callback([artefact] {
+    const ArtefactSimulationRequest request = artefactSimulationRequest(artefact->values);
+    const auto m = simulateArtefactFile(loadMachineSetup(artefact->source), request);
+    if (artefact->json) std::cout << nlohmann::json{{"output", request.output}, {"features", m.artefact.features.size()}}.dump(2) << "\n";
+    else std::cout << fmt::format("{} features -> {}\n", m.artefact.features.size(), request.output);
   });
 }
 

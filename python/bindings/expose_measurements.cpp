@@ -7,6 +7,7 @@
 #include "mtacc/workflows/identified_errors.hpp"
 #include "mtacc/workflows/measurement_runs.hpp"
 #include "mtacc/workflows/simulation_options.hpp"
+#include "mtacc/workflows/artefacts.hpp"
 #include "mtacc/workflows/plates.hpp"
 #include "mtacc/workflows/report_paths.hpp"
 
@@ -58,7 +59,17 @@ void exposeMeasurements(MachineClass& machine) {
       .def("compare_plate", [](const PythonMachine& s, const OptionValues& options) {
         return toPython(toJson(comparePlateFile(s, *OptionReader(plateComparisonSchema(), options).text("data"))));
       })
-      .def("simulate_plate", [](const PythonMachine& s, const OptionValues& options) { simulatePlateFile(s, plateSimulationRequest(options)); });
+      .def("simulate_plate", [](const PythonMachine& s, const OptionValues& options) { simulatePlateFile(s, plateSimulationRequest(options)); })
+      .def("evaluate_artefact", [](const PythonMachine& s, const OptionValues& options) {
+        const std::string data = *OptionReader(artefactEvaluationSchema(), options).text("data");
+        ArtefactEvaluation e;
+        {
+          py::gil_scoped_release release;
+          e = evaluateArtefactFile(s, data);
+        }
+        return toPython(toJson(e));
+      })
+      .def("simulate_artefact", [](const PythonMachine& s, const OptionValues& options) { simulateArtefactFile(s, artefactSimulationRequest(options)); });
 }
 
 }  // namespace mtacc::python

@@ -489,6 +489,21 @@ class Machine:
         the misalignment removed, and the residual's k = 2 bound when the file states the 2S values."""
         return self._core.compare_plate(_options(data=data))
 
+    def evaluate_artefact(self, data):
+        """A calibrated artefact measured on this machine (a step gauge, ball bar, plate or 3-D artefact:
+        CSV with certificate and measured positions, docs/file-formats.md "Artefact measurements"; a
+        plate file is read too), as `mtacc artefact --json`: per feature the deviations along the
+        probed directions after the file's alignment, their k = 2 uncertainty, the model's and the
+        residual (um); per direction the range, RMS and largest; the alignment and the uncertainty's
+        contributors."""
+        return self._core.evaluate_artefact(_options(data=data))
+
+    def simulate_artefact(self, layout, output, noise=None, seed=None):
+        """Writes the measurement of the artefact in `layout` (an artefact file without measured
+        values) that this machine with its errors gives, as `mtacc simulate artefact`; noise: each
+        measured coordinate's standard deviation ("0.3 um", default 0)."""
+        self._core.simulate_artefact(_options(layout=layout, output=output, noise=noise, seed=seed))
+
     def decompose(self, set, series=None, drift_frame=None):
         """Andolfatto et al. 2011's decomposition of recorded signals (a decomposition set, docs/file-formats.md), as
         `mtacc decompose --json`: per feed the clock offset (ms), shares of eq. 21 with both denominators,

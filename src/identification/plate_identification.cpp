@@ -34,21 +34,44 @@ std::vector<Eigen::Vector2d> seed003ProbeNoise(const std::vector<PlatePlacement>
   return out;
 }
 
-PlateCampaign simulatePlateCampaign(const KinematicModel& actual, const KinematicModel& nominal, const Plate& plate,
-                                    const std::vector<PlatePlacement>& placements, const std::vector<Eigen::Vector2d>& noise,
-                                    std::uint64_t seed) {
+std::vector<Vec3> nuisanceRotations(const CampaignPlacement& c) {
+  const auto& p = c.placement;
+  switch (p.probed) {
+    case ProbedDirections::Along: return {};
+    case ProbedDirections::InPlane: return {p.u.cross(p.v)};
+    case ProbedDirections::All: break;
+  }
+  if (c.dimension == 1) return {p.v, p.u.cross(p.v)};
+  return {p.u, p.v, p.u.cross(p.v)};
+}
+
+bool isNuisanceRotation(const std::string& name) {
+  return name.size() > 3 && name[name.size() - 3] == '.' && name[name.size() - 2] == 'r';
+}
+
+CampaignPlacement plateCampaignPlacement(const Plate& plate, const PlatePlacement& placement, const PlatePoses& poses,
+                                         const Eigen::MatrixX2d& deviations, const Eigen::Vector2d& noise) {
+  CampaignPlacement c{.placement = artefactPlacement(plate, placement), .dimension = 2, .positions = {}, .poses = poses.q,
+                      .deviations = deviations, .noise = noise};
+  const auto positions = featurePositions(plate, poses.features);
+  c.positions.resize(static_cast<Eigen::Index>(positions.size()), 3);
+  for (size_t k = 0; k < positions.size(); ++k)
+    c.positions.row(static_cast<Eigen::Index>(k)) = (positions[k].x() * placement.u + positions[k].y() * placement.v).transpose();
+  return c;
+}
+
+ArtefactCampaign simulatePlateCampaign(const KinematicModel& actual, const KinematicModel& nominal, const Plate& plate,
+                                       const std::vector<PlatePlacement>& placements, const std::vector<Eigen::Vector2d>& noise,
+                                       std::uint64_t seed) {
   if (noise.size() != placements.size()) throw InvalidInput("plate campaign: noise per placement");
-  PlateCampaign c;
-  c.plate = plate;
-  c.placements = placements;
-  c.noise = noise;
+  ArtefactCampaign c;
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> unit(0.0, 1.0);
   for (size_t k = 0; k < placements.size(); ++k) {
-    c.poses.push_back(platePoses(nominal, plate, placements[k]));
-    Eigen::MatrixX2d d = simulatePlate(actual, nominal, plate, placements[k], c.poses.back());
+    const auto poses = platePoses(nominal, plate, placements[k]);
+    Eigen::MatrixX2d d = simulatePlate(actual, nominal, plate, placements[k], poses);
     for (Eigen::Index i = 0; i < d.rows(); ++i) d.row(i) += Eigen::RowVector2d(noise[k][0] * unit(rng), noise[k][1] * unit(rng));
-    c.deviations.push_back(d);
+    c.push_back(plateCampaignPlacement(plate, placements[k], poses, d, noise[k]));
   }
   return c;
 }
@@ -79,66 +102,84 @@ std::vector<Parameter> plateParameters(const Machine& machine, const ErrorModel&
   return out;
 }
 
-Eigen::MatrixXd plateDesignMatrix(const KinematicModel& model, const PlateCampaign& campaign, int threads) {
+namespace {
+
+const char* const kDirections[] = {"u", "v", "w"};
+
+int nuisanceCount(const CampaignPlacement& c) {
+  return directionCount(c.placement.probed) + static_cast<int>(nuisanceRotations(c).size());
+}
+
+}  // namespace
+
+Eigen::MatrixXd artefactDesignMatrix(const KinematicModel& model, const ArtefactCampaign& campaign, int threads) {
   const auto parameters = static_cast<Eigen::Index>(model.parameters.size());
-  const auto placements = static_cast<Eigen::Index>(campaign.placements.size());
-  std::vector<Eigen::Index> firstRow{0};
-  for (const auto& p : campaign.poses) firstRow.push_back(firstRow.back() + 2 * static_cast<Eigen::Index>(p.features.size()));
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(firstRow.back(), parameters + 3 * placements);
+  std::vector<Eigen::Index> firstRow{0}, firstNuisance{parameters};
+  for (const auto& c : campaign) {
+    firstRow.push_back(firstRow.back() + directionCount(c.placement.probed) * c.poses.rows());
+    firstNuisance.push_back(firstNuisance.back() + nuisanceCount(c));
+  }
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(firstRow.back(), firstNuisance.back());
   // One task per feature across the campaign; each thread keeps its own scratch.
-  std::vector<std::pair<Eigen::Index, Eigen::Index>> tasks;
-  for (Eigen::Index k = 0; k < placements; ++k)
-    for (Eigen::Index h = 0; h < static_cast<Eigen::Index>(campaign.poses[static_cast<size_t>(k)].features.size()); ++h) tasks.emplace_back(k, h);
+  std::vector<std::pair<size_t, Eigen::Index>> tasks;
+  for (size_t k = 0; k < campaign.size(); ++k)
+    for (Eigen::Index h = 0; h < campaign[k].poses.rows(); ++h) tasks.emplace_back(k, h);
   parallelFor(static_cast<long>(tasks.size()), threads, [&](long begin, long end) {
     KinematicData data;
     for (long t = begin; t < end; ++t) {
       const auto [k, h] = tasks[static_cast<size_t>(t)];
-      const auto& placement = campaign.placements[static_cast<size_t>(k)];
-      const auto& poses = campaign.poses[static_cast<size_t>(k)];
-      const auto& j = pointJacobian(model, poses.q.row(h).data(), nullptr, placement.stylus, data).jacobian;
-      const Eigen::Index row = firstRow[static_cast<size_t>(k)] + 2 * h;
-      a.block(row, 0, 1, parameters).noalias() = -placement.u.transpose() * j;
-      a.block(row + 1, 0, 1, parameters).noalias() = -placement.v.transpose() * j;
-      const auto [r, c] = poses.features[static_cast<size_t>(h)];
-      const auto [r0, c0] = poses.features[0];
-      const Eigen::Vector2d spin = inPlaneTurn(campaign.plate.centre(r, c) - campaign.plate.centre(r0, c0));
-      const Eigen::Index nuisance = parameters + 3 * k;
-      a(row, nuisance) = 1.0;
-      a(row + 1, nuisance + 1) = 1.0;
-      a(row, nuisance + 2) = spin.x();
-      a(row + 1, nuisance + 2) = spin.y();
+      const auto& c = campaign[k];
+      const int directions = directionCount(c.placement.probed);
+      const Eigen::Matrix3d frame = c.placement.frame();
+      const auto& j = pointJacobian(model, c.poses.row(h).data(), nullptr, c.placement.stylus, data).jacobian;
+      const auto rotations = nuisanceRotations(c);
+      const Vec3 p = c.positions.row(h).transpose();
+      for (int d = 0; d < directions; ++d) {
+        const Eigen::Index row = firstRow[k] + directions * h + d;
+        const Vec3 along = frame.col(d);
+        a.block(row, 0, 1, parameters).noalias() = -along.transpose() * j;
+        a(row, firstNuisance[k] + d) = 1.0;
+        for (size_t r = 0; r < rotations.size(); ++r) a(row, firstNuisance[k] + directions + static_cast<Eigen::Index>(r)) = along.dot(rotations[r].cross(p));
+      }
     }
   });
   return a;
 }
 
-PlateIdentification identifyFromPlates(const std::shared_ptr<const Machine>& machine, const ErrorModel& shape,
-                                       const std::vector<Parameter>& parameters, const PlateCampaign& campaign, int threads) {
-  if (campaign.poses.size() != campaign.placements.size() || campaign.deviations.size() != campaign.placements.size())
-    throw InvalidInput("plate campaign: poses and deviations for every placement");
+PlateIdentification identifyFromArtefacts(const std::shared_ptr<const Machine>& machine, const ErrorModel& shape,
+                                          const std::vector<Parameter>& parameters, const ArtefactCampaign& campaign, int threads) {
+  bool weighted = !campaign.empty();
+  for (const auto& c : campaign) {
+    const int directions = directionCount(c.placement.probed);
+    if (c.positions.rows() != c.poses.rows() || c.deviations.rows() != c.poses.rows() || c.deviations.cols() != directions)
+      throw InvalidInput("artefact campaign: positions, poses and deviations for every feature");
+    if (c.noise.size() != 0 && c.noise.size() != directions) throw InvalidInput("artefact campaign: noise per probed direction");
+    weighted = weighted && c.noise.size() == directions && (c.noise.array() > 0.0).all();
+  }
   ErrorModel zero = shape;
   for (const auto& p : parameterCatalogue(*machine, zero)) setParameterValue(zero, p, 0.0);
   const auto model = compile(machine, zero, parameters);
-  Eigen::MatrixXd a = plateDesignMatrix(model, campaign, threads);
+  Eigen::MatrixXd a = artefactDesignMatrix(model, campaign, threads);
   Eigen::VectorXd b(a.rows());
-  const bool weighted = !campaign.noise.empty();
-  if (weighted && campaign.noise.size() != campaign.placements.size()) throw InvalidInput("plate campaign: noise per placement");
   Eigen::Index row = 0;
-  for (size_t p = 0; p < campaign.deviations.size(); ++p) {
-    const auto& d = campaign.deviations[p];
-    if (d.rows() != static_cast<Eigen::Index>(campaign.poses[p].features.size()))
-      throw InvalidInput("plate campaign: one deviation row per probed feature");
-    for (Eigen::Index k = 0; k < d.rows(); ++k)
-      for (int c = 0; c < 2; ++c, ++row) {
-        const double w = weighted ? 1.0 / campaign.noise[p][c] : 1.0;
-        b[row] = w * d(k, c);
+  for (const auto& c : campaign)
+    for (Eigen::Index k = 0; k < c.deviations.rows(); ++k)
+      for (Eigen::Index d = 0; d < c.deviations.cols(); ++d, ++row) {
+        const double w = weighted ? 1.0 / c.noise[d] : 1.0;
+        b[row] = w * c.deviations(k, d);
         a.row(row) *= w;
       }
-  }
   PlateIdentification out;
   for (const auto& p : parameters) out.names.push_back(p.name);
-  for (const auto& p : campaign.placements)
-    for (const char* n : {".tu", ".tv", ".rot"}) out.names.push_back(p.name + n);
+  for (const auto& c : campaign) {
+    for (int d = 0; d < directionCount(c.placement.probed); ++d) out.names.push_back(c.placement.name + ".t" + kDirections[d]);
+    const Eigen::Matrix3d frame = c.placement.frame();
+    for (const Vec3& r : nuisanceRotations(c)) {
+      Eigen::Index about = 0;
+      (frame.transpose() * r).cwiseAbs().maxCoeff(&about);
+      out.names.push_back(c.placement.name + ".r" + kDirections[about]);
+    }
+  }
   const Eigen::Index n = a.cols();
   // One QR of [A D^-1 | b] (D the column norms): R and Q^T b. The SVD of the small R gives the
   // minimum-norm solution on the observable subspace, its covariance, and (as R D, which has

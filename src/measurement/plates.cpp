@@ -20,12 +20,6 @@ std::vector<std::pair<int, int>> probedFeatures(const Plate& plate, PlateFeature
   return f;
 }
 
-// The in-plane displacement of a feature at plate coordinates c for a unit rotation about the
-// plate normal.
-Vec3 toolPointError(const KinematicModel& actual, const KinematicModel& nominal, const double* q, const Vec3& stylus) {
-  return toolInWorkpiece(actual, q) * stylus - toolInWorkpiece(nominal, q) * stylus;
-}
-
 }  // namespace
 
 Eigen::Vector2d Plate::centre(int row, int column) const {
@@ -33,35 +27,28 @@ Eigen::Vector2d Plate::centre(int row, int column) const {
   return {pitch * column, pitch * row};
 }
 
+Artefact plateArtefact(const Plate& plate, const std::vector<std::pair<int, int>>& features) {
+  Artefact a;
+  a.name = fmt::format("{} x {} plate, pitch {} mm", plate.rows, plate.columns, plate.pitch);
+  a.dimension = 2;
+  const auto positions = featurePositions(plate, features);
+  for (size_t k = 0; k < features.size(); ++k)
+    a.features.push_back({fmt::format("R{}C{}", features[k].first, features[k].second), Vec3(positions[k].x(), positions[k].y(), 0.0),
+                          plate.calibrationUncertainty});
+  return a;
+}
+
+ArtefactPlacement artefactPlacement(const Plate& plate, const PlatePlacement& p) {
+  // The artefact's frame starts at the reference feature (0, 0), the plate's at its grid origin.
+  const Eigen::Vector2d reference = plate.centre(0, 0);
+  return {.name = p.name, .origin = p.origin + reference.x() * p.u + reference.y() * p.v, .u = p.u, .v = p.v, .stylus = p.stylus,
+          .fixedAxes = p.fixedAxes, .probed = ProbedDirections::InPlane};
+}
+
 PlatePoses platePoses(const KinematicModel& nominal, const Plate& plate, const PlatePlacement& placement) {
-  const Machine& m = *nominal.machine;
-  std::vector<double> hint = placement.fixedAxes;
-  if (hint.empty()) hint = m.referencePose;
-  if (hint.size() != static_cast<size_t>(m.commandedCount())) throw InvalidInput("plate placement: one fixed position per axis");
-  const Pose tool = toolInWorkpiece(nominal, hint.data());
-  const Vec3 direction = tool.linear() * m.toolDirection;
   PlatePoses p;
   p.features = probedFeatures(plate, placement.features);
-  p.q.resize(static_cast<Eigen::Index>(p.features.size()), m.commandedCount());
-  IkOptions options;
-  options.hint = hint;
-  for (size_t k = 0; k < p.features.size(); ++k) {
-    const auto [row, column] = p.features[k];
-    const Eigen::Vector2d c = plate.centre(row, column);
-    const Vec3 feature = placement.origin + c.x() * placement.u + c.y() * placement.v;
-    IkSolution s;
-    try {
-      s = solveIk(nominal, feature - tool.linear() * placement.stylus, direction, options);
-    } catch (const UnreachablePose& e) {
-      throw UnreachablePose(fmt::format("plate '{}', feature ({}, {}): {}", placement.name, row, column, e.what()));
-    }
-    for (int a = 0; a < m.commandedCount(); ++a) {
-      if (m.axes[static_cast<size_t>(a)].isRotary() && std::abs(s.q[static_cast<size_t>(a)] - hint[static_cast<size_t>(a)]) > 1e-9)
-        throw UnreachablePose(fmt::format("plate '{}', feature ({}, {}): needs {} to turn", placement.name, row, column,
-                                          m.axes[static_cast<size_t>(a)].name));
-      p.q(static_cast<Eigen::Index>(k), a) = s.q[static_cast<size_t>(a)];
-    }
-  }
+  p.q = artefactPoses(nominal, plateArtefact(plate, p.features), artefactPlacement(plate, placement));
   return p;
 }
 
@@ -107,40 +94,13 @@ std::vector<PlatePlacement> cubePlacements(const KinematicModel& nominal, const 
   return out;
 }
 
-Eigen::MatrixX2d simulatePlate(const KinematicModel& actual, const KinematicModel& nominal, const Plate&, const PlatePlacement& placement,
+Eigen::MatrixX2d simulatePlate(const KinematicModel& actual, const KinematicModel& nominal, const Plate& plate, const PlatePlacement& placement,
                                const PlatePoses& poses) {
-  // The probe triggers where the actual stylus touches the feature, and the machine reports
-  // where its nominal model puts the stylus then: measured - true = -(actual - nominal).
-  const auto n = static_cast<Eigen::Index>(poses.features.size());
-  Eigen::MatrixX2d d(n, 2);
-  const Vec3 reference = toolPointError(actual, nominal, poses.q.row(0).data(), placement.stylus);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const Vec3 e = toolPointError(actual, nominal, poses.q.row(k).data(), placement.stylus) - reference;
-    d(k, 0) = -placement.u.dot(e);
-    d(k, 1) = -placement.v.dot(e);
-  }
+  const Eigen::MatrixX3d e = artefactProbingErrors(actual, nominal, artefactPlacement(plate, placement), poses.q);
+  const Eigen::MatrixX3d relative = e.rowwise() - e.row(0);
+  Eigen::MatrixX2d d(e.rows(), 2);
+  d << relative * placement.u, relative * placement.v;
   return d;
-}
-
-Eigen::MatrixX2d withoutMisalignment(const Eigen::MatrixX2d& d, const std::vector<Eigen::Vector2d>& positions) {
-  // d ~ t + phi * turn(c): three columns, solved by least squares.
-  const auto n = d.rows();
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n, 3);
-  Eigen::VectorXd b(2 * n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const Eigen::Vector2d t = inPlaneTurn(positions[static_cast<size_t>(k)]);
-    a(2 * k, 0) = 1.0;
-    a(2 * k + 1, 1) = 1.0;
-    a(2 * k, 2) = t.x();
-    a(2 * k + 1, 2) = t.y();
-    b[2 * k] = d(k, 0);
-    b[2 * k + 1] = d(k, 1);
-  }
-  const Eigen::Vector3d x = a.colPivHouseholderQr().solve(b);
-  const Eigen::VectorXd r = b - a * x;
-  Eigen::MatrixX2d out(n, 2);
-  for (Eigen::Index k = 0; k < n; ++k) out.row(k) << r[2 * k], r[2 * k + 1];
-  return out;
 }
 
 std::vector<Eigen::Vector2d> featurePositions(const Plate& plate, const std::vector<std::pair<int, int>>& features) {
@@ -149,25 +109,6 @@ std::vector<Eigen::Vector2d> featurePositions(const Plate& plate, const std::vec
     out.push_back(plate.centre(row, column) - plate.centre(features[0].first, features[0].second));
   return out;
 }
-
-Eigen::MatrixX2d temperatureCorrectedDeviations(const Plate& plate, const std::vector<std::pair<int, int>>& features,
-                                                const Eigen::MatrixX2d& measured, const PlateTemperatures& t) {
-  if (measured.rows() != static_cast<Eigen::Index>(features.size())) throw InvalidInput("plate deviations: one row per feature");
-  const double scale = 1.0 + t.scaleExpansion * (t.scale - t.reference);
-  const double grows = 1.0 + t.plateExpansion * (t.plate - t.reference);
-  const auto nominal = featurePositions(plate, features);
-  Eigen::MatrixX2d d(measured.rows(), 2);
-  for (size_t k = 0; k < features.size(); ++k)
-    d.row(static_cast<Eigen::Index>(k)) = (measured.row(static_cast<Eigen::Index>(k)).transpose() * scale - nominal[k] * grows).transpose();
-  return d;
-}
-
-Eigen::MatrixX2d plateDeviations(const Plate& plate, const std::vector<std::pair<int, int>>& features, const Eigen::MatrixX2d& measured,
-                                 const PlateTemperatures& t) {
-  return withoutMisalignment(temperatureCorrectedDeviations(plate, features, measured, t), featurePositions(plate, features));
-}
-
-Eigen::Vector2d inPlaneTurn(const Eigen::Vector2d& c) { return {-c.y(), c.x()}; }
 
 double residualBound(const ResidualBudget& b) {
   const double perFeature = b.plate * b.plate + b.probeU * b.probeU + b.probeV * b.probeV + b.scaleCorrection * b.scaleCorrection +

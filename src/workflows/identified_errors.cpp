@@ -56,7 +56,7 @@ IdentificationRecord identificationRecord(const PlateIdentificationStudy& s) {
   IdentificationRecord record{"plate-identify", "", s.files, {}, {}, {}, r.names, {}, r.values, r.uncertainty, r.covariance};
   for (size_t k = 0; k < r.names.size(); ++k) {
     record.units.push_back(EstimateUnit::of(k < s.parameters.size() ? s.parameters[k].dimension
-                                            : r.names[k].ends_with(".rot") ? Dimension::Angle : Dimension::Length));
+                                            : isNuisanceRotation(r.names[k]) ? Dimension::Angle : Dimension::Length));
     if (!r.determined[k]) record.uncertainty[static_cast<Eigen::Index>(k)] = std::nan("");
   }
   record.fit = {{"readings", std::to_string(r.readings)},

@@ -1,5 +1,6 @@
 #include "mtacc/workflows/option_schemas.hpp"
 
+#include "mtacc/workflows/artefacts.hpp"
 #include "mtacc/workflows/budget.hpp"
 #include "mtacc/workflows/check.hpp"
 #include "mtacc/workflows/compensate_options.hpp"
@@ -49,6 +50,7 @@ const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
       {"multitasking", &multitaskingSchema()},
       {"observability", &observabilitySchema()},
       {"plate", &plateComparisonSchema()},
+      {"artefact", &artefactEvaluationSchema()},
       {"plate-identify", &plateIdentificationSchema()},
       {"positioning", &positioningSchema()},
       {"report", &reportSchema()},
@@ -58,6 +60,7 @@ const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
       {"simulate motion", &motionSimulationSchema()},
       {"simulate plan", &planSimulationSchema()},
       {"simulate plate", &plateSimulationSchema()},
+      {"simulate artefact", &artefactSimulationSchema()},
       {"simulate rtest", &rtestSimulationSchema()},
       {"squareness", &squarenessSchema()},
       {"stiffness", &stiffnessSchema()},

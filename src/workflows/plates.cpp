@@ -1,8 +1,10 @@
 #include "mtacc/workflows/plates.hpp"
 
+#include <algorithm>
 #include <random>
 
 #include "mtacc/core/units.hpp"
+#include "mtacc/workflows/artefacts.hpp"
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/core/text_file.hpp"
 
@@ -10,18 +12,6 @@
 
 namespace mtacc {
 
-namespace {
-
-// The poses of a measured placement; one beyond the travel is an error at the file's origin line.
-PlatePoses measuredPlatePoses(const KinematicModel& nominal, const PlateMeasurement& m) {
-  try {
-    return platePoses(nominal, m.plate, m.placement);
-  } catch (const UnreachablePose& e) {
-    throw UnreachableInput(InputLocation{m.file, m.originLine, "origin"}, e.what());
-  }
-}
-
-}  // namespace
 
 const OptionSchema& plateSimulationSchema() {
   static const OptionSchema schema{
@@ -63,12 +53,12 @@ PlateComparison comparePlateFile(const MachineSetup& setup, const std::string& p
   c.machine = setup.machine;
   c.measurement = readPlateMeasurement(*setup.machine, path);
   const auto& m = c.measurement;
-  const auto nominal = setup.nominal(), actual = setup.actual();
-  c.poses = measuredPlatePoses(nominal, m);
-  c.nominal = featurePositions(m.plate, c.poses.features);
-  c.measured = plateDeviations(m.plate, m.features, m.measured, m.temperatures);
-  c.simulated = withoutMisalignment(simulatePlate(actual, nominal, m.plate, m.placement, c.poses), c.nominal);
-  c.residual = c.measured - c.simulated;
+  const auto e = evaluateArtefact(setup, artefactFromPlate(m));
+  c.poses = {m.features, e.poses};
+  c.nominal = featurePositions(m.plate, m.features);
+  c.measured = e.measured.deviations;
+  c.simulated = e.simulated.deviations;
+  c.residual = e.residual;
   if (m.probe && m.simulation) {
     c.bound = residualBound({.simulation = *m.simulation, .plate = 2 * m.plate.calibrationUncertainty, .probeU = m.probe->x(),
                              .probeV = m.probe->y(), .scaleCorrection = 0.0, .plateCorrection = 0.0});
@@ -124,26 +114,12 @@ PlateIdentificationStudy identifyPlateFiles(const MachineSetup& setup, const std
   s.machine = setup.machine;
   s.files = files;
   const auto nominal = setup.nominal();
-  PlateCampaign campaign;
-  bool weighted = true;
-  for (const auto& file : files) {
-    const auto m = readPlateMeasurement(*setup.machine, file);
-    if (!campaign.placements.empty() && (m.plate.pitch != campaign.plate.pitch || m.plate.rows != campaign.plate.rows ||
-                                         m.plate.columns != campaign.plate.columns))
-      throw InputError(InputLocation{file, m.plateLine, "plate"}, "every plate of a campaign must be the same plate (as the first file's)");
-    campaign.plate = m.plate;
-    // The misalignment is the identification's nuisance, so it stays in the deviations.
-    weighted = weighted && m.probe.has_value();
-    campaign.placements.push_back(m.placement);
-    campaign.poses.push_back(measuredPlatePoses(nominal, m));
-    campaign.deviations.push_back(temperatureCorrectedDeviations(m.plate, m.features, m.measured, m.temperatures));
-    campaign.noise.push_back(m.probe ? Eigen::Vector2d(0.5 * *m.probe) : Eigen::Vector2d::Zero());
-  }
-  if (!weighted) campaign.noise.clear();
-  s.weighted = weighted;
+  ArtefactCampaign campaign;
+  for (const auto& file : files) campaign.push_back(campaignPlacement(nominal, readArtefactOrPlate(*setup.machine, file)));
+  s.weighted = std::all_of(campaign.begin(), campaign.end(), [](const CampaignPlacement& c) { return c.noise.size() > 0; });
   const ErrorModel shape = plateShape(*setup.machine, ErrorModel::zero(*setup.machine), pieceLength);
   s.parameters = plateParameters(*setup.machine, shape);
-  s.result = identifyFromPlates(setup.machine, shape, s.parameters, campaign);
+  s.result = identifyFromArtefacts(setup.machine, shape, s.parameters, campaign);
   s.identified = shape;
   for (size_t k = 0; k < s.parameters.size(); ++k) setParameterValue(s.identified, s.parameters[k], s.result.values[static_cast<Eigen::Index>(k)]);
   s.yaml = errorsYaml(*setup.machine, s.identified);
@@ -154,7 +130,7 @@ nlohmann::json toJson(const PlateIdentificationStudy& s) {
   nlohmann::json estimates = nlohmann::json::array();
   for (size_t k = 0; k < s.result.names.size(); ++k) {
     const bool machine = k < s.parameters.size();
-    const bool angle = machine ? s.parameters[k].dimension == Dimension::Angle : s.result.names[k].ends_with(".rot");
+    const bool angle = machine ? s.parameters[k].dimension == Dimension::Angle : isNuisanceRotation(s.result.names[k]);
     const double unit = angle ? 1e6 : 1e3;
     // Undetermined: the minimum-norm share of a group the plates cannot separate, or 0 for a
     // parameter without effect, with no uncertainty to state.

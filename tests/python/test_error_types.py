@@ -54,6 +54,8 @@ WORKFLOWS = {
     "ik": lambda: tilting().ik([0, 0, 100], near=3),
     "observability": lambda: tilting().observability("no-such-plan"),
     "plate": lambda: maho().compare_plate(NOT_A_RUN),
+    "artefact": lambda: maho().evaluate_artefact(NOT_A_RUN),
+    "simulate artefact": lambda: maho().simulate_artefact(NOT_A_RUN, "artefact.csv", noise="-1 um"),
     "plate-identify": lambda: maho().identify_plates([str(DATA / "plates" / "maho-xy-z292.csv")], piece=-1),
     "positioning": lambda: mtacc.positioning(NOT_A_RUN),
     "multitasking": lambda: mtacc.multitasking(NOT_A_RUN),

@@ -14,13 +14,13 @@ import mtacc
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 DATA = ROOT / "data"
 
-UNIT_SUFFIX = re.compile(r"_(mm|um|deg|rad|urad|arcsec|hz|s|ms|kg|C|per_K|percent"
+UNIT_SUFFIX = re.compile(r"_(mm|um|deg|rad|urad|arcsec|hz|s|ms|kg|C|per_K|percent|ppm"
                          r"|mm_per_min|um_per_mm|um_per_m|urad_per_mm|um_per_n|um_per_g|n_per_um|um_urad)$")
 
 # Counts, indices, ratios, signs, statistics of no unit, and unit vectors (directions).
 DIMENSIONLESS = {
-    "alignment_rms_misfit", "beyond_bound", "bins", "contouring_orthogonal_undefined_samples", "cells", "chi_square", "column", "columns", "condition",
-    "correlation", "cutter_moves", "damping_coupling", "damping_ratio", "degree", "degrees_of_freedom", "direction",
+    "alignment_rms_misfit", "axis_in_workpiece", "beyond_bound", "bins", "contouring_orthogonal_undefined_samples", "cells", "chi_square", "column", "columns", "condition",
+    "correlation", "coverage_factor", "cutter_moves", "damping_coupling", "damping_ratio", "degree", "degrees_of_freedom", "dimension", "direction",
     "exponent", "features", "first_problem_line", "first_sample_used", "fit_significance", "instant_blocks",
     "instrument_samples", "iterations", "largest_relative_misfit", "line", "lines", "location_parameter_count",
     "moves", "nodes", "non_zero_errors", "normals", "normals_machine", "not_converged", "p_value",
@@ -125,6 +125,9 @@ def outputs(cli, tmp_path_factory):
     out["fit"] = run_json(cli, "fit", "maho", str(DATA / "direct-measurements" / "maho-xtx.csv"))
     out["plate"] = run_json(cli, "plate", "maho", str(DATA / "plates" / "maho-xy-z292.csv"))
     out["plate-identify"] = run_json(cli, "plate-identify", "maho", str(DATA / "plates" / "maho-xy-z292.csv"), "--piece", "100")
+    out["simulate artefact"] = run_json(cli, "simulate", "artefact", "maho", "--layout", str(DATA / "artefacts" / "step-gauge-diagonal.csv"),
+                                        "-o", str(tmp / "gauge.csv"))
+    out["artefact"] = run_json(cli, "artefact", "maho", str(DATA / "artefacts" / "maho-ball-plate-tilted.csv"))
     out["stiffness"] = run_json(cli, "stiffness", "maho", "--errors", str(DATA / "stiffness" / "maho-260kg.yaml"), "--samples", "3")
     program = DATA / "programs" / "seed004-capball.nc"
     truth = tmp / "truth.yaml"

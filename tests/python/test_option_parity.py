@@ -33,6 +33,7 @@ PYTHON_ONLY_OF = {"report": {"machine", "progress"}, "dynamics frf": {"frequenci
 METHODS = {"compensate": (mtacc.Machine.compensate_program, mtacc.Machine.compensation_tables), "deviation": mtacc.Machine.deviation,
            "decompose": mtacc.Machine.decompose, "simulate motion": mtacc.Machine.simulate_motion,
            "evaluate": (mtacc.Machine.evaluate_ballbar, mtacc.Machine.evaluate_rtest), "plate": mtacc.Machine.compare_plate,
+           "artefact": mtacc.Machine.evaluate_artefact, "simulate artefact": mtacc.Machine.simulate_artefact,
            "positioning": mtacc.positioning, "dynamics modes": mtacc.Structure.modes, "dynamics frf": mtacc.Structure.frf,
            "dynamics accel": mtacc.Structure.acceleration_response, "dynamics map": mtacc.Structure.map,
            "simulate ballbar": mtacc.Machine.simulate_ballbar, "simulate rtest": mtacc.Machine.simulate_rtest,

@@ -14,21 +14,31 @@
 
 namespace mtacc {
 
-// Identification from a plate campaign (§7.7): the chosen machine parameters (to first order
-// about the error-free machine, so the problem is linear) and, per placement, an in-plane
-// translation and rotation. Parameters the campaign cannot determine are named by the
-// observability report and left at zero (the minimum-norm solution in scaled units).
-struct PlateCampaign {
-  Plate plate;
-  std::vector<PlatePlacement> placements;
-  std::vector<PlatePoses> poses;             // per placement
-  std::vector<Eigen::MatrixX2d> deviations;  // per placement, measured (u, v) per feature, mm
-  // Per placement, the standard deviation of a u and a v reading (the probe's), mm: the
-  // readings are weighted by them. Empty: equal weights, the scale from the residual.
-  std::vector<Eigen::Vector2d> noise;
+// Identification from a campaign of artefact placements (§7.7 for plates; step gauges, ball bars
+// and 3-D artefacts alike): the chosen machine parameters (to first order about the error-free
+// machine, so the problem is linear) and, per placement, a translation along each probed
+// direction and the rotations that move its features along them. Parameters the campaign cannot
+// determine are named by the observability report and left at zero (the minimum-norm solution
+// in scaled units).
+struct CampaignPlacement {
+  ArtefactPlacement placement;  // its frame gives the probed directions u (, v (, w))
+  int dimension = 2;            // of the artefact: which rotations move its features
+  Eigen::MatrixX3d positions;   // the features' places relative to the first, workpiece frame, mm
+  JointMatrix poses;            // per feature
+  Eigen::MatrixXd deviations;   // per feature and probed direction, mm
+  // The standard deviation of a reading per probed direction (the probe's), mm: the readings
+  // are weighted by them. Empty in every placement: equal weights, the scale from the residual.
+  Eigen::VectorXd noise;
 };
+using ArtefactCampaign = std::vector<CampaignPlacement>;
+// The nuisance rotation axes of a placement (workpiece frame): none for a reading along one
+// direction, the normal for a plane, all three in space (two for features on one line).
+std::vector<Vec3> nuisanceRotations(const CampaignPlacement& placement);
+// A plate placement of a campaign: features, poses and (u, v) deviations as simulatePlate gives them.
+CampaignPlacement plateCampaignPlacement(const Plate& plate, const PlatePlacement& placement, const PlatePoses& poses,
+                                         const Eigen::MatrixX2d& deviations, const Eigen::Vector2d& noise);
 struct PlateIdentification {
-  std::vector<std::string> names;  // the machine parameters, then "<placement>.tu", ".tv", ".rot"
+  std::vector<std::string> names;  // the machine parameters, then "<placement>.tu" (.tv, .tw) and ".ru" (.rv, .rw)
   Eigen::VectorXd values, uncertainty;
   Eigen::MatrixXd covariance;
   std::vector<bool> determined;    // false: in a group the campaign cannot separate, or without effect
@@ -58,14 +68,17 @@ std::vector<Eigen::Vector2d> seed003ProbeNoise(const std::vector<PlatePlacement>
 // A whole campaign measured on the machine `actual`: the poses of every placement, its
 // deviations (simulatePlate) with Gaussian noise of the placement's (sigma_u, sigma_v), and
 // that noise as the campaign's weights.
-PlateCampaign simulatePlateCampaign(const KinematicModel& actual, const KinematicModel& nominal, const Plate& plate,
+ArtefactCampaign simulatePlateCampaign(const KinematicModel& actual, const KinematicModel& nominal, const Plate& plate,
                                     const std::vector<PlatePlacement>& placements, const std::vector<Eigen::Vector2d>& noise,
                                     std::uint64_t seed);
 
-// The design matrix (readings x parameters, then 3 nuisance columns per placement) of the campaign.
-Eigen::MatrixXd plateDesignMatrix(const KinematicModel& withParameters, const PlateCampaign& campaign, int threads = kAllCores);
-PlateIdentification identifyFromPlates(const std::shared_ptr<const Machine>& machine, const ErrorModel& shape,
-                                       const std::vector<Parameter>& parameters, const PlateCampaign& campaign,
+// A nuisance parameter's name "<placement>.r?" is a rotation (rad), ".t?" a translation (mm).
+bool isNuisanceRotation(const std::string& name);
+
+// The design matrix (readings x parameters, then the nuisance columns of each placement) of the campaign.
+Eigen::MatrixXd artefactDesignMatrix(const KinematicModel& withParameters, const ArtefactCampaign& campaign, int threads = kAllCores);
+PlateIdentification identifyFromArtefacts(const std::shared_ptr<const Machine>& machine, const ErrorModel& shape,
+                                       const std::vector<Parameter>& parameters, const ArtefactCampaign& campaign,
                                        int threads = kAllCores);
 
 }  // namespace mtacc

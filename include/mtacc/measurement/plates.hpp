@@ -16,6 +16,7 @@
 #include "mtacc/core/joint_matrix.hpp"
 #include "mtacc/errors/error_model.hpp"
 #include "mtacc/kinematics/kinematic_model.hpp"
+#include "mtacc/measurement/artefact.hpp"
 
 namespace mtacc {
 
@@ -53,6 +54,12 @@ struct PlatePoses {
 // Throws UnreachablePose naming the feature that cannot be reached within travel.
 PlatePoses platePoses(const KinematicModel& nominal, const Plate& plate, const PlatePlacement& placement);
 
+// The plate as an artefact: the features "R<row>C<column>" at their calibrated (u, v, 0) relative
+// to the first of `features` (the reference feature (0, 0)), each with the plate's calibration
+// uncertainty; and its placement, its origin at the reference feature, probed in the plate plane.
+Artefact plateArtefact(const Plate& plate, const std::vector<std::pair<int, int>>& features);
+ArtefactPlacement artefactPlacement(const Plate& plate, const PlatePlacement& placement);
+
 // A campaign over the working volume of the linear axes (rotaries at the reference pose), as
 // seed 003 §7.7 describes it: plates in the three coordinate planes of the workpiece frame, in
 // each plane at the two ends of both in-plane ranges (2 x 2 positions) and on two levels along the
@@ -67,24 +74,14 @@ std::vector<PlatePlacement> cubePlacements(const KinematicModel& nominal, const 
 Eigen::MatrixX2d simulatePlate(const KinematicModel& actual, const KinematicModel& nominal, const Plate& plate,
                                const PlatePlacement& placement, const PlatePoses& poses);
 
-// A measured plate referred to the calibration (§7.3): measured coordinates (relative to the
-// reference feature, plate axes) scaled for the machine scales' temperature, the calibrated
-// positions for the plate's, and the misalignment (in-plane rotation and translation) removed
-// by least squares. Returns the deviations d_h = corrected measured - calibrated.
+// The temperatures of a plate or artefact measurement (§7.3): the machine scales' reading and
+// the artefact's size are referred to the reference temperature.
 struct PlateTemperatures {
   double scale = 20.0, plate = 20.0, reference = 20.0;  // deg C
   double scaleExpansion = 0.0, plateExpansion = 0.0;     // 1/K
 };
-Eigen::MatrixX2d plateDeviations(const Plate& plate, const std::vector<std::pair<int, int>>& features,
-                                 const Eigen::MatrixX2d& measured, const PlateTemperatures& temperatures);
-// The same before the misalignment removal (an identification estimates it instead).
-Eigen::MatrixX2d temperatureCorrectedDeviations(const Plate& plate, const std::vector<std::pair<int, int>>& features,
-                                                const Eigen::MatrixX2d& measured, const PlateTemperatures& temperatures);
 // The features' calibrated positions relative to the first (the reference feature), mm.
 std::vector<Eigen::Vector2d> featurePositions(const Plate& plate, const std::vector<std::pair<int, int>>& features);
-// Least-squares in-plane rotation and translation removed from deviations at the given nominal
-// positions (the same treatment for simulated and measured deviations).
-Eigen::MatrixX2d withoutMisalignment(const Eigen::MatrixX2d& deviations, const std::vector<Eigen::Vector2d>& positions);
 
 // The k = 2 bound of a residual model - measurement (§7.5): the simulation's own 2S once, and
 // for each of the two features of a difference the plate calibration, the probe's
@@ -93,9 +90,5 @@ struct ResidualBudget {
   double simulation = 0, plate = 0, probeU = 0, probeV = 0, scaleCorrection = 0, plateCorrection = 0;  // each 2S
 };
 double residualBound(const ResidualBudget& budget);
-
-// c turned by +90 degrees in the plate plane: a feature's in-plane motion at c per unit rotation
-// of the plate about its reference feature.
-Eigen::Vector2d inPlaneTurn(const Eigen::Vector2d& c);
 
 }  // namespace mtacc
