@@ -64,6 +64,22 @@ void run(const ConeCliOptions& o) {
                          st.upperQuartile * 1e3, st.max * 1e3);
     for (const auto& n : s.monteCarlo->notes) human += "  note: " + n + "\n";
   }
+  if (s.measured) {
+    const auto& m = *s.measured;
+    human += fmt::format("\nmeasured cone ({}): {} cone and {} cylinder sections\n", s.options.measuredFile, m.cone.size(), m.cylinder.size());
+    human += fmt::format("  {:<10} {:>12} {:>10} {:>16} {:>16} {:>14}\n", "section", "diameter mm", "height mm", "circularity LS um",
+                         "minimum zone um", "axis offset um");
+    for (const auto* list : {&m.cone, &m.cylinder})
+      for (const auto& c : *list)
+        human += fmt::format("  {:<10} {:>12.4f} {:>10.3f} {:>16.3f} {:>16.3f} {:>14.3f}\n", c.name, 2 * c.circle.radius, c.height,
+                             c.leastSquaresCircularity * 1e3, c.minimumZoneCircularity * 1e3, c.axisOffset * 1e3);
+    if (m.halfAngle) human += fmt::format("  best-fit cone: half angle {:.4f} deg, form error {:.3f} um\n", *m.halfAngle / kDeg, *m.formError * 1e3);
+    if (m.squareness) human += fmt::format("  squareness of the cone axis to plane A {:.1f} urad, flatness of A {:.3f} um\n", *m.squareness * 1e6, m.flatness * 1e3);
+    if (m.coaxiality) human += fmt::format("  coaxiality with cylinder C {:.3f} um\n", *m.coaxiality * 1e3);
+    const auto& c = *s.comparison;
+    human += fmt::format("  section {} beside the simulation: normal form {:.3f} um measured, {:.3f} um simulated, RMS difference {:.3f} um\n",
+                         m.cone[c.section].name, c.measuredRange * 1e3, c.simulatedRange * 1e3, c.rmsDifference * 1e3);
+  }
   for (const auto& line : writeConeFiles(s, coneFiles(o.values))) human += "\n" + line + "\n";
   emit(o, toJson(s), human, csv);
 }

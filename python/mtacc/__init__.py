@@ -371,12 +371,16 @@ class Machine:
 
     def cone(self, preset=None, alpha=None, beta=None, radius=None, centre=None, gamma=None, face_milling=None, points=None,
              chord_tolerance=None, branch=None, feed=None, single_errors=None, monte_carlo=None, limits=None, seed=None,
-             gcode=None, cl=None):
+             gcode=None, cl=None, measured=None):
         """The cone-frustum test piece of Bossoni 2009 (as `mtacc cone --json`, whose options these keyword
         arguments are, with its defaults; angles in deg, lengths in mm): path, axis positions and their
         statistics, the form error of the machine's errors, each error alone, a Monte Carlo over limits.
         preset: "tilting-table", "swivel-head", "double-pivot", "seed000-comparison", "nas979" or "family" (this machine's).
         gcode, cl: files to write the NC program and the CL data to, as `--gcode` and `--cl`.
+        measured: CMM points of the machined cone (docs/file-formats.md "Measured cone frustum"): per
+        section circularity (least squares, minimum zone), diameter, axis offset and the form per
+        point, the best-fit cone, and the section nearest the path beside the simulated form
+        ("measured"; plots.measured_cone_form draws it).
         Arrays (n points, s samples, k limits): path["phi_deg"] (n,), path["points_mm"], ["tools"],
         ["normals"], ["normals_machine"] (n, 3), path["q"] (n, axes) [mm, deg]; "deviation_um" and
         "raw_deviation_um" (n,), also per single error; monte_carlo["form_errors_um"] (s,) and
@@ -392,7 +396,8 @@ class Machine:
         centre_text = None if centre is None else ",".join(repr(float(c)) for c in centre)
         options = _options(preset=preset, alpha=alpha, beta=beta, radius=radius, centre=centre_text, gamma=gamma, face_milling=face_milling,
                            points=points, chord_tolerance=chord_tolerance, branch=branch, feed=feed, single_errors=single_errors,
-                           monte_carlo=monte_carlo, limits=None if isinstance(limits, Mapping) else limits, seed=seed, gcode=gcode, cl=cl)
+                           monte_carlo=monte_carlo, limits=None if isinstance(limits, Mapping) else limits, seed=seed, gcode=gcode, cl=cl,
+                           measured=measured)
         result = self._core.cone(options, limits_yaml)
         return _with_arrays(result, ("path", "phi_deg"), ("path", "points_mm"), ("path", "tools"), ("path", "normals"),
                             ("path", "normals_machine"), ("path", "q"), ("deviation_um",), ("raw_deviation_um",),

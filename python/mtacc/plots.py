@@ -246,6 +246,20 @@ def axis_positions_along_path(machine, q_path, s=None, s_label="path parameter")
     return fig
 
 
+def _magnified_polar(reference_label=None, limits=True):
+    """A polar figure for deviations magnified about a reference circle of radius 1: the reference
+    (grey) and, with `limits`, the dashed circles at 1 -+ 0.4 that a deviation of full scale reaches."""
+    fig = plt.figure(figsize=(5.0, 5.0))
+    ax = fig.add_subplot(projection="polar")
+    theta = np.linspace(0, 2 * np.pi, 361)
+    ax.plot(theta, np.ones_like(theta), color="#888", lw=1, label=reference_label)
+    for r in (0.6, 1.4) if limits else ():
+        ax.plot(theta, np.full_like(theta, r), color="#bbb", lw=0.8, ls="--")
+    ax.set_ylim(0, 1.5)
+    ax.set_rticks([])
+    return fig, ax
+
+
 def polar_deviation(angle_deg, deviation_um, title="Radial deviation", remove_mean=True):
     """Polar plot of a deviation around a circle, magnified about a reference circle as ballbar
     software shows it: the reference (grey) is the mean (or zero), and the scale bar in the
@@ -256,17 +270,33 @@ def polar_deviation(angle_deg, deviation_um, title="Radial deviation", remove_me
     rel = dev - mean
     half = float(np.max(np.abs(rel))) if rel.size else 0.0
     half = half if half > 0 else 1.0
-    fig = plt.figure(figsize=(5.0, 5.0))
-    ax = fig.add_subplot(projection="polar")
-    theta = np.linspace(0, 2 * np.pi, 361)
-    ax.plot(theta, np.ones_like(theta), color="#888", lw=1, label="reference")
-    for r in (0.6, 1.4):
-        ax.plot(theta, np.full_like(theta, r), color="#bbb", lw=0.8, ls="--")
+    fig, ax = _magnified_polar("reference")
     ax.plot(angle, 1.0 + 0.4 * rel / half, color="#d62728", lw=1.6, label="deviation")
-    ax.set_ylim(0, 1.5)
-    ax.set_rticks([])
     ref = f"mean {mean:+.2f} µm removed" if remove_mean else "reference = 0"
     ax.set_title(f"{title}\nPV {np.ptp(dev):.2f} µm; dashed circles = ±{half:.2f} µm; {ref}", fontsize=9)
+    ax.legend(loc="lower left", fontsize=7)
+    fig.tight_layout()
+    return fig
+
+
+def measured_cone_form(cone, title=None):
+    """The measured cone section beside the simulation (`Machine.cone(measured=...)`): the measured
+    deviation normal to the cone (red) and the simulated one of the machine's errors at the same
+    angles (blue), magnified about a reference circle, as seed 000 Fig. 3.58 shows the measured form."""
+    measured = cone["measured"]
+    comparison = measured["comparison"]
+    section = next(s for s in measured["cone_sections"] if s["name"] == comparison["section"])
+    order = np.argsort(np.asarray(section["phi_deg"], float))
+    angle = np.radians(np.asarray(section["phi_deg"], float)[order])
+    both = {"measured": np.asarray(section["normal_um"], float)[order],
+            "simulated": np.asarray(comparison["simulated_normal_um"], float)[order]}
+    half = max(float(np.max(np.abs(v))) for v in both.values()) or 1.0
+    fig, ax = _magnified_polar()
+    for (label, values), colour in zip(both.items(), ("#d62728", "#1f77b4")):
+        ax.plot(np.append(angle, angle[0]), 1.0 + 0.4 * np.append(values, values[0]) / half, color=colour, lw=1.4,
+                label=f"{label}: {np.ptp(values):.2f} µm")
+    ax.set_title(f"{title or 'Cone section ' + comparison['section'] + ', normal form'}\n"
+                 f"dashed circles = ±{half:.2f} µm; RMS difference {comparison['rms_difference_um']:.2f} µm", fontsize=9)
     ax.legend(loc="lower left", fontsize=7)
     fig.tight_layout()
     return fig
@@ -337,10 +367,7 @@ def ballbar_polar(result, title=None):
     fit = result["offset_um"] + e1 * np.cos(angle) + e2 * np.sin(angle)
     half = max(float(np.max(np.abs(dl - dl.mean()))), float(np.max(np.abs(fit - dl.mean()))), 1e-3)
     scale = 0.4 / half
-    fig = plt.figure(figsize=(5.0, 5.0))
-    ax = fig.add_subplot(projection="polar")
-    theta = np.linspace(0, 2 * np.pi, 361)
-    ax.plot(theta, np.ones_like(theta), color="#888", lw=1, label="nominal")
+    fig, ax = _magnified_polar("nominal", limits=False)
     for s, colour, label in ((1, "#1f77b4", "counter-clockwise"), (-1, "#d62728", "clockwise")):
         sel = sense == s
         if sel.any():
@@ -348,8 +375,6 @@ def ballbar_polar(result, title=None):
     order = np.argsort(angle)
     ax.plot(angle[order], 1.0 + scale * (fit[order] - dl.mean()), color="#2ca02c", lw=1.2, ls="--",
             label="fitted eccentricity")
-    ax.set_ylim(0, 1.5)
-    ax.set_rticks([])
     ax.set_title(f"{title or result['name']}\ndeviation ±{half:.2f} µm full scale about L = {result['length_mm']:g} mm; "
                  f"eccentricity ({e1:+.2f}, {e2:+.2f}) µm", fontsize=9)
     ax.legend(loc="lower left", fontsize=7)

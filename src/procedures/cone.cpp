@@ -10,6 +10,7 @@
 #include "mtacc/core/decompositions.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/forward.hpp"
+#include "mtacc/procedures/circle_fit.hpp"
 
 namespace mtacc {
 namespace {
@@ -218,33 +219,10 @@ ConeFormResult coneFormErrorExact(const KinematicModel& actual, const ConeSpec& 
                                   const ConeMotion& motion) {
   const auto pts = actualPoints(actual, motion);
   const size_t n = pts.size();
-  // Least-squares plane: centroid and the direction of least spread, oriented to the apex.
-  Vec3 centroid = Vec3::Zero();
-  for (const auto& p : pts) centroid += p;
-  centroid /= static_cast<double>(n);
-  Mat3 scatter = Mat3::Zero();
-  for (const auto& p : pts) scatter += (p - centroid) * (p - centroid).transpose();
-  const Eigen::SelfAdjointEigenSolver<Mat3> eig(scatter);
-  Vec3 axis = eig.eigenvectors().col(0);
-  if (axis.dot(coneRotation(spec) * Vec3::UnitZ()) < 0) axis = -axis;
-  // Least-squares circle in the plane (algebraic fit, then radius as the mean distance).
-  const Vec3 u = axis.unitOrthogonal(), v = axis.cross(u);
-  Eigen::MatrixXd a(static_cast<Eigen::Index>(n), 3);
-  Eigen::VectorXd b(static_cast<Eigen::Index>(n));
-  for (size_t i = 0; i < n; ++i) {
-    const Vec3 w = pts[i] - centroid;
-    const double x = w.dot(u), y = w.dot(v);
-    a.row(static_cast<Eigen::Index>(i)) << x, y, 1.0;
-    b[static_cast<Eigen::Index>(i)] = -(x * x + y * y);
-  }
-  const Eigen::Vector3d def = a.colPivHouseholderQr().solve(b);
-  const Vec3 centre = centroid - 0.5 * def[0] * u - 0.5 * def[1] * v;
-  double radius = 0.0;
-  for (const auto& p : pts) {
-    const Vec3 w = p - centre;
-    radius += (w - w.dot(axis) * axis).norm();
-  }
-  radius /= static_cast<double>(n);
+  const CircleFit circle = fitCircle(pts, coneRotation(spec) * Vec3::UnitZ());
+  const Vec3& axis = circle.normal;
+  const Vec3& centre = circle.centre;
+  const double radius = circle.radius;
   // Normal distance of each point from the cone through the fitted circle (general alpha form
   // of the distance from C*, seed 000 §3.9 / reference §4.1 step 6).
   const double sa = std::sin(spec.alpha), ca = std::cos(spec.alpha);

@@ -11,6 +11,7 @@
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/bundled_data.hpp"
+#include "mtacc/io/cone_points_csv.hpp"
 #include "mtacc/io/limits_yaml.hpp"
 #include "mtacc/kinematics/forward.hpp"
 
@@ -55,7 +56,9 @@ const OptionSchema& coneSchema() {
        {.key = "seed", .kind = OptionKind::Count, .help = "Random seed of the Monte Carlo", .defaultText = "1", .low = 0, .high = 2147483647,
         .outOfRange = "must be from 0 to 2147483647"},
        {"gcode", OptionKind::Text, "Write the NC program of the path to FILE"},
-       {"cl", OptionKind::Text, "Write the CL data (phi, TCP, tool vector, surface normal) to FILE.csv"}}};
+       {"cl", OptionKind::Text, "Write the CL data (phi, TCP, tool vector, surface normal) to FILE.csv"},
+       {"measured", OptionKind::Text,
+        "CMM points of the machined cone (CSV, docs/file-formats.md \"Measured cone frustum\"), evaluated beside the simulated form"}}};
   return schema;
 }
 
@@ -87,6 +90,7 @@ ConeStudyRequest coneStudyRequest(const Machine& machine, const OptionValues& va
   r.monteCarlo = *read.count("monte_carlo");
   r.limitsFile = read.text("limits").value_or("");
   r.seed = static_cast<std::uint64_t>(*read.count("seed"));
+  r.measuredFile = read.text("measured").value_or("");
   return r;
 }
 
@@ -150,8 +154,81 @@ ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyRequest& options) 
                                  fmt::format("{} limits of seed 000's tilting-table machine left out: their axes are not on this machine ({})",
                                              s.limits.leftOut.size(), fmt::join(s.limits.leftOut, ", ")));
   }
+  if (!options.measuredFile.empty()) {
+    try {
+      s.measured = evaluateMeasuredCone(readConePoints(options.measuredFile), spec.alpha);
+    } catch (const InvalidInput& e) {
+      throw InputError(InputLocation{options.measuredFile, 0, "section"}, e.what());
+    }
+    s.comparison = compareForms(*s.measured, s.form ? s.form->deviation : std::vector<double>(s.path.phi.size(), 0.0), spec.radius);
+  }
   return s;
 }
+
+ConeFormComparison compareForms(const MeasuredCone& measured, const std::vector<double>& simulated, double radius) {
+  ConeFormComparison c;
+  for (size_t k = 1; k < measured.cone.size(); ++k)
+    if (std::abs(measured.cone[k].circle.radius - radius) < std::abs(measured.cone[c.section].circle.radius - radius)) c.section = k;
+  const auto& m = measured.cone[c.section];
+  // The path's points are evenly spaced over the turn from phi = 0: linear between neighbours.
+  const auto n = simulated.size();
+  double squares = 0;
+  for (size_t i = 0; i < m.phi.size(); ++i) {
+    const double at = m.phi[i] / (2 * kPi) * static_cast<double>(n);
+    const auto below = static_cast<size_t>(std::floor(at)) % n;
+    const double t = at - std::floor(at);
+    c.simulated.push_back((1 - t) * simulated[below] + t * simulated[(below + 1) % n]);
+    squares += std::pow(m.normal[i] - c.simulated.back(), 2);
+  }
+  const auto range = [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()) - *std::min_element(v.begin(), v.end()); };
+  c.measuredRange = range(m.normal);
+  c.simulatedRange = range(simulated);
+  c.rmsDifference = std::sqrt(squares / static_cast<double>(m.phi.size()));
+  return c;
+}
+
+namespace {
+
+nlohmann::json sectionJson(const MeasuredSection& m) {
+  std::vector<double> phi;
+  for (const double p : m.phi) phi.push_back(p / kDeg);
+  return {{"name", m.name},
+          {"diameter_mm", 2 * m.circle.radius},
+          {"centre_mm", vectorJson(m.circle.centre)},
+          {"height_mm", m.height},
+          {"axis_offset_um", m.axisOffset * 1e3},
+          {"circularity_least_squares_um", m.leastSquaresCircularity * 1e3},
+          {"circularity_minimum_zone_um", m.minimumZoneCircularity * 1e3},
+          {"minimum_zone_centre_mm", vectorJson(m.minimumZoneCentre)},
+          {"phi_deg", phi},
+          {"radial_um", umArray(m.radial)},
+          {"normal_um", umArray(m.normal)}};
+}
+
+nlohmann::json measuredJson(const MeasuredCone& m, const ConeFormComparison& c, const std::string& file) {
+  const auto optional = [](const std::optional<double>& v, double unit) { return v ? nlohmann::json(*v * unit) : nlohmann::json(nullptr); };
+  nlohmann::json cone = nlohmann::json::array(), cylinder = nlohmann::json::array();
+  for (const auto& s : m.cone) cone.push_back(sectionJson(s));
+  for (const auto& s : m.cylinder) cylinder.push_back(sectionJson(s));
+  return {{"file", file},
+          {"axis_point_mm", vectorJson(m.axisPoint)},
+          {"axis_direction", vectorJson(m.axisDirection)},
+          {"half_angle_deg", optional(m.halfAngle, 1.0 / kDeg)},
+          {"form_error_um", optional(m.formError, 1e3)},
+          {"plane_flatness_um", m.planeNormal ? nlohmann::json(m.flatness * 1e3) : nlohmann::json(nullptr)},
+          {"squareness_to_plane_urad", optional(m.squareness, 1e6)},
+          {"coaxiality_um", optional(m.coaxiality, 1e3)},
+          {"cone_sections", cone},
+          {"cylinder_sections", cylinder},
+          {"comparison",
+           {{"section", m.cone[c.section].name},
+            {"measured_form_um", c.measuredRange * 1e3},
+            {"simulated_form_um", c.simulatedRange * 1e3},
+            {"rms_difference_um", c.rmsDifference * 1e3},
+            {"simulated_normal_um", umArray(c.simulated)}}}};
+}
+
+}  // namespace
 
 nlohmann::json toJson(const ConeStudy& s) {
   const Machine& m = *s.machine;
@@ -217,6 +294,7 @@ nlohmann::json toJson(const ConeStudy& s) {
     }
     j["monte_carlo"]["drawn"] = {{"names", names}, {"units", units}, {"values", values}};
   }
+  if (s.measured) j["measured"] = measuredJson(*s.measured, *s.comparison, s.options.measuredFile);
   return j;
 }
 

@@ -19,7 +19,7 @@ UNIT_SUFFIX = re.compile(r"_(mm|um|deg|rad|urad|arcsec|hz|s|ms|kg|C|per_K|percen
 
 # Counts, indices, ratios, signs, statistics of no unit, and unit vectors (directions).
 DIMENSIONLESS = {
-    "alignment_rms_misfit", "axis_in_workpiece", "beyond_bound", "bins", "contouring_orthogonal_undefined_samples", "cells", "chi_square", "column", "columns", "condition",
+    "alignment_rms_misfit", "axis_direction", "axis_in_workpiece", "beyond_bound", "bins", "contouring_orthogonal_undefined_samples", "cells", "chi_square", "column", "columns", "condition",
     "correlation", "coverage_factor", "cutter_moves", "damping_coupling", "damping_ratio", "degree", "degrees_of_freedom", "dimension", "direction",
     "exponent", "features", "first_problem_line", "first_sample_used", "fit_significance", "instant_blocks",
     "instrument_samples", "iterations", "largest_relative_misfit", "line", "lines", "location_parameter_count",
@@ -94,7 +94,8 @@ def outputs(cli, tmp_path_factory):
     out["ik"] = run_json(cli, "ik", "maho", "--tcp", "100,-300,50", "--tool", "0.3,-1,0", "--with-errors")
     out["sensitivity"] = run_json(cli, "sensitivity", "tilting-table", "--pose", "X=10,Y=0,Z=5,B=-15,C=30")
     out["budget"] = run_json(cli, "budget", "tilting-table", "--samples", "3")
-    out["cone"] = run_json(cli, "cone", "tilting-table", "--points", "360", "--single-errors", "--monte-carlo", "20")
+    out["cone"] = run_json(cli, "cone", "tilting-table", "--points", "360", "--single-errors", "--monte-carlo", "20",
+                           "--measured", str(DATA / "test-pieces" / "tilting-table-cone-measured.csv"))
     out["cubic"] = run_json(cli, "cubic", "tilting-table", "--grid", "0.5", "--zones-out", str(zones), "--sensitivities",
                             "--sensitivity-parameters", "X0B,B0B", "--sensitivity-grid", "0.5")
     out["cubic-identify"] = run_json(cli, "cubic-identify", "tilting-table", "--zones", str(zones), "--params", "X0B,B0B")

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mtacc/core/option_schema.hpp"
+#include "mtacc/procedures/measured_cone.hpp"
 #include "mtacc/procedures/monte_carlo.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
@@ -28,6 +29,7 @@ struct ConeStudyRequest {
   std::string limitsYaml;        // a 'limits:' mapping given as text (Python's dict) instead of a file
   std::uint64_t seed = 1;
   std::function<void(int, int)> progress;  // Monte Carlo samples done, total
+  std::string measuredFile;      // CMM points of the machined cone; empty: none
 };
 
 // The options of `cone`, declared once (angles in deg, lengths in mm; the files to write are read
@@ -42,6 +44,16 @@ struct ConeSingleError {
   FormErrorType type;
 };
 
+// The measured cone section whose radius is nearest the path's beside the simulated form: the
+// simulated normal deviation at each measured point's angle (linear between the path's points),
+// both ranges and the RMS of their difference, mm.
+struct ConeFormComparison {
+  size_t section = 0;
+  std::vector<double> simulated;
+  double measuredRange = 0, simulatedRange = 0, rmsDifference = 0;
+};
+ConeFormComparison compareForms(const MeasuredCone& measured, const std::vector<double>& simulated, double radius);
+
 struct ConeStudy {
   std::shared_ptr<const Machine> machine;
   ConeStudyRequest options;  // with the number of points used
@@ -54,6 +66,8 @@ struct ConeStudy {
   std::vector<ConeSingleError> singleErrors;  // largest first
   std::optional<ConeMonteCarlo> monteCarlo;
   ErrorLimits limits;  // as drawn (with their file): their keys label monteCarlo->drawn's columns
+  std::optional<MeasuredCone> measured;
+  std::optional<ConeFormComparison> comparison;
 };
 
 ConeStudy coneStudy(const MachineSetup& setup, const ConeStudyRequest& options);
