@@ -27,6 +27,12 @@
 namespace mtacc {
 namespace {
 
+std::vector<ZonePlane> measuredPlanes(const CubicTestStudy& s) {
+  std::vector<ZonePlane> out;
+  for (const auto& z : s.zones) out.push_back(z.measured);
+  return out;
+}
+
 const char* kSeedErrors[8] = {"dxBY", "dyBY", "dzBY", "alphaBY", "betaBY", "gammaBY", "alphaCB", "dxCB"};
 // Table 5 (L256): um for lengths, deg for angles.
 const double kTable5[8] = {14.6e-3, -8.9e-3, -14.2e-3, -0.0023 * kDeg, 0.0029 * kDeg, -0.00002 * kDeg, -0.00017 * kDeg, 9.4e-3};
@@ -352,7 +358,7 @@ TEST(Seed001CubicTest, BothModelsAgreeOnceReferencedToZoneI) {
 TEST(Seed001CubicTest, IdentificationFromZoneResults) {
   const std::vector<std::pair<int, double>> truth = {{0, 14.6e-3}, {3, -0.0023 * kDeg}, {6, -0.0017 * kDeg}, {4, 0.0029 * kDeg}};
   const auto s = study(WorkpieceAlignment::Machine, errorsYaml(truth), 0.02);
-  auto results = zoneResults(s);
+  auto results = zoneResults(s.options.spec, measuredPlanes(s));
   std::mt19937 rng(3);
   std::normal_distribution<double> noise(0, 0.2e-3);
   for (auto& z : results.zones) {
@@ -387,7 +393,7 @@ TEST(Seed001CubicTest, IdentificationFromZoneResults) {
 // noise-free zones, without a word). The identification says so, and only then.
 TEST(Seed001CubicTest, IdentificationWarnsOfReversalsTheZoneModelDoesNotSee) {
   const auto s = study(WorkpieceAlignment::Machine, errorsYaml({{0, 14.6e-3}}), 0.05);
-  auto results = zoneResults(s);
+  auto results = zoneResults(s.options.spec, measuredPlanes(s));
   results.file = "simulated";
   CubicIdentificationRequest request;
   request.parameters = {"dxBY", "alphaBY", "alphaCB", "betaBY"};

@@ -60,6 +60,15 @@ void run(const CubicCliOptions& o) {
     for (size_t k = 0; k < c.withAlignment.size(); ++k)
       human += fmt::format("  {:<7} {:>9.4f} | {:>9.4f}\n", spec.zones[k].name, c.withAlignment[k].mean, c.onTable[k].mean);
   }
+  if (s.scan) {
+    human += fmt::format("\nscanned face ({}): {} points, {} of {} cells of {:g} mm with a height; zones referenced to {}\n",
+                         s.options.scanFile, s.scan->points, filledCells(s.scan->map), s.scan->map.grid.cells(), s.options.scanGrid,
+                         spec.zones[s.referenceZone].name);
+    human += fmt::format("  {:<7} {:>12} {:>12} {:>12}\n", "zone", "scanned um", "simulated um", "difference");
+    for (size_t k = 0; k < s.scan->zones.size(); ++k)
+      human += fmt::format("  {:<7} {:>12.3f} {:>12.3f} {:>12.3f}\n", spec.zones[k].name, s.scan->zones[k].mean * 1e3,
+                           s.zones[k].measured.mean * 1e3, (s.scan->zones[k].mean - s.zones[k].measured.mean) * 1e3);
+  }
   for (const auto& line : writeCubicTestFiles(s, files)) human += "\n" + line;
   if (human.back() != '\n') human += "\n";
   emit(o, toJson(s), human, csv);

@@ -30,6 +30,7 @@ std::vector<ZonePlane> zonePlanes(const HeightMap& map, const CubicTestSpec& spe
       double n = 0, sx = 0, sxx = 0, sz = 0, sxz = 0;
       for (int i = i0; i < i1; ++i) {
         const double dx = g.x(i) - zone.x, z = at(i, j);
+        if (!std::isfinite(z)) continue;  // a scanned cell without points
         n += 1;
         sx += dx;
         sxx += dx * dx;
@@ -40,14 +41,15 @@ std::vector<ZonePlane> zonePlanes(const HeightMap& map, const CubicTestSpec& spe
       rhs += Eigen::Vector3d(sz, sxz, sz * dy);
     }
     ZonePlane p;
-    p.cells = static_cast<size_t>(std::max(0, i1 - i0)) * static_cast<size_t>(std::max(0, j1 - j0));
-    if (p.cells < 3) throw InvalidInput("zonePlanes: a zone covers fewer than 3 cells of the grid");
+    p.cells = static_cast<size_t>(std::llround(normal(0, 0)));
+    if (p.cells < 3) throw InvalidInput("zone " + zone.name + ": fewer than 3 cells of the grid with a height");
     const Eigen::Vector3d c = normal.ldlt().solve(rhs);
     p.slopeX = c(1);
     p.slopeY = c(2);
     double lo = INFINITY, hi = -INFINITY, sum = 0;
     for (int j = j0; j < j1; ++j)
       for (int i = i0; i < i1; ++i) {
+        if (!std::isfinite(at(i, j))) continue;
         const double r = at(i, j) - (c(0) + c(1) * (g.x(i) - zone.x) + c(2) * (g.y(j) - zone.y));
         lo = std::min(lo, r);
         hi = std::max(hi, r);

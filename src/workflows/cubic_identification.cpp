@@ -89,9 +89,10 @@ IdentificationStudy identifyFromZones(const MachineSetup& setup, const CubicIden
   return outcome;
 }
 
-ZoneResults zoneResults(const CubicTestStudy& study) {
+ZoneResults zoneResults(const CubicTestSpec& spec, const std::vector<ZonePlane>& referenced) {
   ZoneResults r;
-  for (const auto& z : study.zones) r.zones.push_back({z.name, z.measured.mean, z.measured.slopeX, z.measured.slopeY, 0});
+  for (size_t k = 0; k < referenced.size(); ++k)
+    r.zones.push_back({spec.zones[k].name, referenced[k].mean, referenced[k].slopeX, referenced[k].slopeY, 0});
   return r;
 }
 

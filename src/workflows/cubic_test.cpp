@@ -5,6 +5,7 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/errors/aliases.hpp"
 #include "mtacc/io/cubic_test_yaml.hpp"
+#include "mtacc/io/point_cloud.hpp"
 
 namespace mtacc {
 namespace {
@@ -75,7 +76,10 @@ const OptionSchema& cubicTestSchema() {
         .defaultText = "10 um"},
        {"heights", OptionKind::Text, "Write the machined heights to FILE.csv (um) or FILE.npy (float32, mm)"},
        {"surface", OptionKind::Text, "Write the machined surface to FILE.ply or FILE.stl (at most 1e6 vertices)"},
-       {"zones_out", OptionKind::Text, "Write the zone results (heights and tilts) to FILE.csv, for cubic-identify"}}};
+       {"zones_out", OptionKind::Text, "Write the zone results (heights and tilts) to FILE.csv, for cubic-identify"},
+       {"scan", OptionKind::Text, "A scanned face of the machined block (FILE.csv, .ply or .stl, mm, workpiece frame), evaluated beside the simulation"},
+       {.key = "scan_grid", .kind = OptionKind::Number, .help = "Cell size over which the scanned points are fitted [mm]", .defaultText = "0.5"},
+       {"scan_zones_out", OptionKind::Text, "Write the scanned zone results to FILE.csv, for cubic-identify"}}};
   return schema;
 }
 
@@ -90,7 +94,22 @@ CubicTestRequest cubicTestRequest(const OptionValues& values) {
   r.sensitivityParameters = read.list("sensitivity_parameters");
   r.sensitivityGrid = *read.number("sensitivity_grid");
   r.threads = *read.count("threads");
+  r.scanFile = read.text("scan").value_or("");
+  r.scanGrid = *read.number("scan_grid");
   return r;
+}
+
+ScannedCubicTest scannedCubicTest(const std::vector<Vec3>& points, const CubicTestSpec& spec, double gridSpacing, double inset,
+                                  size_t referenceZone, const std::string& file) {
+  ScannedCubicTest s;
+  s.points = points.size();
+  s.map = scannedHeightMap(points, squareGrid(spec.blockSize, gridSpacing, "scan_grid", spec.centreX, spec.centreY), spec.topHeight);
+  try {
+    s.zones = referencedToZone(zonePlanes(s.map, spec, inset), spec, referenceZone);
+  } catch (const InvalidInput& e) {
+    throw InputError(InputLocation{file, 0, "points"}, std::string("the scan does not cover the zones: ") + e.what());
+  }
+  return s;
 }
 
 CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestRequest& options) {
@@ -103,9 +122,12 @@ CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestRequest&
   require(options.lengthStep > 0 && options.lengthStep <= 1, "length_step", "must be in (0, 1] mm");
   require(options.angleStep > 0 && options.angleStep <= 0.02, "angle_step", "must be in (0, 0.02] rad");
   require(options.threads >= 0 && options.threads <= 1024, "threads", "must be from 0 (every core) to 1024");
+  require(options.scanGrid >= 0.01 && options.scanGrid <= options.spec.zoneSize / 4, "scan_grid", "must be from 0.01 mm to a quarter of the zone size");
   const auto progress = [&](const std::string& stage) {
     if (options.progress) options.progress(stage);
   };
+  // The scan is read first: a file that cannot be read fails before the machining.
+  const std::vector<Vec3> scanPoints = options.scanFile.empty() ? std::vector<Vec3>{} : readPointCloud(options.scanFile);
   CubicTestStudy s;
   s.machine = setup.machine;
   s.options = options;
@@ -126,6 +148,10 @@ CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestRequest&
   const auto measured = referencedToZone(zonePlanes(s.actual, spec, options.inset), spec, s.referenceZone);
   for (size_t k = 0; k < spec.zones.size(); ++k)
     s.zones.push_back({spec.zones[k].name, s.path[k].clamped, deviation[k], measured[k]});
+  if (!options.scanFile.empty()) {
+    progress("evaluating the scanned face");
+    s.scan = scannedCubicTest(scanPoints, spec, options.scanGrid, options.inset, s.referenceZone, options.scanFile);
+  }
   if (!options.sensitivities) return s;
 
   const auto names = options.sensitivityParameters.empty() ? rotaryLocationErrors(*setup.machine) : options.sensitivityParameters;
@@ -195,6 +221,16 @@ nlohmann::json toJson(const CubicTestStudy& s) {
                       {"inset_mm", s.options.inset},
                       {"reference_zone", spec.zones[s.referenceZone].name},
                       {"zones", zones}};
+  if (s.scan) {
+    nlohmann::json scanned = nlohmann::json::array();
+    for (size_t k = 0; k < s.scan->zones.size(); ++k)
+      scanned.push_back({{"name", spec.zones[k].name},
+                         {"scanned", planeJson(s.scan->zones[k])},
+                         {"simulated_mean_um", s.zones[k].measured.mean * 1e3},
+                         {"difference_um", (s.scan->zones[k].mean - s.zones[k].measured.mean) * 1e3}});
+    j["scan"] = {{"file", s.options.scanFile}, {"points", s.scan->points}, {"grid_mm", s.options.scanGrid},
+                 {"filled_cells", filledCells(s.scan->map)}, {"cells", s.scan->map.grid.cells()}, {"zones", scanned}};
+  }
   if (!s.sensitivities.empty()) {
     nlohmann::json k = nlohmann::json::array();
     for (const auto& c : s.sensitivities) {

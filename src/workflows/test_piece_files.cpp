@@ -65,8 +65,9 @@ CubicTestFiles cubicTestFiles(const OptionValues& values) {
   const OptionReader read(cubicTestSchema(), values);
   CubicTestFiles f;
   for (auto [key, field] : {std::pair{"gcode", &f.gcode}, {"cl", &f.cl}, {"map", &f.map}, {"map_limit", &f.mapLimit}, {"heights", &f.heights},
-                            {"surface", &f.surface}, {"zones_out", &f.zonesOut}})
+                            {"surface", &f.surface}, {"zones_out", &f.zonesOut}, {"scan_zones_out", &f.scanZonesOut}})
     *field = read.text(key).value_or("");
+  if (!f.scanZonesOut.empty() && !read.text("scan")) throw InputError(InputLocation{"", 0, "scan_zones_out"}, "give the scan (--scan) whose zones to write");
   return f;
 }
 
@@ -95,7 +96,14 @@ std::vector<std::string> writeCubicTestFiles(const CubicTestStudy& s, const Cubi
     writeAndNote(written, files.surface, formatOf(files.surface, "surface", {"ply", "stl"}) == "ply" ? heightMapPly(s.actual, stride) : heightMapStl(s.actual, stride),
           "surface", fmt::format("surface (every {} cell{})", stride, stride > 1 ? "s" : ""));
   }
-  if (!files.zonesOut.empty()) writeAndNote(written, files.zonesOut, zoneResultsCsv(zoneResults(s)), "zones_out", "zone results");
+  std::vector<ZonePlane> simulated;
+  for (const auto& z : s.zones) simulated.push_back(z.measured);
+  if (!files.zonesOut.empty())
+    writeAndNote(written, files.zonesOut, zoneResultsCsv(zoneResults(s.options.spec, simulated)), "zones_out", "zone results");
+  if (!files.scanZonesOut.empty() && s.scan) {
+    writeAndNote(written, files.scanZonesOut, zoneResultsCsv(zoneResults(s.options.spec, s.scan->zones)), "scan_zones_out",
+                 "scanned zone results");
+  }
   return written;
 }
 

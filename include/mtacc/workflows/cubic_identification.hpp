@@ -32,7 +32,8 @@ IdentificationStudy identifyFromZones(const MachineSetup& setup, const CubicIden
 IdentificationStudy identifyFromZones(const MachineSetup& setup, const CubicTestSpec& spec, const ZoneResults& results,
                                         const CubicIdentificationRequest& request);
 
-// A study's zones as zone results (measured planes, with their tilts).
-ZoneResults zoneResults(const CubicTestStudy& study);
+// Zone planes referenced to the reference zone as zone results (heights with their tilts): a
+// study's simulated `measured` planes, or a scan's.
+ZoneResults zoneResults(const CubicTestSpec& spec, const std::vector<ZonePlane>& referenced);
 
 }  // namespace mtacc

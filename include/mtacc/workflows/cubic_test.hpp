@@ -12,6 +12,7 @@
 
 #include "mtacc/core/option_schema.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/procedures/scanned_surface.hpp"
 #include "mtacc/procedures/zone_planes.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
 
@@ -32,6 +33,10 @@ struct CubicTestRequest {
   double lengthStep = 0.01, angleStep = 0.01 * kDeg;  // epsilon: 10 um, 0.01 deg
   int threads = kAllCores;
   std::function<void(const std::string&)> progress;  // one line per stage
+  // A scanned face of the machined block (docs/file-formats.md "Scanned surfaces"), evaluated
+  // beside the simulation on a grid of `scanGrid` mm; empty: none.
+  std::string scanFile;
+  double scanGrid = 0.5;
 };
 
 struct CubicZoneResult {
@@ -50,6 +55,19 @@ struct CubicSensitivity {
   HeightMap mapWithAlignment, mapOnTable;          // E / epsilon over the block, sensitivity grid
 };
 
+// A scanned face: its points, the height map they give and the zone planes referenced to the
+// reference zone (seed 001 L239), as the simulated surface's `measured`.
+struct ScannedCubicTest {
+  size_t points = 0;
+  HeightMap map;
+  std::vector<ZonePlane> zones;
+};
+
+// The zones of a scanned face (`points`, workpiece frame) on a grid of `gridSpacing` mm; throws
+// InputError naming `file` when a zone has fewer than three cells with a height.
+ScannedCubicTest scannedCubicTest(const std::vector<Vec3>& points, const CubicTestSpec& spec, double gridSpacing, double inset,
+                                  size_t referenceZone, const std::string& file);
+
 struct CubicTestStudy {
   std::shared_ptr<const Machine> machine;
   CubicTestRequest options;
@@ -59,6 +77,7 @@ struct CubicTestStudy {
   HeightMap nominal, actual;   // machined surfaces without and with the machine's errors
   std::vector<CubicZoneResult> zones;
   std::vector<CubicSensitivity> sensitivities;
+  std::optional<ScannedCubicTest> scan;
 };
 
 // The options of `cubic`, declared once: the study's (read by cubicTestRequest) and the files to

@@ -25,6 +25,7 @@ struct CubicTestFiles {
   std::string heights;      // the machined heights: .csv (um) or .npy (float32, mm)
   std::string surface;      // the machined surface: .ply or .stl, at most 1e6 vertices
   std::string zonesOut;     // the zone results (heights and tilts) for cubic-identify (CSV)
+  std::string scanZonesOut; // the scanned face's zone results, the same form
 };
 // Throws InputError naming the key (map, heights, surface, map_limit) for a file whose extension
 // names no format it can be written in, or a limit out of range: called before the study, so
