@@ -406,7 +406,7 @@ class Machine:
 
     def cubic(self, test=None, grid=None, inset=None, chord_tolerance=None, sensitivities=None, sensitivity_parameters=None,
               sensitivity_grid=None, threads=None, gcode=None, cl=None, map=None, map_limit=None, heights=None, surface=None,
-              zones_out=None, scan=None, scan_grid=None, scan_zones_out=None):
+              zones_out=None, scan=None, scan_grid=None, scan_zones_out=None, trace=None, trace_cl=None):
         """The cubic machining test of Li et al. 2021 (as `mtacc cubic --json`): per zone the clamped axes, the
         deviation E (machined minus error-free surface) and the surface referenced to zone I, as mean
         height (um) and tilts (um/mm); with sensitivities, k = E / epsilon of each error with and
@@ -417,12 +417,15 @@ class Machine:
         (lengths in mm; map_limit with its unit, "10 um"); gcode, cl, map, heights, surface and zones_out
         name files to write as the command does. scan: a scanned face of the block (.csv x,y,z, .ply or
         .stl; docs/file-formats.md "Scanned surfaces"), evaluated on cells of scan_grid mm (0.5) into
-        zone planes beside the simulated ones ("scan"); scan_zones_out writes them for cubic_identify."""
+        zone planes beside the simulated ones ("scan"); scan_zones_out writes them for cubic_identify.
+        trace: the axes' actual positions recorded during the cut (CSV or .npy, time_s and a column per
+        axis, mm and deg): the surface machined along them beside the programmed one ("trace", Li et
+        al. 2021 eqs 13-14); trace_cl writes their CL data (tool tip and vector)."""
         return self._core.cubic(_options(test=test, grid=grid, inset=inset, chord_tolerance=chord_tolerance, sensitivities=sensitivities,
                                          sensitivity_parameters=sensitivity_parameters, sensitivity_grid=sensitivity_grid,
                                          threads=threads, gcode=gcode, cl=cl, map=map, map_limit=map_limit, heights=heights,
                                          surface=surface, zones_out=zones_out, scan=scan, scan_grid=scan_grid,
-                                         scan_zones_out=scan_zones_out))
+                                         scan_zones_out=scan_zones_out, trace=trace, trace_cl=trace_cl))
 
     def cubic_identify(self, zones, parameters, test=None, noise=None, threads=None, errors_out=None):
         """Errors from the zone results of a cubic machining test (CSV: zone,height_um[,slope_x_um_per_mm,

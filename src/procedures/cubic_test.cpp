@@ -130,17 +130,44 @@ std::vector<CubicZonePath> cubicToolPath(const KinematicModel& nominal, const Cu
     } catch (const UnreachablePose& e) {
       throw UnreachableTarget(0, "zone " + zone.name + ", clear of the stock: " + e.what());
     }
-    path.direction.resize(path.q.rows(), axes);
-    for (Eigen::Index i = 0; i < path.q.rows(); ++i) {
-      const Eigen::Index from = i == 0 ? 0 : i - 1, to = i == 0 ? 1 : i;
-      for (int a = 0; a < axes; ++a) {
-        const double d = path.q(to, a) - path.q(from, a);
-        path.direction(i, a) = std::abs(d) < 1e-12 ? 0 : (d > 0 ? 1 : -1);
-      }
-    }
+    path.direction = motionDirections(path.q);
     out.push_back(std::move(path));
   }
   return out;
+}
+
+DirectionMatrix motionDirections(const JointMatrix& q) {
+  DirectionMatrix direction(q.rows(), q.cols());
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    const Eigen::Index from = i == 0 ? 0 : i - 1, to = i == 0 ? std::min<Eigen::Index>(1, q.rows() - 1) : i;
+    for (Eigen::Index a = 0; a < q.cols(); ++a) {
+      const double d = q(to, a) - q(from, a);
+      direction(i, a) = std::abs(d) < 1e-12 ? 0 : (d > 0 ? 1 : -1);
+    }
+  }
+  return direction;
+}
+
+std::vector<CubicZonePath> recordedCuttingRuns(const Machine& machine, const JointMatrix& q, double still) {
+  std::vector<CubicZonePath> runs;
+  const auto clampedFrom = [&](Eigen::Index first, Eigen::Index i) {
+    for (int a = 0; a < machine.commandedCount(); ++a)
+      if (machine.axes[static_cast<size_t>(a)].isRotary() && std::abs(q(i, a) - q(first, a)) > still) return false;
+    return true;
+  };
+  for (Eigen::Index first = 0; first < q.rows();) {
+    Eigen::Index end = first + 1;
+    while (end < q.rows() && clampedFrom(first, end)) ++end;
+    if (end - first >= 2) {
+      CubicZonePath run;
+      run.q = q.middleRows(first, end - first);
+      run.clamped.assign(run.q.row(0).data(), run.q.row(0).data() + run.q.cols());
+      run.direction = motionDirections(run.q);
+      runs.push_back(std::move(run));
+    }
+    first = end;
+  }
+  return runs;
 }
 
 std::vector<std::array<double, 2>> cubicZoneRunPoints(const CubicTestSpec& spec, bool slopes) {

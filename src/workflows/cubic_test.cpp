@@ -6,6 +6,7 @@
 #include "mtacc/errors/aliases.hpp"
 #include "mtacc/io/cubic_test_yaml.hpp"
 #include "mtacc/io/point_cloud.hpp"
+#include "mtacc/io/recorded_signal.hpp"
 
 namespace mtacc {
 namespace {
@@ -79,7 +80,10 @@ const OptionSchema& cubicTestSchema() {
        {"zones_out", OptionKind::Text, "Write the zone results (heights and tilts) to FILE.csv, for cubic-identify"},
        {"scan", OptionKind::Text, "A scanned face of the machined block (FILE.csv, .ply or .stl, mm, workpiece frame), evaluated beside the simulation"},
        {.key = "scan_grid", .kind = OptionKind::Number, .help = "Cell size over which the scanned points are fitted [mm]", .defaultText = "0.5"},
-       {"scan_zones_out", OptionKind::Text, "Write the scanned zone results to FILE.csv, for cubic-identify"}}};
+       {"scan_zones_out", OptionKind::Text, "Write the scanned zone results to FILE.csv, for cubic-identify"},
+       {"trace", OptionKind::Text, "The axes' actual positions recorded during the cut (CSV or .npy: time_s and one column per axis, mm and deg), "
+                                   "machined beside the programmed path (Li et al. 2021 eqs 13-14)"},
+       {"trace_cl", OptionKind::Text, "Write the CL data of the recorded positions (tool tip and vector, eqs 13-14) to FILE.csv"}}};
   return schema;
 }
 
@@ -96,7 +100,32 @@ CubicTestRequest cubicTestRequest(const OptionValues& values) {
   r.threads = *read.count("threads");
   r.scanFile = read.text("scan").value_or("");
   r.scanGrid = *read.number("scan_grid");
+  r.traceFile = read.text("trace").value_or("");
   return r;
+}
+
+JointMatrix readAxisTrace(const Machine& machine, const std::string& path) {
+  SignalLayout layout;
+  for (int a = 0; a < machine.commandedCount(); ++a) layout.channels.push_back(machine.axes[static_cast<size_t>(a)].name);
+  layout.minimumSamples = 2;
+  const auto signal = readRecordedSignal(path, layout);
+  const auto& c = signal.trace.channels;
+  JointMatrix q(static_cast<Eigen::Index>(signal.trace.samples()), machine.commandedCount());
+  for (int a = 0; a < machine.commandedCount(); ++a) {
+    const double unit = machine.axes[static_cast<size_t>(a)].isRotary() ? kDeg : 1.0;
+    for (Eigen::Index i = 0; i < q.rows(); ++i) q(i, a) = c[static_cast<size_t>(a)][static_cast<size_t>(i)] * unit;
+  }
+  return q;
+}
+
+std::string traceClCsv(const TracedCubicTest& trace) {
+  std::string out = "run,x,y,z,i,j,k\n";
+  for (size_t r = 0; r < trace.cl.size(); ++r)
+    for (const auto& t : trace.cl[r]) {
+      out += fmt::format("{},{:.9f},{:.9f},{:.9f},{:.12f},{:.12f},{:.12f}\n", r + 1, t.position.x(), t.position.y(), t.position.z(),
+                         t.direction.x(), t.direction.y(), t.direction.z());
+    }
+  return out;
 }
 
 ScannedCubicTest scannedCubicTest(const std::vector<Vec3>& points, const CubicTestSpec& spec, double gridSpacing, double inset,
@@ -128,6 +157,10 @@ CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestRequest&
   };
   // The scan is read first: a file that cannot be read fails before the machining.
   const std::vector<Vec3> scanPoints = options.scanFile.empty() ? std::vector<Vec3>{} : readPointCloud(options.scanFile);
+  const JointMatrix trace = options.traceFile.empty() ? JointMatrix{} : readAxisTrace(*setup.machine, options.traceFile);
+  const auto traceRuns = recordedCuttingRuns(*setup.machine, trace);
+  if (!options.traceFile.empty() && traceRuns.empty())
+    throw InputError(InputLocation{options.traceFile, 0, "time_s"}, "no run of samples with the rotary axes clamped");
   CubicTestStudy s;
   s.machine = setup.machine;
   s.options = options;
@@ -148,6 +181,21 @@ CubicTestStudy cubicTestStudy(const MachineSetup& setup, const CubicTestRequest&
   const auto measured = referencedToZone(zonePlanes(s.actual, spec, options.inset), spec, s.referenceZone);
   for (size_t k = 0; k < spec.zones.size(); ++k)
     s.zones.push_back({spec.zones[k].name, s.path[k].clamped, deviation[k], measured[k]});
+  if (!options.traceFile.empty()) {
+    progress("machining the surface along the recorded axis positions");
+    TracedCubicTest t;
+    t.samples = static_cast<size_t>(trace.rows());
+    t.runs = traceRuns;
+    for (const auto& run : t.runs) t.cuttingSamples += static_cast<size_t>(run.q.rows());
+    const auto actual = setup.actual();
+    for (const auto& run : t.runs) {
+      t.cl.emplace_back();
+      for (Eigen::Index i = 0; i < run.q.rows(); ++i) t.cl.back().push_back(toolPoint(actual, run.q.row(i).data(), run.direction.row(i).data()));
+    }
+    t.map = machinedSurface(actual, t.runs, spec, grid, options);
+    t.zones = referencedToZone(zonePlanes(t.map, spec, options.inset), spec, s.referenceZone);
+    s.trace = std::move(t);
+  }
   if (!options.scanFile.empty()) {
     progress("evaluating the scanned face");
     s.scan = scannedCubicTest(scanPoints, spec, options.scanGrid, options.inset, s.referenceZone, options.scanFile);
@@ -221,6 +269,16 @@ nlohmann::json toJson(const CubicTestStudy& s) {
                       {"inset_mm", s.options.inset},
                       {"reference_zone", spec.zones[s.referenceZone].name},
                       {"zones", zones}};
+  if (s.trace) {
+    nlohmann::json traced = nlohmann::json::array();
+    for (size_t k = 0; k < s.trace->zones.size(); ++k)
+      traced.push_back({{"name", spec.zones[k].name},
+                        {"traced", planeJson(s.trace->zones[k])},
+                        {"programmed_mean_um", s.zones[k].measured.mean * 1e3},
+                        {"difference_um", (s.trace->zones[k].mean - s.zones[k].measured.mean) * 1e3}});
+    j["trace"] = {{"file", s.options.traceFile}, {"samples", s.trace->samples}, {"cutting_samples", s.trace->cuttingSamples},
+                  {"runs", s.trace->runs.size()}, {"zones", traced}};
+  }
   if (s.scan) {
     nlohmann::json scanned = nlohmann::json::array();
     for (size_t k = 0; k < s.scan->zones.size(); ++k)

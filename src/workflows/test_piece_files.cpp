@@ -65,9 +65,10 @@ CubicTestFiles cubicTestFiles(const OptionValues& values) {
   const OptionReader read(cubicTestSchema(), values);
   CubicTestFiles f;
   for (auto [key, field] : {std::pair{"gcode", &f.gcode}, {"cl", &f.cl}, {"map", &f.map}, {"map_limit", &f.mapLimit}, {"heights", &f.heights},
-                            {"surface", &f.surface}, {"zones_out", &f.zonesOut}, {"scan_zones_out", &f.scanZonesOut}})
+                            {"surface", &f.surface}, {"zones_out", &f.zonesOut}, {"scan_zones_out", &f.scanZonesOut}, {"trace_cl", &f.traceCl}})
     *field = read.text(key).value_or("");
   if (!f.scanZonesOut.empty() && !read.text("scan")) throw InputError(InputLocation{"", 0, "scan_zones_out"}, "give the scan (--scan) whose zones to write");
+  if (!f.traceCl.empty() && !read.text("trace")) throw InputError(InputLocation{"", 0, "trace_cl"}, "give the trace (--trace) whose CL data to write");
   return f;
 }
 
@@ -100,6 +101,8 @@ std::vector<std::string> writeCubicTestFiles(const CubicTestStudy& s, const Cubi
   for (const auto& z : s.zones) simulated.push_back(z.measured);
   if (!files.zonesOut.empty())
     writeAndNote(written, files.zonesOut, zoneResultsCsv(zoneResults(s.options.spec, simulated)), "zones_out", "zone results");
+  if (!files.traceCl.empty() && s.trace)
+    writeAndNote(written, files.traceCl, traceClCsv(*s.trace), "trace_cl", "CL data of the recorded positions");
   if (!files.scanZonesOut.empty() && s.scan) {
     writeAndNote(written, files.scanZonesOut, zoneResultsCsv(zoneResults(s.options.spec, s.scan->zones)), "scan_zones_out",
                  "scanned zone results");

@@ -20,7 +20,7 @@ UNIT_SUFFIX = re.compile(r"_(mm|um|deg|rad|urad|arcsec|hz|s|ms|kg|C|per_K|percen
 # Counts, indices, ratios, signs, statistics of no unit, and unit vectors (directions).
 DIMENSIONLESS = {
     "alignment_rms_misfit", "axis_direction", "axis_in_workpiece", "beyond_bound", "bins", "filled_cells", "contouring_orthogonal_undefined_samples", "cells", "chi_square", "column", "columns", "condition",
-    "correlation", "coverage_factor", "cutter_moves", "damping_coupling", "damping_ratio", "degree", "degrees_of_freedom", "dimension", "direction",
+    "correlation", "coverage_factor", "cutter_moves", "cutting_samples", "damping_coupling", "damping_ratio", "degree", "degrees_of_freedom", "dimension", "direction",
     "exponent", "features", "first_problem_line", "first_sample_used", "fit_significance", "instant_blocks",
     "instrument_samples", "iterations", "largest_relative_misfit", "line", "lines", "location_parameter_count",
     "moves", "nodes", "non_zero_errors", "normals", "normals_machine", "not_converged", "p_value",
@@ -102,6 +102,9 @@ def outputs(cli, tmp_path_factory):
     face = tmp / "face.ply"
     subprocess.run([cli, "cubic", "tilting-table", "--grid", "0.1", "--surface", str(face)], check=True, capture_output=True)
     out["cubic scan"] = run_json(cli, "cubic", "tilting-table", "--grid", "0.5", "--scan", str(face), "--scan-grid", "1")
+    trace = tmp / "servo.csv"
+    trace.write_text("time_s,X,Y,Z,B,C\n" + "".join(f"{0.001 * k:.3f},{-8 + 0.5 * k},-8,50.1,0,0\n" for k in range(33)))
+    out["cubic trace"] = run_json(cli, "cubic", "tilting-table", "--grid", "0.5", "--trace", str(trace))
     ballbar = tmp / "ballbar.csv"
     out["simulate ballbar"] = run_json(cli, "simulate", "ballbar", "tilting-table", "--points", "90", "--noise", "0.3um",
                                        "-o", str(ballbar))

@@ -76,6 +76,15 @@ constexpr double kCubicClearance = 5.0;  // mm above the stock
 // UnreachableTarget when a zone cannot be reached within travel.
 std::vector<CubicZonePath> cubicToolPath(const KinematicModel& nominal, const CubicTestSpec& spec);
 
+// The direction each axis moves arriving at each row of q (the first row: leaving it): +1, -1 or 0.
+DirectionMatrix motionDirections(const JointMatrix& q);
+// The cutting runs of recorded axis positions (seed 001 §4.1, Eqs 13-14: the CL data from the
+// actual positions a servo tool records): the maximal runs in which every rotary axis stays
+// within `still` rad of its value at the run's start (the test cuts with the rotary axes
+// clamped and repositions clear of the stock between zones), each a path the machined surface
+// follows from sample to sample; runs of a single sample are left out.
+std::vector<CubicZonePath> recordedCuttingRuns(const Machine& machine, const JointMatrix& q, double still = 1.7e-5);
+
 // The test as a measurement plan: one directional-probe run per zone reading the height of the
 // surface (the workpiece-z deviation of the ball centre, or of the contact point of a flat end)
 // at the zone centre and, with `slopes`, a quarter zone along x and along y from it, so that

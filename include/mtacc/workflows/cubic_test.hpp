@@ -12,6 +12,7 @@
 
 #include "mtacc/core/option_schema.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/kinematics/forward.hpp"
 #include "mtacc/procedures/scanned_surface.hpp"
 #include "mtacc/procedures/zone_planes.hpp"
 #include "mtacc/workflows/machine_setup.hpp"
@@ -37,6 +38,9 @@ struct CubicTestRequest {
   // beside the simulation on a grid of `scanGrid` mm; empty: none.
   std::string scanFile;
   double scanGrid = 0.5;
+  // The axes' actual positions recorded during the cut (docs/file-formats.md "Recorded axis
+  // positions"), machined beside the programmed path (seed 001 Eqs 13-14); empty: none.
+  std::string traceFile;
 };
 
 struct CubicZoneResult {
@@ -68,6 +72,20 @@ struct ScannedCubicTest {
 ScannedCubicTest scannedCubicTest(const std::vector<Vec3>& points, const CubicTestSpec& spec, double gridSpacing, double inset,
                                   size_t referenceZone, const std::string& file);
 
+// The surface machined along recorded axis positions: the cutting runs found in the trace, the
+// surface and its zone planes referenced to the reference zone.
+struct TracedCubicTest {
+  size_t samples = 0, cuttingSamples = 0;
+  std::vector<CubicZonePath> runs;
+  std::vector<std::vector<ToolPoint>> cl;  // per run and sample: the tool tip and vector through the machine with its errors (Eq. 13)
+  HeightMap map;
+  std::vector<ZonePlane> zones;
+};
+// The recorded positions of the machine's commanded axes in `path` (mm, rad per row).
+JointMatrix readAxisTrace(const Machine& machine, const std::string& path);
+// The CL data of Eqs 13-14: per run and sample the tool tip (x, y, z mm) and vector (i, j, k), CSV.
+std::string traceClCsv(const TracedCubicTest& trace);
+
 struct CubicTestStudy {
   std::shared_ptr<const Machine> machine;
   CubicTestRequest options;
@@ -78,6 +96,7 @@ struct CubicTestStudy {
   std::vector<CubicZoneResult> zones;
   std::vector<CubicSensitivity> sensitivities;
   std::optional<ScannedCubicTest> scan;
+  std::optional<TracedCubicTest> trace;
 };
 
 // The options of `cubic`, declared once: the study's (read by cubicTestRequest) and the files to

@@ -26,6 +26,7 @@ struct CubicTestFiles {
   std::string surface;      // the machined surface: .ply or .stl, at most 1e6 vertices
   std::string zonesOut;     // the zone results (heights and tilts) for cubic-identify (CSV)
   std::string scanZonesOut; // the scanned face's zone results, the same form
+  std::string traceCl;      // the CL data (tool tip, tool vector) of the recorded axis positions
 };
 // Throws InputError naming the key (map, heights, surface, map_limit) for a file whose extension
 // names no format it can be written in, or a limit out of range: called before the study, so
