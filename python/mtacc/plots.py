@@ -752,6 +752,57 @@ def plate_vectors(result, magnification=None, title=None):
     return fig
 
 
+def artefact_deviations(result, magnification=None, title=None):
+    """A calibrated artefact's evaluation (`Machine.evaluate_artefact`): a step gauge or ball bar as its
+    deviations along the artefact (u) per direction, measured with its U (k = 2) band and the
+    model's dashed; a plate or 3-D artefact as magnified in-plane vectors (measured and model) and,
+    probed in three directions, the out-of-plane deviation of each feature in colour."""
+    features = result["features"]
+    place = np.array([f["calibrated_mm"] for f in features])
+    measured = np.array([f["deviation_um"] for f in features])
+    model = np.array([f["simulated_um"] for f in features])
+    band = np.array([f["expanded_uncertainty_um"] for f in features])
+    directions = "uvw"[:measured.shape[1]]
+    if result["dimension"] == 1:
+        fig, ax = plt.subplots(figsize=(8, 4.5))
+        order = np.argsort(place[:, 0])
+        for k, (d, colour) in enumerate(zip(directions, ("#c0392b", "#2471a3", "#27ae60"))):
+            u = place[order, 0]
+            ax.fill_between(u, measured[order, k] - band[order, k], measured[order, k] + band[order, k], color=colour, alpha=0.15)
+            ax.plot(u, measured[order, k], "o-", color=colour, label=f"along {d}")
+            ax.plot(u, model[order, k], "--", color=colour, lw=1)
+        ax.set_xlabel("position along the artefact u [mm]")
+        ax.set_ylabel("deviation [µm]")
+        ax.legend(fontsize=8)
+        ax.set_title(title or f"{result['artefact']}: measured (U band, k = 2) and model (dashed), {result['alignment']['method']}")
+        fig.tight_layout()
+        return fig
+    panels = 2 if measured.shape[1] == 3 else 1
+    fig, axes = plt.subplots(1, panels, figsize=(5.5 * panels, 5.2), squeeze=False)
+    span = max(np.ptp(place[:, 0]), np.ptp(place[:, 1]), 1e-9)
+    largest = max(np.abs(np.r_[measured[:, :2].ravel(), model[:, :2].ravel()]).max(), 1e-9)
+    scale = magnification or 0.1 * span / largest * 1e3
+    ax = axes[0][0]
+    ax.plot(place[:, 0], place[:, 1], "+", color="0.6")
+    for values, colour, label in ((measured, "#c0392b", "measured"), (model, "#2471a3", "model")):
+        ax.quiver(place[:, 0], place[:, 1], values[:, 0] * 1e-3 * scale, values[:, 1] * 1e-3 * scale, angles="xy", scale_units="xy",
+                  scale=1, color=colour, width=0.004, label=label)
+    ax.set_aspect("equal")
+    ax.set(xlabel="u [mm]", ylabel="v [mm]", title=f"in-plane deviations × {scale:.0f}")
+    ax.legend(fontsize=8, loc="upper left")
+    if panels == 2:
+        ax = axes[0][1]
+        limit = max(np.abs(measured[:, 2]).max(), 1e-9)
+        points = ax.scatter(place[:, 0], place[:, 1], c=measured[:, 2], cmap="coolwarm", vmin=-limit, vmax=limit, s=80)
+        fig.colorbar(points, ax=ax, label="deviation along w [µm]")
+        ax.set_aspect("equal")
+        ax.set(xlabel="u [mm]", title="out of the plane")
+    fig.suptitle(title or f"{result['artefact']}, {result['alignment']['method']} alignment; U (k = 2) up to "
+                          f"{result['uncertainty']['largest_um']:.2f} µm")
+    fig.tight_layout()
+    return fig
+
+
 def stiffness_changes(result, title=None):
     """The finite-stiffness changes of `Machine.stiffness` as the 1991 BCR report Figs. 4.18 and 4.20 show them:
     one panel per changed axis, each change against its axis's position at the machine's load, one

@@ -19,6 +19,14 @@ def test_artefact_cli_json_equals_api(cli):
     assert json.loads(out.stdout) == mtacc.Machine("maho").evaluate_artefact(str(path))
 
 
+def test_artefact_figures():
+    m = mtacc.Machine("maho")
+    plate = plots.artefact_deviations(m.evaluate_artefact(str(DATA / "artefacts" / "maho-ball-plate-tilted.csv")))
+    assert len(plate.axes) == 3  # the in-plane vectors, the out-of-plane colours and their colour bar
+    gauge = plots.artefact_deviations(m.evaluate_artefact(str(DATA / "artefacts" / "maho-step-gauge-diagonal.csv")))
+    assert len(gauge.axes[0].lines) == 6  # measured and model along u, v and w
+
+
 def test_simulated_gauge_leaves_the_probe_noise(tmp_path):
     # 0.5 um on each coordinate of the App. D machine, aligned by least squares (5 of the 33
     # readings' degrees of freedom): against the same model the residual is that noise, RMS
