@@ -167,7 +167,7 @@ nlohmann::json toJson(const ArtefactEvaluation& e) {
           {"directions", directions},
           {"uncertainty",
            {{"coverage_factor", 2},
-            {"method", "Monte Carlo over the alignment (GUM Supplement 1), 400 draws"},
+            {"method", fmt::format("Monte Carlo over the alignment (GUM Supplement 1), {} draws", kUncertaintyDraws)},
             {"certificate_stated", m.certificateStated},
             {"probe_stated", !m.probe.empty()},
             {"largest_um", u * 1e3},

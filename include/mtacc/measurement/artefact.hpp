@@ -81,6 +81,8 @@ struct AlignedArtefact {
 AlignedArtefact alignArtefact(const Eigen::MatrixX3d& calibrated, const Eigen::MatrixX3d& measured, ProbedDirections probed,
                               int dimension, const Alignment& alignment);
 
+constexpr int kUncertaintyDraws = 400;  // U's own relative standard uncertainty 1 / sqrt(2 x 400) = 3.5 %
+
 // The k = 2 uncertainty of each deviation (n x k, mm) by Monte Carlo over the alignment (GUM
 // Supplement 1): each calibrated coordinate drawn with its feature's standard uncertainty and
 // each measured one with the probe's (per probed direction), the alignment repeated; so the
@@ -88,6 +90,6 @@ AlignedArtefact alignArtefact(const Eigen::MatrixX3d& calibrated, const Eigen::M
 // for. Deterministic for a given seed.
 Eigen::MatrixXd deviationUncertainty(const Eigen::MatrixX3d& calibrated, const Eigen::MatrixX3d& measured, ProbedDirections probed,
                                      int dimension, const Alignment& alignment, const Eigen::VectorXd& certificateSigma,
-                                     const Vec3& probeSigma, int draws = 400, std::uint64_t seed = 1);
+                                     const Vec3& probeSigma, int draws = kUncertaintyDraws, std::uint64_t seed = 1);
 
 }  // namespace mtacc
