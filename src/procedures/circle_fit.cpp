@@ -43,18 +43,26 @@ Eigen::VectorXd chebyshevFit(const Eigen::MatrixXd& a, const Eigen::VectorXd& b)
 
 }  // namespace
 
+PointSpread pointSpread(const std::vector<Vec3>& pts) {
+  PointSpread s;
+  for (const auto& p : pts) s.centroid += p;
+  s.centroid /= static_cast<double>(std::max<size_t>(1, pts.size()));
+  Mat3 scatter = Mat3::Zero();
+  for (const auto& p : pts) scatter += (p - s.centroid) * (p - s.centroid).transpose();
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(scatter);
+  s.axes = eig.eigenvectors();
+  s.spread = eig.eigenvalues();
+  return s;
+}
+
 CircleFit fitCircle(const std::vector<Vec3>& pts, const Vec3& towards) {
   if (pts.size() < 3) throw InvalidInput("a circle needs at least three points");
   const auto n = static_cast<Eigen::Index>(pts.size());
-  Vec3 centroid = Vec3::Zero();
-  for (const auto& p : pts) centroid += p;
-  centroid /= static_cast<double>(n);
-  Mat3 scatter = Mat3::Zero();
-  for (const auto& p : pts) scatter += (p - centroid) * (p - centroid).transpose();
-  const Eigen::SelfAdjointEigenSolver<Mat3> eig(scatter);
-  if (!(eig.eigenvalues()[1] > 1e-12 * eig.eigenvalues()[2])) throw InvalidInput("the points of a circle lie on one line");
+  const PointSpread spread = pointSpread(pts);
+  if (spread.onOneLine()) throw InvalidInput("the points of a circle lie on one line");
+  const Vec3& centroid = spread.centroid;
   CircleFit c;
-  c.normal = eig.eigenvectors().col(0);
+  c.normal = spread.axes.col(0);
   if (c.normal.dot(towards) < 0) c.normal = -c.normal;
   c.u = c.normal.unitOrthogonal();
   c.v = c.normal.cross(c.u);

@@ -1,6 +1,5 @@
 #include "mtacc/procedures/measured_cone.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
 #include <algorithm>
@@ -18,15 +17,11 @@ struct Line {
 
 // The least-squares line through the points (a single point: along `fallback`).
 Line fitLine(const std::vector<Vec3>& pts, const Vec3& fallback) {
-  Vec3 centroid = Vec3::Zero();
-  for (const auto& p : pts) centroid += p;
-  centroid /= static_cast<double>(pts.size());
-  if (pts.size() < 2) return {centroid, fallback};
-  Mat3 scatter = Mat3::Zero();
-  for (const auto& p : pts) scatter += (p - centroid) * (p - centroid).transpose();
-  Vec3 d = Eigen::SelfAdjointEigenSolver<Mat3>(scatter).eigenvectors().col(2);
+  const PointSpread spread = pointSpread(pts);
+  if (pts.size() < 2) return {spread.centroid, fallback};
+  Vec3 d = spread.axes.col(2);
   if (d.dot(fallback) < 0) d = -d;
-  return {centroid, d};
+  return {spread.centroid, d};
 }
 
 double distanceFromLine(const Vec3& p, const Line& line) {
@@ -107,14 +102,10 @@ MeasuredCone evaluateMeasuredCone(const ConePoints& in, double nominalHalfAngle)
   Vec3 up = Vec3::UnitZ();
   if (!in.plane.empty()) {
     if (in.plane.size() < 3) throw InvalidInput("plane A: at least three points");
-    Vec3 centroid = Vec3::Zero();
-    for (const auto& p : in.plane) centroid += p;
-    centroid /= static_cast<double>(in.plane.size());
-    Mat3 scatter = Mat3::Zero();
-    for (const auto& p : in.plane) scatter += (p - centroid) * (p - centroid).transpose();
-    const Eigen::SelfAdjointEigenSolver<Mat3> eig(scatter);
-    if (!(eig.eigenvalues()[1] > 1e-12 * eig.eigenvalues()[2])) throw InvalidInput("plane A: the points lie on one line");
-    Vec3 normal = eig.eigenvectors().col(0);
+    const PointSpread spread = pointSpread(in.plane);
+    if (spread.onOneLine()) throw InvalidInput("plane A: the points lie on one line");
+    const Vec3& centroid = spread.centroid;
+    Vec3 normal = spread.axes.col(0);
     // Towards the cone: the side of the plane where the cone's points are.
     if (normal.dot(in.cone.front().points.front() - centroid) < 0) normal = -normal;
     out.planeNormal = normal;

@@ -44,7 +44,8 @@ Expansion expansion(const PlateTemperatures& t) {
 // temperature. One beyond the travel is an error at the file's origin line.
 JointMatrix measuredPoses(const KinematicModel& nominal, const ArtefactMeasurement& m) {
   Artefact grown = m.artefact;
-  for (auto& f : grown.features) f.calibrated *= expansion(m.temperatures).grows;
+  const double grows = expansion(m.temperatures).grows;
+  for (auto& f : grown.features) f.calibrated *= grows;
   try {
     return artefactPoses(nominal, grown, m.placement);
   } catch (const UnreachablePose& e) {

@@ -8,6 +8,17 @@
 
 namespace mtacc {
 
+// The centroid of points and their principal directions, least spread first: a plane's normal is
+// axes.col(0), a line's direction axes.col(2); spread holds the sums of squared distances along them.
+struct PointSpread {
+  Vec3 centroid = Vec3::Zero();
+  Mat3 axes = Mat3::Identity();
+  Vec3 spread = Vec3::Zero();
+
+  bool onOneLine() const { return !(spread[1] > 1e-12 * spread[2]); }
+};
+PointSpread pointSpread(const std::vector<Vec3>& points);
+
 struct CircleFit {
   Vec3 centre = Vec3::Zero();
   Vec3 normal = Vec3::UnitZ();  // of the least-squares plane, oriented along `towards`
