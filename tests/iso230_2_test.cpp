@@ -67,7 +67,7 @@ TEST(Iso230_2, EveryFormulaOnAHandCase) {
 TEST(Iso230_2, RealMotionStagePinned) {
   // data/positioning/ecmc-motion-stage.dat (real data, 5 targets x 5 cycles, mm). Expected values
   // in um from the hand-check table of docs/conventions.md, to 0.0001 um (printed there to 4 decimals).
-  const auto e = evaluatePositioningFile(kStage);
+  const auto e = evaluatePositioningFile({kStage, std::nullopt, std::nullopt});
   const auto& r = e.result;
   ASSERT_EQ(r.positions.size(), 5u);
   EXPECT_EQ(r.cycles, 5);
@@ -133,7 +133,7 @@ TEST(Iso230_2, CsvFormGivesTheSameTestAsTheKeyForm) {
 }
 
 TEST(Iso230_2, RotaryAxisInArcseconds) {
-  const auto e = evaluatePositioningFile(bundledDataDir() + "/positioning/rotary-table.csv");
+  const auto e = evaluatePositioningFile({bundledDataDir() + "/positioning/rotary-table.csv", std::nullopt, std::nullopt});
   EXPECT_EQ(e.test.axis, PositioningAxis::Rotary);
   EXPECT_NEAR(e.test.targets[2], 90 * kDeg, 1e-15);
   // At 90 deg the forward deviations 0.00055, 0.00058, 0.00053, 0.00056, 0.00054 deg average 0.000552 deg.

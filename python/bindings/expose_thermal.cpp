@@ -11,7 +11,7 @@ namespace mtacc::python {
 
 void exposeThermal(py::module_& mod) {
   mod.def("positioning", [](const OptionValues& options) {
-    return toPython(toJson(evaluatePositioningFile(*OptionReader(positioningSchema(), options).text("data"))));
+    return toPython(toJson(evaluatePositioningFile(positioningRequest(options))));
   });
   mod.def("thermal_state", [](const std::string& machine, const std::string& thermal, int points) {
     return toPython(thermalStateSummary({machine, "", "", std::nullopt, thermal}, points));

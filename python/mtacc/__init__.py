@@ -54,11 +54,14 @@ def as_json(result):
     return result
 
 
-def positioning(data):
+def positioning(data, conditions=None, tolerances=None):
     """ISO 230-2 evaluation of a positioning-test file (KEY=value or CSV, docs/file-formats.md),
     as `mtacc positioning --json`: per-target means, reversal, s and R, the axis values A, B, E, M,
-    R (keys "A_forward", "A", ... in "axis_values") and the deviations, in um or arcsec ("unit")."""
-    return _positioning(_options(data=data))
+    R (keys "A_forward", "A", ... in "axis_values") and the deviations, in um or arcsec ("unit");
+    "uncertainty": the ISO/TR 230-9 budget from the measurement conditions file (default: the
+    documented defaults) with U (k = 2) per value; with a tolerance file, "conformance": each
+    toleranced value's verdict (pass, fail, undecided) by the file's decision rule."""
+    return _positioning(_options(data=data, conditions=conditions, tolerances=tolerances))
 
 
 def squareness(aligned_to, alpha, beta, block=None):

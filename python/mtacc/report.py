@@ -435,9 +435,15 @@ def positioning_section(results):
         v = r["axis_values"]
         out += figure(plots.positioning_chart(r), f"{html.escape(r['name'])}: deviations of every cycle, means and "
                                                   f"±2 s bands ({len(r['positions'])} targets, {r['cycles']} cycles each way)")
-        out += table(["", "↑", "↓", "bidirectional"],
-                     [[q, f"{v[q + '_forward']:.3f}", f"{v[q + '_backward']:.3f}", f"{v[q]:.3f}"] for q in ("A", "E", "R")]
-                     + [[q, "", "", f"{v[key]:.3f}"] for q, key in (("M", "M"), ("B", "B"), ("B mean", "B_mean"))])
+        u = r["uncertainty"]["quantities"]
+        out += table(["", "↑", "↓", "bidirectional", "U (k = 2)"],
+                     [[q, f"{v[q + '_forward']:.3f}", f"{v[q + '_backward']:.3f}", f"{v[q]:.3f}", f"{u[q]['U']:.3f}"]
+                      for q in ("A", "E", "R")]
+                     + [[q, "", "", f"{v[key]:.3f}", f"{u[key]['U']:.3f}" if key in u else ""]
+                        for q, key in (("M", "M"), ("B", "B"), ("B mean", "B_mean"))])
+        defaulted = r["uncertainty"]["defaulted"]
+        out += (f"<p class='meta'>U after ISO/TR 230-9 with {html.escape(r['uncertainty']['instrument'])}"
+                + (f"; defaults for {html.escape(', '.join(defaulted))}" if defaulted else "") + ".</p>")
         out += "".join(f"<p>Note: {html.escape(n)}.</p>" for n in r["notes"])
         out += f"<p class='meta'>{html.escape(r['file'])}, values in {r['unit']}.</p>"
     return out

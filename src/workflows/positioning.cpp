@@ -1,7 +1,10 @@
 #include "mtacc/workflows/positioning.hpp"
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/io/measurement_conditions_yaml.hpp"
 #include "mtacc/io/positioning_files.hpp"
+#include "mtacc/io/tolerances_yaml.hpp"
 
 namespace mtacc {
 
@@ -14,15 +17,38 @@ const OptionSchema& positioningSchema() {
   static const OptionSchema schema{
       "positioning",
       {{.key = "data", .kind = OptionKind::Text, .help = "ISO 230-2 KEY=value file or CSV target,cycle,forward,backward (docs/file-formats.md)",
-        .positional = true}}};
+        .positional = true},
+       {.key = "conditions", .kind = OptionKind::Text,
+        .help = "the instrument and environment (YAML, docs/file-formats.md \"Measurement conditions\"); default: the documented defaults"},
+       {.key = "tolerances", .kind = OptionKind::Text,
+        .help = "tolerances and decision rule (YAML, docs/file-formats.md \"Tolerances\"): a verdict per toleranced value"}}};
   return schema;
 }
 
-PositioningEvaluation evaluatePositioningFile(const std::string& path) {
+PositioningRequest positioningRequest(const OptionValues& values) {
+  const OptionReader r(positioningSchema(), values);
+  return {*r.text("data"), r.text("conditions"), r.text("tolerances")};
+}
+
+const char* positioningToleranceTest(PositioningAxis axis) {
+  return axis == PositioningAxis::Linear ? "positioning" : "positioning_rotary";
+}
+
+PositioningEvaluation evaluatePositioningFile(const PositioningRequest& request) {
   PositioningEvaluation e;
-  e.file = path;
-  e.test = readPositioningTest(path);
+  e.file = request.data;
+  e.test = readPositioningTest(request.data);
   e.result = evaluatePositioning(e.test);
+  e.conditionsFile = request.conditions.value_or("");
+  e.conditions = request.conditions ? loadMeasurementConditions(*request.conditions)
+                                      : defaultMeasurementConditions(e.test.axis == PositioningAxis::Rotary ? InstrumentType::Angle
+                                                                                                            : InstrumentType::Laser);
+  try {
+    e.uncertainty = positioningUncertainty(e.test, e.result, e.conditions);
+  } catch (const InvalidInput& error) {
+    throw InputError({request.conditions.value_or(request.data), e.conditions.typeLine, "type"}, error.reason());
+  }
+  if (request.tolerances) e.conformance = judge(e.uncertainty, loadTolerances(*request.tolerances), positioningToleranceTest(e.test.axis));
   return e;
 }
 
@@ -74,6 +100,13 @@ nlohmann::json toJson(const PositioningEvaluation& e) {
                       {"R_forward", r.repeatabilityForward * s},
                       {"R_backward", r.repeatabilityBackward * s},
                       {"R", r.repeatability * s}};
+  nlohmann::json uncertainty = toJson(e.uncertainty, s);
+  uncertainty["measured_length"] = {{"value", e.uncertainty.measuredLength * u.targetScale}, {"unit", u.target}};
+  uncertainty["conditions_file"] = e.conditionsFile;
+  uncertainty["instrument"] = e.conditions.instrument;
+  uncertainty["defaulted"] = e.conditions.defaulted;
+  j["uncertainty"] = uncertainty;
+  if (e.conformance) j["conformance"] = toJson(*e.conformance, s);
   return j;
 }
 

@@ -126,6 +126,9 @@ def outputs(cli, tmp_path_factory):
                                "--data", ",".join(str(p) for p in sorted(plan.glob("*.csv"))))
     out["observability"] = run_json(cli, "observability", "tilting-table", "--plan", "tilting-table-rtest")
     out["positioning"] = run_json(cli, "positioning", str(DATA / "positioning" / "rotary-table.csv"))
+    stage = DATA / "positioning" / "ecmc-motion-stage"
+    out["positioning-conformance"] = run_json(cli, "positioning", f"{stage}.dat", "--conditions", f"{stage}-conditions.yaml",
+                                              "--tolerances", f"{stage}-tolerances.yaml")
     out["squareness"] = run_json(cli, "squareness", "--aligned-to", "x", "--alpha", "0.7", "--beta", "2.1", "--block", "1.7")
     out["yry"] = run_json(cli, "yry", "--y", "0,250", "--ytz1", "1,2", "--ytz2", "0,-1", "--xrx", "0.5", "--x1", "0", "--x2", "552.691")
     out["multitasking"] = run_json(cli, "multitasking", str(DATA / "ballbar" / "seed002-table6.yaml"))

@@ -75,7 +75,7 @@ def test_cli_json_equals_api_and_csv_is_written(cli, tmp_path):
     table = tmp_path / "iso.csv"
     subprocess.run([cli, "positioning", str(path), "-o", str(table)], capture_output=True, text=True, check=True)
     text = table.read_text()
-    assert "# R: " in text and text.count("\n") == 12 + 1 + 1 + 5
+    assert "# R: " in text and "# U_R: " in text and text.count("\n") == 12 + 11 + 1 + 1 + 5
     bad = tmp_path / "bad.dat"
     bad.write_text("UNIT=mm\nCYCLES=5\nPOSITIONS=2\nTGT_DATA[1]=0\nTGT_DATA[3]=1\n")
     run = subprocess.run([cli, "positioning", str(bad), "-o", str(tmp_path / "none.csv")], capture_output=True, text=True)
@@ -91,3 +91,40 @@ def test_chart_and_report_section(cli, tmp_path):
     assert run.returncode == 0, run.stderr
     html = (tmp_path / "three-axis-vertical-report.html").read_text()
     assert "Positioning (ISO 230-2)" in html and "ecmc-motion-stage" in html
+
+
+def test_uncertainty_and_verdicts_on_the_real_file(cli):
+    """The bundled conditions and tolerances: the CLI's JSON equals the API's, every U combines the
+    contributors the budget says enter it, and every verdict follows ISO 14253-1 from value, U and
+    tolerance."""
+    args = dict(data=DATA / "ecmc-motion-stage.dat", conditions=DATA / "ecmc-motion-stage-conditions.yaml",
+                tolerances=DATA / "ecmc-motion-stage-tolerances.yaml")
+    r = mtacc.positioning(**args)
+    out = subprocess.run([cli, "positioning", str(args["data"]), "--conditions", str(args["conditions"]),
+                          "--tolerances", str(args["tolerances"]), "--json"], capture_output=True, text=True, check=True)
+    assert json.loads(out.stdout) == r
+    budget = r["uncertainty"]
+    assert budget["measured_length"] == {"value": 40, "unit": "mm"} and budget["defaulted"] == []
+    for q, values in budget["quantities"].items():
+        entering = [c["u"] for c in budget["contributors"] if q in c["quantities"]]
+        assert values["U"] == pytest.approx(2 * np.sqrt(values["u_cycles"] ** 2 + np.sum(np.square(entering))), rel=1e-12), q
+        assert values["value"] == pytest.approx(r["axis_values"][q], abs=1e-12), q
+    conformance = r["conformance"]
+    assert conformance["decision_rule"] == "iso14253-1"
+    verdicts = {v["quantity"]: v for v in conformance["verdicts"]}
+    assert {q: v["verdict"] for q, v in verdicts.items()} == {"A": "pass", "B": "undecided", "E": "undecided", "M": "fail",
+                                                              "R": "pass"}
+    for v in verdicts.values():
+        expected = ("pass" if v["value"] + v["U"] <= v["tolerance"] else
+                    "fail" if v["value"] - v["U"] > v["tolerance"] else "undecided")
+        assert v["verdict"] == expected and v["U"] == budget["quantities"][v["quantity"]]["U"]
+    assert conformance["overall"] == "fail"
+
+
+def test_rotary_axis_with_its_tolerances():
+    r = mtacc.positioning(DATA / "rotary-table.csv", tolerances=DATA / "rotary-tolerances.yaml")
+    assert [c["symbol"] for c in r["uncertainty"]["contributors"]] == ["u_DEVICE", "u_EVE"]
+    assert r["uncertainty"]["defaulted"] == ["calibration", "drift"]
+    assert {v["quantity"] for v in r["conformance"]["verdicts"]} == {"A", "E", "R", "B"}
+    with pytest.raises(mtacc.InputError, match="conditions.yaml:5: type: a rotary axis"):
+        mtacc.positioning(DATA / "rotary-table.csv", conditions=DATA / "ecmc-motion-stage-conditions.yaml")
