@@ -13,7 +13,7 @@ seconds=${1:-60}
 export ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 declare -A bundled=([machine_yaml]="data/machines tests/data" [errors_yaml]="data/machines data/stiffness"
                     [plan_yaml]="data/plans" [structure_yaml]="data/structures" [limits_yaml]="data/limits"
-                    [cubic_test_yaml]="data/test-pieces" [positioning_files]="data/positioning" [component_runs_csv]="data/direct-measurements" [plate_csv]="data/plates" [artefact_csv]="data/artefacts" [cone_points_csv]="data/test-pieces" [drift_test_csv]="data/thermal" [thermal_state_yaml]="data/thermal" [spindle_drift_yaml]="data/thermal" [seed002_eccentricities_yaml]="data/ballbar" [measurement_conditions_yaml]="data/positioning" [tolerances_yaml]="data/positioning")
+                    [cubic_test_yaml]="data/test-pieces" [positioning_files]="data/positioning" [component_runs_csv]="data/direct-measurements" [plate_csv]="data/plates" [artefact_csv]="data/artefacts" [cone_points_csv]="data/test-pieces" [drift_test_csv]="data/thermal" [thermal_state_yaml]="data/thermal" [spindle_drift_yaml]="data/thermal" [seed002_eccentricities_yaml]="data/ballbar" [measurement_conditions_yaml]="data/positioning" [tolerances_yaml]="data/positioning data/acceptance" [acceptance_yaml]="data/acceptance")
 status=0
 for harness in build-sanitize/fuzz/*_fuzzer; do
   reader=$(basename "$harness" _fuzzer)

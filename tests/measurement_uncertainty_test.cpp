@@ -11,6 +11,7 @@
 
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
+#include "mtacc/io/acceptance_yaml.hpp"
 #include "mtacc/io/bundled_data.hpp"
 #include "mtacc/io/measurement_conditions_yaml.hpp"
 #include "mtacc/io/tolerances_yaml.hpp"
@@ -165,7 +166,7 @@ TEST(PositioningUncertainty, DefaultsAreListedAndTheInstrumentMustSuitTheAxis) {
 }
 
 TEST(Tolerance, EveryFormAtItsLengths) {
-  const auto t = [](const char* text) { return parseTolerance(text, Dimension::Length, "t"); };
+  const auto t = [](const char* text) { return parseTolerance(text, Dimension::Length, "t", true); };
   EXPECT_DOUBLE_EQ(t("8 um").at(5000), 0.008);
   EXPECT_DOUBLE_EQ(t("0.010 mm for 1000 mm").at(300), 0.003);  // ISO 230-1's proportionality
   EXPECT_DOUBLE_EQ(t("0.010 mm for 1000 mm, min 0.005 mm").at(300), 0.005);
@@ -181,8 +182,8 @@ TEST(Tolerance, EveryFormAtItsLengths) {
   for (const char* bad : {"", "-1 um", "8", "8 um, max 9 um", "1 um for 0 mm", "2 um for 100 mm, + 1 um", "2 um up to 500 mm; 3 um up to 400 mm",
                           "2 um for 100 mm, min 3 um, max 2.5 um", "2 um for 100 mm, bigger 3 um", "2 arcsec"})
     EXPECT_THROW(t(bad), InputError) << bad;
-  EXPECT_THROW(parseTolerance("5 arcsec for 100 mm", Dimension::Angle, "t"), InputError);
-  EXPECT_DOUBLE_EQ(parseTolerance("5 arcsec", Dimension::Angle, "t").at(6.28), 5 * kArcsec);
+  EXPECT_THROW(parseTolerance("5 arcsec for 100 mm", Dimension::Angle, "t", false), InputError);
+  EXPECT_DOUBLE_EQ(parseTolerance("5 arcsec", Dimension::Angle, "t", false).at(6.28), 5 * kArcsec);
 }
 
 TEST(Conformance, DecisionRules) {
@@ -273,6 +274,8 @@ TEST(Conformance, TheDocumentedExamplesRead) {
   EXPECT_EQ(conditions.defaulted.size(), 0u);
   const auto tolerances = parseTolerances(documentedExample("Tolerances (YAML)"), "file-formats.md");
   EXPECT_EQ(tolerances.entries.size(), 6u);
+  const auto acceptance = parseAcceptancePlan(documentedExample("Acceptance tests (YAML)"), "file-formats.md");
+  EXPECT_EQ(acceptance.tests.size(), 3u);
 }
 
 }  // namespace

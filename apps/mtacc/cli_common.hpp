@@ -26,6 +26,10 @@ struct MachineOptions {
   std::string output;
 };
 
+// Replaces this process by /usr/bin/python3 -m MODULE ARGUMENTS with the build's Python package
+// first on PYTHONPATH (the report and the acceptance report, which the package builds).
+[[noreturn]] void runPythonModule(const std::string& module, const std::vector<std::string>& arguments);
+
 // JSON to stdout (or -o); otherwise the human text to stdout and, with -o, the CSV.
 void emit(const MachineOptions& o, const nlohmann::json& json, const std::string& human, const std::string& csv);
 
@@ -54,6 +58,8 @@ void addConeCommand(const CommandLine& app);
 void addSimulateCommand(const CommandLine& app);       // simulate ballbar | rtest | plan
 void addEvaluateCommand(const CommandLine& app);
 void addPositioningCommand(const CommandLine& app);    // positioning (ISO 230-2)
+void addRotaryTestsCommand(const CommandLine& app);    // rotary-tests (ISO 10791-6)
+void addAcceptanceCommand(const CommandLine& app);     // acceptance (tests, uncertainty, tolerances, verdicts)
 void addFitCommand(const CommandLine& app);            // fit (seed 003 component fits)
 void addPlateCommand(const CommandLine& app);          // plate (seed 003 hole plates)
 void addStiffnessCommand(const CommandLine& app);      // stiffness (seed 003 finite stiffness)

@@ -1,9 +1,6 @@
 // mtacc report MACHINE: the HTML accuracy report, built by the Python package (matplotlib
-// figures) on top of the same library. Runs /usr/bin/python3 -m mtacc.report.
-#include <unistd.h>
-
+// figures) on top of the same library: /usr/bin/python3 -m mtacc.report.
 #include <algorithm>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -19,12 +16,7 @@ struct ReportOptions {
 };
 
 [[noreturn]] void run(const ReportOptions& o) {
-  const std::string pythonDir = MTACC_PYTHON_DIR;
-  const char* old = std::getenv("PYTHONPATH");
-  std::string path = pythonDir;
-  if (old && *old) path.append(":").append(old);
-  ::setenv("PYTHONPATH", path.c_str(), 1);
-  std::vector<std::string> args{"/usr/bin/python3", "-m", "mtacc.report", o.machine};
+  std::vector<std::string> args{o.machine};
   for (const auto& [key, given] : o.values)
     for (const auto& value : given) {
       std::string flag = "--" + key;
@@ -32,11 +24,7 @@ struct ReportOptions {
       args.push_back(flag);
       args.push_back(value);
     }
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  ::execv(argv[0], argv.data());
-  throw std::runtime_error("cannot start /usr/bin/python3 for the report");
+  runPythonModule("mtacc.report", args);
 }
 
 }  // namespace

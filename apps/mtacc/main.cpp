@@ -74,6 +74,8 @@ int main(int argc, char** argv) {
   mtacc::cli::addSimulateCommand(commands);
   mtacc::cli::addEvaluateCommand(commands);
   mtacc::cli::addPositioningCommand(commands);
+  mtacc::cli::addRotaryTestsCommand(commands);
+  mtacc::cli::addAcceptanceCommand(commands);
   mtacc::cli::addFitCommand(commands);
   mtacc::cli::addDirectProcedureCommands(commands);
   mtacc::cli::addMultitaskingCommand(commands);

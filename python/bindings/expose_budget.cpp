@@ -1,9 +1,11 @@
 // Machine: the error budget over the working volume, the sensitivity of the TCP to one error,
-// and the finite-stiffness summary.
+// the finite-stiffness summary, the ISO 10791-6 rotary-axis tests and the acceptance tests.
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "mtacc/workflows/acceptance.hpp"
 #include "mtacc/workflows/budget.hpp"
+#include "mtacc/workflows/rotary_axis_tests.hpp"
 #include "mtacc/workflows/stiffness.hpp"
 
 namespace mtacc::python {
@@ -33,6 +35,19 @@ void exposeBudget(MachineClass& machine) {
       })
       .def("stiffness", [](const PythonMachine& s, const OptionValues& options) {
         return toPython(toJson(summariseStiffness(s, stiffnessSamples(options))));
+      })
+      .def("acceptance", [](const PythonMachine& s, const OptionValues& options) {
+        const std::string tests = *OptionReader(acceptanceSchema(), options).text("tests");
+        return toPython(toJson(runAcceptance(s, tests)));
+      })
+      .def("rotary_tests", [](const PythonMachine& s, const OptionValues& options) {
+        const RotaryTestsRequest request = rotaryTestsRequest(options);
+        RotaryTestsResult r;
+        {
+          py::gil_scoped_release release;
+          r = rotaryTestsFor(s, request);
+        }
+        return toPython(toJson(r));
       });
 }
 

@@ -457,6 +457,30 @@ class Machine:
         errors, of the changes alone and added by them, as `mtacc stiffness --json` (values in um or urad)."""
         return self._core.stiffness(_options(samples=samples))
 
+    def acceptance(self, tests, html=None):
+        """Every test of an acceptance tests file (docs/file-formats.md "Acceptance tests"), as `mtacc
+        acceptance --json`: "summary" (per test and quantity: value, U at k = 2, tolerance, verdict),
+        "overall", and per test its uncertainty budget, its conformance and its own evaluation
+        ("detail"). html: also write the HTML acceptance report there (mtacc.acceptance)."""
+        result = self._core.acceptance(_options(tests=tests))
+        if html is not None:
+            from . import acceptance as _report
+            _report.write_report(self, result, html)
+        return result
+
+    def rotary_tests(self, axes=None, radius=None, spread=None, length=None, positions=None, points=None, feed=None,
+                     plan_out=None, programs=None):
+        """The ISO 10791-6 tests around each rotary axis (as `mtacc rotary-tests --json`, whose options these
+        keyword arguments are): per axis the R-test at two set-ups (a table axis: the sphere at `radius`
+        from the line and `spread` along it; a head axis: the tool ball at the tip and `spread` beyond) and
+        the ballbar (`length`) radial, tangential and axial; per test its set-up, sweep, the results on
+        this machine (um: R-test radial, tangential, axial ranges with the sphere set at the first
+        position; ballbar length range) and the location errors each result sees ("sees": um of range
+        per um or urad, each error alone). plan_out: write the plan `simulate`/`identify` read;
+        programs: a folder for a G-code program per test."""
+        return self._core.rotary_tests(_options(axes=axes, radius=radius, spread=spread, length=length, positions=positions,
+                                                points=points, feed=feed, plan_out=plan_out, programs=programs))
+
     def compensate_program(self, program, tool_length=None, tolerance=None, direction_tolerance=None, check_errors=None):
         """The axis program (G-code) at `program` compensated for this machine's errors, as `mtacc
         compensate --json`, plus "gcode", the compensated program's text. tool_length: {H number: mm

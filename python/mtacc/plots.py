@@ -1024,3 +1024,65 @@ def thermal_state_scales(state, title=None):
     fig.suptitle(title or "Thermal state: temperatures along the scales, their expansion")
     fig.tight_layout()
     return fig
+
+
+VERDICT_COLOURS = {"pass": "#1e8449", "fail": "#c0392b", "undecided": "#d68910"}
+
+
+def conformance_chart(test):
+    """An acceptance test's values against their tolerances (`Machine.acceptance`, one entry of
+    "tests"): each value with its expanded uncertainty U (k = 2) as a bar and whiskers, the
+    tolerance as a line, coloured by the verdict of the decision rule."""
+    verdicts = test["conformance"]["verdicts"]
+    fig, ax = plt.subplots(figsize=(8, 0.6 + 0.55 * len(verdicts)))
+    for i, v in enumerate(verdicts):
+        y = len(verdicts) - 1 - i
+        c = VERDICT_COLOURS[v["verdict"]]
+        ax.barh(y, v["value"], height=0.5, color=c, alpha=0.55)
+        ax.errorbar(v["value"], y, xerr=v["U"], fmt="none", ecolor="k", capsize=4, linewidth=1)
+        ax.plot([v["tolerance"]] * 2, [y - 0.35, y + 0.35], color="k", linewidth=2.2)
+        ax.text(max(v["value"] + v["U"], v["tolerance"]) * 1.02, y, v["verdict"], va="center", color=c, fontsize=9)
+    ax.set_yticks(range(len(verdicts)), [v["quantity"] for v in reversed(verdicts)])
+    right = max(max(v["value"] + v["U"], v["tolerance"]) for v in verdicts)
+    ax.set_xlim(0, right * 1.25)
+    ax.set_xlabel(f"result ± U (k = 2), tolerance as the black line [{test['unit']}]")
+    ax.set_title(f"{test['name']} ({test['standard']})")
+    fig.tight_layout()
+    return fig
+
+
+def rotary_test_deviations(test):
+    """An ISO 10791-6 rotary-axis test's deviations over the axis's positions (`Machine.acceptance`,
+    the "detail" of a rotary test): the R-test's radial, tangential and axial deviations (the sphere
+    set at the first position) or the ballbar's length deviation."""
+    d = test["detail"]
+    fig, ax = plt.subplots(figsize=(9, 4))
+    for quantity, values in d["deviations"].items():
+        ax.plot(d["axis_position_deg"], values, ".-", markersize=4, label=f"{quantity} (range {d['ranges'][quantity]:.2f} {d['unit']})")
+    ax.axhline(0, color="0.6", linewidth=0.6)
+    ax.set_xlabel("rotary axis position [deg]")
+    ax.set_ylabel(f"deviation [{d['unit']}]")
+    ax.set_title(f"{test['name']}: {d['instrument']}")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def geometric_test(test):
+    """An ISO 230-1 test from direct measurements (`Machine.acceptance`, the "detail" of a geometric
+    test): the mean of the runs along the axis and, for a straightness, its deviations from the
+    end-point and least-squares reference lines."""
+    d = test["detail"]
+    fig, ax = plt.subplots(figsize=(9, 4))
+    x = d["positions_mm"]
+    ax.plot(x, d["mean"], "o-", markersize=3, color="0.35", label=f"{d['component']}: mean of the runs")
+    if "end_point_residual" in d:
+        ax.plot(x, d["end_point_residual"], "-", color="#2471a3", label="from the end-point line")
+        ax.plot(x, d["least_squares_residual"], "--", color="#c0392b", label="from the least-squares line")
+    ax.axhline(0, color="0.6", linewidth=0.6)
+    ax.set_xlabel("position [mm]")
+    ax.set_ylabel(f"deviation [{d['unit']}]")
+    ax.set_title(f"{test['name']} ({d['kind'].replace('_', ' ')})")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig

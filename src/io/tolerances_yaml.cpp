@@ -34,17 +34,21 @@ void requirePositive(double v, const std::string& what, const std::string& key) 
 }  // namespace
 
 const std::vector<ToleranceTest>& toleranceTests() {
-  static const std::vector<ToleranceTest> tests{{"positioning", Dimension::Length, kPositioningQuantities},
-                                                {"positioning_rotary", Dimension::Angle, kPositioningQuantities}};
+  static const std::vector<ToleranceTest> tests{{"positioning", Dimension::Length, kPositioningQuantities, true},
+                                                {"positioning_rotary", Dimension::Angle, kPositioningQuantities, false},
+                                                {"rotary_rtest", Dimension::Length, {"radial", "tangential", "axial"}, false},
+                                                {"rotary_ballbar", Dimension::Length, {"length"}, false},
+                                                {"straightness", Dimension::Length, {"end_point", "least_squares"}, true},
+                                                {"angular_deviation", Dimension::Angle, {"range"}, false},
+                                                {"positional_deviation", Dimension::Length, {"range"}, true}};
   return tests;
 }
 
-Tolerance parseTolerance(const std::string& text, Dimension dimension, const std::string& key) {
+Tolerance parseTolerance(const std::string& text, Dimension dimension, const std::string& key, bool lengthDependent) {
   Tolerance t;
   t.text = trim(text);
-  const bool lengthDependent = t.text.find(" for ") != std::string::npos || t.text.find("up to") != std::string::npos;
-  if (dimension == Dimension::Angle && lengthDependent)
-    throw InputError({"", 0, key}, "a rotary axis's tolerance is one angle, not length-dependent");
+  if (!lengthDependent && (t.text.find(" for ") != std::string::npos || t.text.find("up to") != std::string::npos))
+    throw InputError({"", 0, key}, "this test's tolerance is one value, not length-dependent");
   if (t.text.find("up to") != std::string::npos) {
     t.form = Tolerance::Form::Stepped;
     for (const auto& step : splitList(t.text, ';')) {
@@ -132,7 +136,7 @@ ToleranceSet parseTolerances(const std::string& yamlText, const std::string& sou
         ctx.fail(q.first, key, fmt::format("unknown quantity of {} (one of {})", name, fmt::join(test->quantities, ", ")));
       ToleranceEntry entry{name, quantity, {}, ctx.at(q.second, key).line};
       try {
-        entry.tolerance = parseTolerance(yamlin::scalar(ctx, q.second, key), test->dimension, key);
+        entry.tolerance = parseTolerance(yamlin::scalar(ctx, q.second, key), test->dimension, key, test->lengthDependent);
       } catch (const InputError& e) {
         ctx.fail(q.second, key, e.reason());
       }

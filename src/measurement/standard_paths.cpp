@@ -66,21 +66,19 @@ std::array<Vec3, 2> planeNormalTo(const Vec3& axis) {
 
 double plotAngle(const std::array<Vec3, 2>& plane, const Vec3& d) { return std::atan2(d.dot(plane[1]), d.dot(plane[0])); }
 
-struct AxisLine {
-  Vec3 point, direction;  // machine (bed) frame
-};
-AxisLine axisLine(const KinematicModel& nominal, const std::vector<double>& q, int axis) {
-  const auto frames = errorFrames(nominal, q.data());
-  const Pose& f = frames[static_cast<size_t>(axis)];
-  const auto& a = nominal.machine->axes[static_cast<size_t>(axis)];
-  return {f.translation(), (f.linear() * a.direction).normalized()};
-}
 Vec3 perpendicularFrom(const AxisLine& line, const Vec3& p) {
   Vec3 r = p - line.point;
   return r - line.direction * line.direction.dot(r);
 }
 
 }  // namespace
+
+AxisLine axisLine(const KinematicModel& nominal, const std::vector<double>& q, int axis) {
+  const auto frames = errorFrames(nominal, q.data());
+  const Pose& f = frames[static_cast<size_t>(axis)];
+  const auto& a = nominal.machine->axes[static_cast<size_t>(axis)];
+  return {f.translation(), (f.linear() * a.direction).normalized()};
+}
 
 void placeToolPoint(const KinematicModel& nominal, std::vector<double>& q, const Vec3& toolPoint, const Vec3& target) {
   const Machine& m = *nominal.machine;

@@ -119,4 +119,26 @@ UncertaintyBudget positioningUncertainty(const PositioningTest& test, const Posi
   return b;
 }
 
+UncertaintyBudget rangeUncertainty(const std::vector<std::pair<std::string, double>>& values, double measuredLength,
+                                   const RangeReadings& r) {
+  UncertaintyBudget b;
+  b.measuredLength = measuredLength;
+  std::vector<std::string> all;
+  for (const auto& v : values) all.push_back(v.first);
+  const double root2 = std::sqrt(2.0);
+  b.contributors.push_back({"u_DEVICE", fmt::format("{}: u = {:.3g} {} per reading, twice in a range", r.instrument,
+                                                    r.instrumentStandard * r.unitScale, r.unit),
+                            root2 * r.instrumentStandard, r.instrumentDefaulted, all});
+  b.contributors.push_back({"u_EVE", fmt::format("environmental variation error E_VE = {:.3g} {} (drift test)", r.drift * r.unitScale, r.unit),
+                            r.drift / kSqrt3, r.driftDefaulted, all});
+  if (r.readingsPerMean > 1)
+    b.contributors.push_back({"u_REPEAT", fmt::format("scatter s = {:.3g} {} of one reading, means of {}", r.scatter * r.unitScale, r.unit,
+                                                      r.readingsPerMean),
+                              root2 * r.scatter / std::sqrt(static_cast<double>(r.readingsPerMean)), false, all});
+  double variance = 0;
+  for (const auto& k : b.contributors) variance += k.standard * k.standard;
+  for (const auto& [q, value] : values) b.quantities.push_back({q, value, 0.0, std::sqrt(variance), 2 * std::sqrt(variance)});
+  return b;
+}
+
 }  // namespace mtacc

@@ -16,6 +16,8 @@
 #include "mtacc/workflows/multitasking_identification.hpp"
 #include "mtacc/workflows/plates.hpp"
 #include "mtacc/workflows/positioning.hpp"
+#include "mtacc/workflows/rotary_axis_tests.hpp"
+#include "mtacc/workflows/acceptance.hpp"
 #include "mtacc/workflows/program_deviation.hpp"
 #include "mtacc/workflows/recorded_decomposition.hpp"
 #include "mtacc/workflows/report_paths.hpp"
@@ -53,6 +55,8 @@ const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
       {"artefact", &artefactEvaluationSchema()},
       {"plate-identify", &plateIdentificationSchema()},
       {"positioning", &positioningSchema()},
+      {"rotary-tests", &rotaryTestsSchema()},
+      {"acceptance", &acceptanceSchema()},
       {"report", &reportSchema()},
       {"sensitivity", &sensitivitySchema()},
       {"simulate ballbar", &ballbarSimulationSchema()},

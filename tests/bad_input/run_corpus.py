@@ -12,7 +12,8 @@ A case is one small file, cases/NNN-what.case:
     ...
 
 Placeholders in `run` and `expect`: {name} is the path of the case's input file `name` (all
-in {indir}), {out} an output file in an output folder ({outdir}), {data} the bundled data folder.
+in {indir}), {out} an output file in an output folder ({outdir}), {data} the bundled data folder;
+in the input files {data} alone (a file that names bundled files, e.g. an acceptance tests file).
 Every case runs twice: with no output file, and with an existing output file that must stay
 unchanged. The checks: a non-zero exit within the time limit, and not the status 1 of an internal
 failure (an exception the front end did not map), nothing on stdout, exactly one
@@ -92,7 +93,7 @@ def run_once(cli, case, existing_output):
         (folder / "in").mkdir()
         (folder / "out").mkdir()
         for name, text in case.files.items():
-            (folder / "in" / name).write_text(text)
+            (folder / "in" / name).write_text(text.replace("{data}", str(DATA)))
         if existing_output:
             (folder / "out" / "result.csv").write_text(SENTINEL)
         before = snapshot(folder)

@@ -58,6 +58,8 @@ WORKFLOWS = {
     "simulate artefact": lambda: maho().simulate_artefact(NOT_A_RUN, "artefact.csv", noise="-1 um"),
     "plate-identify": lambda: maho().identify_plates([str(DATA / "plates" / "maho-xy-z292.csv")], piece=-1),
     "positioning": lambda: mtacc.positioning(NOT_A_RUN),
+    "rotary-tests": lambda: tilting().rotary_tests(radius="-5 mm"),
+    "acceptance": lambda: tilting().acceptance(NOT_A_RUN),
     "multitasking": lambda: mtacc.multitasking(NOT_A_RUN),
     "squareness": lambda: mtacc.squareness("y", 0.7, 2.1),
     "yry": lambda: mtacc.yry([0, 100], [1, 2], [0], 0.5, 0, 550),

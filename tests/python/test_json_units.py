@@ -126,6 +126,8 @@ def outputs(cli, tmp_path_factory):
                                "--data", ",".join(str(p) for p in sorted(plan.glob("*.csv"))))
     out["observability"] = run_json(cli, "observability", "tilting-table", "--plan", "tilting-table-rtest")
     out["positioning"] = run_json(cli, "positioning", str(DATA / "positioning" / "rotary-table.csv"))
+    out["acceptance"] = run_json(cli, "acceptance", "tilting-table", "--tests", str(DATA / "acceptance" / "tilting-table-acceptance.yaml"))
+    out["rotary-tests"] = run_json(cli, "rotary-tests", "tilting-table", "--positions", "12", "--points", "72")
     stage = DATA / "positioning" / "ecmc-motion-stage"
     out["positioning-conformance"] = run_json(cli, "positioning", f"{stage}.dat", "--conditions", f"{stage}-conditions.yaml",
                                               "--tolerances", f"{stage}-tolerances.yaml")

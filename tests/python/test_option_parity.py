@@ -45,7 +45,8 @@ METHODS = {"compensate": (mtacc.Machine.compensate_program, mtacc.Machine.compen
            "cubic-identify": mtacc.Machine.cubic_identify, "cone": mtacc.Machine.cone,
            "cubic": mtacc.Machine.cubic, "fit": mtacc.Machine.fit_component,
            "plate-identify": mtacc.Machine.identify_plates, "squareness": mtacc.squareness, "yry": mtacc.yry,
-           "multitasking": mtacc.multitasking}
+           "multitasking": mtacc.multitasking, "rotary-tests": mtacc.Machine.rotary_tests,
+           "acceptance": mtacc.Machine.acceptance}
 
 
 def cli_keys(cli, command):

@@ -28,13 +28,15 @@ struct ToleranceTest {
   const char* name;
   Dimension dimension;  // of its results
   std::vector<std::string> quantities;
+  bool lengthDependent;  // its tolerances may depend on the measured length
 };
 const std::vector<ToleranceTest>& toleranceTests();
 
 // Throws InputError naming file, line and key.
 ToleranceSet loadTolerances(const std::string& path);
 ToleranceSet parseTolerances(const std::string& yamlText, const std::string& sourceName);
-// One tolerance in the forms of procedures/conformance.hpp; throws InputError naming `key`.
-Tolerance parseTolerance(const std::string& text, Dimension dimension, const std::string& key);
+// One tolerance in the forms of procedures/conformance.hpp (lengthDependent false: a constant
+// only); throws InputError naming `key`.
+Tolerance parseTolerance(const std::string& text, Dimension dimension, const std::string& key, bool lengthDependent);
 
 }  // namespace mtacc

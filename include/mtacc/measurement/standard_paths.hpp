@@ -11,6 +11,12 @@
 
 namespace mtacc {
 
+// An axis's line at pose q: its location point and direction in the machine (bed) frame.
+struct AxisLine {
+  Vec3 point, direction;
+};
+AxisLine axisLine(const KinematicModel& nominal, const std::vector<double>& q, int axis);
+
 // Sets the linear axes of q so that the nominal tool point (tool frame, relative to the
 // TCP) lies at `target` (workpiece frame); the rotary axes keep their values. Throws
 // UnreachablePose when no linear motion reaches it.

@@ -69,4 +69,23 @@ struct UncertaintyBudget {
 UncertaintyBudget positioningUncertainty(const PositioningTest& test, const PositioningResult& result,
                                          const MeasurementConditions& conditions);
 
+// The budget of results that are ranges of readings (the rotary-axis tests, ISO 230-1's
+// straightness and angular deviations): the instrument's standard uncertainty per reading u_r
+// (twice in a range, not averaging out: sqrt 2 u_r), the environmental variation error E_VE
+// (E_VE / sqrt 3) and the scatter of the means compared (sqrt 2 s / sqrt N, 0 where the test has
+// no repeated runs). Values and uncertainties in mm or rad.
+struct RangeReadings {
+  std::string instrument;           // what reads, for the budget's source line
+  double instrumentStandard = 0;    // u_r
+  bool instrumentDefaulted = false;
+  double drift = 0;                 // E_VE
+  bool driftDefaulted = false;
+  double scatter = 0;               // s of one reading
+  int readingsPerMean = 1;          // N
+  const char* unit = "um";          // of the source lines
+  double unitScale = 1e3;           // per mm or rad
+};
+UncertaintyBudget rangeUncertainty(const std::vector<std::pair<std::string, double>>& values, double measuredLength,
+                                   const RangeReadings& readings);
+
 }  // namespace mtacc
