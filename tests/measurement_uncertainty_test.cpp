@@ -275,7 +275,7 @@ TEST(Conformance, TheDocumentedExamplesRead) {
   const auto tolerances = parseTolerances(documentedExample("Tolerances (YAML)"), "file-formats.md");
   EXPECT_EQ(tolerances.entries.size(), 6u);
   const auto acceptance = parseAcceptancePlan(documentedExample("Acceptance tests (YAML)"), "file-formats.md");
-  EXPECT_EQ(acceptance.tests.size(), 3u);
+  EXPECT_EQ(acceptance.tests.size(), 5u);
 }
 
 }  // namespace

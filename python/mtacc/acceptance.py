@@ -12,7 +12,8 @@ from . import InputError, Machine, plots
 from .report import CHECK_SCRIPT, STYLE, _write_atomically, figure, table
 
 STANDARDS = {"ISO 230-2": "accuracy and repeatability of positioning", "ISO 10791-6": "rotary axes with the linear axes (K tests)",
-             "ISO 230-1": "geometric accuracy from direct measurements"}
+             "ISO 230-1": "geometric accuracy from direct measurements", "ISO 230-4": "circular tests (ballbar)",
+             "ISO 230-3": "thermal drift"}
 
 
 def _verdict(v):
@@ -30,6 +31,10 @@ def _test_section(test):
         out += figure(plots.positioning_chart(test["detail"]), "ISO 230-2: the deviations of every cycle, the means and ±2 s bands")
     elif test["type"] == "rotary":
         out += figure(plots.rotary_test_deviations(test), "ISO 10791-6: the deviations over the rotary axis's positions")
+    elif test["type"] == "drift":
+        out += figure(plots.drift_test_curves(test["detail"]), "ISO 230-3: the drift of each direction over the test")
+    elif test["type"] == "circular":
+        out += figure(plots.circular_test(test), "ISO 230-4: the ballbar's length deviation over the circle, each direction")
     else:
         out += figure(plots.geometric_test(test), "ISO 230-1: the mean of the runs and its deviations from the reference lines")
     rows = [[v["quantity"], f"{v['value']:.3f}", f"{v['U']:.3f}", f"{v['tolerance']:.3f}", v["tolerance_text"], v["verdict"]]

@@ -1086,3 +1086,21 @@ def geometric_test(test):
     ax.legend(fontsize=8)
     fig.tight_layout()
     return fig
+
+
+def circular_test(test):
+    """An ISO 230-4 circular test (`Machine.acceptance`, the "detail" of a circular test): the
+    ballbar's length deviation over the angle, each direction apart."""
+    d = test["detail"]
+    fig, ax = plt.subplots(figsize=(9, 4))
+    angle, deviation, sense = (np.asarray(d[k]) for k in ("angle_deg", "deviation", "sense"))
+    for s, name, colour in ((1, "counter-clockwise", "#c0392b"), (-1, "clockwise", "#2471a3")):
+        if np.any(sense == s):
+            ax.plot(angle[sense == s], deviation[sense == s], ".", markersize=3, color=colour, label=name)
+    ax.axhline(0, color="0.6", linewidth=0.6)
+    ax.set_xlabel("angle in the plane [deg]")
+    ax.set_ylabel(f"length deviation [{d['unit']}]")
+    ax.set_title(f"{test['name']}: ballbar, radius {d['radius_mm']:g} mm")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig

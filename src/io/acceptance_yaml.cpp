@@ -37,17 +37,20 @@ AcceptancePlan parseAcceptancePlan(const std::string& yamlText, const std::strin
   for (size_t i = 0; i < tests.size(); ++i) {
     const auto t = tests[i];
     const std::string key = "tests[" + std::to_string(i) + "]";
-    if (!yamlin::isMap(t)) ctx.fail(t, key, "expected a test: {test: positioning | rotary | geometric, data: FILE, ...}");
+    if (!yamlin::isMap(t)) ctx.fail(t, key, "expected a test: {test: positioning | rotary | geometric | circular | drift, data: FILE, ...}");
     yamlin::rejectUnknownKeys(ctx, t, key, {"name", "test", "data", "conditions", "tolerances", "calibration", "drift"});
     AcceptanceTestSpec s;
     s.line = ctx.at(t, key).line;
     s.key = key;
-    if (!t["test"]) ctx.fail(t, key + ".test", "missing: positioning, rotary or geometric");
+    if (!t["test"]) ctx.fail(t, key + ".test", "missing: positioning, rotary, geometric, circular or drift");
     const auto type = yamlin::scalar(ctx, t["test"], key + ".test");
     if (type == "positioning") s.type = AcceptanceTestType::Positioning;
     else if (type == "rotary") s.type = AcceptanceTestType::Rotary;
     else if (type == "geometric") s.type = AcceptanceTestType::Geometric;
-    else ctx.fail(t["test"], key + ".test", "expected positioning (ISO 230-2), rotary (ISO 10791-6) or geometric (ISO 230-1)");
+    else if (type == "circular") s.type = AcceptanceTestType::Circular;
+    else if (type == "drift") s.type = AcceptanceTestType::Drift;
+    else ctx.fail(t["test"], key + ".test",
+                  "expected positioning (ISO 230-2), rotary (ISO 10791-6), geometric (ISO 230-1), circular (ISO 230-4) or drift (ISO 230-3)");
     if (!t["data"]) ctx.fail(t, key + ".data", "missing: the test's data file");
     s.data = resolve(t["data"], key + ".data");
     s.name = t["name"] ? yamlin::scalar(ctx, t["name"], key + ".name") : std::filesystem::path(s.data).stem().string();
@@ -59,6 +62,7 @@ AcceptancePlan parseAcceptancePlan(const std::string& yamlText, const std::strin
       if (t["conditions"]) s.conditions = resolve(t["conditions"], key + ".conditions");
     } else {
       if (t["conditions"]) ctx.fail(t["conditions"], key + ".conditions", "a conditions file is for a positioning test; give calibration and drift");
+      if (s.type == AcceptanceTestType::Drift && t["drift"]) ctx.fail(t["drift"], key + ".drift", "a drift test measures the drift: it has no E_VE");
       // A geometric test of an angular component states both in angles: its unit is known only
       // from the data, so either dimension is read here and checked against it when it is run.
       for (const char* k : {"calibration", "drift"}) {
@@ -66,7 +70,7 @@ AcceptancePlan parseAcceptancePlan(const std::string& yamlText, const std::strin
         const Quantity q = yamlin::anyQuantity(ctx, t[k], key + "." + k);
         if (!(q.value >= 0) || (q.dimension == Dimension::Length ? q.value > 1.0 : q.value > kDeg))
           ctx.fail(t[k], key + "." + k, "expected 0 to 1 mm (or 1 deg)");
-        if (s.type == AcceptanceTestType::Rotary && q.dimension != Dimension::Length) ctx.fail(t[k], key + "." + k, "expected a length");
+        if (s.type != AcceptanceTestType::Geometric && q.dimension != Dimension::Length) ctx.fail(t[k], key + "." + k, "expected a length");
         (std::string(k) == "calibration" ? s.calibration : s.drift) = q;
       }
     }

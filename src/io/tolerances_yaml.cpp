@@ -40,7 +40,9 @@ const std::vector<ToleranceTest>& toleranceTests() {
                                                 {"rotary_ballbar", Dimension::Length, {"length"}, false},
                                                 {"straightness", Dimension::Length, {"end_point", "least_squares"}, true},
                                                 {"angular_deviation", Dimension::Angle, {"range"}, false},
-                                                {"positional_deviation", Dimension::Length, {"range"}, true}};
+                                                {"positional_deviation", Dimension::Length, {"range"}, true},
+                                                {"circular", Dimension::Length, {"G", "H", "F"}, true},
+                                                {"thermal_drift", Dimension::Length, {"X", "Y", "Z"}, false}};
   return tests;
 }
 

@@ -129,8 +129,9 @@ UncertaintyBudget rangeUncertainty(const std::vector<std::pair<std::string, doub
   b.contributors.push_back({"u_DEVICE", fmt::format("{}: u = {:.3g} {} per reading, twice in a range", r.instrument,
                                                     r.instrumentStandard * r.unitScale, r.unit),
                             root2 * r.instrumentStandard, r.instrumentDefaulted, all});
-  b.contributors.push_back({"u_EVE", fmt::format("environmental variation error E_VE = {:.3g} {} (drift test)", r.drift * r.unitScale, r.unit),
-                            r.drift / kSqrt3, r.driftDefaulted, all});
+  if (r.environmentalVariation)
+    b.contributors.push_back({"u_EVE", fmt::format("environmental variation error E_VE = {:.3g} {} (drift test)", r.drift * r.unitScale, r.unit),
+                              r.drift / kSqrt3, r.driftDefaulted, all});
   if (r.readingsPerMean > 1)
     b.contributors.push_back({"u_REPEAT", fmt::format("scatter s = {:.3g} {} of one reading, means of {}", r.scatter * r.unitScale, r.unit,
                                                       r.readingsPerMean),

@@ -9,9 +9,11 @@
 #include "mtacc/io/component_runs_csv.hpp"
 #include "mtacc/io/measurement_csv.hpp"
 #include "mtacc/io/tolerances_yaml.hpp"
+#include "mtacc/measurement/circular_evaluation.hpp"
 #include "mtacc/measurement/rotary_axis_tests.hpp"
 #include "mtacc/procedures/geometric_tests.hpp"
 #include "mtacc/workflows/positioning.hpp"
+#include "mtacc/workflows/thermal_drift.hpp"
 
 namespace mtacc {
 namespace {
@@ -74,7 +76,7 @@ void rotary(const MachineSetup& setup, const AcceptancePlan& plan, const Accepta
   try {
     result = evaluateRotaryTest(nominal, run);
   } catch (const InvalidInput& e) {
-    throw InputError({s.data, 0, "instrument"}, e.reason());
+    throw InputError({plan.file, s.line, s.key + ".data"}, s.data + ": " + e.reason());
   }
   r.standard = "ISO 10791-6";
   r.section = run.instrument == Instrument::RTest ? "rotary_rtest" : "rotary_ballbar";
@@ -99,7 +101,7 @@ void geometric(const MachineSetup& setup, const AcceptancePlan& plan, const Acce
   try {
     g = evaluateGeometricTest(*setup.machine, file.component, file.runs);
   } catch (const InvalidInput& e) {
-    throw InputError({s.data, 0, "component"}, e.reason());
+    throw InputError({plan.file, s.line, s.key + ".data"}, s.data + ": " + e.reason());
   }
   const bool angular = g.kind == GeometricTestKind::Angular;
   const Dimension dimension = angular ? Dimension::Angle : Dimension::Length;
@@ -124,6 +126,63 @@ void geometric(const MachineSetup& setup, const AcceptancePlan& plan, const Acce
     r.detail["least_squares_residual"] = toVector(g.leastSquaresResidual, r.scale);
     r.detail["least_squares_slope_um_per_m"] = g.leastSquaresSlope * 1e6;
   }
+}
+
+// ISO 230-4: a ballbar circle's circular deviation G (the larger of its directions), circular
+// hysteresis H (with both directions) and radial deviation F (the largest departure from the
+// nominal radius, either sign); L the circle's diameter.
+void circular(const MachineSetup& setup, const AcceptancePlan& plan, const AcceptanceTestSpec& s, AcceptanceTestResult& r) {
+  const MeasurementRun run = readMeasurementCsv(setup.nominal(), s.data);
+  if (run.instrument != Instrument::Ballbar || run.angle.empty())
+    throw InputError({plan.file, s.line, s.key + ".data"},
+                     s.data + ": an ISO 230-4 circular test is a ballbar circle (instrument: ballbar, with its angles)");
+  CircularTestResult c;
+  try {
+    c = evaluateCircularTest(run);
+  } catch (const InvalidInput& e) {
+    throw InputError({plan.file, s.line, s.key + ".data"}, s.data + ": " + e.reason());
+  }
+  r.standard = "ISO 230-4";
+  r.section = "circular";
+  r.instrument = "ballbar";
+  const RangeReadings readings = rangeReadings(s, Dimension::Length, kRangeInstrumentU, std::nullopt, r.instrument, plan.file, r.defaulted);
+  double g = 0, f = 0;
+  nlohmann::json directions = nlohmann::json::array();
+  for (const auto& d : c.directions) {
+    g = std::max(g, d.circularDeviation);
+    f = std::max({f, std::abs(d.radialMax), std::abs(d.radialMin)});
+    directions.push_back({{"sense", d.sense}, {"G", d.circularDeviation / kMicro}, {"F_max", d.radialMax / kMicro}, {"F_min", d.radialMin / kMicro}});
+  }
+  std::vector<std::pair<std::string, double>> values{{"G", g}, {"F", f}};
+  if (c.bothDirections) values.insert(values.begin() + 1, {"H", c.hysteresis});
+  r.uncertainty = rangeUncertainty(values, 2 * run.setup.length, readings);
+  r.detail = {{"run", run.name}, {"unit", "um"}, {"directions", directions}, {"both_directions", c.bothDirections},
+              {"radius_mm", run.setup.length}, {"deviation", toVector(run.readings.col(0), 1 / kMicro)}, {"sense", run.sense}};
+  r.detail["angle_deg"] = toVector(Eigen::Map<const Eigen::VectorXd>(run.angle.data(), static_cast<Eigen::Index>(run.angle.size())), 1 / kDeg);
+}
+
+// ISO 230-3: the range of each displacement the probes give over the test (the tilts are in the
+// detail, not toleranced); the drift is the measurand, so no environmental variation term.
+void drift(const AcceptancePlan& plan, const AcceptanceTestSpec& s, AcceptanceTestResult& r) {
+  DriftTestRequest request;
+  request.file = s.data;
+  const auto e = evaluateDriftTest(request);
+  r.standard = "ISO 230-3";
+  r.section = "thermal_drift";
+  r.instrument = "displacement sensors";
+  RangeReadings readings = rangeReadings(s, Dimension::Length, kRangeInstrumentU, std::nullopt, r.instrument, plan.file, r.defaulted);
+  readings.environmentalVariation = false;
+  std::erase(r.defaulted, "drift");
+  std::vector<std::pair<std::string, double>> values;
+  nlohmann::json tilts = nlohmann::json::object();
+  for (const auto& d : e.directions) {
+    if (isTilt(d.direction)) tilts[nameOf(d.direction)] = {{"range", d.extremes.range * 1e6}, {"unit", "urad"}};
+    else values.emplace_back(nameOf(d.direction), d.extremes.range);
+  }
+  if (values.empty()) throw InputError({plan.file, s.line, s.key + ".data"}, s.data + ": the drift test gives no displacement (X, Y or Z) to judge");
+  r.uncertainty = rangeUncertainty(values, 0.0, readings);
+  r.detail = toJson(e, 2000);
+  r.detail["tilts"] = tilts;
 }
 
 }  // namespace
@@ -165,6 +224,12 @@ AcceptanceResult runAcceptance(const MachineSetup& setup, const std::string& tes
       case AcceptanceTestType::Geometric:
         geometric(setup, plan, s, r);
         break;
+      case AcceptanceTestType::Circular:
+        circular(setup, plan, s, r);
+        break;
+      case AcceptanceTestType::Drift:
+        drift(plan, s, r);
+        break;
     }
     const auto tolerancesFile = s.tolerances ? s.tolerances : plan.tolerances;
     if (!tolerancesFile)
@@ -181,7 +246,8 @@ AcceptanceResult runAcceptance(const MachineSetup& setup, const std::string& tes
 nlohmann::json toJson(const AcceptanceResult& a) {
   nlohmann::json tests = nlohmann::json::array(), summary = nlohmann::json::array();
   for (const auto& t : a.tests) {
-    const char* type = t.spec.type == AcceptanceTestType::Positioning ? "positioning" : t.spec.type == AcceptanceTestType::Rotary ? "rotary" : "geometric";
+    const char* const types[] = {"positioning", "rotary", "geometric", "circular", "drift"};
+    const char* type = types[static_cast<int>(t.spec.type)];
     tests.push_back({{"name", t.spec.name},
                      {"type", type},
                      {"standard", t.standard},

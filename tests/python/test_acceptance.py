@@ -21,7 +21,7 @@ def test_verdicts_follow_the_rule_and_the_cli_equals_the_api(cli):
     out = subprocess.run([cli, "acceptance", "tilting-table", "--tests", str(TESTS), "--json"], capture_output=True, text=True,
                          check=True)
     assert json.loads(out.stdout) == r
-    assert [t["standard"] for t in r["tests"]] == ["ISO 230-2"] + ["ISO 10791-6"] * 4 + ["ISO 230-1"] * 2
+    assert [t["standard"] for t in r["tests"]] == ["ISO 230-2"] + ["ISO 10791-6"] * 4 + ["ISO 230-1"] * 2 + ["ISO 230-4", "ISO 230-3"]
     for s in r["summary"]:
         expected = ("pass" if s["value"] + s["U"] <= s["tolerance"] else
                     "fail" if s["value"] - s["U"] > s["tolerance"] else "undecided")
@@ -32,6 +32,16 @@ def test_verdicts_follow_the_rule_and_the_cli_equals_the_api(cli):
     rtest = r["tests"][1]
     assert rtest["section"] == "rotary_rtest" and set(rtest["detail"]["deviations"]) == {"radial", "tangential", "axial"}
     assert r["tests"][5]["section"] == "straightness" and r["tests"][6]["section"] == "angular_deviation"
+    circle = r["tests"][7]
+    assert circle["section"] == "circular" and [v["quantity"] for v in circle["conformance"]["verdicts"]] == ["G", "H", "F"]
+    # The circle's G against the ISO 230-4 evaluation `evaluate` gives: the same number.
+    evaluated = mtacc.Machine("tilting-table").evaluate_ballbar(str(DATA / "runs" / "ballbar-XY.csv"))
+    assert circle["conformance"]["verdicts"][0]["value"] == pytest.approx(max(d["circular_deviation_um"] for d in evaluated["directions"]), abs=1e-9)
+    drift = r["tests"][8]
+    direct = mtacc.drift_test(str(DATA.parent / "thermal" / "z-axis-drift.csv"))
+    ranges = {d["direction"]: d["range"] for d in direct["directions"]}
+    assert {v["quantity"]: v["value"] for v in drift["conformance"]["verdicts"]} == pytest.approx({"Y": ranges["Y"], "Z": ranges["Z"]})
+    assert [k["symbol"] for k in drift["uncertainty"]["contributors"]] == ["u_DEVICE"]  # the drift is the measurand
 
 
 def test_html_report_renders_in_chromium(cli, tmp_path, artifacts):
@@ -41,10 +51,10 @@ def test_html_report_renders_in_chromium(cli, tmp_path, artifacts):
     text = page.read_text()
     assert text.index("<h2>Summary</h2>") < text.index("<h2>X positioning: ISO 230-2</h2>")
     assert "Overall verdict: <b" in text and "ISO 14253-1" in text and "u_DEVICE" in text
-    assert text.count('<figure class="plot">') == 2 * 7
+    assert text.count('<figure class="plot">') == 2 * 9
     assert not re.search(r'(src|href)\s*=\s*["\']?(https?:)?//', text)
     expected, rendered, errors = rendered_in_chromium(page, tmp_path / "chromium-profile")
-    assert expected == 14 and rendered == expected and errors == ""
+    assert expected == 18 and rendered == expected and errors == ""
     (artifacts / "acceptance-tilting-table.html").write_text(text)
 
 

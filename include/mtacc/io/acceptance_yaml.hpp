@@ -10,7 +10,7 @@
 
 namespace mtacc {
 
-enum class AcceptanceTestType { Positioning, Rotary, Geometric };
+enum class AcceptanceTestType { Positioning, Rotary, Geometric, Circular, Drift };
 
 struct AcceptanceTestSpec {
   std::string name;
@@ -18,8 +18,8 @@ struct AcceptanceTestSpec {
   std::string data;                      // paths resolved against the tests file's folder
   std::optional<std::string> conditions;  // positioning: the measurement conditions file
   std::optional<std::string> tolerances;  // this test's tolerance file, in place of the file's
-  std::optional<Quantity> calibration;    // rotary, geometric: U (k = 2) of the instrument's reading
-  std::optional<Quantity> drift;          // rotary, geometric: E_VE
+  std::optional<Quantity> calibration;    // rotary, geometric, circular: U (k = 2) of the instrument's reading
+  std::optional<Quantity> drift;          // rotary, geometric, circular: E_VE (not for a drift test, which measures it)
   int line = 0;
   std::string key;  // "tests[i]", for messages
 };

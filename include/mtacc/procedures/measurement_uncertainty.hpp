@@ -80,6 +80,7 @@ struct RangeReadings {
   bool instrumentDefaulted = false;
   double drift = 0;                 // E_VE
   bool driftDefaulted = false;
+  bool environmentalVariation = true;  // false: the test measures the drift itself (ISO 230-3)
   double scatter = 0;               // s of one reading
   int readingsPerMean = 1;          // N
   const char* unit = "um";          // of the source lines

@@ -1,7 +1,7 @@
 #pragma once
 // Workflow `acceptance`: every test of an acceptance tests file (docs/file-formats.md "Acceptance
 // tests") evaluated as its standard defines the result — ISO 230-2 positioning, ISO 10791-6
-// rotary-axis tests, ISO 230-1 straightness and angular deviations — with its ISO/TR 230-9
+// rotary-axis tests, ISO 230-1 straightness and angular deviations, ISO 230-4 circular tests, ISO 230-3 drift — with its ISO/TR 230-9
 // uncertainty, its tolerance and its ISO 14253-1 verdict; the summary first.
 #include <string>
 #include <vector>
