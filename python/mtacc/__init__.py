@@ -469,7 +469,7 @@ class Machine:
         return result
 
     def rotary_tests(self, axes=None, radius=None, spread=None, length=None, positions=None, points=None, feed=None,
-                     plan_out=None, programs=None):
+                     plan_out=None, programs=None, decimals=None):
         """The ISO 10791-6 tests around each rotary axis (as `mtacc rotary-tests --json`, whose options these
         keyword arguments are): per axis the R-test at two set-ups (a table axis: the sphere at `radius`
         from the line and `spread` along it; a head axis: the tool ball at the tip and `spread` beyond) and
@@ -477,9 +477,9 @@ class Machine:
         this machine (um: R-test radial, tangential, axial ranges with the sphere set at the first
         position; ballbar length range) and the location errors each result sees ("sees": um of range
         per um or urad, each error alone). plan_out: write the plan `simulate`/`identify` read;
-        programs: a folder for a G-code program per test."""
+        programs: a folder for a G-code program per test, its positions with `decimals` places (default 6)."""
         return self._core.rotary_tests(_options(axes=axes, radius=radius, spread=spread, length=length, positions=positions,
-                                                points=points, feed=feed, plan_out=plan_out, programs=programs))
+                                                points=points, feed=feed, plan_out=plan_out, programs=programs, decimals=decimals))
 
     def compensate_program(self, program, tool_length=None, tolerance=None, direction_tolerance=None, check_errors=None):
         """The axis program (G-code) at `program` compensated for this machine's errors, as `mtacc

@@ -348,7 +348,7 @@ RotaryTestSensitivity rotaryTestSensitivities(const KinematicModel& nominal, con
   return s;
 }
 
-std::string rotaryTestProgram(const Machine& machine, const RotaryAxisTest& test) {
+std::string rotaryTestProgram(const Machine& machine, const RotaryAxisTest& test, int decimals) {
   const auto& run = test.run;
   std::string out = fmt::format("(ISO 10791-6 {}: {})\n", test.name, test.description);
   if (run.instrument == Instrument::Ballbar)
@@ -362,7 +362,7 @@ std::string rotaryTestProgram(const Machine& machine, const RotaryAxisTest& test
   const auto words = [&](Eigen::Index i) {
     std::string w;
     for (int j = 0; j < machine.commandedCount(); ++j)
-      w += fmt::format(" {}{:.6f}", names[static_cast<size_t>(j)], run.q(i, j) / machine.axes[static_cast<size_t>(j)].fileUnit());
+      w += fmt::format(" {}{:.{}f}", names[static_cast<size_t>(j)], run.q(i, j) / machine.axes[static_cast<size_t>(j)].fileUnit(), decimals);
     return w;
   };
   out += "G0" + words(0) + "\n";

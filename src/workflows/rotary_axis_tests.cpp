@@ -37,7 +37,9 @@ const OptionSchema& rotaryTestsSchema() {
        {.key = "feed", .kind = OptionKind::Number, .help = "feed of the programs (mm/min)", .defaultText = "1000", .low = 1, .high = 1e5,
         .outOfRange = "must be from 1 to 100000 mm/min"},
        {"plan_out", OptionKind::Text, "write the tests as a plan (YAML) that simulate, observability and identify read"},
-       {"programs", OptionKind::Text, "write a G-code program per test into this folder (<test>.nc)"}}};
+       {"programs", OptionKind::Text, "write a G-code program per test into this folder (<test>.nc)"},
+       {.key = "decimals", .kind = OptionKind::Count, .help = "decimal places of the programs' positions (mm, deg): the controller's limit",
+        .defaultText = "6", .low = 3, .high = 12, .outOfRange = "must be from 3 to 12"}}};
   return schema;
 }
 
@@ -53,6 +55,7 @@ RotaryTestsRequest rotaryTestsRequest(const OptionValues& values) {
   q.options.feed = *r.number("feed");
   q.planOut = r.text("plan_out");
   q.programsDir = r.text("programs");
+  q.decimals = *r.count("decimals");
   return q;
 }
 
@@ -88,7 +91,7 @@ RotaryTestsResult rotaryTestsFor(const MachineSetup& setup, const RotaryTestsReq
     if (ec) throw InputError({"", 0, "programs"}, *request.programsDir + ": cannot create the folder: " + ec.message());
     for (const auto& t : r.set.tests) {
       const std::string path = (std::filesystem::path(*request.programsDir) / (t.name + ".nc")).string();
-      writeFileAtomically(path, rotaryTestProgram(*setup.machine, t), "programs");
+      writeFileAtomically(path, rotaryTestProgram(*setup.machine, t, request.decimals), "programs");
       r.written.push_back(path);
     }
   }

@@ -68,8 +68,9 @@ struct RotaryTestSensitivity {
 };
 RotaryTestSensitivity rotaryTestSensitivities(const KinematicModel& nominal, const std::vector<RotaryAxisTest>& tests);
 
-// The test's program: the run's poses as G1 moves in the machine's axis positions (mm, deg), a
-// dwell at each R-test position; header comments with the set-up.
-std::string rotaryTestProgram(const Machine& machine, const RotaryAxisTest& test);
+// The test's program: the run's poses as G1 moves in the machine's axis positions (mm, deg) with
+// `decimals` places (a controller's limit), a dwell at each R-test position; header comments with
+// the set-up.
+std::string rotaryTestProgram(const Machine& machine, const RotaryAxisTest& test, int decimals = 6);
 
 }  // namespace mtacc

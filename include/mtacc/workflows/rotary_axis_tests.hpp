@@ -19,8 +19,9 @@ struct RotaryTestsRequest {
   RotaryAxisTestOptions options;
   std::optional<std::string> planOut;      // the plan YAML written there
   std::optional<std::string> programsDir;  // a G-code program per test written there (<test>.nc)
+  int decimals = 6;                        // of the programs' positions
 };
-// axes, radius, spread, length, positions, points, feed, plan_out, programs.
+// axes, radius, spread, length, positions, points, feed, plan_out, programs, decimals.
 const OptionSchema& rotaryTestsSchema();
 RotaryTestsRequest rotaryTestsRequest(const OptionValues& values);
 
