@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 
+#include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/errors_yaml.hpp"
 #include "mtacc/io/gcode_program.hpp"
@@ -162,6 +163,30 @@ TEST(RotaryAxisTests, EachLocationErrorShowsInTheTestsDesignedToSeeIt) {
       {"X0C", offsetC}, {"Y0C", offsetC}, {"A0C", tiltC}, {"B0C", tiltC}, {"Z0C", {}}, {"C0C", {}},
       {"X0B", both(offsetB, offsetC)}, {"Z0B", offsetB}, {"C0B", tiltB}, {"A0B", both(tiltB, tiltC)}, {"B0B", tiltC}, {"Y0B", offsetC}};
   for (const auto& [parameter, tests_] : expected) EXPECT_EQ(seenBy(s, tests, parameter), tests_) << parameter;
+}
+
+}  // namespace
+}  // namespace mtacc
+
+namespace mtacc {
+namespace {
+
+TEST(PlanYaml, SphereRunsTakeTheirAnglesOneByOne) {
+  // A designed plan's R-test: the positions listed, as the sphere generator steps through them.
+  const auto nominal = compileNominal(test::bundled("tilting-table"));
+  const auto plan = parseTestPlan(nominal, R"(runs:
+  - sphere: {axis: C, angles: [0 deg, 35 deg, 90 deg, 271.5 deg], spheres: [[100 mm, 0 mm, 0 mm]], pose: {B: -30 deg}}
+)",
+                                  "plan.yaml");
+  ASSERT_EQ(plan.runs.size(), 1u);
+  const auto& q = plan.runs[0].q;
+  ASSERT_EQ(q.rows(), 4);
+  const int c = nominal.machine->commandedAxisIndex("C");
+  EXPECT_NEAR(q(1, c), 35 * kDeg, 1e-15);
+  EXPECT_NEAR(q(3, c), 271.5 * kDeg, 1e-15);
+  EXPECT_THROW(parseTestPlan(nominal, "runs:\n  - sphere: {axis: C, angles: [0 deg], from: 0 deg, spheres: [[100 mm, 0 mm, 0 mm]]}\n", "p.yaml"),
+               InputError);
+  EXPECT_THROW(parseTestPlan(nominal, "runs:\n  - sphere: {axis: C, angles: [], spheres: [[100 mm, 0 mm, 0 mm]]}\n", "p.yaml"), InputError);
 }
 
 }  // namespace

@@ -94,17 +94,26 @@ std::vector<MeasurementRun> generate(const Context& ctx, const KinematicModel& n
   }
   if (const auto sp = entry["sphere"]) {
     const std::string k = key + ".sphere";
-    yamlin::rejectUnknownKeys(ctx, sp, k, {"instrument", "axis", "from", "to", "points", "spheres", "pose"});
+    yamlin::rejectUnknownKeys(ctx, sp, k, {"instrument", "axis", "from", "to", "points", "angles", "spheres", "pose"});
     SphereTestSpec s;
     const auto instrument = parseInstrument(sp["instrument"] ? yamlin::scalar(ctx, sp["instrument"], k + ".instrument") : "rtest");
     if (!instrument || (*instrument != Instrument::RTest && *instrument != Instrument::TouchProbe))
       ctx.fail(sp["instrument"], k + ".instrument", "expected rtest or probe");
     s.instrument = *instrument;
     s.axis = yamlin::scalar(ctx, sp["axis"], k + ".axis");
-    const double from = yamlin::quantity(ctx, sp["from"], k + ".from", Dimension::Angle);
-    const double to = yamlin::quantity(ctx, sp["to"], k + ".to", Dimension::Angle);
-    const int n = count(ctx, sp["points"], k + ".points", 12, 1);
-    for (int i = 0; i < n; ++i) s.angles.push_back(n == 1 ? from : from + (to - from) * i / (n - 1));
+    if (const auto angles = sp["angles"]) {  // the positions one by one (a designed plan's), in place of from, to, points
+      for (const char* range : {"from", "to", "points"})
+        if (sp[range]) ctx.fail(sp[range], k + "." + range, "give either angles or from, to and points");
+      if (!angles.IsSequence() || angles.size() == 0 || angles.size() > static_cast<size_t>(kMaxPointsPerRun))
+        ctx.fail(angles, k + ".angles", "expected a list of angles [0 deg, 30 deg, ...]");
+      for (size_t i = 0; i < angles.size(); ++i)
+        s.angles.push_back(yamlin::quantity(ctx, angles[i], k + ".angles[" + std::to_string(i) + "]", Dimension::Angle));
+    } else {
+      const double from = yamlin::quantity(ctx, sp["from"], k + ".from", Dimension::Angle);
+      const double to = yamlin::quantity(ctx, sp["to"], k + ".to", Dimension::Angle);
+      const int n = count(ctx, sp["points"], k + ".points", 12, 1);
+      for (int i = 0; i < n; ++i) s.angles.push_back(n == 1 ? from : from + (to - from) * i / (n - 1));
+    }
     if (!sp["spheres"] || !sp["spheres"].IsSequence()) ctx.fail(sp, k + ".spheres", "expected a list of positions [x mm, y mm, z mm]");
     for (size_t i = 0; i < sp["spheres"].size(); ++i)
       s.spheres.push_back(yamlin::lengthVector(ctx, sp["spheres"][i], k + ".spheres[" + std::to_string(i) + "]"));
