@@ -61,4 +61,11 @@ Verdict decide(double result, double expandedUncertainty, double tolerance, Deci
   return Verdict::Undecided;
 }
 
+Verdict combined(const std::vector<Verdict>& verdicts) {
+  const auto any = [&](Verdict v) { return std::find(verdicts.begin(), verdicts.end(), v) != verdicts.end(); };
+  if (any(Verdict::Fail)) return Verdict::Fail;
+  if (any(Verdict::Undecided)) return Verdict::Undecided;
+  return Verdict::Pass;
+}
+
 }  // namespace mtacc

@@ -188,12 +188,9 @@ void drift(const AcceptancePlan& plan, const AcceptanceTestSpec& s, AcceptanceTe
 }  // namespace
 
 Verdict AcceptanceResult::overall() const {
-  const auto any = [&](Verdict v) {
-    return std::any_of(tests.begin(), tests.end(), [v](const AcceptanceTestResult& t) { return t.conformance.overall() == v; });
-  };
-  if (any(Verdict::Fail)) return Verdict::Fail;
-  if (any(Verdict::Undecided)) return Verdict::Undecided;
-  return Verdict::Pass;
+  std::vector<Verdict> each;
+  for (const auto& t : tests) each.push_back(t.conformance.overall());
+  return combined(each);
 }
 
 const OptionSchema& acceptanceSchema() {

@@ -7,12 +7,9 @@
 namespace mtacc {
 
 Verdict Conformance::overall() const {
-  const auto any = [&](Verdict v) {
-    return std::any_of(verdicts.begin(), verdicts.end(), [v](const QuantityVerdict& q) { return q.verdict == v; });
-  };
-  if (any(Verdict::Fail)) return Verdict::Fail;
-  if (any(Verdict::Undecided)) return Verdict::Undecided;
-  return Verdict::Pass;
+  std::vector<Verdict> each;
+  for (const auto& v : verdicts) each.push_back(v.verdict);
+  return combined(each);
 }
 
 Conformance judge(const UncertaintyBudget& budget, const ToleranceSet& tolerances, const std::string& test) {

@@ -36,5 +36,7 @@ const char* toString(Verdict verdict);
 const char* describe(DecisionRule rule);  // one sentence for a report
 
 Verdict decide(double result, double expandedUncertainty, double tolerance, DecisionRule rule);
+// The verdict of several together: fail if any fails, else undecided if any is, else pass.
+Verdict combined(const std::vector<Verdict>& verdicts);
 
 }  // namespace mtacc
