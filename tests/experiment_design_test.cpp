@@ -158,5 +158,40 @@ TEST(ExperimentDesign, ANuisancePriorKeepsAnUnusedSetUpRegular) {
   EXPECT_EQ(std::count_if(noPrior.chosen.begin(), noPrior.chosen.end(), [](int i) { return i >= 5; }), 1);
 }
 
+TEST(ExperimentDesign, IOptimalQuadraticIsTheClassicalOne) {
+  // The integrated variance over [-1, 1]: W = (1/2) int f f^T dx for f = (1, x, x^2). The I- (V-)
+  // optimal design for the quadratic puts weights 1/4, 1/2, 1/4 on -1, 0, 1 (the classical result;
+  // over symmetric weights w, 1 - 2w, w, trace(W M(w)^-1) is least at w = 1/4, 32/15).
+  Eigen::MatrixXd w(3, 3);
+  w << 1, 0, 1.0 / 3, 0, 1.0 / 3, 0, 1.0 / 3, 0, 1.0 / 5;
+  const auto quadratic = polynomialCandidates(2);
+  const auto d = designExperiment(quadratic, {.criterion = DesignCriterion::I, .count = 8, .weight = w});
+  EXPECT_EQ(points(d), (std::vector<double>{-1, -1, 0, 0, 0, 0, 1, 1}));
+  // trace(W M^-1) for M = 8 (1/4 f(-1) f(-1)^T + 1/2 f(0) f(0)^T + 1/4 f(1) f(1)^T): 32/15 / 8.
+  EXPECT_NEAR(d.criterion, 32.0 / 15.0 / 8.0, 1e-12);
+  EXPECT_NEAR(d.criterion, designCriterion(d.information, DesignCriterion::I, {}, w), 1e-14);
+}
+
+TEST(ExperimentDesign, ABudgetTradesCostAgainstInformation) {
+  // A line on [-1, 1]; the ends cost 2, every other point 1; a budget of 4, no repeats: the two
+  // ends give det M = 4, the four points -0.9, -0.8, 0.8, 0.9 det M = 4 (2 0.81 + 2 0.64) = 11.6.
+  const auto line = polynomialCandidates(1);
+  std::vector<double> cost(line.size(), 1.0);
+  cost.front() = cost.back() = 2.0;
+  const auto d = designExperiment(line, {.criterion = DesignCriterion::D, .cost = cost, .budget = 4, .repeats = false});
+  EXPECT_EQ(points(d), (std::vector<double>{-0.9, -0.8, 0.8, 0.9}));
+  EXPECT_NEAR(d.cost, 4.0, 1e-12);
+  EXPECT_NEAR(d.criterion, std::log(4 * (2 * 0.81 + 2 * 0.64)), 1e-12);
+  // A group's cost counts once: the negative side needs a mounting of 10, beyond the budget, so
+  // the design keeps to [0, 1], its ends and their neighbours.
+  std::vector<std::vector<int>> groups;
+  for (size_t i = 0; i < line.size(); ++i) groups.push_back({i < 10 ? 0 : 1});
+  const auto g = designExperiment(line, {.criterion = DesignCriterion::D, .cost = std::vector<double>(line.size(), 1.0), .groups = groups,
+                                         .groupCost = {10.0, 0.0}, .budget = 4, .repeats = false});
+  EXPECT_EQ(points(g), (std::vector<double>{0, 0.1, 0.9, 1}));
+  EXPECT_NEAR(g.cost, 4.0, 1e-12);
+  EXPECT_THROW(designExperiment(line, {.criterion = DesignCriterion::D, .cost = cost, .budget = 1.5, .repeats = false}), InvalidInput);
+}
+
 }  // namespace
 }  // namespace mtacc

@@ -60,6 +60,7 @@ void addEvaluateCommand(const CommandLine& app);
 void addPositioningCommand(const CommandLine& app);    // positioning (ISO 230-2)
 void addRotaryTestsCommand(const CommandLine& app);    // rotary-tests (ISO 10791-6)
 void addAcceptanceCommand(const CommandLine& app);     // acceptance (tests, uncertainty, tolerances, verdicts)
+void addDesignCommand(const CommandLine& app);         // design (the measurement plan)
 void addFitCommand(const CommandLine& app);            // fit (seed 003 component fits)
 void addPlateCommand(const CommandLine& app);          // plate (seed 003 hole plates)
 void addStiffnessCommand(const CommandLine& app);      // stiffness (seed 003 finite stiffness)

@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
   mtacc::cli::addPositioningCommand(commands);
   mtacc::cli::addRotaryTestsCommand(commands);
   mtacc::cli::addAcceptanceCommand(commands);
+  mtacc::cli::addDesignCommand(commands);
   mtacc::cli::addFitCommand(commands);
   mtacc::cli::addDirectProcedureCommands(commands);
   mtacc::cli::addMultitaskingCommand(commands);

@@ -5,6 +5,7 @@
 #include "bindings.hpp"
 #include "mtacc/workflows/acceptance.hpp"
 #include "mtacc/workflows/budget.hpp"
+#include "mtacc/workflows/measurement_design.hpp"
 #include "mtacc/workflows/rotary_axis_tests.hpp"
 #include "mtacc/workflows/stiffness.hpp"
 
@@ -48,6 +49,15 @@ void exposeBudget(MachineClass& machine) {
           r = rotaryTestsFor(s, request);
         }
         return toPython(toJson(r));
+      })
+      .def("design", [](const PythonMachine& s, const OptionValues& options) {
+        const MeasurementDesignRequest request = measurementDesignRequest(options);
+        MeasurementDesign d;
+        {
+          py::gil_scoped_release release;
+          d = designMeasurement(s, request);
+        }
+        return toPython(toJson(d));
       });
 }
 

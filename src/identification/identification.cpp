@@ -428,11 +428,15 @@ Eigen::MatrixXd stackedJacobian(const IdentificationProblem& problem, int thread
   return state.jacobian;
 }
 
-ObservabilityReport planObservability(const IdentificationProblem& problem, int threads) {
+Eigen::MatrixXd nominalJacobian(const IdentificationProblem& problem, int threads) {
   State state(problem, true, threadCount(threads));
   state.evaluateAll();
+  return std::move(state.jacobian);
+}
+
+ObservabilityReport planObservability(const IdentificationProblem& problem, int threads) {
   const auto cols = problemColumns(problem);
-  return analyseObservability(std::move(state.jacobian), cols.names, cols.typical, kRankTolerance, threads);
+  return analyseObservability(nominalJacobian(problem, threads), cols.names, cols.typical, kRankTolerance, threads);
 }
 
 PredictedUncertainty predictUncertainty(const IdentificationProblem& problem, const std::vector<double>& runNoise, int threads) {

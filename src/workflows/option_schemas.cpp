@@ -16,6 +16,7 @@
 #include "mtacc/workflows/multitasking_identification.hpp"
 #include "mtacc/workflows/plates.hpp"
 #include "mtacc/workflows/positioning.hpp"
+#include "mtacc/workflows/measurement_design.hpp"
 #include "mtacc/workflows/rotary_axis_tests.hpp"
 #include "mtacc/workflows/acceptance.hpp"
 #include "mtacc/workflows/program_deviation.hpp"
@@ -57,6 +58,7 @@ const std::map<std::string, const OptionSchema*>& workflowOptionSchemas() {
       {"positioning", &positioningSchema()},
       {"rotary-tests", &rotaryTestsSchema()},
       {"acceptance", &acceptanceSchema()},
+      {"design", &measurementDesignSchema()},
       {"report", &reportSchema()},
       {"sensitivity", &sensitivitySchema()},
       {"simulate ballbar", &ballbarSimulationSchema()},

@@ -60,6 +60,7 @@ WORKFLOWS = {
     "positioning": lambda: mtacc.positioning(NOT_A_RUN),
     "rotary-tests": lambda: tilting().rotary_tests(radius="-5 mm"),
     "acceptance": lambda: tilting().acceptance(NOT_A_RUN),
+    "design": lambda: tilting().design(time="soon", parameters=["X0C"]),
     "multitasking": lambda: mtacc.multitasking(NOT_A_RUN),
     "squareness": lambda: mtacc.squareness("y", 0.7, 2.1),
     "yry": lambda: mtacc.yry([0, 100], [1, 2], [0], 0.5, 0, 550),

@@ -15,11 +15,11 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 DATA = ROOT / "data"
 
 UNIT_SUFFIX = re.compile(r"_(mm|um|deg|rad|urad|arcsec|hz|s|ms|kg|C|per_K|percent|ppm"
-                         r"|mm_per_min|um_per_mm|um_per_m|urad_per_mm|um_per_n|um_per_g|n_per_um|um_urad)$")
+                         r"|min|mm_per_min|um_per_mm|um_per_m|urad_per_mm|um_per_n|um_per_g|n_per_um|um_urad)$")
 
 # Counts, indices, ratios, signs, statistics of no unit, and unit vectors (directions).
 DIMENSIONLESS = {
-    "alignment_rms_misfit", "axis_direction", "axis_in_workpiece", "beyond_bound", "bins", "filled_cells", "contouring_orthogonal_undefined_samples", "cells", "chi_square", "column", "columns", "condition",
+    "alignment_rms_misfit", "axis_direction", "axis_in_workpiece", "beyond_bound", "bins", "candidates", "criterion_value", "exchanges", "filled_cells", "contouring_orthogonal_undefined_samples", "cells", "chi_square", "column", "columns", "condition",
     "correlation", "coverage_factor", "cutter_moves", "cutting_samples", "damping_coupling", "damping_ratio", "degree", "degrees_of_freedom", "dimension", "direction",
     "exponent", "features", "first_problem_line", "first_sample_used", "fit_significance", "instant_blocks",
     "instrument_samples", "iterations", "largest_relative_misfit", "line", "lines", "location_parameter_count",
@@ -27,7 +27,7 @@ DIMENSIONLESS = {
     "parameter_count", "parameters", "points", "poses", "rank", "readings", "reference_samples_left_out", "row",
     "rotary_class", "rows", "runs", "runs_each_way", "samples", "samples_per_axis", "samples_used", "seed", "sense", "shape",
     "sigma_over_probe_noise", "sign", "singular", "singular_values", "singular_vectors", "stiffness_changes",
-    "stride", "tool_direction", "tool_vector", "tools", "u", "v", "vertical_direction", "workpiece_axes", "worst_blocks", "written_points"}
+    "stride", "tool_direction", "tool_vector", "tools", "u", "v", "vertical_direction", "volume_poses", "workpiece_axes", "worst_blocks", "written_points"}
 
 # Positions of the machine's axes, each in mm for a linear axis and deg for a rotary one: an
 # object keyed by axis name, an array in the machine's axis order, or the positions along one axis.
@@ -128,6 +128,7 @@ def outputs(cli, tmp_path_factory):
     out["positioning"] = run_json(cli, "positioning", str(DATA / "positioning" / "rotary-table.csv"))
     out["acceptance"] = run_json(cli, "acceptance", "tilting-table", "--tests", str(DATA / "acceptance" / "tilting-table-acceptance.yaml"))
     out["rotary-tests"] = run_json(cli, "rotary-tests", "tilting-table", "--positions", "12", "--points", "72")
+    out["design"] = run_json(cli, "design", "tilting-table", "--plan", "tilting-table-rtest", "--time", "30min")
     stage = DATA / "positioning" / "ecmc-motion-stage"
     out["positioning-conformance"] = run_json(cli, "positioning", f"{stage}.dat", "--conditions", f"{stage}-conditions.yaml",
                                               "--tolerances", f"{stage}-tolerances.yaml")

@@ -46,7 +46,7 @@ METHODS = {"compensate": (mtacc.Machine.compensate_program, mtacc.Machine.compen
            "cubic": mtacc.Machine.cubic, "fit": mtacc.Machine.fit_component,
            "plate-identify": mtacc.Machine.identify_plates, "squareness": mtacc.squareness, "yry": mtacc.yry,
            "multitasking": mtacc.multitasking, "rotary-tests": mtacc.Machine.rotary_tests,
-           "acceptance": mtacc.Machine.acceptance}
+           "acceptance": mtacc.Machine.acceptance, "design": mtacc.Machine.design}
 
 
 def cli_keys(cli, command):

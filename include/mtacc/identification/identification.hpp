@@ -31,6 +31,9 @@ ProblemColumns problemColumns(const IdentificationProblem& problem);
 
 // Readings x columns at the problem's current state (start errors, run set-up errors).
 Eigen::MatrixXd stackedJacobian(const IdentificationProblem& problem, int threads = kAllCores);
+// The same about the nominal machine (every error parameter and set-up error at zero): the
+// first-order Jacobian planObservability and predictUncertainty analyse.
+Eigen::MatrixXd nominalJacobian(const IdentificationProblem& problem, int threads = kAllCores);
 // What the plan determines to first order: the Jacobian about the nominal machine (every
 // error and set-up error at zero), so that the answer does not hinge on second-order
 // effects of the errors (the sense of the sensitivities of seeds 001 and 002).
