@@ -5,6 +5,9 @@
 #include <cstdio>
 #include <string_view>
 
+#include "mtacc/core/units.hpp"
+#include "mtacc/measurement/standard_paths.hpp"
+
 namespace mtacc::bench {
 
 bool agreementCheckOnly(int argc, char** argv) {
@@ -15,6 +18,26 @@ bool agreementCheckOnly(int argc, char** argv) {
       return true;
     }
   return false;
+}
+
+std::vector<MeasurementRun> tiltingTableRTestRuns(const KinematicModel& nominal, int steps, const std::vector<Vec3>& spheres) {
+  std::vector<MeasurementRun> runs;
+  for (int k = 0; k < 4; ++k) {
+    SphereTestSpec c;
+    c.axis = "C";
+    for (int i = 0; i < steps; ++i) c.angles.push_back(2 * kPi * i / steps);
+    c.spheres = spheres;
+    c.pose = {0, 0, 0, -30.0 * k * kDeg, 0};
+    for (auto& r : sphereTest(nominal, c)) runs.push_back(std::move(r));
+    SphereTestSpec b;
+    b.axis = "B";
+    for (int i = 0; i < steps; ++i) b.angles.push_back(-90.0 * kDeg * i / (steps - 1));
+    b.spheres = spheres;
+    b.pose = {0, 0, 0, 0, 90.0 * k * kDeg};
+    for (auto& r : sphereTest(nominal, b)) runs.push_back(std::move(r));
+  }
+  for (size_t i = 0; i < runs.size(); ++i) runs[i].name += "-" + std::to_string(i);
+  return runs;
 }
 
 std::string benchDir() { return MTACC_BENCH_DIR; }

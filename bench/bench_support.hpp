@@ -2,6 +2,9 @@
 // What every benchmark shares: its two sizes, where its baseline scripts are, and how it runs
 // them.
 #include <string>
+#include <vector>
+
+#include "mtacc/measurement/measurement.hpp"
 
 namespace mtacc::bench {
 
@@ -10,6 +13,11 @@ namespace mtacc::bench {
 // baseline fails the test suite). Its times are not the benchmark's and are printed as such.
 // Without it, the full benchmark (scripts/bench.sh).
 bool agreementCheckOnly(int argc, char** argv);
+
+// R-test runs on the tilting table, one per sphere: C turning at B = 0, -30, -60, -90 deg and B
+// tilting from 0 to -90 deg at C = 0, 90, 180, 270 deg, each in `steps` steps (40 * steps poses for
+// five spheres): the poses of the identification and design benchmarks.
+std::vector<MeasurementRun> tiltingTableRTestRuns(const KinematicModel& nominal, int steps, const std::vector<Vec3>& spheres);
 
 std::string benchDir();        // bench/ of the source tree: the baseline scripts and data
 std::string pythonBuildDir();  // the build tree's Python package folder

@@ -23,7 +23,6 @@
 #include "mtacc/io/machine_yaml.hpp"
 #include "mtacc/identification/identification.hpp"
 #include "mtacc/measurement/simulation.hpp"
-#include "mtacc/measurement/standard_paths.hpp"
 
 using namespace mtacc;
 
@@ -34,29 +33,6 @@ const std::vector<std::string> kNames = {"X0B", "Y0B", "Z0B", "A0B", "C0B", "X0C
 const std::vector<double> kTruth = {6e-3, -3e-3, -4e-3, 25e-6, -20e-6, -5e-3, 4e-3,
                                     30e-6, -25e-6, 15e-6, 20e-6, -15e-6, 12e-6};
 constexpr double kAgreement = 1e-3;  // standard uncertainties: both minimise the same sum of squares
-
-// 40 * steps poses (10,000 for the benchmark): the sphere at 5 positions; C turning at B = 0,
-// -30, -60, -90 deg and B tilting at C = 0, 90, 180, 270 deg, each in `steps` steps.
-std::vector<MeasurementRun> plan(const KinematicModel& nominal, int steps) {
-  const std::vector<Vec3> spheres = {{120, 0, 60}, {0, 80, 160}, {-100, -50, 40}, {60, 60, 120}, {0, 0, 200}};
-  std::vector<MeasurementRun> runs;
-  for (int k = 0; k < 4; ++k) {
-    SphereTestSpec c;
-    c.axis = "C";
-    for (int i = 0; i < steps; ++i) c.angles.push_back(2 * kPi * i / steps);
-    c.spheres = spheres;
-    c.pose = {0, 0, 0, -30.0 * k * kDeg, 0};
-    for (auto& r : sphereTest(nominal, c)) runs.push_back(std::move(r));
-    SphereTestSpec b;
-    b.axis = "B";
-    for (int i = 0; i < steps; ++i) b.angles.push_back(-90.0 * kDeg * i / (steps - 1));
-    b.spheres = spheres;
-    b.pose = {0, 0, 0, 0, 90.0 * k * kDeg};
-    for (auto& r : sphereTest(nominal, b)) runs.push_back(std::move(r));
-  }
-  for (size_t i = 0; i < runs.size(); ++i) runs[i].name += "-" + std::to_string(i);
-  return runs;
-}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -78,7 +54,7 @@ int main(int argc, char** argv) {
     problem.parameters.push_back(findParameter(*machine, problem.start, kNames[k]));
     setParameterValue(truth, problem.parameters.back(), kTruth[k]);
   }
-  problem.runs = plan(nominal, steps);
+  problem.runs = bench::tiltingTableRTestRuns(nominal, steps, {{120, 0, 60}, {0, 80, 160}, {-100, -50, 40}, {60, 60, 120}, {0, 0, 200}});
   const auto model = compile(machine, truth);
   std::mt19937_64 rng(3);
   long points = 0;

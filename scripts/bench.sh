@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every benchmark at full size with its baseline, side by side in one run, printing its ratio
 # (bench/README.md). Installs and builds what is missing first (scripts/build.sh).
-# Usage: scripts/bench.sh [NAME ...]   (e.g. bench_identify_vs_scipy; default: all eleven)
+# Usage: scripts/bench.sh [NAME ...]   (e.g. bench_identify_vs_scipy; default: all twelve)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -18,6 +18,7 @@ benchmarks=(
   "bench_dynamics_vs_numpy|3x3 FRF at 500 frequencies at 10,000 positions of a 10-body model, against vectorised NumPy"
   "bench_decomposition_vs_numpy|seed 004's decomposition of six feeds of 150,000 samples, against NumPy + SciPy"
   "bench_sensor_selection_vs_numpy|stepwise choice among 64 temperature sensors on 24 h at 1 Hz, against NumPy"
+  "bench_experiment_design_vs_numpy|D-optimal choice of 60 among 10,000 R-test poses for 13 parameters, against NumPy"
   "bench_python_batch_fk|the Python batch API against the C++ call it wraps"
 )
 declare -A title=()

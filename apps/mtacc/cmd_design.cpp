@@ -14,8 +14,18 @@ struct DesignCliOptions {
   OptionValues values;
 };
 
+// The report is the Python package's: it designs again with the same options and writes the HTML.
+[[noreturn]] void writeHtml(const DesignCliOptions& o, const std::string& html) {
+  OptionValues options = o.values;
+  options.erase("html");
+  std::vector<std::string> args{o.machine.source.machine, "--options", nlohmann::json(options).dump(), "--html", html};
+  if (!o.machine.source.errorsFile.empty()) args.insert(args.end(), {"--errors", o.machine.source.errorsFile});
+  runPythonModule("mtacc.measurement_design", args);
+}
+
 void run(const DesignCliOptions& o) {
   const auto d = designMeasurement(loadMachineSetup(o.machine.source), measurementDesignRequest(o.values));
+  if (const auto html = OptionReader(measurementDesignSchema(), o.values).text("html")) writeHtml(o, *html);  // bad input was reported above
   const auto j = toJson(d);
   const auto& design = j["design"];
   std::string human = fmt::format("Measurement design for {}: {}-optimal among {} candidate runs, {:.1f} min of the {:g} min available "

@@ -469,9 +469,9 @@ class Machine:
         return result
 
     def design(self, time=None, parameters=None, instruments=None, reach=None, criterion=None, noise=None, plan=None, plan_out=None,
-               radii=None, spread=None, length=None, positions=None, points=None, feed=None, rapid=None, rotary_rapid=None,
+               radii=None, spread=None, lengths=None, positions=None, points=None, feed=None, rapid=None, rotary_rapid=None,
                acceleration=None, rotary_acceleration=None, dwell=None, probe_time=None, setup_time=None, change_time=None,
-               threads=None):
+               threads=None, html=None):
         """The measurement plan that determines `parameters` (default: `plan`'s) best in the machine `time`
         available ("30min", "1.5h"), as `mtacc design --json`, whose options these keyword arguments are:
         chosen among the R-test, touch-probe and ballbar runs the `instruments` (default rtest, ballbar)
@@ -482,12 +482,17 @@ class Machine:
         `plan`), "pareto" (time against uncertainty), "plan" (the plan YAML; plan_out writes it).
         noise: per instrument, e.g. "rtest=0.5um,ballbar=1um"; the time model: rapid (mm/min),
         rotary_rapid (deg/min), acceleration (mm/s^2), rotary_acceleration (deg/s^2), dwell and
-        probe_time (s per position), setup_time (min per set-up), change_time (min per instrument)."""
-        return self._core.design(_options(time=time, parameters=parameters, instruments=instruments, reach=reach, criterion=criterion,
-                                          noise=noise, plan=plan, plan_out=plan_out, radii=radii, spread=spread, length=length,
-                                          positions=positions, points=points, feed=feed, rapid=rapid, rotary_rapid=rotary_rapid,
-                                          acceleration=acceleration, rotary_acceleration=rotary_acceleration, dwell=dwell,
-                                          probe_time=probe_time, setup_time=setup_time, change_time=change_time, threads=threads))
+        probe_time (s per position), setup_time (min per set-up), change_time (min per instrument).
+        html: also write the report for the operator there (mtacc.measurement_design)."""
+        result = self._core.design(_options(time=time, parameters=parameters, instruments=instruments, reach=reach, criterion=criterion,
+                                            noise=noise, plan=plan, plan_out=plan_out, radii=radii, spread=spread, lengths=lengths,
+                                            positions=positions, points=points, feed=feed, rapid=rapid, rotary_rapid=rotary_rapid,
+                                            acceleration=acceleration, rotary_acceleration=rotary_acceleration, dwell=dwell,
+                                            probe_time=probe_time, setup_time=setup_time, change_time=change_time, threads=threads))
+        if html is not None:
+            from . import measurement_design as _report
+            _report.write_report(self, result, html)
+        return result
 
     def rotary_tests(self, axes=None, radius=None, spread=None, length=None, positions=None, points=None, feed=None,
                      plan_out=None, programs=None, decimals=None):

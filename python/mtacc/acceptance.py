@@ -3,13 +3,12 @@ each test's result, uncertainty budget, tolerance, verdict and figure.
 
     python3 -m mtacc.acceptance MACHINE --tests FILE --html REPORT.html    (or: mtacc acceptance ... --html)
 """
-import argparse
 import datetime
 import html
 import sys
 
-from . import InputError, Machine, plots
-from .report import CHECK_SCRIPT, STYLE, _write_atomically, figure, table
+from . import plots
+from .report import _write_atomically, figure, html_page, report_command, table
 
 STANDARDS = {"ISO 230-2": "accuracy and repeatability of positioning", "ISO 10791-6": "rotary axes with the linear axes (K tests)",
              "ISO 230-1": "geometric accuracy from direct measurements", "ISO 230-4": "circular tests (ballbar)",
@@ -66,9 +65,7 @@ def build(machine, result):
              "<p>Decision rule: " + "; ".join(html.escape(r) for r in rules) + ". Uncertainties after ISO/TR 230-9 "
              "(docs/conventions.md \"Measurement uncertainty and conformance\"), U = 2 u_c.</p>"]
     parts += [_test_section(t) for t in result["tests"]]
-    return ("<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"
-            f"<title>{html.escape(result['title'])}</title>{STYLE}{CHECK_SCRIPT}</head><body>" + "\n".join(parts) + "</body></html>")
-
+    return html_page(result["title"], parts)
 
 def write_report(machine, result, path):
     """Writes the report to `path` (whole or not at all)."""
@@ -77,21 +74,8 @@ def write_report(machine, result, path):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="mtacc acceptance", description="Write the HTML acceptance report.")
-    parser.add_argument("machine", help="machine file, or the name of a bundled machine")
-    parser.add_argument("--tests", required=True, help="the acceptance tests file (YAML)")
-    parser.add_argument("--html", required=True, help="the report to write")
-    parser.add_argument("--errors", help="errors file")
-    args = parser.parse_args(argv)
-    try:
-        machine = Machine(args.machine, errors=args.errors)
-        machine.acceptance(args.tests, html=args.html)
-    except InputError as e:
-        print(f"mtacc: error: {e}", file=sys.stderr)
-        return 2
-    print(args.html)
-    return 0
-
+    return report_command(argv, "mtacc acceptance", "Write the HTML acceptance report.", [("--tests", "the acceptance tests file (YAML)")],
+                          lambda machine, args: machine.acceptance(args.tests, html=args.html))
 
 if __name__ == "__main__":
     sys.exit(main())

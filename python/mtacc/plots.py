@@ -1104,3 +1104,97 @@ def circular_test(test):
     ax.legend(fontsize=8)
     fig.tight_layout()
     return fig
+
+
+def design_uncertainties(result):
+    """A measurement design (`Machine.design`): each parameter's predicted k = 2 uncertainty, the
+    design's beside the user's plan's when one was given; lengths and angles on their own axes."""
+    design, own = result["design"], result.get("own_plan")
+    own = own if own and "parameters" in own else None
+    groups = [(unit, [k for k, p in enumerate(design["parameters"]) if p["unit"] == unit]) for unit in ("um", "urad")]
+    groups = [(unit, ks) for unit, ks in groups if ks]
+    fig, axes = plt.subplots(1, len(groups), figsize=(4.6 * len(groups), 3.4), squeeze=False)
+    for ax, (unit, ks) in zip(axes[0], groups):
+        x = np.arange(len(ks))
+        width = 0.38 if own else 0.6
+        ax.bar(x - (width / 2 if own else 0), [design["parameters"][k]["u_k2"] for k in ks], width, color="#2471a3",
+               label=f"design, {design['time_min']:.1f} min")
+        if own:
+            ax.bar(x + width / 2, [own["parameters"][k]["u_k2"] for k in ks], width, color="0.65", label=f"your plan, {own['time_min']:.1f} min")
+        ax.set_xticks(x, [design["parameters"][k]["name"] for k in ks], rotation=45, ha="right", fontsize=8)
+        ax.set_ylabel(f"U (k = 2) [{'µm' if unit == 'um' else 'µrad'}]")
+        ax.grid(axis="y", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def design_pareto(result):
+    """A measurement design's Pareto table: the TCP's k = 2 uncertainty after compensation over the
+    working volume (root mean square and largest) against the machine time, the user's plan marked."""
+    rows = [p for p in result["pareto"] if "time_min" in p]
+    fig, ax = plt.subplots(figsize=(6.4, 3.8))
+    t = [p["time_min"] for p in rows]
+    ax.plot(t, [p["tcp_rms_k2_um"] for p in rows], "o-", color="#2471a3", label="designs: TCP, root mean square")
+    ax.plot(t, [p["tcp_max_k2_um"] for p in rows], "s--", color="#2471a3", alpha=0.6, label="designs: TCP, largest")
+    own = result.get("own_plan")
+    if own and "tcp_rms_k2_um" in own:
+        ax.plot([own["time_min"]], [own["tcp_rms_k2_um"]], "D", color="#c0392b", label="your plan: root mean square")
+        ax.plot([own["time_min"]], [own["tcp_max_k2_um"]], "x", color="#c0392b", label="your plan: largest")
+    ax.axvline(result["budget_min"], color="0.6", linewidth=0.8, linestyle=":")
+    ax.set_xlabel("machine time [min]")
+    ax.set_ylabel("TCP uncertainty after compensation, k = 2 [µm]")
+    ax.set_ylim(bottom=0)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def design_set_ups(result):
+    """Where the designed plan's spheres sit on the workpiece (x, y and x, z), each numbered as the
+    runs' table numbers its set-up."""
+    set_ups = []
+    for r in result["runs"]:
+        if r["target_mm"] is not None and r["set_up"] not in [s for s, _ in set_ups]:
+            set_ups.append((r["set_up"], r["target_mm"]))
+    fig, axes = plt.subplots(1, 2, figsize=(8.4, 3.8))
+    for ax, (i, j, names) in zip(axes, ((0, 1, "xy"), (0, 2, "xz"))):
+        ax.plot([0], [0], "+", color="0.4", markersize=12)
+        for n, (_, p) in enumerate(set_ups, 1):
+            ax.plot(p[i], p[j], "o", color="#c0392b", markersize=9)
+            ax.annotate(str(n), (p[i], p[j]), textcoords="offset points", xytext=(6, 6), fontsize=9)
+        ax.set_xlabel(f"{names[0]} [mm]")
+        ax.set_ylabel(f"{names[1]} [mm]")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.grid(alpha=0.3)
+        ax.set_title(f"workpiece frame, {names}", fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def design_timeline(result):
+    """The designed plan in the order it is run: each run's motion and readings, the set-ups and the
+    instruments' mounting, in minutes from the start."""
+    fig, ax = plt.subplots(figsize=(9.0, 0.3 * len(result["runs"]) + 1.4))
+    clock, seen_set_ups, seen_instruments = 0.0, set(), set()
+    labels = []
+    for y, r in enumerate(result["runs"]):
+        start = clock
+        if r["instrument"] not in seen_instruments:
+            seen_instruments.add(r["instrument"])
+            clock += result["time_model"]["change_min"]
+        if r["set_up"] not in seen_set_ups:
+            seen_set_ups.add(r["set_up"])
+            clock += result["time_model"]["set_up_min"]
+        if clock > start:
+            ax.barh(y, clock - start, left=start, color="0.75")
+        ax.barh(y, r["time_min"], left=clock, color="#2471a3")
+        clock += r["time_min"]
+        labels.append(r["name"])
+    ax.set_yticks(range(len(labels)), labels, fontsize=7)
+    ax.invert_yaxis()
+    ax.set_xlabel("minutes from the start (grey: mounting and set-ups; blue: the run)")
+    ax.grid(axis="x", alpha=0.3)
+    fig.tight_layout()
+    return fig

@@ -724,9 +724,7 @@ def build_report(machine, output=None, errors=None, load=None, samples=None, pla
 
     elapsed = time.perf_counter() - start
     parts.append(f'<p class="meta">Built in {elapsed:.1f} s.</p>')
-    document = ("<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"
-                f"<title>mtacc report: {html.escape(machine.name)}</title>{STYLE}{CHECK_SCRIPT}</head><body>"
-                + "\n".join(parts) + "</body></html>")
+    document = html_page(f"mtacc report: {machine.name}", parts)
     os.makedirs(output_dir, exist_ok=True)
     base = os.path.splitext(os.path.basename(machine.file))[0]
     target = os.path.join(output_dir, f"{base}-report.html")
@@ -735,6 +733,31 @@ def build_report(machine, output=None, errors=None, load=None, samples=None, pla
     _write_atomically(target, document)
     step("writing")
     return target
+
+
+def html_page(title, parts):
+    """A self-contained report page: the style, the check that it loads without an error, the parts."""
+    return ("<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"
+            f"<title>{html.escape(title)}</title>{STYLE}{CHECK_SCRIPT}</head><body>" + "\n".join(parts) + "</body></html>")
+
+
+def report_command(argv, prog, description, arguments, write):
+    """The `python3 -m` entry of a report that a CLI command runs: MACHINE, --html, --errors and its own
+    `arguments` [(flag, help)], then write(machine, args); a bad input is one line and exit status 2."""
+    parser = argparse.ArgumentParser(prog=prog, description=description)
+    parser.add_argument("machine", help="machine file, or the name of a bundled machine")
+    for flag, help_text in arguments:
+        parser.add_argument(flag, required=True, help=help_text)
+    parser.add_argument("--html", required=True, help="the report to write")
+    parser.add_argument("--errors", help="errors file")
+    args = parser.parse_args(argv)
+    try:
+        write(Machine(args.machine, errors=args.errors), args)
+    except InputError as e:
+        print(f"mtacc: error: {e}", file=sys.stderr)
+        return 2
+    print(args.html)
+    return 0
 
 
 def _write_atomically(target, text):

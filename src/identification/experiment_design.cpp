@@ -62,11 +62,32 @@ Stacked stack(const std::vector<Eigen::MatrixXd>& candidates, const std::vector<
   return s;
 }
 
-// The criterion after adding a candidate, or swapping one, scored from the current M by the
-// determinant lemma (D: log det(I + S U M^-1 U^T), U the rows added and dropped, S = diag(I, -I); on
-// the nuisance block too for D_s) and Woodbury (A, I: trace(W M'^-1) = trace(W M^-1) - trace((S +
-// U M^-1 U^T)^-1 U M^-1 W M^-1 U^T)). Every candidate's X M^-1 (and X M^-1 W M^-1) is one product
-// computed here, so that a trial costs only the small products between two candidates' rows.
+// The small matrices of a trial: 3 x 3 (blocks of three readings: an R-test's or a probe's pose),
+// at most 8 x 8 without allocating, or any size (a run's information factor).
+using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 8, 8>;
+constexpr Eigen::Index kSmallRows = 8;
+
+// The criterion after adding a candidate, or swapping one for another, scored from the current M
+// without refactorising it (A = M^-1, B_c = X_c A X_c^T, P_c = (I + B_c)^-1, C = X_in A X_out^T):
+// D by the determinant lemma, log det M' - log det M = log det(I + B_in) + log det(I - B_out +
+// C^T P_in C) (on the nuisance block too for D_s); A and I by Woodbury, trace(W M'^-1) = trace(W A)
+// - trace(P_in E_in) - trace(Y (Q E_in Q^T - Q F - (Q F)^T + E_out)) with E_c = X_c A W A X_c^T,
+// F = X_in A W A X_out^T, Q = C^T P_in, Y = (B_out - I - Q C)^-1. Every candidate's X A (and
+// X A W A) is one product and its own terms are computed here, so that a trial costs only the
+// small products between two candidates' rows.
+// The log det of a symmetric matrix that must be positive definite (a change that keeps M
+// regular); -inf when it is not.
+template <class Small>
+double logDetOfPositive(const Small& k) {
+  const Eigen::LLT<Small> llt(k);
+  if (llt.info() != Eigen::Success) return -kInfinity;
+  const auto d = llt.matrixLLT().diagonal();
+  if (!(d.minCoeff() > 0)) return -kInfinity;
+  const double product = d.prod();  // one logarithm where the product neither overflows nor underflows
+  return std::isnormal(product) ? 2 * std::log(product) : 2 * d.array().log().sum();
+}
+
+template <class Small>
 class TrialScores {
  public:
   TrialScores(const Stacked& s, const Eigen::MatrixXd& m, DesignCriterion criterion, const std::vector<int>& nuisance,
@@ -75,69 +96,108 @@ class TrialScores {
     const Eigen::Index p = m.rows();
     const Eigen::MatrixXd inverse = m.ldlt().solve(Eigen::MatrixXd::Identity(p, p));
     g_.noalias() = s.rows * inverse;
+    own_ = ownTerms(g_, s.rows);
     if (criterion == DesignCriterion::D) {
       if (!nuisance.empty()) {
         const Eigen::MatrixXd mnn = submatrix(m, nuisance);
         gn_.noalias() = s.nuisanceRows * mnn.ldlt().solve(Eigen::MatrixXd::Identity(mnn.rows(), mnn.rows()));
+        ownNuisance_ = ownTerms(gn_, s.nuisanceRows);
       }
     } else {
       h_.noalias() = g_ * criterionWeight(p, criterion, nuisance, weight) * inverse;
+      for (size_t c = 0; c < s.size.size(); ++c) {
+        Own& o = own_[c];
+        o.e.noalias() = h_.middleRows(s.first[c], s.size[c]) * s.block(c).transpose();
+        o.traceWithE = (o.inverse * o.e).trace();
+      }
     }
   }
 
   double current() const { return current_; }
-  double added(size_t c) const { return score(c, nullptr); }
-  double swapped(size_t out, size_t in) const { return score(in, &out); }
 
- private:
-  // (r_in + r_out) square: block (a, b) = sign_a * delta_ab * I + X_a P X_b^T, P X_b^T from `prod`.
-  static void lowRank(const Eigen::MatrixXd& prod, const Eigen::MatrixXd& rows, const Stacked& s, size_t in, const size_t* out,
-                      bool signOnDiagonal, bool signOnRows, Eigen::MatrixXd& k) {
-    const Eigen::Index ri = s.size[in], ro = out ? s.size[*out] : 0;
-    k.resize(ri + ro, ri + ro);
-    const auto pi = prod.middleRows(s.first[in], ri), xi = rows.middleRows(s.first[in], ri);
-    k.topLeftCorner(ri, ri).noalias() = pi * xi.transpose();
-    if (out) {
-      const auto po = prod.middleRows(s.first[*out], ro), xo = rows.middleRows(s.first[*out], ro);
-      k.topRightCorner(ri, ro).noalias() = pi * xo.transpose();
-      k.bottomLeftCorner(ro, ri).noalias() = po * xi.transpose();
-      k.bottomRightCorner(ro, ro).noalias() = po * xo.transpose();
-      if (signOnRows) k.bottomRows(ro) *= -1.0;
-    }
-    if (signOnDiagonal) {
-      k.diagonal().head(ri).array() += 1.0;
-      k.diagonal().tail(ro).array() += signOnRows ? 1.0 : -1.0;
-    }
-  }
-
-  static double logDet(const Eigen::MatrixXd& k) {
-    const double det = Eigen::PartialPivLU<Eigen::MatrixXd>(k).determinant();
-    return det > 0 ? std::log(det) : -kInfinity;
-  }
-
-  double score(size_t in, const size_t* out) const {
+  double added(size_t in) const {
+    const Own& i = own_[in];
     if (criterion_ == DesignCriterion::D) {
-      lowRank(g_, s_.rows, s_, in, out, true, true, k_);
-      double change = logDet(k_);
-      if (gn_.size() > 0 && std::isfinite(change)) {
-        lowRank(gn_, s_.nuisanceRows, s_, in, out, true, true, k_);
-        change -= logDet(k_);
-      }
+      const double change = i.logDet - (gn_.size() > 0 ? ownNuisance_[in].logDet : 0.0);
       return std::isfinite(change) ? current_ + change : -kInfinity;
     }
-    lowRank(g_, s_.rows, s_, in, out, true, false, k_);
-    lowRank(h_, s_.rows, s_, in, out, false, false, rhs_);
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(k_);
-    if (!(std::abs(lu.determinant()) > 1e-300)) return kInfinity;
-    const double next = current_ - lu.solve(rhs_).trace();
+    const double next = current_ - i.traceWithE;
     return next > 0 ? next : kInfinity;  // a sum of variances is positive
+  }
+
+  // The products of every candidate's rows with the rows of `out`, for the swaps of `out`.
+  void focus(size_t out) {
+    focus_ = out;
+    const auto xOut = s_.block(out);
+    cOut_.noalias() = g_ * xOut.transpose();
+    if (gn_.size() > 0) cnOut_.noalias() = gn_ * s_.nuisanceBlock(out).transpose();
+    if (h_.size() > 0) fOut_.noalias() = h_ * xOut.transpose();
+  }
+
+  // The criterion with `in` in place of the focused candidate.
+  double swapped(size_t in) const {
+    if (criterion_ == DesignCriterion::D) {
+      double change = swapLogDet(cOut_, own_, in);
+      if (gn_.size() > 0 && std::isfinite(change)) change -= swapLogDet(cnOut_, ownNuisance_, in);
+      return std::isfinite(change) ? current_ + change : -kInfinity;
+    }
+    const Own& i = own_[in];
+    const Own& o = own_[focus_];
+    const auto c = cOut_.middleRows(s_.first[in], s_.size[in]);
+    const auto f = fOut_.middleRows(s_.first[in], s_.size[in]);
+    Small q, qf, schur, inner;
+    q.noalias() = c.transpose() * i.inverse;
+    schur = o.b;
+    schur.diagonal().array() -= 1.0;
+    schur.noalias() -= q * c;
+    const Eigen::PartialPivLU<Small> lu(schur);
+    if (!(std::abs(lu.determinant()) > 1e-300)) return kInfinity;
+    qf.noalias() = q * f;
+    inner.noalias() = q * i.e * q.transpose();
+    inner -= qf + qf.transpose();
+    inner += o.e;
+    const double next = current_ - i.traceWithE - lu.solve(inner).trace();
+    return next > 0 ? next : kInfinity;
+  }
+
+ private:
+  struct Own {
+    Small b, inverse, e;  // B_c, (I + B_c)^-1, E_c
+    double logDet = 0, traceWithE = 0;  // log det(I + B_c), trace(P_c E_c)
+  };
+
+  std::vector<Own> ownTerms(const Eigen::MatrixXd& g, const Eigen::MatrixXd& rows) const {
+    std::vector<Own> out(s_.size.size());
+    for (size_t c = 0; c < out.size(); ++c) {
+      Own& o = out[c];
+      o.b.noalias() = g.middleRows(s_.first[c], s_.size[c]) * rows.middleRows(s_.first[c], s_.size[c]).transpose();
+      Small k = o.b;
+      k.diagonal().array() += 1.0;
+      const Eigen::LLT<Small> llt(k);
+      o.logDet = logDetOfPositive(k);
+      o.inverse = llt.solve(Small::Identity(k.rows(), k.rows()));
+    }
+    return out;
+  }
+
+  // log det(I + B_in) + log det(I - B_out + C^T P_in C), C from the focused products.
+  double swapLogDet(const Eigen::MatrixXd& cOut, const std::vector<Own>& own, size_t in) const {
+    const Own& i = own[in];
+    if (!std::isfinite(i.logDet)) return -kInfinity;
+    const auto c = cOut.middleRows(s_.first[in], s_.size[in]);
+    Small k = -own[focus_].b;
+    k.diagonal().array() += 1.0;
+    k.noalias() += c.transpose() * i.inverse * c;
+    return i.logDet + logDetOfPositive(k);
   }
 
   const Stacked& s_;
   DesignCriterion criterion_;
   double current_;
   Eigen::MatrixXd g_, gn_, h_;  // X M^-1, X_n M_nn^-1, X M^-1 W M^-1
-  mutable Eigen::MatrixXd k_, rhs_;
+  std::vector<Own> own_, ownNuisance_;
+  size_t focus_ = 0;
+  Eigen::MatrixXd cOut_, cnOut_, fOut_;  // g_, gn_, h_ times the focused candidate's rows
 };
 
 // What the chosen candidates cost: their own costs and each group's once.
@@ -223,10 +283,11 @@ double designCriterion(const Eigen::MatrixXd& information, DesignCriterion crite
   return (criterionWeight(information.rows(), criterion, nuisance, weight) * inverse).trace();
 }
 
-Design designExperiment(const std::vector<Eigen::MatrixXd>& candidates, const DesignOptions& o) {
-  checkOptions(candidates, o);
+namespace {
+
+template <class Small>
+Design exchange(const std::vector<Eigen::MatrixXd>& candidates, const DesignOptions& o, const Stacked& s) {
   const Eigen::Index p = candidates.front().cols();
-  const Stacked s = stack(candidates, o.nuisance);
   const Costs costs(o);
   Eigen::MatrixXd prior = Eigen::MatrixXd::Zero(p, p);
   for (int j : o.nuisance) prior(j, j) = o.nuisancePrior;
@@ -250,7 +311,7 @@ Design designExperiment(const std::vector<Eigen::MatrixXd>& candidates, const De
   const auto addGreedily = [&](std::vector<int>& chosen, int without) {
     for (;;) {
       if (!costs.budgeted() && static_cast<int>(chosen.size()) >= o.count) return;
-      const TrialScores t(s, sum(chosen) + ridge, DesignCriterion::D, {}, {});
+      const TrialScores<Small> t(s, sum(chosen) + ridge, DesignCriterion::D, {}, {});
       const double before = costs.budgeted() ? costs.of(chosen) : 0;
       int best = -1;
       double bestValue = -kInfinity;
@@ -307,11 +368,12 @@ Design designExperiment(const std::vector<Eigen::MatrixXd>& candidates, const De
   // Fedorov's exchange: the best improving swap (within the budget), then whatever now fits; when no
   // swap improves, the best regrouping; until neither improves.
   while (d.exchanges < o.maxExchanges) {
-    const TrialScores t(s, m, o.criterion, o.nuisance, o.weight);
+    TrialScores<Small> t(s, m, o.criterion, o.nuisance, o.weight);
     double bestValue = current;
     int bestOut = -1, bestIn = -1;
     for (size_t k = 0; k < d.chosen.size(); ++k) {
       const auto out = static_cast<size_t>(d.chosen[k]);
+      t.focus(out);
       for (size_t c = 0; c < candidates.size(); ++c) {
         if (c == out || !allowed(d.chosen, c)) continue;
         if (costs.budgeted()) {
@@ -319,7 +381,7 @@ Design designExperiment(const std::vector<Eigen::MatrixXd>& candidates, const De
           trial[k] = static_cast<int>(c);
           if (!costs.fits(trial)) continue;
         }
-        const double value = t.swapped(out, c);
+        const double value = t.swapped(c);
         if (better(value, bestValue, o.criterion)) {
           bestValue = value;
           bestOut = static_cast<int>(k);
@@ -344,6 +406,16 @@ Design designExperiment(const std::vector<Eigen::MatrixXd>& candidates, const De
   d.information = m;
   if (costs.budgeted()) d.cost = costs.of(d.chosen);
   return d;
+}
+
+}  // namespace
+
+Design designExperiment(const std::vector<Eigen::MatrixXd>& candidates, const DesignOptions& o) {
+  checkOptions(candidates, o);
+  const Stacked s = stack(candidates, o.nuisance);
+  const auto [fewest, most] = std::minmax_element(s.size.begin(), s.size.end());
+  if (*fewest == 3 && *most == 3) return exchange<Eigen::Matrix3d>(candidates, o, s);  // R-test and probe poses
+  return *most <= kSmallRows ? exchange<SmallMatrix>(candidates, o, s) : exchange<Eigen::MatrixXd>(candidates, o, s);
 }
 
 }  // namespace mtacc

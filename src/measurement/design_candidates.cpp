@@ -183,73 +183,77 @@ void sphereCandidates(const KinematicModel& nominal, const CandidateOptions& o, 
 }
 
 // The ballbar's radial, tangential and axial tests of each rotary axis (seed 002's set-up, the
-// rotary axes at zero), at each radius.
+// rotary axes at zero), at each radius and bar length.
 void rotaryBallbarCandidates(const KinematicModel& nominal, const CandidateOptions& o, CandidateSet& out) {
-  for (const double radius : o.radii) {
-    RotaryAxisTestOptions t;
-    t.radius = radius;
-    t.spread = o.spread;
-    t.ballbarLength = o.ballbarLength;
-    t.ballbarPoints = o.ballbarPoints;
-    t.feed = o.feed;
-    RotaryAxisTestSet set;
-    try {
-      set = rotaryAxisTests(nominal, t);
-    } catch (const InputError& e) {
-      out.notes.push_back(fmt::format("ballbar tests at {:g} mm: {}", radius, e.reason()));
-      continue;
+  for (const double length : o.ballbarLengths)
+    for (const double radius : o.radii) {
+      RotaryAxisTestOptions t;
+      t.radius = radius;
+      t.spread = o.spread;
+      t.ballbarLength = length;
+      t.ballbarPoints = o.ballbarPoints;
+      t.feed = o.feed;
+      RotaryAxisTestSet set;
+      try {
+        set = rotaryAxisTests(nominal, t);
+      } catch (const InputError& e) {
+        out.notes.push_back(fmt::format("ballbar tests at {:g} mm with a {:g} mm bar: {}", radius, length, e.reason()));
+        continue;
+      }
+      for (auto& test : set.tests) {
+        if (test.kind == RotaryTestKind::RTest) continue;
+        DesignCandidate c;
+        c.name = fmt::format("{}-r{:g}-L{:g}", test.name, radius, length);
+        c.run = std::move(test.run);
+        c.run.name = c.name;
+        c.description = test.description + fmt::format(", {:g} to {:g} deg", test.from / kDeg, test.to / kDeg);
+        c.planEntry = "  - name: " + c.name + "\n" + test.planEntry.substr(test.planEntry.find('\n') + 1);
+        out.candidates.push_back(std::move(c));
+      }
     }
-    for (auto& test : set.tests) {
-      if (test.kind == RotaryTestKind::RTest) continue;
-      DesignCandidate c;
-      c.name = fmt::format("{}-r{:g}", test.name, radius);
-      c.run = std::move(test.run);
-      c.run.name = c.name;
-      c.description = test.description + fmt::format(", {:g} to {:g} deg", test.from / kDeg, test.to / kDeg);
-      c.planEntry = "  - name: " + c.name + "\n" + test.planEntry.substr(test.planEntry.find('\n') + 1);
-      out.candidates.push_back(std::move(c));
-    }
-  }
 }
 
-// ISO 230-4 circles in XY, YZ, ZX about the tool at mid-travel, the rotary axes at zero.
+// ISO 230-4 circles in XY, YZ, ZX of each bar length, the centre pivot at the tool at mid-travel,
+// the rotary axes at zero.
 void circleCandidates(const KinematicModel& nominal, const CandidateOptions& o, CandidateSet& out) {
   const Machine& m = *nominal.machine;
   const auto q = startPose(m);
   const Vec3 centre = toolInWorkpiece(nominal, q.data()).translation();
-  for (const std::string plane : {"XY", "YZ", "ZX"}) {
-    BallbarCircleSpec spec;
-    spec.plane = plane;
-    spec.centre = centre;
-    spec.radius = o.ballbarLength;
-    spec.pose = q;
-    spec.points = o.ballbarPoints;
-    spec.feed = o.feed;
-    DesignCandidate c;
-    try {
-      c.run = ballbarCircle(nominal, spec);
-    } catch (const UnreachablePose& e) {
-      out.notes.push_back(fmt::format("circle-{}: not generated: {}", plane, e.what()));
-      continue;
-    } catch (const InputError& e) {
-      out.notes.push_back(fmt::format("circle-{}: not generated: {}", plane, e.reason()));
-      continue;
+  for (const double length : o.ballbarLengths)
+    for (const std::string plane : {"XY", "YZ", "ZX"}) {
+      const std::string name = fmt::format("circle-{}-L{:g}", plane, length);
+      BallbarCircleSpec spec;
+      spec.plane = plane;
+      spec.centre = centre;
+      spec.radius = length;
+      spec.pose = q;
+      spec.points = o.ballbarPoints;
+      spec.feed = o.feed;
+      DesignCandidate c;
+      try {
+        c.run = ballbarCircle(nominal, spec);
+      } catch (const UnreachablePose& e) {
+        out.notes.push_back(fmt::format("{}: not generated: {}", name, e.what()));
+        continue;
+      } catch (const InputError& e) {
+        out.notes.push_back(fmt::format("{}: not generated: {}", name, e.reason()));
+        continue;
+      }
+      if (const auto beyond = travelViolation(m, c.run); !beyond.empty()) {
+        out.notes.push_back(fmt::format("{}: not generated: {}", name, beyond));
+        continue;
+      }
+      const auto component = [](const Vec3& axis) {
+        return axis.x() != 0 ? SetupParameter::TargetX : axis.y() != 0 ? SetupParameter::TargetY : SetupParameter::TargetZ;
+      };
+      c.run.estimate = {component(planeAxes(plane)[0]), component(planeAxes(plane)[1])};
+      c.name = name;
+      c.run.name = c.name;
+      c.description = fmt::format("ballbar circle {:g} mm in {}, both directions, about the tool at mid-travel", length, plane);
+      c.planEntry = fmt::format("  - name: {}\n    circle: {{plane: {}, centre: {}, radius: {:.10g} mm, points: {}, feed: {:.10g} mm/min}}\n{}",
+                                c.name, plane, mm(centre), length, o.ballbarPoints, o.feed, estimateEntry(c.run.estimate));
+      out.candidates.push_back(std::move(c));
     }
-    if (const auto beyond = travelViolation(m, c.run); !beyond.empty()) {
-      out.notes.push_back(fmt::format("circle-{}: not generated: {}", plane, beyond));
-      continue;
-    }
-    const auto component = [](const Vec3& axis) {
-      return axis.x() != 0 ? SetupParameter::TargetX : axis.y() != 0 ? SetupParameter::TargetY : SetupParameter::TargetZ;
-    };
-    c.run.estimate = {component(planeAxes(plane)[0]), component(planeAxes(plane)[1])};
-    c.name = "circle-" + plane;
-    c.run.name = c.name;
-    c.description = fmt::format("ballbar circle {:g} mm in {}, both directions, about the tool at mid-travel", o.ballbarLength, plane);
-    c.planEntry = fmt::format("  - name: {}\n    circle: {{plane: {}, centre: {}, radius: {:.10g} mm, points: {}, feed: {:.10g} mm/min}}\n{}", c.name,
-                              plane, mm(centre), o.ballbarLength, o.ballbarPoints, o.feed, estimateEntry(c.run.estimate));
-    out.candidates.push_back(std::move(c));
-  }
 }
 
 }  // namespace
@@ -259,11 +263,13 @@ CandidateSet designCandidates(const KinematicModel& nominal, const CandidateOpti
   if (o.instruments.empty()) throw InvalidInput("no instrument to design with");
   for (const auto i : o.instruments)
     if (i == Instrument::Directional) throw InvalidInput("a design chooses among rtest, ballbar and probe runs");
-  if (o.radii.empty() || o.positions.empty()) throw InvalidInput("a design needs at least one sphere radius and one number of positions");
+  if (o.radii.empty() || o.positions.empty() || o.ballbarLengths.empty())
+    throw InvalidInput("a design needs at least one sphere radius, one number of positions and one ballbar length");
   CandidateSet out;
   sphereCandidates(nominal, o, out);
+  const bool rotary = std::any_of(m.axes.begin(), m.axes.end(), [](const Axis& a) { return a.commanded() && a.isRotary(); });
   if (uses(o, Instrument::Ballbar)) {
-    rotaryBallbarCandidates(nominal, o, out);
+    if (rotary) rotaryBallbarCandidates(nominal, o, out);
     circleCandidates(nominal, o, out);
   }
   if (out.candidates.empty()) throw InvalidInput("no candidate run can be generated for these instruments on " + m.name);

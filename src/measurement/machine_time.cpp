@@ -44,9 +44,9 @@ double runMinutes(const Machine& m, const MeasurementRun& run, const MachineTime
 
 std::string setupKey(const MeasurementRun& run) {
   if (!staticReadings(run.instrument)) return instrumentName(run.instrument) + " " + run.name;
-  const auto tenth = [](double x) { return std::round(x * 10) / 10 + 0.0; };  // + 0.0: no "-0.0"
-  const auto mm = [&](const Vec3& v) { return fmt::format("{:.1f} {:.1f} {:.1f}", tenth(v.x()), tenth(v.y()), tenth(v.z())); };
-  return instrumentName(run.instrument) + " at " + mm(run.setup.target) + " with " + mm(run.setup.toolBall);
+  const auto tenth = [](double x) { return std::round(x * 10) / 10 + 0.0; };  // + 0.0: no "-0"
+  const auto mm = [&](const Vec3& v) { return fmt::format("({:g}, {:g}, {:g}) mm", tenth(v.x()), tenth(v.y()), tenth(v.z())); };
+  return fmt::format("{}: sphere at {}, tool ball {}", instrumentName(run.instrument), mm(run.setup.target), mm(run.setup.toolBall));
 }
 
 double planMinutes(const Machine& machine, const std::vector<MeasurementRun>& runs, const MachineTimeModel& time) {

@@ -15,6 +15,7 @@
 #include "mtacc/core/units.hpp"
 #include "mtacc/io/plan_yaml.hpp"
 #include "mtacc/kinematics/jacobian.hpp"
+#include "mtacc/workflows/measurement_runs.hpp"
 
 namespace mtacc {
 namespace {
@@ -126,6 +127,7 @@ class Designer {
     out_.parameters = findPlanParameters(setup.machine, shape_, names, namedAt);
     out_.machine = setup.machine;
     out_.criterion = request.criterion;
+    out_.time = request.time;
     out_.againstPlan = request.againstPlan || request.reach;
     out_.budget = request.minutes;
     const auto p = static_cast<Eigen::Index>(out_.parameters.size());
@@ -160,6 +162,10 @@ class Designer {
     if (request_.reach) reachOwnPlan();
     out_.design = designAt(out_.budget);
     for (const int c : out_.design.chosen) out_.chosen.push_back(candidates_[static_cast<size_t>(c)]);
+    // In the order an operator makes them: by instrument, then set-up (a sphere moved once).
+    std::stable_sort(out_.chosen.begin(), out_.chosen.end(), [](const DesignCandidate& a, const DesignCandidate& b) {
+      return std::pair{a.run.instrument, setupKey(a.run)} < std::pair{b.run.instrument, setupKey(b.run)};
+    });
     std::vector<MeasurementRun> runs;
     for (const auto& c : out_.chosen) runs.push_back(c.run);
     out_.outlook = outlook(runs);
@@ -329,8 +335,8 @@ class Designer {
         double& worst = out_.parameters[static_cast<size_t>(k)].dimension == Dimension::Length ? point.worstLength : point.worstAngle;
         worst = std::max(worst, 2 * std::sqrt(covariance(k, k)));
       }
-    } catch (const InvalidInput& e) {
-      point.refused = e.reason();
+    } catch (const InvalidInput&) {
+      point.refused = fmt::format("too short to determine the {} parameters", out_.parameters.size());
     }
     return point;
   }
@@ -399,12 +405,12 @@ const OptionSchema& measurementDesignSchema() {
         .defaultText = "rtest=0.5um,ballbar=0.5um,probe=1um"},
        {"plan", OptionKind::Text, "your own plan: its time and predicted uncertainties beside the design's (and its parameters by default)"},
        {"plan_out", OptionKind::Text, "write the designed plan (YAML) that simulate, observability and identify read"},
+       {"html", OptionKind::Text, "write the report for the operator (HTML: the plan in order, set-ups, uncertainties, time against uncertainty)"},
        {.key = "radii", .kind = OptionKind::List, .help = "the spheres' distances from a table axis's line to choose from",
         .defaultText = "50mm,100mm,200mm"},
        {.key = "spread", .kind = OptionKind::Quantity, .help = "the second sphere along a table axis's line, the tool ball beyond the tip on a head axis",
         .defaultText = "100 mm", .low = 1.0, .high = 2000.0, .outOfRange = "must be from 1 mm to 2 m"},
-       {.key = "length", .kind = OptionKind::Quantity, .help = "ballbar length", .defaultText = "100 mm", .low = 10.0, .high = 1500.0,
-        .outOfRange = "must be from 10 mm to 1.5 m"},
+       {.key = "lengths", .kind = OptionKind::List, .help = "the ballbar lengths to choose from", .defaultText = "100mm,150mm"},
        {.key = "positions", .kind = OptionKind::Numbers, .help = "the numbers of R-test and probe positions per sweep to choose from",
         .defaultText = "8,16", .low = 3, .high = 360, .outOfRange = "must be from 3 to 360"},
        {.key = "points", .kind = OptionKind::Count, .help = "ballbar readings per sweep (a circle: per direction)", .defaultText = "72",
@@ -472,7 +478,12 @@ MeasurementDesignRequest measurementDesignRequest(const OptionValues& values) {
     q.candidates.radii.push_back(radius);
   }
   q.candidates.spread = *r.quantity("spread");
-  q.candidates.ballbarLength = *r.quantity("length");
+  q.candidates.ballbarLengths.clear();
+  for (const auto& text : r.list("lengths")) {
+    const double length = parseQuantityAs(text, Dimension::Length, "lengths");
+    if (!(length >= 10.0 && length <= 1500.0)) throw InputError({"", 0, "lengths"}, "'" + text + "': a ballbar length must be from 10 mm to 1.5 m");
+    q.candidates.ballbarLengths.push_back(length);
+  }
   q.candidates.positions.clear();
   for (const double n : r.numbers("positions")) {
     if (n != std::round(n)) throw InputError({"", 0, "positions"}, fmt::format("{:g} is not a whole number of positions", n));
@@ -522,8 +533,10 @@ nlohmann::json toJson(const MeasurementDesign& d) {
   nlohmann::json runs = nlohmann::json::array();
   for (size_t k = 0; k < d.chosen.size(); ++k) {
     const auto& c = d.chosen[k];
-    runs.push_back({{"name", c.name}, {"instrument", instrumentName(c.run.instrument)}, {"description", c.description},
-                    {"poses", c.run.poses()}, {"time_min", d.outlook.runMinutes[k]}});
+    nlohmann::json run = runJson(*d.machine, c.run);
+    run.erase("readings_um");
+    run.update({{"description", c.description}, {"set_up", setupKey(c.run)}, {"time_min", d.outlook.runMinutes[k]}});
+    runs.push_back(run);
   }
   nlohmann::json pareto = nlohmann::json::array();
   for (const auto& p : d.pareto) {
@@ -546,6 +559,9 @@ nlohmann::json toJson(const MeasurementDesign& d) {
                      {"runs", runs},
                      {"design", toJson(d.outlook, d.parameters)},
                      {"pareto", pareto},
+                     {"time_model", {{"rapid_mm_per_min", d.time.linearRapid}, {"dwell_s", d.time.rtestDwell},
+                                     {"probe_time_s", d.time.probeTime}, {"set_up_min", d.time.setupMinutes},
+                                     {"change_min", d.time.instrumentMinutes}}},
                      {"notes", d.notes},
                      {"plan", d.planText},
                      {"written", d.written}};

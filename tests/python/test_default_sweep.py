@@ -123,7 +123,7 @@ def test_plans(cli, bounds, machine, plan):
 
 # The machine each bundled plan was written for (its header says so).
 PLAN_MACHINES = {"double-pivot-rtest": "double-pivot-head", "seed001-cubic": "tilting-table", "seed002-six-runs": "multitasking-b-c",
-                 "tilting-table-rtest": "tilting-table"}
+                 "tilting-table-designed": "tilting-table", "tilting-table-rtest": "tilting-table"}
 
 
 def test_every_bundled_plan_runs_on_its_own_machine(cli):

@@ -40,7 +40,7 @@ struct MeasurementDesignRequest {
   int threads = kAllCores;
 };
 
-// parameters, instruments, time, reach, criterion, noise, plan, plan_out, radii, spread, length,
+// parameters, instruments, time, reach, criterion, noise, plan, plan_out, html (the front ends write the report), radii, spread, lengths,
 // positions, points, feed, rapid, rotary_rapid, acceleration, rotary_acceleration, dwell,
 // probe_time, setup_time, change_time, threads.
 const OptionSchema& measurementDesignSchema();
@@ -81,6 +81,7 @@ struct MeasurementDesign {
   std::string ownRefused;  // why the user's plan cannot determine the parameters
   std::vector<ParetoPoint> pareto;
   size_t volumePoses = 0;
+  MachineTimeModel time;
   std::string planText;
   std::vector<std::string> written;
 };
