@@ -130,9 +130,7 @@ class Designer {
     out_.time = request.time;
     out_.againstPlan = request.againstPlan || request.reach;
     out_.budget = request.minutes;
-    const auto p = static_cast<Eigen::Index>(out_.parameters.size());
-    typical_.resize(p);
-    for (Eigen::Index k = 0; k < p; ++k) typical_[k] = out_.parameters[static_cast<size_t>(k)].dimension == Dimension::Length ? 1e-3 : 1e-5;
+    typical_ = problemColumns(problemOf({})).typical;  // 1 um, 10 urad
     tcpJacobians();
     CandidateSet set;
     try {
@@ -198,13 +196,12 @@ class Designer {
   IdentificationProblem problemOf(std::vector<MeasurementRun> runs) const { return {setup_.machine, shape_, out_.parameters, std::move(runs)}; }
 
   void factorCandidates() {
-    const auto n = static_cast<long>(candidates_.size());
+    std::vector<double> noise;
+    for (const auto& c : candidates_) noise.push_back(noiseOf(c.run));
     factors_.resize(candidates_.size());
-    parallelFor(n, request_.threads, [&](long begin, long end) {
-      for (long c = begin; c < end; ++c) {
-        const auto& run = candidates_[static_cast<size_t>(c)].run;
-        factors_[static_cast<size_t>(c)] = informationFactor(problemOf({run}), noiseOf(run), typical_);
-      }
+    parallelFor(static_cast<long>(candidates_.size()), request_.threads, [&](long begin, long end) {
+      for (auto c = static_cast<size_t>(begin); c < static_cast<size_t>(end); ++c)
+        factors_[c] = informationFactor(problemOf({candidates_[c].run}), noise[c], typical_);
     }, 1);
     // Groups: the instruments (mounted once), then the set-ups (a sphere placed once for its runs).
     std::map<std::string, int> group;
@@ -270,17 +267,26 @@ class Designer {
   }
 
   // The shortest budget, in whole minutes up to twice the plan's time, whose balanced design
-  // determines every parameter at least as well as the user's plan.
+  // determines every parameter at least as well as the user's plan: every fifth minute, then the
+  // minutes below the first that reaches it.
   void reachOwnPlan() {
-    for (double budget = 1; budget <= 2 * out_.own->minutes; budget += 1) {
+    const auto reaches = [&](double budget) {
       try {
-        if ((ratioToPlan(balancedAt(budget)).array() <= 1 + 1e-9).all()) {
-          out_.budget = budget;
-          out_.reached = true;
-          return;
-        }
+        return (ratioToPlan(balancedAt(budget)).array() <= 1 + 1e-9).all();
       } catch (const InvalidInput&) {
+        return false;  // too short to determine the parameters at all
       }
+    };
+    for (double coarse = 5; coarse <= 2 * out_.own->minutes + 5; coarse += 5) {
+      if (!reaches(coarse)) continue;
+      out_.budget = coarse;
+      for (double fine = coarse - 4; fine < coarse; fine += 1)
+        if (fine > 0 && reaches(fine)) {
+          out_.budget = fine;
+          break;
+        }
+      out_.reached = true;
+      return;
     }
     throw InputError({"", 0, "reach"}, fmt::format("no design of {} reaches the plan's uncertainties in twice its {:.0f} min",
                                                    instrumentsText(request_.candidates.instruments), out_.own->minutes));
