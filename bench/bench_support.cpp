@@ -5,12 +5,40 @@
 #include <cstdio>
 #include <string_view>
 
+#include <Eigen/Core>
+
 #include "mtacc/core/units.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
 
 namespace mtacc::bench {
 
+namespace {
+
+// The vector instruction sets this file was compiled for (with the library's flags), as the
+// compiler and Eigen see them.
+std::string instructionSets() {
+  std::string isa =
+#if defined(__AVX512F__)
+      "AVX-512"
+#elif defined(__AVX2__)
+      "AVX2"
+#elif defined(__AVX__)
+      "AVX"
+#else
+      "SSE2"
+#endif
+#if defined(__FMA__)
+      " + FMA"
+#endif
+      ;
+  return isa + " (Eigen: " + Eigen::SimdInstructionSetsInUse() + ")";
+}
+
+}  // namespace
+
 bool agreementCheckOnly(int argc, char** argv) {
+  const std::string blas = runPythonBaseline(benchDir() + "/blas_info.py");
+  fmt::print("build: mtacc for {}; NumPy's {}", instructionSets(), blas.empty() ? "BLAS: unknown (blas_info.py failed)\n" : blas);
   for (int i = 1; i < argc; ++i)
     if (std::string_view(argv[i]) == "--check") {
       fmt::print("--check: the agreement check at a small size; the times printed are not the benchmark's "

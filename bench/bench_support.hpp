@@ -11,7 +11,8 @@ namespace mtacc::bench {
 // True when the benchmark was started with --check: the agreement of mtacc's answer and the
 // baseline's alone, at a small size and one repetition (a ctest: a wrong answer or a broken
 // baseline fails the test suite). Its times are not the benchmark's and are printed as such.
-// Without it, the full benchmark (scripts/bench.sh).
+// Without it, the full benchmark (scripts/bench.sh). Either way it first prints the build: the
+// instruction sets mtacc was compiled for and the BLAS NumPy runs on this host (the baselines').
 bool agreementCheckOnly(int argc, char** argv);
 
 // R-test runs on the tilting table, one per sphere: C turning at B = 0, -30, -60, -90 deg and B

@@ -4,7 +4,9 @@
 # Usage: scripts/build.sh [--example] [extra cmake args]
 #   --example: only what the main job runs: the library, the CLI and the Python module (no
 #   tests, no benchmarks)
-# For binaries that must run on older CPUs: scripts/build.sh -DMTACC_USE_AVX2=OFF
+# Built for this machine's own instruction sets (-march=native: AVX-512 where it has them). For
+# binaries that run on other CPUs: scripts/build.sh -DMTACC_PORTABLE=ON (AVX2 and FMA), adding
+# -DMTACC_USE_AVX2=OFF for CPUs without them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/ccache-env.sh
