@@ -203,26 +203,32 @@ class TrialScores {
 // What the chosen candidates cost: their own costs and each group's once.
 class Costs {
  public:
-  explicit Costs(const DesignOptions& o) : o_(o) {}
+  explicit Costs(const DesignOptions& o) : o_(o), used_(o.groupCost.size()) {}
   bool budgeted() const { return o_.budget > 0; }
-  double of(const std::vector<int>& chosen) const {
+  // The cost of the chosen candidates, with candidate `in` added (>= 0) and the one at position
+  // `skip` of `chosen` left out (>= 0): a trial's cost without copying the design.
+  double of(const std::vector<int>& chosen, int in = -1, long skip = -1) const {
+    std::fill(used_.begin(), used_.end(), false);
     double total = 0;
-    std::vector<bool> used(o_.groupCost.size(), false);
-    for (int c : chosen) {
+    const auto add = [&](int c) {
       total += o_.cost[static_cast<size_t>(c)];
-      if (o_.groups.empty()) continue;
+      if (o_.groups.empty()) return;
       for (const int g : o_.groups[static_cast<size_t>(c)])
-        if (!used[static_cast<size_t>(g)]) {
-          used[static_cast<size_t>(g)] = true;
+        if (!used_[static_cast<size_t>(g)]) {
+          used_[static_cast<size_t>(g)] = true;
           total += o_.groupCost[static_cast<size_t>(g)];
         }
-    }
+    };
+    for (size_t k = 0; k < chosen.size(); ++k)
+      if (static_cast<long>(k) != skip) add(chosen[k]);
+    if (in >= 0) add(in);
     return total;
   }
-  bool fits(const std::vector<int>& chosen) const { return of(chosen) <= o_.budget * (1 + 1e-12); }
+  bool fits(double cost) const { return cost <= o_.budget * (1 + 1e-12); }
 
  private:
   const DesignOptions& o_;
+  mutable std::vector<char> used_;  // scratch: the groups already paid for
 };
 
 void checkOptions(const std::vector<Eigen::MatrixXd>& candidates, const DesignOptions& o) {
@@ -319,11 +325,8 @@ Design exchange(const std::vector<Eigen::MatrixXd>& candidates, const DesignOpti
         if (!allowed(chosen, c) || inGroup(c, without)) continue;
         double value = t.added(c) - t.current();
         if (costs.budgeted()) {
-          chosen.push_back(static_cast<int>(c));
-          const double after = costs.of(chosen);
-          const bool fits = costs.fits(chosen);
-          chosen.pop_back();
-          if (!fits) continue;
+          const double after = costs.of(chosen, static_cast<int>(c));
+          if (!costs.fits(after)) continue;
           value /= after - before;
         }
         if (value > bestValue) {
@@ -376,11 +379,7 @@ Design exchange(const std::vector<Eigen::MatrixXd>& candidates, const DesignOpti
       t.focus(out);
       for (size_t c = 0; c < candidates.size(); ++c) {
         if (c == out || !allowed(d.chosen, c)) continue;
-        if (costs.budgeted()) {
-          std::vector<int> trial = d.chosen;
-          trial[k] = static_cast<int>(c);
-          if (!costs.fits(trial)) continue;
-        }
+        if (costs.budgeted() && !costs.fits(costs.of(d.chosen, static_cast<int>(c), static_cast<long>(k)))) continue;
         const double value = t.swapped(c);
         if (better(value, bestValue, o.criterion)) {
           bestValue = value;
