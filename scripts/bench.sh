@@ -10,7 +10,7 @@ bash scripts/build.sh
 benchmarks=(
   "bench_fk_vs_kdl|batch forward kinematics against orocos KDL (full frames, 1 thread each)"
   "bench_cone_monte_carlo|cone-frustum Monte Carlo, 1000 samples, exact evaluation"
-  "bench_cubic_zmap|seed 001 cubic machining test, surface on a 10 um grid, against a per-cell loop over all moves"
+  "bench_cubic_zmap|seed 001 cubic machining test, surface on a 10 um grid; the removal against a NumPy z-buffer"
   "bench_identify_vs_scipy|identification of 13 parameters from 10,000 R-test points, against SciPy (analytic Jacobian, LM)"
   "bench_plate_identification|component errors from a 24-plate campaign (seed 003), against NumPy + SciPy"
   "bench_program_compensation|compensating a 1,000,000-line 5-axis program, against a vectorised NumPy Newton"

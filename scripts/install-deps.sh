@@ -13,6 +13,9 @@ if [ "${1:-}" != --example ]; then
   packages+=(
     libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev
     python3-scipy python3-pytest python3-pytest-xdist
+    # The benchmarks' NumPy and SciPy on OpenBLAS (its kernels for the CPU, AVX-512 where it has
+    # them) rather than on the ATLAS that libceres-dev brings, or the reference BLAS
+    libopenblas0-pthread
     clang libclang-rt-14-dev
     chromium
   )
