@@ -82,11 +82,11 @@ int main(int argc, char** argv) {
 
   const auto pipeline = [&](int threads) {
     PipelineResult r;
-    std::vector<DecompositionTest> tests;
+    std::vector<DecompositionTest> tests;  // moved out of the alignments, as the workflow does
     for (size_t k = 0; k < kFeeds.size(); ++k) {
       const auto& rec = recordings[k];
       r.aligned.push_back(alignRecordedTest(nominal, identified, {kFeeds[k], rec.command, rec.encoder, rec.instrument}, {std::nullopt, {}, kBall}, threads));
-      tests.push_back(r.aligned.back().test);
+      tests.push_back(std::move(r.aligned.back().test));
     }
     r.decomposed = decomposeErrors(tests);
     for (const auto& d : r.decomposed) {
@@ -142,7 +142,7 @@ int main(int argc, char** argv) {
     for (size_t s = 0; s < 3; ++s) shareGap = std::max(shareGap, std::abs(theirs["shares"][s].get<double>() - shares[s]));
   }
   size_t samples = 0;
-  for (const auto& a : result.aligned) samples += a.test.time.size();
+  for (const auto& d : result.decomposed) samples += d.dynamic.size();
   fmt::print("seed 004 pipeline: {} feeds, {} instrument samples in all ({} per feed), 5 axes every 3 ms\n", kFeeds.size(), samples,
              samples / kFeeds.size());
   fmt::print("estimated clock offsets {:.4f} .. {:.4f} ms (18 ms + the servo lag); NumPy agrees to {:.1e} s (offset), {:.1e} mm (drift), "

@@ -99,7 +99,7 @@ TEST(Seed004Alignment, R8EighteenMillisecondsAreSixNcCyclesAnd180InstrumentSampl
   std::vector<double> times;
   for (int j = 180; j <= 180 + 30 * 399; ++j) times.push_back(j * instrumentPeriod);
   const auto moved = resampleTrace(command, delay, times);
-  for (size_t k = 0; k < 400; ++k) EXPECT_NEAR(moved[0][30 * k], command.channels[0][k], 1e-12) << k;
+  for (size_t k = 0; k < 400; ++k) EXPECT_NEAR(moved(static_cast<Eigen::Index>(30 * k), 0), command.channels[0][k], 1e-12) << k;
   EXPECT_EQ(std::lround(delay / kNcPeriod), 6);
   EXPECT_EQ(std::lround(delay / instrumentPeriod), 180);
   EXPECT_THROW(resampleTrace(command, delay, {0.0179}), InvalidInput);

@@ -228,7 +228,8 @@ ModalSums modalSums(const StructureMatrices& m, const Modes& modes, const std::v
   const Eigen::Index r = modes.frequencies.size();
   const Eigen::Matrix<double, 3, Eigen::Dynamic> participation = m.selection * modes.shapes;  // S phi_r
   const Eigen::VectorXd modalDamping = modalDampingCoefficients(m, modes);
-  constexpr size_t kLanes = 4;
+  // One vector register of frequencies.
+  constexpr size_t kLanes = Eigen::internal::packet_traits<double>::size;
   using Lanes = Eigen::Array<double, kLanes, 1>;
   // Per mode, contiguous and already in every lane: w_r^2, c_r and the six products of its
   // participations.

@@ -10,14 +10,24 @@
 namespace mtacc {
 namespace {
 
+// Right-multiplies the rotation by a rotation of (s, c) about the principal axis whose plane is
+// (I, J); constant indices keep the matrix in registers.
+template <int I, int J>
+void rotateColumns(Mat3& r, double s, double c) {
+  const Vec3 ci = r.col(I), cj = r.col(J);
+  r.col(I) = c * ci + s * cj;
+  r.col(J) = c * cj - s * ci;
+}
+
 // Right-multiplies the rotation by a rotation of angle about principal axis k.
 void rotatePrincipal(Mat3& r, int k, double angle) {
   double s, c;
   fastSinCos(angle, s, c);
-  const int i = (k + 1) % 3, j = (k + 2) % 3;
-  const Vec3 ci = r.col(i), cj = r.col(j);
-  r.col(i) = c * ci + s * cj;
-  r.col(j) = c * cj - s * ci;
+  switch (k) {
+    case 0: rotateColumns<1, 2>(r, s, c); break;
+    case 1: rotateColumns<2, 0>(r, s, c); break;
+    default: rotateColumns<0, 1>(r, s, c); break;
+  }
 }
 
 // A point and N directions carried through the chain one factor at a time: cheaper than
@@ -39,21 +49,20 @@ inline Vec3 transposeTimes(const Mat3& r, const Vec3& v) {
           r(0, 2) * v[0] + r(1, 2) * v[1] + r(2, 2) * v[2]};
 }
 
-// v <- rotation of v by (s, c) in the plane (i, j) of principal axis k.
-inline void rotatePlane(Vec3& v, int i, int j, double s, double c) {
-  const double vi = v[i], vj = v[j];
-  v[i] = c * vi - s * vj;
-  v[j] = s * vi + c * vj;
+// v <- rotation of v by (s, c) in the plane (i, j) of a principal axis. The plane is a
+// template argument: with constant indices the vectors stay in registers.
+template <int I, int J>
+inline void rotatePlane(Vec3& v, double s, double c) {
+  const double vi = v[I], vj = v[J];
+  v[I] = c * vi - s * vj;
+  v[J] = s * vi + c * vj;
 }
-
-constexpr int kNext[3] = {1, 2, 0};
-constexpr int kAfterNext[3] = {2, 0, 1};
 
 // x <- F x for each factor F handed over, or x <- F^-1 x (Inverse): a point and N
 // directions carried through a chain.
 template <bool Inverse, int N>
 struct PointTransport {
-  PointDirections<N> x;
+  PointDirections<N>& x;
   void translate(const Vec3& t) {
     if constexpr (Inverse)
       x.p -= t;
@@ -74,10 +83,12 @@ struct PointTransport {
     if (op.principal >= 0) {
       double s, c;
       fastSinCos(angle, s, c);
-      const int i = kNext[op.principal], j = kAfterNext[op.principal];
       if (op.hasBase) x.p -= op.base;
-      rotatePlane(x.p, i, j, s, c);
-      for (auto& d : x.d) rotatePlane(d, i, j, s, c);
+      switch (op.principal) {
+        case 0: rotateAll<1, 2>(s, c); break;
+        case 1: rotateAll<2, 0>(s, c); break;
+        default: rotateAll<0, 1>(s, c); break;
+      }
       if (op.hasBase) x.p += op.base;
     } else {
       const Mat3 r = rotationAbout(op.vector, angle);
@@ -86,6 +97,11 @@ struct PointTransport {
     }
   }
   void mark(const ChainOp&) {}
+  template <int I, int J>
+  void rotateAll(double s, double c) {
+    rotatePlane<I, J>(x.p, s, c);
+    for (auto& d : x.d) rotatePlane<I, J>(d, s, c);
+  }
 };
 
 // W^-1 T applied to the tool chain's start (after its trailing constant), factor by factor:
@@ -94,11 +110,12 @@ template <int N>
 PointDirections<N> transportToWorkpiece(const KinematicModel& m, const PointDirections<N>& start, const double* q,
                                         const int* dir) {
   const ChainPrograms& c = *m.chains;
-  PointTransport<false, N> forward{start};
+  PointDirections<N> x = start;
+  PointTransport<false, N> forward{x};
   for (size_t i = c.toolOpsPerPose; i-- > 0;) evaluateOp(c.toolProgram[i], q, dir, forward);
-  PointTransport<true, N> inverse{forward.x};
+  PointTransport<true, N> inverse{x};
   for (const auto& op : c.workpieceProgram) evaluateOp(op, q, dir, inverse);
-  return inverse.x;
+  return x;
 }
 
 // T <- T F for each factor F handed over: the frame product along a chain, with rotation
@@ -206,10 +223,11 @@ void toolPoints(const KinematicModel& m, const PoseBatch& poses, ToolPointBatch&
 }
 
 PointMatrix toolPositions(const KinematicModel& model, const JointMatrix& q, int threads) {
-  const DirectionMatrix none;
-  ToolPointBatch out;
-  toolPoints(model, {q, none}, out, threads);
-  return out.positions;
+  PointMatrix out(q.rows(), 3);
+  parallelFor(q.rows(), threads, [&](long begin, long end) {
+    for (long i = begin; i < end; ++i) out.row(i) = toolPoint(model, q.row(i).data()).position.transpose();
+  });
+  return out;
 }
 
 PoseErrorMatrix toolErrors(const KinematicModel& actual, const KinematicModel& nominal, const PoseBatch& poses,

@@ -32,27 +32,85 @@ void check(const DecompositionTest& t, size_t index, MotionParameter parameter) 
     throw InvalidInput(fmt::format("decomposition test {} (F {:g}): the path does not advance", index, t.feed));
 }
 
-// P_0 .. P_degree at x = 2 t_n - 1, t_n the parameter (time or path) from the test's first
-// sample to its last scaled to [0, 1] (O5), by the three-term recurrence.
-Eigen::MatrixXd legendreBasis(const DecompositionTest& t, MotionParameter parameter, int degree) {
-  const auto& along = parameter == MotionParameter::Path ? t.path : t.time;
-  const auto n = static_cast<Eigen::Index>(along.size());
-  Eigen::MatrixXd p(n, degree + 1);
-  const double start = along.front(), span = along.back() - along.front();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double x = 2.0 * (along[static_cast<size_t>(i)] - start) / span - 1.0;
-    p(i, 0) = 1.0;
-    if (degree >= 1) p(i, 1) = x;
-    for (int k = 1; k < degree; ++k) p(i, k + 1) = ((2 * k + 1) * x * p(i, k) - k * p(i, k - 1)) / (k + 1);
-  }
-  return p;
-}
+// The parameter (time or path) from the test's first sample to its last scaled to [-1, 1]:
+// x = 2 t_n - 1 with t_n in [0, 1] (O5).
+struct Normalised {
+  const std::vector<double>& along;
+  double start, span;
+  Normalised(const DecompositionTest& t, MotionParameter parameter)
+      : along(parameter == MotionParameter::Path ? t.path : t.time), start(along.front()), span(along.back() - along.front()) {}
+  double operator()(size_t i) const { return 2.0 * (along[i] - start) / span - 1.0; }
+};
 
-// chi - chi_enc - delta_l per sample (the left side of eq. 16), n x 3.
-Eigen::MatrixXd beyondLink(const DecompositionTest& t) {
-  Eigen::MatrixXd r(static_cast<Eigen::Index>(t.time.size()), 3);
-  for (size_t i = 0; i < t.time.size(); ++i) r.row(static_cast<Eigen::Index>(i)) = (t.measured[i] - t.encoder[i] - t.link[i]).transpose();
-  return r;
+// The three-term recurrence of the Legendre polynomials, P_0 = 1, P_1 = x,
+// P_k+1 = a_k x P_k - b_k P_k-1 with a_k = (2k + 1) / (k + 1), b_k = k / (k + 1).
+struct Legendre {
+  int degree;
+  std::vector<double> a, b;
+  explicit Legendre(int d) : degree(d) {
+    for (int k = 0; k < d; ++k) a.push_back((2.0 * k + 1) / (k + 1)), b.push_back(static_cast<double>(k) / (k + 1));
+  }
+  // P_0 .. P_degree at x into p.
+  void row(double x, double* p) const {
+    p[0] = 1.0;
+    if (degree >= 1) p[1] = x;
+    for (int k = 1; k < degree; ++k) p[k + 1] = a[static_cast<size_t>(k)] * x * p[k] - b[static_cast<size_t>(k)] * p[k - 1];
+  }
+  // sum_k c_k P_k(x_i) for each sample i (c: degree + 1 rows, three columns), eight samples at a
+  // time so that the recurrence runs in the vector lanes rather than along its latency.
+  void series(const Normalised& x, size_t n, const Eigen::MatrixXd& c, std::vector<Vec3>& out) const {
+    constexpr size_t kLanes = 8;
+    for (size_t i0 = 0; i0 < n; i0 += kLanes) {
+      double xs[kLanes], previous[kLanes], current[kLanes], sum[3][kLanes];
+      for (size_t l = 0; l < kLanes; ++l) {
+        xs[l] = x(std::min(i0 + l, n - 1));
+        previous[l] = 1.0;
+        current[l] = xs[l];
+        for (int d = 0; d < 3; ++d) sum[d][l] = c(0, d) + (degree >= 1 ? c(1, d) * xs[l] : 0.0);
+      }
+      for (int k = 1; k < degree; ++k) {
+        const double ak = a[static_cast<size_t>(k)], bk = b[static_cast<size_t>(k)];
+        for (size_t l = 0; l < kLanes; ++l) {
+          const double next = ak * xs[l] * current[l] - bk * previous[l];
+          previous[l] = current[l];
+          current[l] = next;
+          for (int d = 0; d < 3; ++d) sum[d][l] += c(k + 1, d) * next;
+        }
+      }
+      for (size_t l = 0; l < kLanes && i0 + l < n; ++l) out[i0 + l] = Vec3(sum[0][l], sum[1][l], sum[2][l]);
+    }
+  }
+};
+
+// The least-squares Legendre coefficients (degree + 1 rows, one column per direction) of
+// chi - chi_enc - delta_l (the left side of eq. 16) over the samples `fitted`. Householder QR a
+// block of rows at a time, each block stacked under the triangle of the rows before it: the
+// accuracy of QR on the whole matrix without holding the matrix (samples x degree + 1).
+Eigen::MatrixXd fitMotion(const DecompositionTest& t, MotionParameter parameter, int degree, const std::vector<Eigen::Index>& fitted) {
+  constexpr Eigen::Index kBlock = 512;
+  const Eigen::Index terms = degree + 1, width = terms + 3;
+  const Normalised x(t, parameter);
+  const Legendre legendre(degree);
+  Eigen::MatrixXd stack(width + kBlock, width);  // [R of the rows so far; the next block], basis | right side
+  Eigen::Index kept = 0;  // rows of R held (fewer than width until enough rows were seen)
+  for (size_t b = 0; b < fitted.size(); b += kBlock) {
+    const size_t e = std::min(fitted.size(), b + static_cast<size_t>(kBlock));
+    for (size_t k = b; k < e; ++k) {
+      const auto i = static_cast<size_t>(fitted[k]);
+      const Eigen::Index row = kept + static_cast<Eigen::Index>(k - b);
+      double p[61];
+      legendre.row(x(i), p);
+      for (Eigen::Index c = 0; c < terms; ++c) stack(row, c) = p[c];
+      stack.block<1, 3>(row, terms) = (t.measured[i] - t.encoder[i] - t.link[i]).transpose();
+    }
+    const Eigen::Index rows = kept + static_cast<Eigen::Index>(e - b);
+    Eigen::Ref<Eigen::MatrixXd> held = stack.topRows(rows);
+    const Eigen::HouseholderQR<Eigen::Ref<Eigen::MatrixXd>> inPlace(held);
+    kept = std::min(rows, width);
+    stack.topRows(kept) = stack.topRows(kept).triangularView<Eigen::Upper>().toDenseMatrix();
+  }
+  // [R11 R12; 0 R22]: R11 c = R12 solves the least squares of the basis against the right side.
+  return stack.topLeftCorner(terms, terms).triangularView<Eigen::Upper>().solve(stack.block(0, terms, terms, 3));
 }
 
 // The reference samples the motion errors are fitted to.
@@ -85,8 +143,8 @@ std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>
   // Eqs. 16-17: in the reference test everything beyond the link errors is motion error, up to
   // the dynamic residue the fit leaves; the fit's coefficients carry delta_m to the other tests.
   const auto fitted = fittedSamples(reference, o);
-  const Eigen::MatrixXd basis = legendreBasis(reference, o.parameter, o.degree), beyond = beyondLink(reference);
-  const Eigen::MatrixXd coefficients = basis(fitted, Eigen::all).householderQr().solve(beyond(fitted, Eigen::all));
+  const Eigen::MatrixXd coefficients = fitMotion(reference, o.parameter, o.degree, fitted);
+  const Legendre legendre(o.degree);
   std::vector<DecomposedTest> out;
   out.reserve(tests.size());
   for (size_t k = 0; k < tests.size(); ++k) {
@@ -98,23 +156,23 @@ std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>
     d.contouring.resize(n);
     d.motion.resize(n);
     d.dynamic.resize(n);
-    const Eigen::MatrixXd motion = legendreBasis(t, o.parameter, o.degree) * coefficients;
-    const Eigen::MatrixXd rest = beyondLink(t) - motion;
+    d.driftAlong.resize(n);
+    legendre.series(Normalised(t, o.parameter), n, coefficients, d.motion);
     // Eq. 18: the drift is the mean of what neither link nor motion errors explain, taken in the
     // drift frame; the reference test's is zero because its fit has the constant term.
     const bool machineFrame = o.driftFrame == DriftFrame::Machine && !t.workpieceRotation.empty();
     auto toDriftFrame = [&](size_t i) { return machineFrame ? t.workpieceRotation[i] : Mat3::Identity(); };
     Vec3 sum = Vec3::Zero();
-    for (size_t i = 0; i < n; ++i) sum += toDriftFrame(i) * rest.row(static_cast<Eigen::Index>(i)).transpose();
+    for (size_t i = 0; i < n; ++i) {
+      d.dynamic[i] = t.measured[i] - t.encoder[i] - t.link[i] - d.motion[i];  // the rest, before the drift
+      sum += toDriftFrame(i) * d.dynamic[i];
+    }
     d.drift = static_cast<int>(k) == o.referenceTest ? Vec3::Zero() : Vec3(sum / static_cast<double>(n));
-    d.driftAlong.resize(n);
     if (static_cast<int>(k) == o.referenceTest) d.leftOutOfFit = n - fitted.size();
     for (size_t i = 0; i < n; ++i) {
-      const auto row = static_cast<Eigen::Index>(i);
       d.contouring[i] = t.encoder[i] - t.nominal[i];
-      d.motion[i] = motion.row(row).transpose();
       d.driftAlong[i] = toDriftFrame(i).transpose() * d.drift;
-      d.dynamic[i] = rest.row(row).transpose() - d.driftAlong[i];
+      d.dynamic[i] -= d.driftAlong[i];
     }
     d.contouringOrthogonal = orthogonalToPath(d.contouring, t.nominal, d.orthogonalUndefined);
     out.push_back(std::move(d));

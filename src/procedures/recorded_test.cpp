@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "mtacc/core/units.hpp"
 #include "mtacc/kinematics/forward.hpp"
@@ -104,8 +105,8 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
     throw InvalidInput(fmt::format("{} instrument samples fall inside the command's motion and the encoder trace (offset {:.3f} ms)",
                                             used.size(), alignment.offset * 1e3));
   const auto interpolation = processing.search.interpolation;
-  const auto nominalQ = posesFromChannels(resampleTrace(command, alignment.offset, test.time, interpolation));
-  const auto encoderQ = posesFromChannels(resampleTrace(encoder, 0.0, test.time, interpolation));
+  const JointMatrix nominalQ = resampleTrace(command, alignment.offset, test.time, interpolation);
+  JointMatrix encoderQ = resampleTrace(encoder, 0.0, test.time, interpolation);
   const PointMatrix atCommand = toolPositions(nominal, nominalQ, threads), atEncoder = toolPositions(nominal, encoderQ, threads);
   const PointMatrix withErrors = toolPositions(identified, encoderQ, threads);
   const size_t n = used.size();
@@ -134,7 +135,7 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
     test.link[i] = (withErrors.row(k) - atEncoder.row(k)).transpose();
     test.measured[i] = Vec3(instrument.channels[0][used[i]], instrument.channels[1][used[i]], instrument.channels[2][used[i]]);
   }
-  out.encoderPoses = encoderQ;
+  out.encoderPoses = std::move(encoderQ);
   return out;
 }
 

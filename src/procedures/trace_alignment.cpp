@@ -120,15 +120,15 @@ ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace&
   return {offset, std::sqrt(current.meanSquare), last - first};
 }
 
-std::vector<std::vector<double>> resampleTrace(const SampledTrace& trace, double offset, const std::vector<double>& times,
-                                               Interpolation interpolation) {
+JointMatrix resampleTrace(const SampledTrace& trace, double offset, const std::vector<double>& times, Interpolation interpolation) {
   std::vector<UniformSpline> splines;
   for (const auto& channel : trace.channels) splines.emplace_back(trace.start + offset, trace.period, channel, interpolation);
-  std::vector<std::vector<double>> out(trace.channels.size(), std::vector<double>(times.size()));
+  JointMatrix out(static_cast<Eigen::Index>(times.size()), static_cast<Eigen::Index>(splines.size()));
   if (splines.empty()) return out;
   for (size_t i = 0; i < times.size(); ++i) {
     const auto where = splines.front().locate(times[i]);
-    for (size_t c = 0; c < splines.size(); ++c) out[c][i] = splines[c].at(where);
+    double* row = out.row(static_cast<Eigen::Index>(i)).data();
+    for (size_t c = 0; c < splines.size(); ++c) row[c] = splines[c].at(where);
   }
   return out;
 }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mtacc/core/joint_matrix.hpp"
 #include "mtacc/core/uniform_spline.hpp"
 
 namespace mtacc {
@@ -42,9 +43,10 @@ struct ClockOffset {
 // window, or offsets whose overlap holds fewer than a quarter of the encoder samples.
 ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace& encoder, const ClockOffsetSearch& search = {});
 
-// Each channel of `trace`, with its clock moved by `offset`, at the given times (s). Throws
-// InvalidInput when a time falls outside the moved trace's span.
-std::vector<std::vector<double>> resampleTrace(const SampledTrace& trace, double offset, const std::vector<double>& times,
-                                               Interpolation interpolation = Interpolation::CubicSpline);
+// The trace, with its clock moved by `offset`, at the given times (s): row i holds every
+// channel at times[i] (the poses there, for a trace of axis positions). Throws InvalidInput when
+// a time falls outside the moved trace's span.
+JointMatrix resampleTrace(const SampledTrace& trace, double offset, const std::vector<double>& times,
+                          Interpolation interpolation = Interpolation::CubicSpline);
 
 }  // namespace mtacc
