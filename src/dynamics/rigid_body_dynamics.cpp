@@ -127,10 +127,16 @@ bool solveModes(const StructureMatrices& m, Eigen::VectorXd& w2, Eigen::MatrixXd
   }
   Eigen::MatrixXd a(n, n);
   for (int i = 0; i < bodies; ++i)
-    for (int j = 0; j <= i; ++j)
-      a.block<6, 6>(6 * i, 6 * j) = linv[static_cast<size_t>(i)] * m.stiffness.block<6, 6>(6 * i, 6 * j) *
-                                    linv[static_cast<size_t>(j)].transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(a);  // reads the lower triangle
+    for (int j = 0; j <= i; ++j) {
+      const auto k = m.stiffness.block<6, 6>(6 * i, 6 * j);
+      if (k.isZero(0.0))
+        a.block<6, 6>(6 * i, 6 * j).setZero();  // bodies not joined by an element
+      else
+        a.block<6, 6>(6 * i, 6 * j) = linv[static_cast<size_t>(i)] * k * linv[static_cast<size_t>(j)].transpose();
+    }
+  // One solver per thread: its work space is kept from one position to the next.
+  thread_local Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig;
+  eig.compute(a);  // reads the lower triangle
   if (eig.info() != Eigen::Success) return false;
   w2 = eig.eigenvalues();
   const Eigen::MatrixXd& z = eig.eigenvectors();
