@@ -1,6 +1,7 @@
 #include "mtacc/procedures/recorded_test.hpp"
 
 #include "mtacc/core/input_error.hpp"
+#include "mtacc/core/parallel.hpp"
 #include "mtacc/procedures/signal_spikes.hpp"
 
 #include <fmt/format.h>
@@ -107,8 +108,6 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
   const auto interpolation = processing.search.interpolation;
   const JointMatrix nominalQ = resampleTrace(command, alignment.offset, test.time, interpolation);
   JointMatrix encoderQ = resampleTrace(encoder, 0.0, test.time, interpolation);
-  const PointMatrix atCommand = toolPositions(nominal, nominalQ, threads), atEncoder = toolPositions(nominal, encoderQ, threads);
-  const PointMatrix withErrors = toolPositions(identified, encoderQ, threads);
   const size_t n = used.size();
   std::vector<double> fileScale;  // FGROUP: the path in mm and deg
   for (long a = 0; a < encoderQ.cols(); ++a) fileScale.push_back(1.0 / nominal.machine->axes[static_cast<size_t>(a)].fileUnit());
@@ -127,14 +126,19 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
   test.link.resize(n);
   test.measured.resize(n);
   test.workpieceRotation.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    const auto k = static_cast<long>(i);
-    test.workpieceRotation[i] = workpiecePose(nominal, encoderQ.row(k).data(), nullptr).linear();
-    test.nominal[i] = atCommand.row(k).transpose() - processing.ball;
-    test.encoder[i] = atEncoder.row(k).transpose() - processing.ball;
-    test.link[i] = (withErrors.row(k) - atEncoder.row(k)).transpose();
-    test.measured[i] = Vec3(instrument.channels[0][used[i]], instrument.channels[1][used[i]], instrument.channels[2][used[i]]);
-  }
+  // The TCPs and the workpiece's rotation sample by sample, straight into the test's series.
+  parallelFor(static_cast<long>(n), threads, [&](long begin, long end) {
+    for (long k = begin; k < end; ++k) {
+      const auto i = static_cast<size_t>(k);
+      const double* q = encoderQ.row(k).data();
+      const Vec3 atEncoder = toolPoint(nominal, q).position;
+      test.workpieceRotation[i] = workpiecePose(nominal, q, nullptr).linear();
+      test.nominal[i] = toolPoint(nominal, nominalQ.row(k).data()).position - processing.ball;
+      test.encoder[i] = atEncoder - processing.ball;
+      test.link[i] = toolPoint(identified, q).position - atEncoder;
+      test.measured[i] = Vec3(instrument.channels[0][used[i]], instrument.channels[1][used[i]], instrument.channels[2][used[i]]);
+    }
+  });
   out.encoderPoses = std::move(encoderQ);
   return out;
 }
