@@ -136,9 +136,10 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
       test.nominal[i] = toolPoint(nominal, nominalQ.row(k).data()).position - processing.ball;
       test.encoder[i] = atEncoder - processing.ball;
       test.link[i] = toolPoint(identified, q).position - atEncoder;
-      test.measured[i] = Vec3(instrument.channels[0][used[i]], instrument.channels[1][used[i]], instrument.channels[2][used[i]]);
     }
   });
+  for (size_t i = 0; i < n; ++i)
+    test.measured[i] = Vec3(instrument.channels[0][used[i]], instrument.channels[1][used[i]], instrument.channels[2][used[i]]);
   out.encoderPoses = std::move(encoderQ);
   return out;
 }
