@@ -5,7 +5,9 @@
 # 5 GB holds the Release and the sanitizer trees with room for a few versions of each.
 home=${HOME:-$(getent passwd "$(id -u)" | cut -d: -f6)}
 export CCACHE_DIR=${CCACHE_DIR:-${XDG_CACHE_HOME:-$home/.cache}/mtacc-ccache}
-export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(pwd)}
+# Always this checkout (the scripts run from its root): a base folder inherited from a shell
+# that sourced this file in another clone would make every object of this one miss.
+export CCACHE_BASEDIR=$(pwd)
 export CCACHE_NOHASHDIR=1
 # Depend mode: on a miss, ccache takes the headers from the compiler's own -MD output instead of
 # running the preprocessor a second time (CMake passes -MD to GCC and clang).
