@@ -5,29 +5,33 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 namespace mtacc {
 namespace {
 
-// Right-multiplies the rotation by a rotation of (s, c) about the principal axis whose plane is
-// (I, J); constant indices keep the matrix in registers.
-template <int I, int J>
-void rotateColumns(Mat3& r, double s, double c) {
-  const Vec3 ci = r.col(I), cj = r.col(J);
-  r.col(I) = c * ci + s * cj;
-  r.col(J) = c * cj - s * ci;
+// Calls f(i, j) with the plane (i, j) of principal axis k as compile-time constants: with
+// constant indices the vectors and matrices stay in registers instead of going through memory.
+template <class F>
+inline void inPrincipalPlane(int k, F&& f) {
+  using std::integral_constant;
+  switch (k) {
+    case 0: f(integral_constant<int, 1>{}, integral_constant<int, 2>{}); break;
+    case 1: f(integral_constant<int, 2>{}, integral_constant<int, 0>{}); break;
+    default: f(integral_constant<int, 0>{}, integral_constant<int, 1>{}); break;
+  }
 }
 
 // Right-multiplies the rotation by a rotation of angle about principal axis k.
 void rotatePrincipal(Mat3& r, int k, double angle) {
   double s, c;
   fastSinCos(angle, s, c);
-  switch (k) {
-    case 0: rotateColumns<1, 2>(r, s, c); break;
-    case 1: rotateColumns<2, 0>(r, s, c); break;
-    default: rotateColumns<0, 1>(r, s, c); break;
-  }
+  inPrincipalPlane(k, [&](auto i, auto j) {
+    const Vec3 ci = r.col(i), cj = r.col(j);
+    r.col(i) = c * ci + s * cj;
+    r.col(j) = c * cj - s * ci;
+  });
 }
 
 // A point and N directions carried through the chain one factor at a time: cheaper than
@@ -49,13 +53,12 @@ inline Vec3 transposeTimes(const Mat3& r, const Vec3& v) {
           r(0, 2) * v[0] + r(1, 2) * v[1] + r(2, 2) * v[2]};
 }
 
-// v <- rotation of v by (s, c) in the plane (i, j) of a principal axis. The plane is a
-// template argument: with constant indices the vectors stay in registers.
-template <int I, int J>
-inline void rotatePlane(Vec3& v, double s, double c) {
-  const double vi = v[I], vj = v[J];
-  v[I] = c * vi - s * vj;
-  v[J] = s * vi + c * vj;
+// v <- rotation of v by (s, c) in the plane (i, j) of a principal axis.
+template <class I, class J>
+inline void rotatePlane(Vec3& v, I i, J j, double s, double c) {
+  const double vi = v[i], vj = v[j];
+  v[i] = c * vi - s * vj;
+  v[j] = s * vi + c * vj;
 }
 
 // x <- F x for each factor F handed over, or x <- F^-1 x (Inverse): a point and N
@@ -84,11 +87,10 @@ struct PointTransport {
       double s, c;
       fastSinCos(angle, s, c);
       if (op.hasBase) x.p -= op.base;
-      switch (op.principal) {
-        case 0: rotateAll<1, 2>(s, c); break;
-        case 1: rotateAll<2, 0>(s, c); break;
-        default: rotateAll<0, 1>(s, c); break;
-      }
+      inPrincipalPlane(op.principal, [&](auto i, auto j) {
+        rotatePlane(x.p, i, j, s, c);
+        for (auto& d : x.d) rotatePlane(d, i, j, s, c);
+      });
       if (op.hasBase) x.p += op.base;
     } else {
       const Mat3 r = rotationAbout(op.vector, angle);
@@ -97,11 +99,6 @@ struct PointTransport {
     }
   }
   void mark(const ChainOp&) {}
-  template <int I, int J>
-  void rotateAll(double s, double c) {
-    rotatePlane<I, J>(x.p, s, c);
-    for (auto& d : x.d) rotatePlane<I, J>(d, s, c);
-  }
 };
 
 // W^-1 T applied to the tool chain's start (after its trailing constant), factor by factor:

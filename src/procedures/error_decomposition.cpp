@@ -50,11 +50,15 @@ struct Legendre {
   explicit Legendre(int d) : degree(d) {
     for (int k = 0; k < d; ++k) a.push_back((2.0 * k + 1) / (k + 1)), b.push_back(static_cast<double>(k) / (k + 1));
   }
+  // P_k+1 from P_k and P_k-1 at x.
+  double next(int k, double x, double pk, double previous) const {
+    return a[static_cast<size_t>(k)] * x * pk - b[static_cast<size_t>(k)] * previous;
+  }
   // P_0 .. P_degree at x into p.
   void row(double x, double* p) const {
     p[0] = 1.0;
     if (degree >= 1) p[1] = x;
-    for (int k = 1; k < degree; ++k) p[k + 1] = a[static_cast<size_t>(k)] * x * p[k] - b[static_cast<size_t>(k)] * p[k - 1];
+    for (int k = 1; k < degree; ++k) p[k + 1] = next(k, x, p[k], p[k - 1]);
   }
   // sum_k c_k P_k(x_i) for each sample i (c: degree + 1 rows, three columns), eight samples at a
   // time so that the recurrence runs in the vector lanes rather than along its latency.
@@ -68,15 +72,13 @@ struct Legendre {
         current[l] = xs[l];
         for (int d = 0; d < 3; ++d) sum[d][l] = c(0, d) + (degree >= 1 ? c(1, d) * xs[l] : 0.0);
       }
-      for (int k = 1; k < degree; ++k) {
-        const double ak = a[static_cast<size_t>(k)], bk = b[static_cast<size_t>(k)];
+      for (int k = 1; k < degree; ++k)
         for (size_t l = 0; l < kLanes; ++l) {
-          const double next = ak * xs[l] * current[l] - bk * previous[l];
+          const double pk1 = next(k, xs[l], current[l], previous[l]);
           previous[l] = current[l];
-          current[l] = next;
-          for (int d = 0; d < 3; ++d) sum[d][l] += c(k + 1, d) * next;
+          current[l] = pk1;
+          for (int d = 0; d < 3; ++d) sum[d][l] += c(k + 1, d) * pk1;
         }
-      }
       for (size_t l = 0; l < kLanes && i0 + l < n; ++l) out[i0 + l] = Vec3(sum[0][l], sum[1][l], sum[2][l]);
     }
   }
