@@ -12,6 +12,7 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/units.hpp"
 #include "mtacc/core/parallel.hpp"
+#include "mtacc/core/symmetric_eigen.hpp"
 
 namespace mtacc {
 namespace {
@@ -114,59 +115,78 @@ StructureMatrices assembleStructure(const StructureModel& model, const std::vect
 namespace {
 
 // K phi = w^2 M phi with M block diagonal (one 6 x 6 block per body): with M = L L^T per
-// block, the standard problem L^-1 K L^-T z = w^2 z, phi = L^-T z. Eigen's tridiagonal QL
-// takes less time at these sizes than LAPACK's dsyevr or dsyevd (their tridiagonal stages
-// are bound by division latency).
-bool solveModes(const StructureMatrices& m, Eigen::VectorXd& w2, Eigen::MatrixXd& phi) {
+// block, the standard problem L^-1 K L^-T z = w^2 z, phi = L^-T z.
+struct StandardForm {
+  std::vector<Mat6> inverseFactors;  // L^-1 per body
+  Eigen::MatrixXd stiffness;          // L^-1 K L^-T, lower triangle
+};
+
+// False when a body's mass block is not positive definite.
+bool standardForm(const StructureMatrices& m, StandardForm& s) {
   const int n = static_cast<int>(m.mass.rows()), bodies = n / 6;
-  std::vector<Mat6> linv(static_cast<size_t>(bodies));
+  s.inverseFactors.resize(static_cast<size_t>(bodies));
   for (int b = 0; b < bodies; ++b) {
     Eigen::LLT<Mat6> llt(m.mass.block<6, 6>(6 * b, 6 * b));
     if (llt.info() != Eigen::Success) return false;
-    linv[static_cast<size_t>(b)] = llt.matrixL().solve(Mat6::Identity());
+    s.inverseFactors[static_cast<size_t>(b)] = llt.matrixL().solve(Mat6::Identity());
   }
-  Eigen::MatrixXd a(n, n);
+  s.stiffness.resize(n, n);
   for (int i = 0; i < bodies; ++i)
     for (int j = 0; j <= i; ++j) {
       const auto k = m.stiffness.block<6, 6>(6 * i, 6 * j);
       if (k.isZero(0.0))
-        a.block<6, 6>(6 * i, 6 * j).setZero();  // bodies not joined by an element
+        s.stiffness.block<6, 6>(6 * i, 6 * j).setZero();  // bodies not joined by an element
       else
-        a.block<6, 6>(6 * i, 6 * j) = linv[static_cast<size_t>(i)] * k * linv[static_cast<size_t>(j)].transpose();
+        s.stiffness.block<6, 6>(6 * i, 6 * j) =
+            s.inverseFactors[static_cast<size_t>(i)] * k * s.inverseFactors[static_cast<size_t>(j)].transpose();
     }
-  // One solver per thread: its work space is kept from one position to the next.
-  thread_local Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig;
-  eig.compute(a);  // reads the lower triangle
-  if (eig.info() != Eigen::Success) return false;
-  w2 = eig.eigenvalues();
-  const Eigen::MatrixXd& z = eig.eigenvectors();
-  phi.resize(n, n);
-  for (int b = 0; b < bodies; ++b) phi.middleRows<6>(6 * b) = linv[static_cast<size_t>(b)].transpose() * z.middleRows<6>(6 * b);
   return true;
+}
+
+// The body that moves most in the lowest generalised mode, and how: the InputError of a
+// stiffness matrix that leaves a body free.
+InputError freeMotion(const StructureModel& model, const StructureMatrices& m) {
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(m.stiffness, m.mass);
+  const Eigen::VectorXd lowest = eig.eigenvectors().col(0);
+  Eigen::Index dof = 0;
+  lowest.cwiseAbs().maxCoeff(&dof);
+  const char* names[6] = {"along x", "along y", "along z", "about x", "about y", "about z"};
+  return InputError(InputLocation{model.sourceFile, model.bodies[static_cast<size_t>(dof / 6)].line, "elements"},
+                    fmt::format("the stiffness matrix is singular: body '{}' is free to move {} (add a connecting element)",
+                                model.bodies[static_cast<size_t>(dof / 6)].name, names[dof % 6]));
 }
 
 }  // namespace
 
-Modes undampedModes(const StructureModel& model, const StructureMatrices& m) {
-  Eigen::VectorXd w2;
-  Eigen::MatrixXd phi;
-  const bool solved = solveModes(m, w2, phi);
-  const double largest = solved ? std::abs(w2.maxCoeff()) : 0.0;
-  if (!solved || !(w2.minCoeff() > 1e-10 * largest)) {
-    // The free motion: the body that moves most in the lowest mode, and how.
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(m.stiffness, m.mass);
-    const Eigen::VectorXd lowest = eig.eigenvectors().col(0);
-    Eigen::Index dof = 0;
-    lowest.cwiseAbs().maxCoeff(&dof);
-    const char* names[6] = {"along x", "along y", "along z", "about x", "about y", "about z"};
-    throw InputError(InputLocation{model.sourceFile, model.bodies[static_cast<size_t>(dof / 6)].line, "elements"},
-                     fmt::format("the stiffness matrix is singular: body '{}' is free to move {} (add a connecting element)",
-                                 model.bodies[static_cast<size_t>(dof / 6)].name, names[dof % 6]));
+std::vector<Modes> undampedModes(const StructureModel& model, std::span<const StructureMatrices> matrices) {
+  const size_t count = matrices.size();
+  std::vector<StandardForm> forms(count);
+  std::vector<Eigen::MatrixXd> problems(count);
+  std::vector<bool> massDefinite(count);
+  for (size_t i = 0; i < count; ++i) {
+    massDefinite[i] = standardForm(matrices[i], forms[i]);
+    if (massDefinite[i]) problems[i].swap(forms[i].stiffness);
   }
-  Modes out;
-  out.frequencies = w2.cwiseSqrt() / (2 * kPi);
-  out.shapes = phi;
+  std::vector<SymmetricEigen> eig(count);
+  symmetricEigen(problems, eig);
+  std::vector<Modes> out(count);
+  for (size_t i = 0; i < count; ++i) {
+    const Eigen::VectorXd& w2 = eig[i].values;
+    const bool solved = massDefinite[i] && eig[i].converged;
+    const double largest = solved ? std::abs(w2.maxCoeff()) : 0.0;
+    if (!solved || !(w2.minCoeff() > 1e-10 * largest)) throw freeMotion(model, matrices[i]);
+    const auto& linv = forms[i].inverseFactors;
+    out[i].frequencies = w2.cwiseSqrt() / (2 * kPi);
+    out[i].shapes.resize(w2.size(), w2.size());
+    for (size_t b = 0; b < linv.size(); ++b)
+      out[i].shapes.middleRows<6>(6 * static_cast<Eigen::Index>(b)) =
+          linv[b].transpose() * eig[i].vectors.middleRows<6>(6 * static_cast<Eigen::Index>(b));
+  }
   return out;
+}
+
+Modes undampedModes(const StructureModel& model, const StructureMatrices& m) {
+  return std::move(undampedModes(model, std::span(&m, 1)).front());
 }
 
 std::vector<DampedMode> dampedModes(const StructureMatrices& m) {
@@ -287,17 +307,26 @@ Frf frfModal(const StructureMatrices& m, const Modes& modes, const std::vector<d
 std::vector<Eigen::Matrix3d> frfPeaks(const StructureModel& model, const std::vector<std::vector<double>>& positions,
                                       const std::vector<double>& frequencies, int threads) {
   std::vector<Eigen::Matrix3d> out(positions.size());
-  parallelFor(static_cast<long>(positions.size()), threads, [&](long begin, long end) {
-    for (long p = begin; p < end; ++p) {
-      const auto m = assembleStructure(model, positions[static_cast<size_t>(p)]);
-      const auto s = modalSums(m, undampedModes(model, m), frequencies);
-      double peak[6] = {0, 0, 0, 0, 0, 0};
-      for (size_t e = 0; e < 6; ++e)
-        for (size_t i = 0; i < frequencies.size(); ++i)
-          peak[e] = std::max(peak[e], s.re[e][i] * s.re[e][i] + s.im[e][i] * s.im[e][i]);
-      Eigen::Matrix3d& h = out[static_cast<size_t>(p)];
-      h << peak[0], peak[3], peak[4], peak[3], peak[1], peak[5], peak[4], peak[5], peak[2];
-      h = h.cwiseSqrt();
+  // The positions' eigenproblems solved together, as many as symmetricEigen interleaves.
+  constexpr long kGroup = static_cast<long>(kInterleavedEigenproblems);
+  const long count = static_cast<long>(positions.size());
+  parallelFor((count + kGroup - 1) / kGroup, threads, [&](long begin, long end) {
+    std::vector<StructureMatrices> group;
+    for (long g = begin; g < end; ++g) {
+      const long first = g * kGroup, last = std::min(count, first + kGroup);
+      group.clear();
+      for (long p = first; p < last; ++p) group.push_back(assembleStructure(model, positions[static_cast<size_t>(p)]));
+      const auto modes = undampedModes(model, group);
+      for (long p = first; p < last; ++p) {
+        const auto s = modalSums(group[static_cast<size_t>(p - first)], modes[static_cast<size_t>(p - first)], frequencies);
+        double peak[6] = {0, 0, 0, 0, 0, 0};
+        for (size_t e = 0; e < 6; ++e)
+          for (size_t i = 0; i < frequencies.size(); ++i)
+            peak[e] = std::max(peak[e], s.re[e][i] * s.re[e][i] + s.im[e][i] * s.im[e][i]);
+        Eigen::Matrix3d& h = out[static_cast<size_t>(p)];
+        h << peak[0], peak[3], peak[4], peak[3], peak[1], peak[5], peak[4], peak[5], peak[2];
+        h = h.cwiseSqrt();
+      }
     }
   }, 1);
   return out;

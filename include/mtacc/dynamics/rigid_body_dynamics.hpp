@@ -6,6 +6,7 @@
 // compliance, and the quasi-static response to the acceleration of each axis. SI inside.
 #include <complex>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,9 @@ struct Modes {
 // Throws InputError when K is singular (a body not held in some direction), naming the body
 // and the direction of the free motion.
 Modes undampedModes(const StructureModel& model, const StructureMatrices& m);
+// The same for several sets of matrices (of the model at several positions), solved together:
+// faster than one at a time (symmetricEigen).
+std::vector<Modes> undampedModes(const StructureModel& model, std::span<const StructureMatrices> matrices);
 
 // phi_r^T D phi_r per mode (1/s): the modal equations q'' + c_r q' + w_r^2 q = phi_r^T f,
 // exact for proportional damping.
