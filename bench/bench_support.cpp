@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string_view>
 
@@ -35,6 +36,11 @@ std::string instructionSets() {
 }
 
 }  // namespace
+
+double median(std::vector<double> seconds) {
+  std::sort(seconds.begin(), seconds.end());
+  return seconds[seconds.size() / 2];
+}
 
 bool agreementCheckOnly(int argc, char** argv) {
   const std::string blas = runPythonBaseline(benchDir() + "/blas_info.py");

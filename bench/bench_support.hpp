@@ -20,6 +20,9 @@ bool agreementCheckOnly(int argc, char** argv);
 // five spheres): the poses of the identification and design benchmarks.
 std::vector<MeasurementRun> tiltingTableRTestRuns(const KinematicModel& nominal, int steps, const std::vector<Vec3>& spheres);
 
+// The middle of the times of repeated runs (the upper middle of an even count).
+double median(std::vector<double> seconds);
+
 std::string benchDir();        // bench/ of the source tree: the baseline scripts and data
 std::string pythonBuildDir();  // the build tree's Python package folder
 

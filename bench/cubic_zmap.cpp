@@ -48,11 +48,6 @@ double seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -142,7 +137,7 @@ int main(int argc, char** argv) {
       if (difference > std::nextafter(static_cast<float>(larger), INFINITY) - larger) ++beyond;
       if (ours < static_cast<float>(spec.depth)) ++cut;
     }
-  const double ours = median(cutOne), numpy = median(nlohmann::json::parse(pyOut)["seconds"].get<std::vector<double>>());
+  const double ours = bench::median(cutOne), numpy = bench::median(nlohmann::json::parse(pyOut)["seconds"].get<std::vector<double>>());
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
 
@@ -151,10 +146,10 @@ int main(int argc, char** argv) {
              moves.size() / 6);
   if (!check)
     fmt::print("  mtacc, the whole test (tool path, exact model, removal on the whole grid), 1 thread: {:.3f} s (target < 2 s)\n",
-               median(whole));
+               bench::median(whole));
   fmt::print("  material removal on {} window(s), {:.1f} million cells ({:.1f} million cut), every move:\n", windows.size(), cells / 1e6,
              cut / 1e6);
-  fmt::print("    mtacc {:.4f} s at 1 thread ({:.4f} s at 2); NumPy z-buffer {:.2f} s at 1 thread\n", ours, median(cutTwo), numpy);
+  fmt::print("    mtacc {:.4f} s at 1 thread ({:.4f} s at 2); NumPy z-buffer {:.2f} s at 1 thread\n", ours, bench::median(cutTwo), numpy);
   fmt::print("  ratio (1 thread against 1 thread): mtacc's removal is {:.0f}x faster than the NumPy z-buffer\n", numpy / ours);
   fmt::print("  agreement over the {} window cells: largest difference {:.3g} mm, {} cells beyond one float unit\n", cells, worst,
              beyond);
@@ -163,7 +158,7 @@ int main(int argc, char** argv) {
   if (!check)
     fmt::print("  scaling: time and memory grow with the cells, (size / spacing)^2: a 200 mm block at 5 um has {:.2g} cells "
                "({:.1f} GB, about {:.0f} s on one core)\n",
-               std::pow(200 / 0.005, 2), std::pow(200 / 0.005, 2) * 4 / 1e9, median(whole) * std::pow(200 / 0.005, 2) / grid.cells());
+               std::pow(200 / 0.005, 2), std::pow(200 / 0.005, 2) * 4 / 1e9, bench::median(whole) * std::pow(200 / 0.005, 2) / grid.cells());
   if (beyond > 0 || cut == 0) {
     fmt::print(stderr, "bench_cubic_zmap: {} (limit: one float unit per cell)\n",
                cut == 0 ? "no cell was cut" : fmt::format("{} cells differ from the NumPy z-buffer", beyond));

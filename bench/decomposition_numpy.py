@@ -7,7 +7,7 @@ samples inside the moved traces, the nominal and identified TCP of the inclined-
 then the Legendre degree-20 fit of the reference test in the normalised path travelled (legvander +
 lstsq), drift (constant in the machine frame), dynamic error, shares and per-direction RMS.
 
-Usage: decomposition_numpy.py DIR -> one JSON line {"seconds", "tests": [{offset, drift, rms, shares}]}
+Usage: decomposition_numpy.py DIR REPEATS -> one JSON line {"seconds": [one per run], "tests": [{offset, drift, rms, shares}]}
 """
 import json
 import pathlib
@@ -127,7 +127,7 @@ def decompose(meta, data):
 
 
 def main():
-    folder = pathlib.Path(sys.argv[1])
+    folder, repeats = pathlib.Path(sys.argv[1]), int(sys.argv[2])
     meta = json.loads((folder / "meta.json").read_text())
     data = []
     for k in range(len(meta["feeds"])):
@@ -139,9 +139,11 @@ def main():
         data.append(traces)
     check = np.array(meta["check_poses"])
     assert np.allclose(tcp(check[:, :5]), check[:, 5:], atol=1e-9), "the NumPy TCP differs from mtacc's"
-    start = time.perf_counter()
-    tests = decompose(meta, data)
-    seconds = time.perf_counter() - start
+    seconds = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        tests = decompose(meta, data)
+        seconds.append(time.perf_counter() - start)
     print(json.dumps({"seconds": seconds, "tests": tests}))
 
 

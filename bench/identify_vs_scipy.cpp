@@ -34,11 +34,6 @@ const std::vector<double> kTruth = {6e-3, -3e-3, -4e-3, 25e-6, -20e-6, -5e-3, 4e
                                     30e-6, -25e-6, 15e-6, 20e-6, -15e-6, 12e-6};
 constexpr double kAgreement = 1e-3;  // standard uncertainties: both minimise the same sum of squares
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -102,7 +97,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   const auto py = nlohmann::json::parse(pyOut);
-  const double ours = median(seconds), theirs = median(py["seconds"].get<std::vector<double>>());
+  const double ours = bench::median(seconds), theirs = bench::median(py["seconds"].get<std::vector<double>>());
   const auto values = py["values"].get<std::vector<double>>();
 
   fmt::print("Identification of {} parameters from {} R-test points (tilting table, 0.5 um noise)\n", kNames.size(), points);
@@ -119,7 +114,7 @@ int main(int argc, char** argv) {
   fmt::print("largest difference between the two estimates: {:.2g} standard uncertainties\n", worst);
   fmt::print("mtacc (Ceres TinySolver, observability + covariance), 1 thread: median {:.1f} ms over {} runs "
              "(half before, half after SciPy), {} iterations; 2 threads: median {:.1f} ms\n",
-             ours * 1e3, seconds.size(), result.iterations, median(secondsTwoThreads) * 1e3);
+             ours * 1e3, seconds.size(), result.iterations, bench::median(secondsTwoThreads) * 1e3);
   fmt::print("scipy.optimize.least_squares (vectorised NumPy model, analytic Jacobian, method=lm), 1 thread: "
              "median {:.1f} ms, {} evaluations, {} Jacobians\n",
              theirs * 1e3, py["nfev"].get<int>(), py["njev"].get<int>());

@@ -29,11 +29,6 @@ using namespace mtacc;
 
 namespace {
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 // The parameter's function as the baseline evaluates it: which axis and component, and the
 // piecewise term's breaks, period and the coefficient's knot and power; or a tilt.
 nlohmann::json describe(const Machine& m, const ErrorModel& shape, const Parameter& p) {
@@ -133,7 +128,7 @@ int main(int argc, char** argv) {
     ++determined;
     worst = std::max(worst, std::abs(values[k] - result.values[static_cast<Eigen::Index>(k)]) / result.uncertainty[static_cast<Eigen::Index>(k)]);
   }
-  const double ours = median(seconds), theirs = median(py["seconds"].get<std::vector<double>>());
+  const double ours = bench::median(seconds), theirs = bench::median(py["seconds"].get<std::vector<double>>());
   fmt::print("Plate campaign on the Maho machine (App. D errors): {} placements x {} features, {} readings; {} machine parameters "
              "+ {} nuisance, rank {} ({} parameters determined)\n",
              placements.size(), plate.rows * plate.columns, result.readings, parameters.size(), 3 * placements.size(), result.observability.rank,
@@ -144,10 +139,10 @@ int main(int argc, char** argv) {
              result.observability.rank, py["rank"].get<int>());
   fmt::print("mtacc identifyFromArtefacts (Jacobians, QR, SVD solve, covariance, observability), 1 thread: median "
              "{:.1f} ms over {} runs (half before, half after SciPy); 2 threads: median {:.1f} ms (target < 100 ms)\n",
-             ours * 1e3, seconds.size(), median(secondsTwo) * 1e3);
+             ours * 1e3, seconds.size(), bench::median(secondsTwo) * 1e3);
   fmt::print("NumPy design matrix (vectorised F-matrix model) + scipy.linalg.svd solve, covariance and rank, 1 thread: median {:.1f} ms "
              "(building {:.1f} ms, solving {:.1f} ms)\n",
-             theirs * 1e3, median(py["build_seconds"].get<std::vector<double>>()) * 1e3, median(py["solve_seconds"].get<std::vector<double>>()) * 1e3);
+             theirs * 1e3, bench::median(py["build_seconds"].get<std::vector<double>>()) * 1e3, bench::median(py["solve_seconds"].get<std::vector<double>>()) * 1e3);
   fmt::print("ratio at 1 thread against 1: mtacc is {:.1f}x faster\n", theirs / ours);
   if (py["design_difference"].get<double>() > 1e-6 * design.cwiseAbs().maxCoeff() || worst > 1e-3 || py["rank"].get<int>() != result.observability.rank) {
     fmt::print(stderr, "bench_plate_identification: mtacc and the baseline disagree\n");

@@ -32,11 +32,6 @@ using namespace mtacc;
 namespace {
 
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 template <class F>
 double seconds(F&& f) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -135,7 +130,7 @@ int main(int argc, char** argv) {
     written = std::string();
     write.push_back(seconds([&] { written = compensatedGcode(*machine, parsed, fullResult, "bench"); }));
   }
-  const double job = median(read) + median(solve) + median(write);
+  const double job = bench::median(read) + bench::median(solve) + bench::median(write);
 
   // The 100 x 100 x 100 correction grid of the same machine with its full error model (no
   // baseline computes this table; the target is < 1 s).
@@ -145,7 +140,7 @@ int main(int argc, char** argv) {
     gridAll.push_back(seconds([&] { correctionGrid(machine, full.errors, {{gridNodes, gridNodes, gridNodes}, {}, kAllCores}); }));
   }
 
-  const double mine = median(ours), theirs = median(py["seconds"].get<std::vector<double>>());
+  const double mine = bench::median(ours), theirs = bench::median(py["seconds"].get<std::vector<double>>());
   fmt::print("{}-line 5-axis G1 program on the tilting table ({:.1f} MB of G-code)\n", lines, text.size() / 1e6);
   fmt::print("location errors (11), 1 thread: mtacc compensateProgram median {:.3f} s over {} runs (half before, half after NumPy): "
              "{} points written, {} not converged\n",
@@ -157,10 +152,10 @@ int main(int argc, char** argv) {
   fmt::print("agreement at the lines' ends: {:.2e} mm, {:.2e} rad\n", worstLinear, worstRotary);
   fmt::print("full error model, the whole job on 1 core, medians of {} runs: read {:.3f} s (the first {:.3f} s) + compensate {:.3f} s + "
              "write {:.3f} s = {:.3f} s (target < 2 s); {} points written\n",
-             repeats, median(read), firstRead, median(solve), median(write), job, fullResult.points.size() - 1);
+             repeats, bench::median(read), firstRead, bench::median(solve), bench::median(write), job, fullResult.points.size() - 1);
   fmt::print("correction grid of {} x {} x {} nodes, full error model: {:.3f} s on 1 thread, {:.3f} s on {} threads (target < 1 s "
              "at 100)\n",
-             gridNodes, gridNodes, gridNodes, median(grid1), median(gridAll), threadCount(kAllCores));
+             gridNodes, gridNodes, gridNodes, bench::median(grid1), bench::median(gridAll), threadCount(kAllCores));
   // Both solve each point to 1e-7 mm and 1e-9 rad of position and direction; the commands
   // that do so agree to twice that, times the condition of the Jacobian (near B = 0, C turns the
   // tool slowly): 1e-6 mm and 1e-8 rad.

@@ -92,23 +92,22 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
   const double to = std::min(arrival + alignment.offset, encoder.end());
   auto& test = out.test;
   test.feed = feed;
-  std::vector<size_t> used;
+  // The instrument's samples in [from, to]: one contiguous run.
+  size_t first = instrument.samples(), n = 0;
   for (size_t j = 0; j < instrument.samples(); ++j) {
     const double t = instrument.start + instrument.period * static_cast<double>(j);
-    if (t >= from && t <= to) {
-      test.time.push_back(t);
-      used.push_back(j);
-    }
+    if (t >= from && t <= to) first = std::min(first, j), n = j - first + 1;
   }
-  alignment.samplesUsed = used.size();
-  alignment.firstSampleUsed = used.empty() ? 0 : used.front();
-  if (used.size() < 4)
+  alignment.samplesUsed = n;
+  alignment.firstSampleUsed = n == 0 ? 0 : first;
+  if (n < 4)
     throw InvalidInput(fmt::format("{} instrument samples fall inside the command's motion and the encoder trace (offset {:.3f} ms)",
-                                            used.size(), alignment.offset * 1e3));
+                                            n, alignment.offset * 1e3));
+  test.time.resize(n);
+  for (size_t i = 0; i < n; ++i) test.time[i] = instrument.start + instrument.period * static_cast<double>(first + i);
   const auto interpolation = processing.search.interpolation;
   const JointMatrix nominalQ = resampleTrace(command, alignment.offset, test.time, interpolation);
   JointMatrix encoderQ = resampleTrace(encoder, 0.0, test.time, interpolation);
-  const size_t n = used.size();
   std::vector<double> fileScale;  // FGROUP: the path in mm and deg
   for (long a = 0; a < encoderQ.cols(); ++a) fileScale.push_back(1.0 / nominal.machine->axes[static_cast<size_t>(a)].fileUnit());
   test.acceleration = axisAcceleration(encoder, fileScale, test.time);
@@ -139,7 +138,7 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
     }
   });
   for (size_t i = 0; i < n; ++i)
-    test.measured[i] = Vec3(instrument.channels[0][used[i]], instrument.channels[1][used[i]], instrument.channels[2][used[i]]);
+    test.measured[i] = Vec3(instrument.channels[0][first + i], instrument.channels[1][first + i], instrument.channels[2][first + i]);
   out.encoderPoses = std::move(encoderQ);
   return out;
 }
