@@ -164,5 +164,17 @@ TEST(Seed000Dynamics, Figure7_7OriginalBetterAtMostPositions) {
   EXPECT_LT(ma.statistics.min, mo.statistics.median);
 }
 
+// A map of a mode's frequency solves its positions' eigenproblems in groups (3 x 5: three groups
+// of four and one of three); each value is the mode of its own position, solved alone.
+TEST(Seed000Dynamics, ModeFrequencyMapIsEachPositionsOwnMode) {
+  const auto m = loadStructure("tzyx-arm-y");
+  const auto map = dynamicsMap(m, {"Y", "Z", 3, 5, {}}, dynamicsQuantity(m, "f2"));
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 5; ++j) {
+      const auto alone = undampedModes(m, assembleStructure(m, {0.0, map.a[static_cast<size_t>(i)], map.b[static_cast<size_t>(j)]}));
+      EXPECT_NEAR(map.values(i, j), alone.frequencies[1], 1e-9 * alone.frequencies[1]) << i << ", " << j;
+    }
+}
+
 }  // namespace
 }  // namespace mtacc

@@ -350,18 +350,24 @@ DynamicsQuantity dynamicsQuantity(const StructureModel& model, const std::string
                      "unknown quantity '" + name + "' (H<x|y|z>/<axis> in um/g, C<x|y|z><x|y|z> in um/N, f<n> in Hz)");
   };
   auto component = [](char c) { return c == 'x' ? 0 : c == 'y' ? 1 : c == 'z' ? 2 : -1; };
+  // A quantity of each position's matrices alone.
+  auto each = [](auto f) {
+    return [f](const StructureModel&, std::span<const StructureMatrices> matrices) {
+      std::vector<double> out;
+      for (const auto& m : matrices) out.push_back(f(m));
+      return out;
+    };
+  };
   if (name.size() >= 4 && name[0] == 'H' && name[2] == '/') {
     const int i = component(name[1]);
     const int j = model.axisIndex(name.substr(3));
     if (i < 0 || j < 0) return fail();
-    return {name, "um/g", [i, j](const StructureModel&, const StructureMatrices& m) {
-              return std::abs(accelerationResponse(m)(i, j)) * kStandardGravity * 1e6;
-            }};
+    return {name, "um/g", each([i, j](const StructureMatrices& m) { return std::abs(accelerationResponse(m)(i, j)) * kStandardGravity * 1e6; })};
   }
   if (name.size() == 3 && name[0] == 'C') {
     const int i = component(name[1]), j = component(name[2]);
     if (i < 0 || j < 0) return fail();
-    return {name, "um/N", [i, j](const StructureModel&, const StructureMatrices& m) { return staticCompliance(m)(i, j) * 1e6; }};
+    return {name, "um/N", each([i, j](const StructureMatrices& m) { return staticCompliance(m)(i, j) * 1e6; })};
   }
   if (name.size() >= 2 && name[0] == 'f') {
     int k = 0;
@@ -371,7 +377,11 @@ DynamicsQuantity dynamicsQuantity(const StructureModel& model, const std::string
       return fail();
     }
     if (k < 1 || k > model.dofs()) return fail();
-    return {name, "Hz", [k](const StructureModel& s, const StructureMatrices& m) { return undampedModes(s, m).frequencies[k - 1]; }};
+    return {name, "Hz", [k](const StructureModel& s, std::span<const StructureMatrices> m) {
+              std::vector<double> out;
+              for (const auto& modes : undampedModes(s, m)) out.push_back(modes.frequencies[k - 1]);
+              return out;
+            }};
   }
   return fail();
 }
@@ -394,12 +404,22 @@ DynamicsMap dynamicsMap(const StructureModel& model, const MapGrid& grid, const 
   out.b = spread(model.axes[static_cast<size_t>(jb)], countB);
   out.values.resize(countA, countB);
   std::vector<double> base = grid.fixed.empty() ? std::vector<double>(model.axes.size(), 0.0) : grid.fixed;
-  parallelFor(static_cast<long>(countA) * countB, threads, [&](long begin, long end) {
-    for (long k = begin; k < end; ++k) {
-      auto q = base;
-      q[static_cast<size_t>(ja)] = out.a[static_cast<size_t>(k / countB)];
-      q[static_cast<size_t>(jb)] = out.b[static_cast<size_t>(k % countB)];
-      out.values(k / countB, k % countB) = quantity.evaluate(model, assembleStructure(model, q));
+  // Positions in groups, as many as symmetricEigen solves together.
+  constexpr long kGroup = static_cast<long>(kInterleavedEigenproblems);
+  const long count = static_cast<long>(countA) * countB;
+  parallelFor((count + kGroup - 1) / kGroup, threads, [&](long begin, long end) {
+    std::vector<StructureMatrices> group;
+    for (long g = begin; g < end; ++g) {
+      const long first = g * kGroup, last = std::min(count, first + kGroup);
+      group.clear();
+      for (long k = first; k < last; ++k) {
+        auto q = base;
+        q[static_cast<size_t>(ja)] = out.a[static_cast<size_t>(k / countB)];
+        q[static_cast<size_t>(jb)] = out.b[static_cast<size_t>(k % countB)];
+        group.push_back(assembleStructure(model, q));
+      }
+      const auto values = quantity.evaluate(model, group);
+      for (long k = first; k < last; ++k) out.values(k / countB, k % countB) = values[static_cast<size_t>(k - first)];
     }
   }, 1);
   out.statistics = boxStatistics(std::vector<double>(out.values.data(), out.values.data() + out.values.size()));

@@ -72,11 +72,12 @@ std::vector<Eigen::Matrix3d> frfPeaks(const StructureModel& model, const std::ve
 // multiply by kStandardGravity * 1e6 for um/g_n (the form of seed 000 Table 7.1).
 Eigen::Matrix<double, 3, Eigen::Dynamic> accelerationResponse(const StructureMatrices& m);
 
-// A scalar evaluated at one set of axis positions, e.g. |H_x / x''| in um/g_n.
+// A scalar evaluated at a set of axis positions, e.g. |H_x / x''| in um/g_n: one value per
+// set of matrices given (a mode's frequency solves their eigenproblems together).
 struct DynamicsQuantity {
   std::string name;  // "Hx/X" (um/g_n), "Cxy" (static compliance, um/N), "f1" (Hz)
   std::string unit;
-  std::function<double(const StructureModel&, const StructureMatrices&)> evaluate;
+  std::function<std::vector<double>(const StructureModel&, std::span<const StructureMatrices>)> evaluate;
 };
 // Parses "H<x|y|z>/<axis>", "C<x|y|z><x|y|z>" or "f<n>"; throws InputError otherwise.
 DynamicsQuantity dynamicsQuantity(const StructureModel& model, const std::string& name);
