@@ -17,7 +17,7 @@ namespace {
 
 constexpr int kMostRuns = 1000;
 
-struct Reading {
+struct RunReading {
   double value, time, temperature;
   int line;
 };
@@ -33,7 +33,7 @@ ComponentRunsFile parseComponentRuns(const Machine& machine, const std::string& 
   std::optional<double> unit;
   std::vector<std::string> header;
   // (run, direction) -> position -> reading
-  std::map<std::pair<int, int>, std::map<double, Reading>> runs;
+  std::map<std::pair<int, int>, std::map<double, RunReading>> runs;
   bool componentGiven = false;
   readCommentedLines(
       text, n,
@@ -118,7 +118,7 @@ ComponentRunsFile parseComponentRuns(const Machine& machine, const std::string& 
         if (!(std::abs(value) <= largest)) fail("value", "beyond ±10 mm or ±10° (a wrong unit?)");
         if (!std::isnan(temperature) && !(temperature > -50 && temperature < 100)) fail("temperature_C", "a temperature in deg C");
         if (!std::isnan(time) && !(time >= 0.0 && time <= 1e9)) fail("time_s", "seconds since the start of the measurement, from 0 to 1e9");
-        if (!runs[{run, direction}].emplace(position, Reading{value, time, temperature, n}).second)
+        if (!runs[{run, direction}].emplace(position, RunReading{value, time, temperature, n}).second)
           fail("row", fmt::format("run {} {} at position {} is given twice", run, direction > 0 ? "forward" : "backward", fields[0]));
       });
   n = 0;
