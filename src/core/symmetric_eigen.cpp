@@ -121,7 +121,7 @@ void sortedOutput(const Problem& p, SymmetricEigen& out) {
   const Eigen::Index n = p.d.size();
   std::vector<Eigen::Index> order(static_cast<size_t>(n));
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](Eigen::Index i, Eigen::Index j) { return p.d[i] < p.d[j] || (p.d[i] == p.d[j] && i < j); });
+  std::stable_sort(order.begin(), order.end(), [&](Eigen::Index i, Eigen::Index j) { return p.d[i] < p.d[j]; });
   out.values.resize(n);
   out.vectors.resize(n, n);
   for (Eigen::Index i = 0; i < n; ++i) {

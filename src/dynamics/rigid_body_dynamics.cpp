@@ -288,6 +288,22 @@ ModalSums modalSums(const StructureMatrices& m, const Modes& modes, const std::v
   return out;
 }
 
+// The structure's matrices at positions 0..count-1 (positionAt(k): the axis positions of the
+// k-th), as many at a time as symmetricEigen solves together, on `threads` threads:
+// body(first, matrices) for positions first.. first + matrices.size() - 1.
+template <class PositionAt, class Body>
+void inGroupsOfPositions(const StructureModel& model, long count, int threads, PositionAt positionAt, Body body) {
+  constexpr long kGroup = static_cast<long>(kInterleavedEigenproblems);
+  parallelFor((count + kGroup - 1) / kGroup, threads, [&](long begin, long end) {
+    std::vector<StructureMatrices> group;
+    for (long g = begin; g < end; ++g) {
+      group.clear();
+      for (long k = g * kGroup; k < std::min(count, (g + 1) * kGroup); ++k) group.push_back(assembleStructure(model, positionAt(k)));
+      body(g * kGroup, std::span<const StructureMatrices>(group));
+    }
+  }, 1);
+}
+
 }  // namespace
 
 Frf frfModal(const StructureMatrices& m, const Modes& modes, const std::vector<double>& frequencies) {
@@ -307,28 +323,19 @@ Frf frfModal(const StructureMatrices& m, const Modes& modes, const std::vector<d
 std::vector<Eigen::Matrix3d> frfPeaks(const StructureModel& model, const std::vector<std::vector<double>>& positions,
                                       const std::vector<double>& frequencies, int threads) {
   std::vector<Eigen::Matrix3d> out(positions.size());
-  // The positions' eigenproblems solved together, as many as symmetricEigen interleaves.
-  constexpr long kGroup = static_cast<long>(kInterleavedEigenproblems);
-  const long count = static_cast<long>(positions.size());
-  parallelFor((count + kGroup - 1) / kGroup, threads, [&](long begin, long end) {
-    std::vector<StructureMatrices> group;
-    for (long g = begin; g < end; ++g) {
-      const long first = g * kGroup, last = std::min(count, first + kGroup);
-      group.clear();
-      for (long p = first; p < last; ++p) group.push_back(assembleStructure(model, positions[static_cast<size_t>(p)]));
-      const auto modes = undampedModes(model, group);
-      for (long p = first; p < last; ++p) {
-        const auto s = modalSums(group[static_cast<size_t>(p - first)], modes[static_cast<size_t>(p - first)], frequencies);
-        double peak[6] = {0, 0, 0, 0, 0, 0};
-        for (size_t e = 0; e < 6; ++e)
-          for (size_t i = 0; i < frequencies.size(); ++i)
-            peak[e] = std::max(peak[e], s.re[e][i] * s.re[e][i] + s.im[e][i] * s.im[e][i]);
-        Eigen::Matrix3d& h = out[static_cast<size_t>(p)];
-        h << peak[0], peak[3], peak[4], peak[3], peak[1], peak[5], peak[4], peak[5], peak[2];
-        h = h.cwiseSqrt();
-      }
+  inGroupsOfPositions(model, static_cast<long>(positions.size()), threads, [&](long k) { return positions[static_cast<size_t>(k)]; },
+                      [&](long first, std::span<const StructureMatrices> group) {
+    const auto modes = undampedModes(model, group);
+    for (size_t i = 0; i < group.size(); ++i) {
+      const auto s = modalSums(group[i], modes[i], frequencies);
+      double peak[6] = {0, 0, 0, 0, 0, 0};
+      for (size_t e = 0; e < 6; ++e)
+        for (size_t f = 0; f < frequencies.size(); ++f) peak[e] = std::max(peak[e], s.re[e][f] * s.re[e][f] + s.im[e][f] * s.im[e][f]);
+      Eigen::Matrix3d& h = out[static_cast<size_t>(first) + i];
+      h << peak[0], peak[3], peak[4], peak[3], peak[1], peak[5], peak[4], peak[5], peak[2];
+      h = h.cwiseSqrt();
     }
-  }, 1);
+  });
   return out;
 }
 
@@ -404,24 +411,20 @@ DynamicsMap dynamicsMap(const StructureModel& model, const MapGrid& grid, const 
   out.b = spread(model.axes[static_cast<size_t>(jb)], countB);
   out.values.resize(countA, countB);
   std::vector<double> base = grid.fixed.empty() ? std::vector<double>(model.axes.size(), 0.0) : grid.fixed;
-  // Positions in groups, as many as symmetricEigen solves together.
-  constexpr long kGroup = static_cast<long>(kInterleavedEigenproblems);
-  const long count = static_cast<long>(countA) * countB;
-  parallelFor((count + kGroup - 1) / kGroup, threads, [&](long begin, long end) {
-    std::vector<StructureMatrices> group;
-    for (long g = begin; g < end; ++g) {
-      const long first = g * kGroup, last = std::min(count, first + kGroup);
-      group.clear();
-      for (long k = first; k < last; ++k) {
-        auto q = base;
-        q[static_cast<size_t>(ja)] = out.a[static_cast<size_t>(k / countB)];
-        q[static_cast<size_t>(jb)] = out.b[static_cast<size_t>(k % countB)];
-        group.push_back(assembleStructure(model, q));
-      }
-      const auto values = quantity.evaluate(model, group);
-      for (long k = first; k < last; ++k) out.values(k / countB, k % countB) = values[static_cast<size_t>(k - first)];
-    }
-  }, 1);
+  inGroupsOfPositions(model, static_cast<long>(countA) * countB, threads,
+                      [&](long k) {
+                        auto q = base;
+                        q[static_cast<size_t>(ja)] = out.a[static_cast<size_t>(k / countB)];
+                        q[static_cast<size_t>(jb)] = out.b[static_cast<size_t>(k % countB)];
+                        return q;
+                      },
+                      [&](long first, std::span<const StructureMatrices> group) {
+                        const auto values = quantity.evaluate(model, group);
+                        for (size_t i = 0; i < values.size(); ++i) {
+                          const long k = first + static_cast<long>(i);
+                          out.values(k / countB, k % countB) = values[i];
+                        }
+                      });
   out.statistics = boxStatistics(std::vector<double>(out.values.data(), out.values.data() + out.values.size()));
   return out;
 }
