@@ -102,7 +102,7 @@ TEST(Seed004Alignment, R8EighteenMillisecondsAreSixNcCyclesAnd180InstrumentSampl
   for (size_t k = 0; k < 400; ++k) EXPECT_NEAR(moved(static_cast<Eigen::Index>(30 * k), 0), command.channels[0][k], 1e-12) << k;
   EXPECT_EQ(std::lround(delay / kNcPeriod), 6);
   EXPECT_EQ(std::lround(delay / instrumentPeriod), 180);
-  EXPECT_THROW(resampleTrace(command, delay, {0.0179}), InvalidInput);
+  EXPECT_THROW(resampleTrace(command, delay, std::vector{0.0179}), InvalidInput);
 }
 
 TEST(Seed004Alignment, RejectsMismatchedChannelsStillAxesAnEmptyWindowAndNoOverlap) {

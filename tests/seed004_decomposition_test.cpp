@@ -148,7 +148,7 @@ TEST(Seed004Decomposition, V12SharesSumTo100PercentWithEachDenominator) {
 }
 
 TEST(Seed004Decomposition, DirectionStatisticsAreMaximaOfMagnitudesAndRootMeanSquares) {
-  const DirectionStatistics s = directionStatistics({Vec3(1, -4, 0), Vec3(-3, 2, 0), Vec3(1, 2, 0)});
+  const DirectionStatistics s = directionStatistics(std::vector{Vec3(1, -4, 0), Vec3(-3, 2, 0), Vec3(1, 2, 0)});
   EXPECT_EQ(s.maximum, Vec3(3, 4, 0));
   EXPECT_NEAR(s.rms.x(), std::sqrt(11.0 / 3), 1e-15);
   EXPECT_NEAR(s.rms.y(), std::sqrt(24.0 / 3), 1e-15);

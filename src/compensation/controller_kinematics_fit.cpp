@@ -119,7 +119,7 @@ Eigen::VectorXd residual(const KinematicModel& machine, const Model& model, cons
   const Mat3 frame = model.turn ? turned(*model.turn) : Mat3::Identity();
   for (size_t k = 0; k < poses.size(); ++k) {
     const std::vector<double> q = model.commands(poses[k]);
-    r.segment<3>(3 * static_cast<Eigen::Index>(k)) = toolPoint(machine, q.data()).position - model.origin - frame * poses[k].world;
+    r.segment<3>(3 * static_cast<Eigen::Index>(k)) = toolPosition(machine, q.data()) - model.origin - frame * poses[k].world;
   }
   return r;
 }

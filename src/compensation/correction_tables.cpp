@@ -43,9 +43,9 @@ class ResidualSum {
     corrected_[z] += c.z();
     for (const RotaryPositioning& r : rotary) corrected_[static_cast<size_t>(r.axis)] += r.correction(q[static_cast<size_t>(r.axis)]);
     const int* dir = direction.empty() ? nullptr : direction.data();
-    const Vec3 wanted = toolPoint(nominal_, q.data()).position;
-    const double before = (toolPoint(actual_, q.data(), dir).position - wanted).norm();
-    const double after = (toolPoint(actual_, corrected_.data(), dir).position - wanted).norm();
+    const Vec3 wanted = toolPosition(nominal_, q.data());
+    const double before = (toolPosition(actual_, q.data(), dir) - wanted).norm();
+    const double after = (toolPosition(actual_, corrected_.data(), dir) - wanted).norm();
     r_.beforeMax = std::max(r_.beforeMax, before);
     r_.afterMax = std::max(r_.afterMax, after);
     before_ += before * before;
@@ -123,7 +123,7 @@ CorrectionGrid correctionGrid(const std::shared_ptr<const Machine>& machine, con
   for (size_t a = 0; a < 3; ++a) {
     std::vector<double> last = firstNode;
     last[static_cast<size_t>(g.axes[a])] = g.node(static_cast<int>(a), g.counts[a] - 1);
-    perNode[a] = (toolPoint(nominal, last.data()).position - first.position) / (g.counts[a] - 1);
+    perNode[a] = (toolPosition(nominal, last.data()) - first.position) / (g.counts[a] - 1);
   }
   // Each Z layer on its own, from scratch: the result does not depend on the threads.
   parallelFor(g.counts[2], spec.threads, [&](long firstLayer, long endLayer) {

@@ -168,7 +168,7 @@ LinuxcncKinematicsFit fitLinuxcncKinematics(const std::shared_ptr<const Machine>
   // The machine's commands are LinuxCNC's angles times a sign each: the signs the nominal machine fits with.
   Solution start;
   start.p.module = r.module;
-  start.origin = toolPoint(nominal, home.data()).position;
+  start.origin = toolPosition(nominal, home.data());
   Solution exact;
   double best = std::numeric_limits<double>::infinity();
   for (int tiltSign : {1, -1})
@@ -213,7 +213,7 @@ CommandCorrection linuxcncCorrection(const std::shared_ptr<const Machine>& machi
   r.sign = f.sign;
   const auto nominal = std::make_shared<const KinematicModel>(compileNominal(machine));
   return [r, nominal, f](const std::vector<double>& q) -> Vec3 {
-    const Vec3 world = toolPoint(*nominal, q.data()).position - f.worldOrigin - f.workOffset;
+    const Vec3 world = toolPosition(*nominal, q.data()) - f.worldOrigin - f.workOffset;
     const Vec3 joints = f.actual.joints(world, r.sign[0] * q[r.tilt], r.sign[1] * q[r.c]) + f.jointOrigin + f.jointOriginShift;
     return joints - Vec3(q[r.x], q[r.y], q[r.z]);
   };

@@ -25,10 +25,10 @@ constexpr double kInstantBlock = 0.01;  // mm
 int samplesOf(const GcodeMove& move, const KinematicModel& nominal, double step, std::vector<double>& q) {
   double length = 0.0;
   move.at(0.0, q);
-  Vec3 last = toolPoint(nominal, q.data()).position;
+  Vec3 last = toolPosition(nominal, q.data());
   for (int k = 1; k <= 4; ++k) {
     move.at(k / 4.0, q);
-    const Vec3 p = toolPoint(nominal, q.data()).position;
+    const Vec3 p = toolPosition(nominal, q.data());
     length += (p - last).norm();
     last = p;
   }
@@ -56,7 +56,7 @@ IntendedPath sampledPath(ToolModels& models, const GcodeProgram& program, double
     for (int k = path.points.empty() ? 0 : 1; k <= n; ++k) {
       const double s = static_cast<double>(k) / n;
       move.at(s, q);
-      const Vec3 p = toolPoint(nominal, q.data()).position;
+      const Vec3 p = toolPosition(nominal, q.data());
       if (!path.points.empty()) path.length += (p - path.points.back()).norm();
       path.points.push_back(p);
       path.moves.push_back(&move);

@@ -145,7 +145,7 @@ SiemensToolholderFit fitSiemensToolholder(const std::shared_ptr<const Machine>& 
   Solution start;
   start.h.type = r.type;
   for (size_t k = 0; k < 2; ++k) start.h.axes[k] = m.axes[r.rotary[k]].name;
-  start.origin = toolPoint(nominal, home.data()).position;
+  start.origin = toolPosition(nominal, home.data());
   Solution exact;
   double best = std::numeric_limits<double>::infinity();
   for (double firstSign : {1.0, -1.0})
@@ -180,7 +180,7 @@ CommandCorrection siemensToolholderCorrection(const std::shared_ptr<const Machin
   const Roles r = roles(*machine);
   const auto nominal = std::make_shared<const KinematicModel>(compileNominal(machine));
   return [r, nominal, f](const std::vector<double>& q) -> Vec3 {
-    const Vec3 world = controller_fit::turned(f.workRotation).transpose() * (toolPoint(*nominal, q.data()).position - f.worldOrigin - f.workOffset);
+    const Vec3 world = controller_fit::turned(f.workRotation).transpose() * (toolPosition(*nominal, q.data()) - f.worldOrigin - f.workOffset);
     const Vec3 xyz = f.actual.machinePosition(world, {q[r.rotary[0]], q[r.rotary[1]]}, Vec3::Zero());
     return xyz - Vec3(q[r.linear[0]], q[r.linear[1]], q[r.linear[2]]);
   };

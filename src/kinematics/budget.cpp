@@ -10,7 +10,7 @@ double sensitivityCoefficient(std::shared_ptr<const Machine> machine, const Erro
                               const SurfacePoint& at) {
   const auto nominal = compileNominal(machine);
   const auto actual = compile(machine, singleError(*machine, shape, step.parameter, step.epsilon));
-  const Vec3 e = toolPoint(actual, at.q).position - toolPoint(nominal, at.q).position;
+  const Vec3 e = toolPosition(actual, at.q) - toolPosition(nominal, at.q);
   return at.normal.normalized().dot(e) / step.epsilon;
 }
 

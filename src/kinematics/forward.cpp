@@ -35,8 +35,8 @@ void rotatePrincipal(Mat3& r, int k, double angle) {
 }
 
 // A point and N directions carried through the chain one factor at a time: cheaper than
-// composing frames and inverting one. N = 1: the TCP and the tool direction; N = 3: the
-// tool frame (its origin and the columns of its rotation).
+// composing frames and inverting one. N = 0: the TCP; N = 1: the TCP and the tool direction;
+// N = 3: the tool frame (its origin and the columns of its rotation).
 template <int N>
 struct PointDirections {
   Vec3 p;
@@ -181,6 +181,11 @@ ToolPoint toolPoint(const KinematicModel& m, const double* q, const int* dir) {
   return {x.p, x.d[0]};
 }
 
+Vec3 toolPosition(const KinematicModel& m, const double* q, const int* dir) {
+  const auto x = transportToWorkpiece<0>(m, {m.chains->tcpStart, {}}, q, dir);
+  return m.aligned ? Vec3(m.alignment * x.p) : x.p;
+}
+
 std::vector<Pose> errorFrames(const KinematicModel& m, const double* q) {
   std::vector<Pose> frames(m.machine->axes.size(), Pose::Identity());
   for (const ChainProgram* program : {&m.chains->toolFrameProgram, &m.chains->workpieceFrameProgram}) {
@@ -222,7 +227,7 @@ void toolPoints(const KinematicModel& m, const PoseBatch& poses, ToolPointBatch&
 PointMatrix toolPositions(const KinematicModel& model, const JointMatrix& q, int threads) {
   PointMatrix out(q.rows(), 3);
   parallelFor(q.rows(), threads, [&](long begin, long end) {
-    for (long i = begin; i < end; ++i) out.row(i) = toolPoint(model, q.row(i).data()).position.transpose();
+    for (long i = begin; i < end; ++i) out.row(i) = toolPosition(model, q.row(i).data()).transpose();
   });
   return out;
 }

@@ -209,7 +209,7 @@ std::vector<Vec3> actualPoints(const KinematicModel& actual, const ConeMotion& m
   std::vector<Vec3> pts;
   pts.reserve(static_cast<size_t>(motion.q.rows()));
   for (Eigen::Index i = 0; i < motion.q.rows(); ++i)
-    pts.push_back(toolPoint(actual, motion.q.row(i).data(), motion.direction.row(i).data()).position);
+    pts.push_back(toolPosition(actual, motion.q.row(i).data(), motion.direction.row(i).data()));
   return pts;
 }
 
@@ -241,7 +241,7 @@ ConeFormResult coneFormErrorFirstOrder(const KinematicModel& actual, const Kinem
   const auto pts = actualPoints(actual, motion);
   std::vector<double> e(pts.size());
   for (size_t i = 0; i < pts.size(); ++i)
-    e[i] = path.normals[i].dot(pts[i] - toolPoint(nominal, motion.q.row(static_cast<Eigen::Index>(i)).data()).position);
+    e[i] = path.normals[i].dot(pts[i] - toolPosition(nominal, motion.q.row(static_cast<Eigen::Index>(i)).data()));
   return finish(path, std::move(e));
 }
 

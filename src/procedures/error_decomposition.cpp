@@ -35,7 +35,7 @@ void check(const DecompositionTest& t, size_t index, MotionParameter parameter) 
 // The parameter (time or path) from the test's first sample to its last scaled to [-1, 1]:
 // x = 2 t_n - 1 with t_n in [0, 1] (O5).
 struct Normalised {
-  const std::vector<double>& along;
+  const LargeVector<double>& along;
   double start, span;
   Normalised(const DecompositionTest& t, MotionParameter parameter)
       : along(parameter == MotionParameter::Path ? t.path : t.time), start(along.front()), span(along.back() - along.front()) {}
@@ -62,7 +62,7 @@ struct Legendre {
   }
   // sum_k c_k P_k(x_i) for each sample i (c: degree + 1 rows, three columns), eight samples at a
   // time so that the recurrence runs in the vector lanes rather than along its latency.
-  void series(const Normalised& x, size_t n, const Eigen::MatrixXd& c, std::vector<Vec3>& out) const {
+  void series(const Normalised& x, size_t n, const Eigen::MatrixXd& c, LargeVector<Vec3>& out) const {
     constexpr size_t kLanes = 8;
     for (size_t i0 = 0; i0 < n; i0 += kLanes) {
       double xs[kLanes], previous[kLanes], current[kLanes], sum[3][kLanes];
@@ -182,11 +182,11 @@ std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>
   return out;
 }
 
-std::vector<Vec3> orthogonalToPath(const std::vector<Vec3>& deviation, const std::vector<Vec3>& nominal, size_t& undefined, double still) {
+LargeVector<Vec3> orthogonalToPath(std::span<const Vec3> deviation, std::span<const Vec3> nominal, size_t& undefined, double still) {
   const size_t n = nominal.size();
   if (deviation.size() != n)
     throw InvalidInput(fmt::format("{} deviations for {} samples of the path", deviation.size(), n));
-  std::vector<Vec3> out(n, Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+  LargeVector<Vec3> out(n, Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
   undefined = 0;
   for (size_t i = 0; i < n; ++i) {
     const Vec3 step = nominal[std::min(i + 1, n - 1)] - nominal[i == 0 ? 0 : i - 1];
@@ -229,7 +229,7 @@ DecompositionShares decompositionShares(const DecomposedTest& test) {
   return s;
 }
 
-DirectionStatistics directionStatistics(const std::vector<Vec3>& series) {
+DirectionStatistics directionStatistics(std::span<const Vec3> series) {
   DirectionStatistics s;
   size_t counted = 0;
   for (const Vec3& v : series) {

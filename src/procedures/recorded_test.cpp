@@ -38,7 +38,7 @@ std::pair<double, double> motionSpan(const SampledTrace& command) {
 
 // The norm over the axes of their acceleration (file units: mm and deg per s^2), by central
 // differences on the trace's own samples, interpolated linearly at the given times.
-std::vector<double> axisAcceleration(const SampledTrace& trace, const std::vector<double>& fileScale, const std::vector<double>& times) {
+LargeVector<double> axisAcceleration(const SampledTrace& trace, const std::vector<double>& fileScale, std::span<const double> times) {
   const size_t m = trace.samples();
   std::vector<double> square(m, 0.0);
   for (size_t a = 0; a < trace.channels.size(); ++a) {
@@ -52,7 +52,7 @@ std::vector<double> axisAcceleration(const SampledTrace& trace, const std::vecto
     square.front() = square[1];
     square.back() = square[m - 2];
   }
-  std::vector<double> out;
+  LargeVector<double> out;
   out.reserve(times.size());
   for (const double t : times) {
     const double at = std::clamp((t - trace.start) / trace.period, 0.0, static_cast<double>(m - 1));
@@ -130,11 +130,11 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
     for (long k = begin; k < end; ++k) {
       const auto i = static_cast<size_t>(k);
       const double* q = encoderQ.row(k).data();
-      const Vec3 atEncoder = toolPoint(nominal, q).position;
+      const Vec3 atEncoder = toolPosition(nominal, q);
       test.workpieceRotation[i] = workpiecePose(nominal, q, nullptr).linear();
-      test.nominal[i] = toolPoint(nominal, nominalQ.row(k).data()).position - processing.ball;
+      test.nominal[i] = toolPosition(nominal, nominalQ.row(k).data()) - processing.ball;
       test.encoder[i] = atEncoder - processing.ball;
-      test.link[i] = toolPoint(identified, q).position - atEncoder;
+      test.link[i] = toolPosition(identified, q) - atEncoder;
     }
   });
   for (size_t i = 0; i < n; ++i)

@@ -1,6 +1,7 @@
 #include "mtacc/procedures/signal_spikes.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 
@@ -13,6 +14,23 @@ double median(std::vector<double> v) {
   return *middle;
 }
 
+// The median of the seven values from `first` on: a comparison network (Paeth's, as in
+// Devillard's "Fast median search"), 13 exchanges without branches or a heap allocation; it runs
+// at every sample of every channel, where std::nth_element on a copy took three times as long.
+static_assert(kSpikeWindow == 7, "windowMedian is the median of seven");
+double windowMedian(const double* first) {
+  std::array<double, 7> p;
+  std::copy_n(first, 7, p.begin());
+  const auto order = [&p](size_t a, size_t b) {
+    const double low = std::min(p[a], p[b]);
+    p[b] = std::max(p[a], p[b]);
+    p[a] = low;
+  };
+  order(0, 5), order(0, 3), order(1, 6), order(2, 4), order(0, 1), order(3, 5), order(2, 6);
+  order(2, 3), order(3, 6), order(4, 5), order(1, 4), order(1, 3), order(3, 4);
+  return p[3];
+}
+
 }  // namespace
 
 std::vector<size_t> spikeSamples(const SampledTrace& trace, double threshold, double floor) {
@@ -23,8 +41,7 @@ std::vector<size_t> spikeSamples(const SampledTrace& trace, double threshold, do
     std::vector<double> departure(n);
     for (size_t i = 0; i < n; ++i) {
       const size_t from = std::min(i > half ? i - half : 0, n - kSpikeWindow);
-      departure[i] = channel[i] - median({channel.begin() + static_cast<std::ptrdiff_t>(from),
-                                          channel.begin() + static_cast<std::ptrdiff_t>(from + kSpikeWindow)});
+      departure[i] = channel[i] - windowMedian(channel.data() + from);
     }
     std::vector<double> magnitude(n);
     std::transform(departure.begin(), departure.end(), magnitude.begin(), [](double d) { return std::abs(d); });

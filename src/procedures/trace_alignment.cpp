@@ -120,7 +120,7 @@ ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace&
   return {offset, std::sqrt(current.meanSquare), last - first};
 }
 
-JointMatrix resampleTrace(const SampledTrace& trace, double offset, const std::vector<double>& times, Interpolation interpolation) {
+JointMatrix resampleTrace(const SampledTrace& trace, double offset, std::span<const double> times, Interpolation interpolation) {
   std::vector<UniformSpline> splines;
   for (const auto& channel : trace.channels) splines.emplace_back(trace.start + offset, trace.period, channel, interpolation);
   JointMatrix out(static_cast<Eigen::Index>(times.size()), static_cast<Eigen::Index>(splines.size()));

@@ -122,7 +122,7 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
     out.shares.push_back(decompositionShares(test));
     out.contouring.push_back(directionStatistics(test.contouring));
     out.contouringOrthogonal.push_back(directionStatistics(test.contouringOrthogonal));
-    std::vector<Vec3> quasiStatic(test.link.size());
+    LargeVector<Vec3> quasiStatic(test.link.size());
     for (size_t i = 0; i < quasiStatic.size(); ++i) quasiStatic[i] = test.quasiStatic(i);
     out.quasiStatic.push_back(directionStatistics(quasiStatic));
     out.dynamic.push_back(directionStatistics(test.dynamic));
@@ -142,11 +142,11 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
 namespace {
 
 // Every k-th sample of each contribution along u, in um per direction.
-nlohmann::json seriesJson(const DecomposedTest& test, const std::vector<double>& u, size_t points) {
+nlohmann::json seriesJson(const DecomposedTest& test, std::span<const double> u, size_t points) {
   const size_t stride = std::max<size_t>(1, (u.size() + points - 1) / points);
   nlohmann::json j{{"stride", stride}, {"u", nlohmann::json::array()}};
   for (size_t i = 0; i < u.size(); i += stride) j["u"].push_back(u[i]);
-  const std::pair<const char*, const std::vector<Vec3>*> contributions[] = {
+  const std::pair<const char*, const LargeVector<Vec3>*> contributions[] = {
       {"contouring_um", &test.contouring}, {"link_um", &test.link}, {"motion_um", &test.motion}, {"dynamic_um", &test.dynamic}};
   for (const auto& [name, series] : contributions)
     for (int d = 0; d < 3; ++d) {

@@ -61,7 +61,7 @@ std::optional<CirclePathResult> xyCircleTest(const MachineSetup& setup, int poin
     else if (a.isRotary() && a.travel && !(a.travel->min <= 0 && 0 <= a.travel->max)) base[static_cast<size_t>(k)] = a.travel->min;
   }
   const auto nominal = setup.nominal();
-  r.centre = toolPoint(nominal, base.data()).position;
+  r.centre = toolPosition(nominal, base.data());
   r.q.resize(points, m.commandedCount());
   r.radialDirection.resize(points, 3);
   for (int i = 0; i < points; ++i) {
@@ -70,7 +70,7 @@ std::optional<CirclePathResult> xyCircleTest(const MachineSetup& setup, int poin
     for (int k = 0; k < m.commandedCount(); ++k) r.q(i, k) = base[static_cast<size_t>(k)];
     r.q(i, x) += r.radius * std::cos(phi);
     r.q(i, y) += r.radius * std::sin(phi);
-    r.radialDirection.row(i) = (toolPoint(nominal, r.q.row(i).data()).position - r.centre).normalized().transpose();
+    r.radialDirection.row(i) = (toolPosition(nominal, r.q.row(i).data()) - r.centre).normalized().transpose();
   }
   radialDeviation(setup, r);
   return r;

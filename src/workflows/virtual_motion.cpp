@@ -111,7 +111,7 @@ MotionSimulationResult simulateMotion(const MachineSetup& setup, const MotionSim
   if (!request.structure.empty()) structure = std::make_unique<StructureModel>(loadStructure(request.structure));
 
   MotionSimulationResult out;
-  out.ball = request.ball ? *request.ball : toolPoint(nominal, path.front().data()).position;
+  out.ball = request.ball ? *request.ball : toolPosition(nominal, path.front().data());
   std::filesystem::create_directories(request.folder);
   std::string set = fmt::format("# written by mtacc simulate motion from {}\nball: [{:.9g} mm, {:.9g} mm, {:.9g} mm]\nnc_rate_hz: {:.9g}\n"
                                 "instrument_rate_hz: {:.9g}\ntests:\n",

@@ -20,6 +20,8 @@ struct ToolPoint {
   Vec3 direction;  // unit tool direction (TCP towards spindle) in the workpiece frame
 };
 ToolPoint toolPoint(const KinematicModel& model, const double* q, const int* dir = nullptr);
+// The TCP alone (mm, workpiece frame): toolPoint's position without carrying the direction.
+Vec3 toolPosition(const KinematicModel& model, const double* q, const int* dir = nullptr);
 
 // Pose error, actual minus nominal, in the workpiece frame: (dx, dy, dz) in mm, then the
 // rotation vector of R_actual * R_nominal^T in rad.

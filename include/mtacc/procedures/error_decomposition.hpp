@@ -3,27 +3,30 @@
 // one trajectory at several feeds, split into servo contouring, link, motion, thermal drift and
 // dynamic errors (eqs. 6, 10-20), and the statistics of the paper's Tables 1-4 (eqs. 21-23).
 // Every series is on the instrument's clock (the traces aligned and resampled onto it), one
-// sample a row, the tool relative to the workpiece in the workpiece frame, in mm.
+// sample a row, the tool relative to the workpiece in the workpiece frame, in mm; held in
+// LargeVectors (huge pages for long series).
+#include <span>
 #include <vector>
 
+#include "mtacc/core/large_vector.hpp"
 #include "mtacc/core/transform.hpp"
 
 namespace mtacc {
 
 struct DecompositionTest {
   double feed = 0.0;            // mm/min as programmed (FGROUP: mm and deg mixed, seed 004 O8)
-  std::vector<double> time;     // s, increasing
-  std::vector<double> path;     // length travelled along the encoder path (FGROUP units), not decreasing; for MotionParameter::Path
-  std::vector<Vec3> measured;   // chi: the instrument's reading, set-up removed
-  std::vector<Vec3> encoder;    // chi_enc: the direct kinematics of the encoder positions
-  std::vector<Vec3> nominal;    // chi_nom: the direct kinematics of the interpolator's commands
-  std::vector<Vec3> link;       // delta_l: the identified link errors along the path (eqs. 13-15)
+  LargeVector<double> time;     // s, increasing
+  LargeVector<double> path;     // length travelled along the encoder path (FGROUP units), not decreasing; for MotionParameter::Path
+  LargeVector<Vec3> measured;   // chi: the instrument's reading, set-up removed
+  LargeVector<Vec3> encoder;    // chi_enc: the direct kinematics of the encoder positions
+  LargeVector<Vec3> nominal;    // chi_nom: the direct kinematics of the interpolator's commands
+  LargeVector<Vec3> link;       // delta_l: the identified link errors along the path (eqs. 13-15)
   // The workpiece frame's rotation in the machine frame at each sample (the nominal machine at
   // the encoder positions), for a drift constant in the machine frame; empty: the identity.
-  std::vector<Mat3> workpieceRotation;
+  LargeVector<Mat3> workpieceRotation;
   // The axes' acceleration at each sample (the norm over the axes, FGROUP: mm and deg per s^2),
   // for ReferenceFit::Steady; empty: not known, every sample fitted.
-  std::vector<double> acceleration;
+  LargeVector<double> acceleration;
 };
 
 // Where the thermal drift is constant over a test (eq. 19): in the machine frame, as seed 004
@@ -57,17 +60,17 @@ struct DecompositionOptions {
 
 struct DecomposedTest {
   double feed = 0.0;
-  std::vector<Vec3> contouring;  // delta_c = chi_enc - chi_nom (eq. 10)
+  LargeVector<Vec3> contouring;  // delta_c = chi_enc - chi_nom (eq. 10)
   // The contouring error as L120 and Fig. 4 define it: delta_c's part orthogonal to the commanded
   // path (its tangent from the nominal trace). NaN where the nominal path stands still (no tangent:
   // in seed 004's chase-the-ball path |tau_nom| stays within 100 um), counted in orthogonalUndefined.
-  std::vector<Vec3> contouringOrthogonal;
+  LargeVector<Vec3> contouringOrthogonal;
   size_t orthogonalUndefined = 0;
-  std::vector<Vec3> link;        // delta_l, as given
-  std::vector<Vec3> motion;      // delta_m: the reference test's fit at this test's normalised parameter
+  LargeVector<Vec3> link;        // delta_l, as given
+  LargeVector<Vec3> motion;      // delta_m: the reference test's fit at this test's normalised parameter
   Vec3 drift = Vec3::Zero();     // td (eq. 18), constant in the drift frame (eq. 19); 0 in the reference test
-  std::vector<Vec3> driftAlong;  // the same at each sample in the workpiece frame
-  std::vector<Vec3> dynamic;     // delta_d = chi - chi_enc - delta_qs (eq. 20); zero mean (in the drift frame) by construction but in a steady-fitted reference
+  LargeVector<Vec3> driftAlong;  // the same at each sample in the workpiece frame
+  LargeVector<Vec3> dynamic;     // delta_d = chi - chi_enc - delta_qs (eq. 20); zero mean (in the drift frame) by construction but in a steady-fitted reference
   size_t leftOutOfFit = 0;       // in the reference test: the samples the motion errors were not fitted to (ReferenceFit::Steady)
 
   Vec3 quasiStatic(size_t i) const { return link[i] + motion[i] + driftAlong[i]; }  // delta_qs (eq. 12)
@@ -84,7 +87,7 @@ std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>
 // delta_c less its component along the tangent of the nominal path (central differences of the
 // nominal samples, one-sided at the ends); NaN where the path moves less than `still` (mm) over
 // the difference, with `undefined` counting those samples.
-std::vector<Vec3> orthogonalToPath(const std::vector<Vec3>& deviation, const std::vector<Vec3>& nominal, size_t& undefined,
+LargeVector<Vec3> orthogonalToPath(std::span<const Vec3> deviation, std::span<const Vec3> nominal, size_t& undefined,
                                    double still = 1e-7);
 
 // Eq. 21: the mean over the samples of each contribution's norm over the sum of the norms, in %.
@@ -103,7 +106,7 @@ struct DirectionStatistics {
   Vec3 maximum = Vec3::Zero();
   Vec3 rms = Vec3::Zero();
 };
-DirectionStatistics directionStatistics(const std::vector<Vec3>& series);  // NaN samples left out
+DirectionStatistics directionStatistics(std::span<const Vec3> series);  // NaN samples left out
 
 // Eq. 23: value = kappa * feed^exponent, least squares on the logarithms. Throws
 // InvalidInput for fewer than two feeds, feeds all equal, or a value or feed <= 0.

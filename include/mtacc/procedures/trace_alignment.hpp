@@ -2,6 +2,7 @@
 // Seed 004 (L133, L284-290, O1): the interpolator's command of every axis is recorded in a run
 // of its own, on a clock offset from the encoder and instrument run. The offset is estimated by
 // least squares against the encoder trace and the command is moved onto the encoder clock.
+#include <span>
 #include <string>
 #include <vector>
 
@@ -46,7 +47,7 @@ ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace&
 // The trace, with its clock moved by `offset`, at the given times (s): row i holds every
 // channel at times[i] (the poses there, for a trace of axis positions). Throws InvalidInput when
 // a time falls outside the moved trace's span.
-JointMatrix resampleTrace(const SampledTrace& trace, double offset, const std::vector<double>& times,
+JointMatrix resampleTrace(const SampledTrace& trace, double offset, std::span<const double> times,
                           Interpolation interpolation = Interpolation::CubicSpline);
 
 }  // namespace mtacc

@@ -20,7 +20,7 @@ struct RecordedDecomposition {
   DecompositionSet set;
   std::vector<TestAlignment> alignment;   // per test, in the set's order
   std::vector<DecomposedTest> tests;
-  std::vector<std::vector<double>> pathFraction;  // per test and sample: u, the encoder path travelled over its whole (Figs 9-10's abscissa)
+  std::vector<LargeVector<double>> pathFraction;  // per test and sample: u, the encoder path travelled over its whole (Figs 9-10's abscissa)
   std::vector<DecompositionShares> shares;
   std::vector<DirectionStatistics> contouring, quasiStatic, dynamic;
   std::vector<DirectionStatistics> contouringOrthogonal;  // Fig. 4's, over the samples where the path has a tangent

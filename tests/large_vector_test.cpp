@@ -1,0 +1,40 @@
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <numeric>
+
+#include "mtacc/core/large_vector.hpp"
+#include "mtacc/core/transform.hpp"
+
+using namespace mtacc;
+
+TEST(LargeVector, LargeBlocksAreHugePageAlignedAndHoldTheirValues) {
+  const size_t n = 150001;  // one feed of seed 004's instrument samples, 3.6 MB of Vec3
+  LargeVector<Vec3> series(n);
+  ASSERT_GE(n * sizeof(Vec3), kLargeBlockBytes);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(series.data()) % (std::uintptr_t{2} << 20), 0u);
+  for (size_t i = 0; i < n; ++i) series[i] = Vec3(static_cast<double>(i), -1.0, 2.0);
+  series.resize(3 * n);  // moved to a larger block, the old one released
+  EXPECT_EQ(series[n - 1], Vec3(static_cast<double>(n - 1), -1.0, 2.0));
+  EXPECT_EQ(series[2 * n], Vec3::Zero());
+  LargeVector<Vec3> copy = series;
+  EXPECT_EQ(copy, series);
+  series.clear();
+  series.shrink_to_fit();
+  EXPECT_EQ(copy[7], Vec3(7.0, -1.0, 2.0));
+}
+
+TEST(LargeVector, SmallBlocksComeFromOperatorNew) {
+  LargeVector<double> small(1000);
+  std::iota(small.begin(), small.end(), 0.0);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(small.data()) % alignof(double), 0u);
+  EXPECT_EQ(small[999], 999.0);
+  small.assign(kLargeBlockBytes / sizeof(double), 1.5);  // grows past the threshold
+  EXPECT_EQ(small.back(), 1.5);
+}
+
+TEST(LargeVector, AnImpossibleSizeThrowsBadAlloc) {
+  LargeBlockAllocator<double> allocator;
+  EXPECT_THROW((void)allocator.allocate(std::size_t{1} << 60), std::bad_alloc);
+  EXPECT_THROW((void)allocator.allocate(std::size_t(-1) / 4), std::bad_array_new_length);
+}
