@@ -106,8 +106,13 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
   test.time.resize(n);
   for (size_t i = 0; i < n; ++i) test.time[i] = instrument.start + instrument.period * static_cast<double>(first + i);
   const auto interpolation = processing.search.interpolation;
-  const JointMatrix nominalQ = resampleTrace(command, alignment.offset, test.time, interpolation);
-  JointMatrix encoderQ = resampleTrace(encoder, 0.0, test.time, interpolation);
+  const auto axes = static_cast<Eigen::Index>(command.channels.size());
+  LargeJointMatrix nominalPoses(static_cast<Eigen::Index>(n), axes);
+  out.encoderPoses = LargeJointMatrix(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(encoder.channels.size()));
+  auto nominalQ = nominalPoses.matrix();
+  auto encoderQ = out.encoderPoses.matrix();
+  resampleTrace(command, alignment.offset, test.time, nominalQ, interpolation);
+  resampleTrace(encoder, 0.0, test.time, encoderQ, interpolation);
   std::vector<double> fileScale;  // FGROUP: the path in mm and deg
   for (long a = 0; a < encoderQ.cols(); ++a) fileScale.push_back(1.0 / nominal.machine->axes[static_cast<size_t>(a)].fileUnit());
   test.acceleration = axisAcceleration(encoder, fileScale, test.time);
@@ -139,7 +144,6 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
   });
   for (size_t i = 0; i < n; ++i)
     test.measured[i] = Vec3(instrument.channels[0][first + i], instrument.channels[1][first + i], instrument.channels[2][first + i]);
-  out.encoderPoses = std::move(encoderQ);
   return out;
 }
 

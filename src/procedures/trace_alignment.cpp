@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "mtacc/core/input_error.hpp"
 
@@ -121,16 +122,23 @@ ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace&
 }
 
 JointMatrix resampleTrace(const SampledTrace& trace, double offset, std::span<const double> times, Interpolation interpolation) {
+  JointMatrix out(static_cast<Eigen::Index>(times.size()), static_cast<Eigen::Index>(trace.channels.size()));
+  resampleTrace(trace, offset, times, out, interpolation);
+  return out;
+}
+
+void resampleTrace(const SampledTrace& trace, double offset, std::span<const double> times, Eigen::Ref<JointMatrix> out,
+                   Interpolation interpolation) {
+  if (out.rows() != static_cast<Eigen::Index>(times.size()) || out.cols() != static_cast<Eigen::Index>(trace.channels.size()))
+    throw std::logic_error("resampleTrace: the output is not one row per time and one column per channel");
   std::vector<UniformSpline> splines;
   for (const auto& channel : trace.channels) splines.emplace_back(trace.start + offset, trace.period, channel, interpolation);
-  JointMatrix out(static_cast<Eigen::Index>(times.size()), static_cast<Eigen::Index>(splines.size()));
-  if (splines.empty()) return out;
+  if (splines.empty()) return;
   for (size_t i = 0; i < times.size(); ++i) {
     const auto where = splines.front().locate(times[i]);
     double* row = out.row(static_cast<Eigen::Index>(i)).data();
     for (size_t c = 0; c < splines.size(); ++c) row[c] = splines[c].at(where);
   }
-  return out;
 }
 
 }  // namespace mtacc

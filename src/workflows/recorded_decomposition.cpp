@@ -107,7 +107,7 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
           recorded.feed, a.instrumentSpikes.size(), recorded.instrument,
           fmt::join(a.instrumentSpikes.begin(), a.instrumentSpikes.begin() + static_cast<std::ptrdiff_t>(std::min<size_t>(5, a.instrumentSpikes.size())), ", "),
           a.instrumentSpikes.size() > 5 ? ", ..." : ""));
-    if (setup.covariance) out.linkUncertainty.push_back(directionStatistics(tcpUncertainty(setup, aligned.encoderPoses)));
+    if (setup.covariance) out.linkUncertainty.push_back(directionStatistics(tcpUncertainty(setup, aligned.encoderPoses.matrix())));
     tests.push_back(std::move(aligned.test));
     out.alignment.push_back(aligned.alignment);
   }

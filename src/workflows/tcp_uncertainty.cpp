@@ -4,7 +4,7 @@
 
 namespace mtacc {
 
-std::vector<Vec3> tcpUncertainty(const MachineSetup& setup, const JointMatrix& poses) {
+std::vector<Vec3> tcpUncertainty(const MachineSetup& setup, Eigen::Ref<const JointMatrix> poses) {
   if (!setup.covariance)
     throw InputError({"", 0, "errors"}, "these errors carry no covariance: give an errors file written by an identification (--errors-out)");
   const auto& c = *setup.covariance;

@@ -5,6 +5,8 @@
 
 #include <vector>
 
+#include "mtacc/core/large_vector.hpp"
+
 namespace mtacc {
 
 using JointMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
@@ -12,6 +14,17 @@ using JointMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen:
 using DirectionMatrix = Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 using PointMatrix = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using PoseErrorMatrix = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>;
+
+// A long batch (a pose per instrument sample) in a LargeVector, seen as a JointMatrix.
+struct LargeJointMatrix {
+  LargeVector<double> values;  // row by row
+  Eigen::Index rows = 0, cols = 0;
+
+  LargeJointMatrix() = default;
+  LargeJointMatrix(Eigen::Index r, Eigen::Index c) : values(static_cast<size_t>(r * c)), rows(r), cols(c) {}
+  Eigen::Map<JointMatrix> matrix() { return {values.data(), rows, cols}; }
+  Eigen::Map<const JointMatrix> matrix() const { return {values.data(), rows, cols}; }
+};
 
 // Poses from one series per axis (all of one length): row k holds every axis's sample k.
 inline JointMatrix posesFromChannels(const std::vector<std::vector<double>>& channels) {

@@ -43,7 +43,7 @@ struct SignalProcessing {
 struct AlignedTest {
   DecompositionTest test;
   TestAlignment alignment;
-  JointMatrix encoderPoses;  // the encoder positions at the test's samples (mm, rad), a row each
+  LargeJointMatrix encoderPoses;  // the encoder positions at the test's samples (mm, rad), a row each
 };
 
 // The test runs from the command's departure (its last sample at rest at the start) to its

@@ -49,5 +49,8 @@ ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace&
 // a time falls outside the moved trace's span.
 JointMatrix resampleTrace(const SampledTrace& trace, double offset, std::span<const double> times,
                           Interpolation interpolation = Interpolation::CubicSpline);
+// The same into `out` (times.size() rows, one column per channel).
+void resampleTrace(const SampledTrace& trace, double offset, std::span<const double> times, Eigen::Ref<JointMatrix> out,
+                   Interpolation interpolation = Interpolation::CubicSpline);
 
 }  // namespace mtacc

@@ -12,6 +12,6 @@ namespace mtacc {
 // Per pose (commanded axes, mm and rad), the standard uncertainty (k = 1) of the TCP position in
 // the workpiece frame along x, y, z (mm). Throws InputError when the setup's errors carry no
 // covariance (key "errors": not written by an identification).
-std::vector<Vec3> tcpUncertainty(const MachineSetup& setup, const JointMatrix& poses);
+std::vector<Vec3> tcpUncertainty(const MachineSetup& setup, Eigen::Ref<const JointMatrix> poses);
 
 }  // namespace mtacc
