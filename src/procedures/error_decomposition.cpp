@@ -208,18 +208,20 @@ DecompositionShares decompositionShares(const DecomposedTest& test) {
     const double l = test.link[i].norm(), m = test.motion[i].norm(), td = test.drift.norm();
     const double printed = c + qs + d, split = c + l + m + td + d;
     if (printed > 0) {
-      s.contouring += c / printed;
-      s.quasiStatic += qs / printed;
-      s.dynamic += d / printed;
-      s.splitOverPrinted += split / printed;
+      const double over = 1.0 / printed;
+      s.contouring += c * over;
+      s.quasiStatic += qs * over;
+      s.dynamic += d * over;
+      s.splitOverPrinted += split * over;
       ++counted3;
     }
     if (split > 0) {
-      s.splitContouring += c / split;
-      s.link += l / split;
-      s.motion += m / split;
-      s.drift += td / split;
-      s.splitDynamic += d / split;
+      const double over = 1.0 / split;
+      s.splitContouring += c * over;
+      s.link += l * over;
+      s.motion += m * over;
+      s.drift += td * over;
+      s.splitDynamic += d * over;
       ++counted5;
     }
   }
