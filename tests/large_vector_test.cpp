@@ -36,5 +36,6 @@ TEST(LargeVector, SmallBlocksComeFromOperatorNew) {
 TEST(LargeVector, AnImpossibleSizeThrowsBadAlloc) {
   LargeBlockAllocator<double> allocator;
   EXPECT_THROW((void)allocator.allocate(std::size_t{1} << 60), std::bad_alloc);
+  EXPECT_THROW((void)allocator.allocate(std::size_t(-1) / 8 - 1), std::bad_alloc);  // rounding up to 2 MB would wrap
   EXPECT_THROW((void)allocator.allocate(std::size_t(-1) / 4), std::bad_array_new_length);
 }

@@ -3,6 +3,7 @@
 #include <sys/mman.h>
 
 #include <cstdint>
+#include <limits>
 
 namespace mtacc {
 namespace {
@@ -14,6 +15,7 @@ std::size_t mappedBytes(std::size_t bytes) { return (bytes + kHugePage - 1) / kH
 }  // namespace
 
 void* allocateLargeBlock(std::size_t bytes) {
+  if (bytes > std::numeric_limits<std::size_t>::max() - 2 * kHugePage) throw std::bad_alloc();  // no room to round up
   const std::size_t size = mappedBytes(bytes);
   // One huge page more than needed, then the unaligned head and the rest of the tail given back.
   void* mapped = ::mmap(nullptr, size + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
