@@ -8,7 +8,7 @@
 namespace mtacc {
 namespace {
 
-constexpr std::size_t kHugePage = std::size_t{2} << 20;
+constexpr std::size_t kHugePage = kLargeBlockBytes;  // the threshold is one huge page
 
 std::size_t mappedBytes(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
 

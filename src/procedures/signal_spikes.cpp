@@ -38,13 +38,11 @@ std::vector<size_t> spikeSamples(const SampledTrace& trace, double threshold, do
   const size_t n = trace.samples(), half = kSpikeWindow / 2;
   if (n < kSpikeWindow) return {};
   for (const auto& channel : trace.channels) {
-    std::vector<double> departure(n);
+    std::vector<double> magnitude(n);  // of each sample's departure from its window's median
     for (size_t i = 0; i < n; ++i) {
       const size_t from = std::min(i > half ? i - half : 0, n - kSpikeWindow);
-      departure[i] = channel[i] - windowMedian(channel.data() + from);
+      magnitude[i] = std::abs(channel[i] - windowMedian(channel.data() + from));
     }
-    std::vector<double> magnitude(n);
-    std::transform(departure.begin(), departure.end(), magnitude.begin(), [](double d) { return std::abs(d); });
     const double limit = std::max(threshold * 1.4826 * median(magnitude), floor);
     for (size_t i = 0; i < n; ++i)
       if (magnitude[i] > limit) spikes.insert(i);
