@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
       r.aligned.push_back(alignRecordedTest(nominal, identified, {kFeeds[k], rec.command, rec.encoder, rec.instrument}, {std::nullopt, {}, kBall}, threads));
       tests.push_back(std::move(r.aligned.back().test));
     }
-    r.decomposed = decomposeErrors(tests);
+    r.decomposed = decomposeErrors(std::move(tests));
     for (const auto& d : r.decomposed) {
       r.shares.push_back(decompositionShares(d));
       r.dynamic.push_back(directionStatistics(d.dynamic));

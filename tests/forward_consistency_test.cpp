@@ -1,6 +1,7 @@
 // The fast TCP evaluation (point and direction carried factor by factor) and the full pose
 // composition evaluate the same chain: they agree to rounding on every bundled machine with
-// location errors and every kind of component error, for both workpiece alignments.
+// location errors and every kind of component error, for both workpiece alignments; so do the
+// TCP alone and the TCP with the workpiece's rotation.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -50,6 +51,10 @@ TEST_P(ForwardConsistency, ToolPointEqualsPoseComposition) {
       const Pose full = toolInWorkpiece(model, q.data(), dir.data());
       EXPECT_LT((fast.position - full.translation()).norm(), 1e-10);
       EXPECT_LT((fast.direction - full.linear() * machine->toolDirection).norm(), 1e-13);
+      EXPECT_LT((toolPosition(model, q.data(), dir.data()) - full.translation()).norm(), 1e-10);
+      const auto fused = toolPositionAndWorkpieceRotation(model, q.data(), dir.data());
+      EXPECT_LT((fused.position - full.translation()).norm(), 1e-10);
+      EXPECT_LT((fused.workpieceRotation - workpiecePose(model, q.data(), dir.data()).linear()).norm(), 1e-13);
     }
   }
 }

@@ -101,17 +101,29 @@ struct PointTransport {
   void mark(const ChainOp&) {}
 };
 
-// W^-1 T applied to the tool chain's start (after its trailing constant), factor by factor:
-// the tool chain from its end, then the inverted workpiece chain from the bed.
+// T applied to the tool chain's start (after its trailing constant), factor by factor from the
+// chain's end: into the bed frame.
+template <int N>
+void transportToBed(const KinematicModel& m, PointDirections<N>& x, const double* q, const int* dir) {
+  const ChainPrograms& c = *m.chains;
+  PointTransport<false, N> forward{x};
+  for (size_t i = c.toolOpsPerPose; i-- > 0;) evaluateOp(c.toolProgram[i], q, dir, forward);
+}
+
+// W^-1 applied to a point and directions in the bed frame: the inverted workpiece chain from the bed.
+template <int N>
+void transportBedToWorkpiece(const KinematicModel& m, PointDirections<N>& x, const double* q, const int* dir) {
+  PointTransport<true, N> inverse{x};
+  for (const auto& op : m.chains->workpieceProgram) evaluateOp(op, q, dir, inverse);
+}
+
+// W^-1 T applied to the tool chain's start.
 template <int N>
 PointDirections<N> transportToWorkpiece(const KinematicModel& m, const PointDirections<N>& start, const double* q,
                                         const int* dir) {
-  const ChainPrograms& c = *m.chains;
   PointDirections<N> x = start;
-  PointTransport<false, N> forward{x};
-  for (size_t i = c.toolOpsPerPose; i-- > 0;) evaluateOp(c.toolProgram[i], q, dir, forward);
-  PointTransport<true, N> inverse{x};
-  for (const auto& op : c.workpieceProgram) evaluateOp(op, q, dir, inverse);
+  transportToBed(m, x, q, dir);
+  transportBedToWorkpiece(m, x, q, dir);
   return x;
 }
 
@@ -184,6 +196,17 @@ ToolPoint toolPoint(const KinematicModel& m, const double* q, const int* dir) {
 Vec3 toolPosition(const KinematicModel& m, const double* q, const int* dir) {
   const auto x = transportToWorkpiece<0>(m, {m.chains->tcpStart, {}}, q, dir);
   return m.aligned ? Vec3(m.alignment * x.p) : x.p;
+}
+
+ToolPositionAndWorkpieceRotation toolPositionAndWorkpieceRotation(const KinematicModel& m, const double* q, const int* dir) {
+  PointDirections<0> tool{m.chains->tcpStart, {}};
+  transportToBed(m, tool, q, dir);
+  // The bed's axes carried along from the bed: W^-1 maps e_k to row k of W's rotation.
+  PointDirections<3> x{tool.p, {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()}};
+  transportBedToWorkpiece(m, x, q, dir);
+  ToolPositionAndWorkpieceRotation out{m.aligned ? Vec3(m.alignment * x.p) : x.p, Mat3()};
+  out.workpieceRotation << x.d[0].transpose(), x.d[1].transpose(), x.d[2].transpose();
+  return out;
 }
 
 std::vector<Pose> errorFrames(const KinematicModel& m, const double* q) {

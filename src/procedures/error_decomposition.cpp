@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "mtacc/core/decompositions.hpp"
 #include "mtacc/core/input_error.hpp"
@@ -131,7 +132,7 @@ std::vector<Eigen::Index> fittedSamples(const DecompositionTest& t, const Decomp
 
 }  // namespace
 
-std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>& tests, const DecompositionOptions& o) {
+std::vector<DecomposedTest> decomposeErrors(std::vector<DecompositionTest> tests, const DecompositionOptions& o) {
   if (o.referenceTest < 0 || o.referenceTest >= static_cast<int>(tests.size()))
     throw InvalidInput(fmt::format("reference test {} of {} tests", o.referenceTest, tests.size()));
   if (o.degree < 0 || o.degree > 60) throw InvalidInput(fmt::format("motion-error degree {}: give 0 to 60", o.degree));
@@ -150,31 +151,27 @@ std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>
   std::vector<DecomposedTest> out;
   out.reserve(tests.size());
   for (size_t k = 0; k < tests.size(); ++k) {
-    const DecompositionTest& t = tests[k];
-    const size_t n = t.time.size();
     DecomposedTest d;
-    d.feed = t.feed;
-    d.link = t.link;
+    d.recorded = std::move(tests[k]);
+    const DecompositionTest& t = d.recorded;
+    const size_t n = t.time.size();
     d.contouring.resize(n);
     d.motion.resize(n);
     d.dynamic.resize(n);
-    d.driftAlong.resize(n);
     legendre.series(Normalised(t, o.parameter), n, coefficients, d.motion);
     // Eq. 18: the drift is the mean of what neither link nor motion errors explain, taken in the
     // drift frame; the reference test's is zero because its fit has the constant term.
-    const bool machineFrame = o.driftFrame == DriftFrame::Machine && !t.workpieceRotation.empty();
-    auto toDriftFrame = [&](size_t i) { return machineFrame ? t.workpieceRotation[i] : Mat3::Identity(); };
+    d.driftInMachineFrame = o.driftFrame == DriftFrame::Machine && !t.workpieceRotation.empty();
     Vec3 sum = Vec3::Zero();
     for (size_t i = 0; i < n; ++i) {
       d.dynamic[i] = t.measured[i] - t.encoder[i] - t.link[i] - d.motion[i];  // the rest, before the drift
-      sum += toDriftFrame(i) * d.dynamic[i];
+      sum += d.driftInMachineFrame ? Vec3(t.workpieceRotation[i] * d.dynamic[i]) : d.dynamic[i];
     }
     d.drift = static_cast<int>(k) == o.referenceTest ? Vec3::Zero() : Vec3(sum / static_cast<double>(n));
     if (static_cast<int>(k) == o.referenceTest) d.leftOutOfFit = n - fitted.size();
     for (size_t i = 0; i < n; ++i) {
       d.contouring[i] = t.encoder[i] - t.nominal[i];
-      d.driftAlong[i] = toDriftFrame(i).transpose() * d.drift;
-      d.dynamic[i] -= d.driftAlong[i];
+      d.dynamic[i] -= d.driftAt(i);
     }
     d.contouringOrthogonal = orthogonalToPath(d.contouring, t.nominal, d.orthogonalUndefined);
     out.push_back(std::move(d));
@@ -205,7 +202,7 @@ DecompositionShares decompositionShares(const DecomposedTest& test) {
   int counted3 = 0, counted5 = 0;
   for (size_t i = 0; i < test.contouring.size(); ++i) {
     const double c = test.contouring[i].norm(), qs = test.quasiStatic(i).norm(), d = test.dynamic[i].norm();
-    const double l = test.link[i].norm(), m = test.motion[i].norm(), td = test.drift.norm();
+    const double l = test.recorded.link[i].norm(), m = test.motion[i].norm(), td = test.drift.norm();
     const double printed = c + qs + d, split = c + l + m + td + d;
     if (printed > 0) {
       const double over = 1.0 / printed;

@@ -135,8 +135,8 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
     for (long k = begin; k < end; ++k) {
       const auto i = static_cast<size_t>(k);
       const double* q = encoderQ.row(k).data();
-      const Vec3 atEncoder = toolPosition(nominal, q);
-      test.workpieceRotation[i] = workpiecePose(nominal, q, nullptr).linear();
+      const auto [atEncoder, workpieceRotation] = toolPositionAndWorkpieceRotation(nominal, q);
+      test.workpieceRotation[i] = workpieceRotation;
       test.nominal[i] = toolPosition(nominal, nominalQ.row(k).data()) - processing.ball;
       test.encoder[i] = atEncoder - processing.ball;
       test.link[i] = toolPosition(identified, q) - atEncoder;

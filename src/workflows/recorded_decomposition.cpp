@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <stdexcept>
+#include <utility>
 
 #include "mtacc/io/recorded_signal.hpp"
 #include "mtacc/workflows/tcp_uncertainty.hpp"
@@ -112,7 +113,7 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
     out.alignment.push_back(aligned.alignment);
   }
   try {
-    out.tests = decomposeErrors(tests, {set.referenceTest, set.degree, set.parameter, set.driftFrame, set.referenceFit});
+    out.tests = decomposeErrors(std::move(tests), {set.referenceTest, set.degree, set.parameter, set.driftFrame, set.referenceFit});
   } catch (const InvalidInput& e) {
     throw InputError({set.file, set.tests[static_cast<size_t>(set.referenceTest)].line, fmt::format("tests[{}]", set.referenceTest)}, e.what());
   }
@@ -122,11 +123,11 @@ RecordedDecomposition decomposeRecordedSet(const MachineSetup& setup, const Deco
     out.shares.push_back(decompositionShares(test));
     out.contouring.push_back(directionStatistics(test.contouring));
     out.contouringOrthogonal.push_back(directionStatistics(test.contouringOrthogonal));
-    LargeVector<Vec3> quasiStatic(test.link.size());
+    LargeVector<Vec3> quasiStatic(test.motion.size());
     for (size_t i = 0; i < quasiStatic.size(); ++i) quasiStatic[i] = test.quasiStatic(i);
     out.quasiStatic.push_back(directionStatistics(quasiStatic));
     out.dynamic.push_back(directionStatistics(test.dynamic));
-    feeds.push_back(test.feed);
+    feeds.push_back(test.recorded.feed);
     for (int d = 0; d < 3; ++d) rms[static_cast<size_t>(d)].push_back(out.dynamic.back().rms[d]);
   }
   for (size_t d = 0; d < 3; ++d) {
@@ -147,7 +148,7 @@ nlohmann::json seriesJson(const DecomposedTest& test, std::span<const double> u,
   nlohmann::json j{{"stride", stride}, {"u", nlohmann::json::array()}};
   for (size_t i = 0; i < u.size(); i += stride) j["u"].push_back(u[i]);
   const std::pair<const char*, const LargeVector<Vec3>*> contributions[] = {
-      {"contouring_um", &test.contouring}, {"link_um", &test.link}, {"motion_um", &test.motion}, {"dynamic_um", &test.dynamic}};
+      {"contouring_um", &test.contouring}, {"link_um", &test.recorded.link}, {"motion_um", &test.motion}, {"dynamic_um", &test.dynamic}};
   for (const auto& [name, series] : contributions)
     for (int d = 0; d < 3; ++d) {
       auto& values = j[name][std::string(1, "xyz"[d])] = nlohmann::json::array();
@@ -161,7 +162,7 @@ nlohmann::json seriesJson(const DecomposedTest& test, std::span<const double> u,
 nlohmann::json toJson(const RecordedDecomposition& r, size_t seriesPoints) {
   const auto um = [](const Vec3& v) { return nlohmann::json::array({v.x() * 1e3, v.y() * 1e3, v.z() * 1e3}); };
   nlohmann::json j;
-  j["reference_feed_mm_per_min"] = r.tests[static_cast<size_t>(r.set.referenceTest)].feed;
+  j["reference_feed_mm_per_min"] = r.tests[static_cast<size_t>(r.set.referenceTest)].recorded.feed;
   j["degree"] = r.set.degree;
   j["parameter"] = r.set.parameter == MotionParameter::Path ? "path" : "time";
   j["interpolation"] = r.set.interpolation == Interpolation::CubicSpline ? "cubic" : "linear";
@@ -172,7 +173,7 @@ nlohmann::json toJson(const RecordedDecomposition& r, size_t seriesPoints) {
     const auto& a = r.alignment[k];
     const auto& s = r.shares[k];
     j["tests"].push_back({
-        {"feed_mm_per_min", r.tests[k].feed},
+        {"feed_mm_per_min", r.tests[k].recorded.feed},
         {"clock_offset_ms", a.offset * 1e3},
         {"clock_offset_estimated", a.estimated},
         {"alignment_rms_misfit", a.rmsMisfit},

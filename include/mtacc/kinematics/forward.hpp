@@ -22,6 +22,12 @@ struct ToolPoint {
 ToolPoint toolPoint(const KinematicModel& model, const double* q, const int* dir = nullptr);
 // The TCP alone (mm, workpiece frame): toolPoint's position without carrying the direction.
 Vec3 toolPosition(const KinematicModel& model, const double* q, const int* dir = nullptr);
+// The TCP (as toolPosition) and workpiecePose's rotation in one pass through the chains.
+struct ToolPositionAndWorkpieceRotation {
+  Vec3 position;
+  Mat3 workpieceRotation;
+};
+ToolPositionAndWorkpieceRotation toolPositionAndWorkpieceRotation(const KinematicModel& model, const double* q, const int* dir = nullptr);
 
 // Pose error, actual minus nominal, in the workpiece frame: (dx, dy, dz) in mm, then the
 // rotation vector of R_actual * R_nominal^T in rad.

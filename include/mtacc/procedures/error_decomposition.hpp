@@ -59,21 +59,22 @@ struct DecompositionOptions {
 };
 
 struct DecomposedTest {
-  double feed = 0.0;
+  DecompositionTest recorded;    // the test as given: its time, path, chi, chi_enc, chi_nom and delta_l
   LargeVector<Vec3> contouring;  // delta_c = chi_enc - chi_nom (eq. 10)
   // The contouring error as L120 and Fig. 4 define it: delta_c's part orthogonal to the commanded
   // path (its tangent from the nominal trace). NaN where the nominal path stands still (no tangent:
   // in seed 004's chase-the-ball path |tau_nom| stays within 100 um), counted in orthogonalUndefined.
   LargeVector<Vec3> contouringOrthogonal;
   size_t orthogonalUndefined = 0;
-  LargeVector<Vec3> link;        // delta_l, as given
   LargeVector<Vec3> motion;      // delta_m: the reference test's fit at this test's normalised parameter
   Vec3 drift = Vec3::Zero();     // td (eq. 18), constant in the drift frame (eq. 19); 0 in the reference test
-  LargeVector<Vec3> driftAlong;  // the same at each sample in the workpiece frame
+  bool driftInMachineFrame = false;  // DriftFrame::Machine with the workpiece's rotations given
   LargeVector<Vec3> dynamic;     // delta_d = chi - chi_enc - delta_qs (eq. 20); zero mean (in the drift frame) by construction but in a steady-fitted reference
   size_t leftOutOfFit = 0;       // in the reference test: the samples the motion errors were not fitted to (ReferenceFit::Steady)
 
-  Vec3 quasiStatic(size_t i) const { return link[i] + motion[i] + driftAlong[i]; }  // delta_qs (eq. 12)
+  // The drift at sample i in the workpiece frame.
+  Vec3 driftAt(size_t i) const { return driftInMachineFrame ? Vec3(recorded.workpieceRotation[i].transpose() * drift) : drift; }
+  Vec3 quasiStatic(size_t i) const { return recorded.link[i] + motion[i] + driftAt(i); }  // delta_qs (eq. 12)
 };
 
 // What the method cannot split, by construction: a mean of the true dynamic error is booked as
@@ -82,7 +83,8 @@ struct DecomposedTest {
 // series of unequal lengths (a path of another length, or decreasing, when the path is the
 // parameter), fewer than two samples, times not increasing, a path that does not advance, a reference test of
 // no more samples than the fit has coefficients, or a reference index out of range.
-std::vector<DecomposedTest> decomposeErrors(const std::vector<DecompositionTest>& tests, const DecompositionOptions& options = {});
+// Each test is moved into its result (DecomposedTest::recorded).
+std::vector<DecomposedTest> decomposeErrors(std::vector<DecompositionTest> tests, const DecompositionOptions& options = {});
 
 // delta_c less its component along the tangent of the nominal path (central differences of the
 // nominal samples, one-sided at the ends); NaN where the path moves less than `still` (mm) over
