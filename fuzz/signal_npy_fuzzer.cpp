@@ -8,7 +8,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   return fuzz::asTheFrontEndsDo([&] {
     const auto signal = parseSignalNpy(fuzz::text(data, size), "fuzz.npy", {{"X", "Y", "Z", "A", "C"}});
     const auto& trace = signal.trace;
-    resampleTrace(trace, 0.0, std::vector{trace.start, (trace.start + trace.end()) / 2, trace.end()});
+    resampleTrace(trace, 0.0, EvenTimes{trace.start, (trace.end() - trace.start) / 2, 3});
     estimateClockOffset(trace, trace, {-2 * trace.period, 2 * trace.period});
   });
 }

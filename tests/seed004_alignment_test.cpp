@@ -96,13 +96,12 @@ TEST(Seed004Alignment, R8EighteenMillisecondsAreSixNcCyclesAnd180InstrumentSampl
   SampledTrace command{0.0, kNcPeriod, {std::vector<double>(400)}};
   for (size_t k = 0; k < 400; ++k) command.channels[0][k] = std::sin(0.05 * static_cast<double>(k * k % 97));
   const double instrumentPeriod = 1e-4, delay = 0.018;
-  std::vector<double> times;
-  for (int j = 180; j <= 180 + 30 * 399; ++j) times.push_back(j * instrumentPeriod);
-  const auto moved = resampleTrace(command, delay, times);
+  const auto moved = resampleTrace(command, delay, EvenTimes{180 * instrumentPeriod, instrumentPeriod, 30 * 399 + 1});
   for (size_t k = 0; k < 400; ++k) EXPECT_NEAR(moved(static_cast<Eigen::Index>(30 * k), 0), command.channels[0][k], 1e-12) << k;
   EXPECT_EQ(std::lround(delay / kNcPeriod), 6);
   EXPECT_EQ(std::lround(delay / instrumentPeriod), 180);
-  EXPECT_THROW(resampleTrace(command, delay, std::vector{0.0179}), InvalidInput);
+  EXPECT_THROW(resampleTrace(command, delay, EvenTimes{0.0179, instrumentPeriod, 1}), InvalidInput);
+  EXPECT_THROW(resampleTrace(command, delay, EvenTimes{0.018, instrumentPeriod, 30 * 399 + 2}), InvalidInput);  // one past the end
 }
 
 TEST(Seed004Alignment, RejectsMismatchedChannelsStillAxesAnEmptyWindowAndNoOverlap) {

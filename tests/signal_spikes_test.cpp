@@ -64,7 +64,9 @@ TEST(SignalSpikes, EverySampleIsJudgedAsTheDefinitionSays) {
     for (double threshold : {2.0, 3.0, 8.0}) {
       const auto expected = spikesByDefinition(t, threshold, 1e-5);
       EXPECT_EQ(spikeSamples(t, threshold), expected) << "seed " << seed << ", threshold " << threshold;
-      if (threshold == 2.0) EXPECT_GT(expected.size(), 100u);
+      if (threshold == 2.0) {
+        EXPECT_GT(expected.size(), 100u);
+      }
     }
   }
 }

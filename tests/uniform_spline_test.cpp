@@ -20,6 +20,15 @@ std::vector<double> sampled(double start, double period, int n, double (*f)(doub
 
 double cubicPolynomial(double t) { return 0.3 - 1.7 * t + 2.2 * t * t - 0.9 * t * t * t; }
 
+// Samples drawn uniformly from [-amplitude, amplitude]: a signal with no smoothness to hide behind.
+std::vector<double> randomSamples(size_t n, double amplitude, unsigned seed) {
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> value(-amplitude, amplitude);
+  std::vector<double> y(n);
+  for (double& v : y) v = value(random);
+  return y;
+}
+
 TEST(UniformSpline, NotAKnotReproducesACubicEverywhereIncludingTheEnds) {
   for (int n : {4, 5, 6, 40}) {
     const UniformSpline spline(-0.4, 0.07, sampled(-0.4, 0.07, n, cubicPolynomial));
@@ -31,10 +40,7 @@ TEST(UniformSpline, NotAKnotReproducesACubicEverywhereIncludingTheEnds) {
 }
 
 TEST(UniformSpline, PassesThroughTheSamplesWithContinuousSlopeAndCurvature) {
-  std::mt19937_64 random(3);
-  std::uniform_real_distribution<double> value(-1.0, 1.0);
-  std::vector<double> y(30);
-  for (double& v : y) v = value(random);
+  const auto y = randomSamples(30, 1.0, 3);
   const double h = 0.5;
   const UniformSpline spline(1.0, h, y);
   for (size_t k = 0; k < y.size(); ++k) EXPECT_NEAR(spline(1.0 + h * static_cast<double>(k)), y[k], 1e-14);
@@ -82,6 +88,38 @@ TEST(UniformSpline, RejectsTooFewSamplesNonFiniteValuesAndTimesOutsideTheSpan) {
   EXPECT_THROW(spline(3.01), InvalidInput);
   EXPECT_THROW(spline(-0.01), InvalidInput);
   EXPECT_THROW(spline(NAN), InvalidInput);
+}
+
+// atEvenly and slopeAtEvenly evaluate at(locate(t)) and slopeAt(locate(t)) at evenly spaced
+// times: at the period, finer (as a 10 kHz instrument on a 3 ms trace), coarser, and backwards.
+// The times and the period are binary fractions, so both find each time's interval and fraction
+// without rounding and agree to the rounding of the polynomial alone.
+TEST(UniformSpline, EvenlySpacedEvaluationEqualsThePointwiseOne) {
+  const auto y = randomSamples(400, 5.0, 11);
+  const double period = 0.25;
+  for (const auto kind : {Interpolation::Linear, Interpolation::CubicSpline}) {
+    const UniformSpline spline(0.0, period, y, kind);
+    struct Run {
+      double first, step;
+      size_t count;
+    };
+    for (const Run run : {Run{0.0, period, 400}, Run{0.125, 1.0 / 64, 6000}, Run{1.0, 0.625, 150}, Run{99.5, -1.0 / 32, 3000}}) {
+      std::vector<double> values(run.count), slopes(run.count);
+      spline.atEvenly(run.first, run.step, values);
+      spline.slopeAtEvenly(run.first, run.step, slopes);
+      for (size_t k = 0; k < run.count; ++k) {
+        const auto where = spline.locate(run.first + run.step * static_cast<double>(k));
+        const double slope = spline.slopeAt(where);
+        EXPECT_NEAR(values[k], spline.at(where), 1e-13) << k;
+        EXPECT_NEAR(slopes[k], slope, 1e-13 * (1.0 + std::fabs(slope))) << k;
+      }
+    }
+    std::vector<double> out(10);
+    EXPECT_THROW(spline.atEvenly(-0.01, period, out), InvalidInput);     // the first before the span
+    EXPECT_THROW(spline.atEvenly(98.0, period, out), InvalidInput);      // the last beyond it (99.75)
+    EXPECT_THROW(spline.slopeAtEvenly(2.5, NAN, out), InvalidInput);
+    EXPECT_NO_THROW(spline.atEvenly(NAN, period, std::span<double>()));  // nothing asked, nothing checked
+  }
 }
 
 }  // namespace

@@ -111,8 +111,9 @@ AlignedTest alignRecordedTest(const KinematicModel& nominal, const KinematicMode
   out.encoderPoses = LargeJointMatrix(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(encoder.channels.size()));
   auto nominalQ = nominalPoses.matrix();
   auto encoderQ = out.encoderPoses.matrix();
-  resampleTrace(command, alignment.offset, test.time, nominalQ, interpolation);
-  resampleTrace(encoder, 0.0, test.time, encoderQ, interpolation);
+  const EvenTimes times{test.time.front(), instrument.period, n};
+  resampleTrace(command, alignment.offset, times, nominalQ, interpolation);
+  resampleTrace(encoder, 0.0, times, encoderQ, interpolation);
   std::vector<double> fileScale;  // FGROUP: the path in mm and deg
   for (long a = 0; a < encoderQ.cols(); ++a) fileScale.push_back(1.0 / nominal.machine->axes[static_cast<size_t>(a)].fileUnit());
   test.acceleration = axisAcceleration(encoder, fileScale, test.time);

@@ -1,8 +1,10 @@
 #include "mtacc/procedures/trace_alignment.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include "mtacc/core/input_error.hpp"
 
@@ -37,27 +39,29 @@ NormalisedChannels normalisedChannels(const SampledTrace& command, const Sampled
 
 // Over the encoder samples [first, last) with the command moved by `offset`: the mean squared
 // normalised misfit, and (with `gauss`) the sums of residual * slope and slope^2 of the misfit
-// in the offset, for a Gauss-Newton step.
+// in the offset, for a Gauss-Newton step. A channel at a time, the command evaluated at all the
+// samples' times at once.
 struct Misfit {
   double meanSquare = 0.0, residualSlope = 0.0, slopeSquare = 0.0;
 };
 Misfit misfit(const NormalisedChannels& channels, const SampledTrace& encoder, double offset, size_t first, size_t last, bool gauss) {
   Misfit m;
-  const auto& reference = channels.command.front();
-  for (size_t k = first; k < last; ++k) {
-    const auto where = reference.locate(encoder.start + encoder.period * static_cast<double>(k) - offset);
-    for (size_t c = 0; c < channels.command.size(); ++c) {
-      const double scale = channels.inverseSpread[c];
-      const double residual = ((*channels.encoder[c])[k] - channels.command[c].at(where)) * scale;
-      m.meanSquare += residual * residual;
-      if (gauss) {
-        const double slope = channels.command[c].slopeAt(where) * scale;  // d residual / d offset
-        m.residualSlope += residual * slope;
-        m.slopeSquare += slope * slope;
-      }
-    }
+  const size_t count = last - first;
+  const auto rows = static_cast<Eigen::Index>(count);
+  const double firstTime = encoder.start + encoder.period * static_cast<double>(first) - offset;
+  Eigen::VectorXd residual(rows), slope(gauss ? rows : 0);
+  for (size_t c = 0; c < channels.command.size(); ++c) {
+    const double scale = channels.inverseSpread[c];
+    channels.command[c].atEvenly(firstTime, encoder.period, {residual.data(), count});
+    residual = (Eigen::Map<const Eigen::VectorXd>(channels.encoder[c]->data() + first, rows) - residual) * scale;
+    m.meanSquare += residual.squaredNorm();
+    if (!gauss) continue;
+    channels.command[c].slopeAtEvenly(firstTime, encoder.period, {slope.data(), count});
+    slope *= scale;  // d residual / d offset
+    m.residualSlope += residual.dot(slope);
+    m.slopeSquare += slope.squaredNorm();
   }
-  m.meanSquare /= static_cast<double>((last - first) * channels.command.size());
+  m.meanSquare /= static_cast<double>(count * channels.command.size());
   return m;
 }
 
@@ -121,23 +125,27 @@ ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace&
   return {offset, std::sqrt(current.meanSquare), last - first};
 }
 
-JointMatrix resampleTrace(const SampledTrace& trace, double offset, std::span<const double> times, Interpolation interpolation) {
-  JointMatrix out(static_cast<Eigen::Index>(times.size()), static_cast<Eigen::Index>(trace.channels.size()));
+JointMatrix resampleTrace(const SampledTrace& trace, double offset, const EvenTimes& times, Interpolation interpolation) {
+  JointMatrix out(static_cast<Eigen::Index>(times.count), static_cast<Eigen::Index>(trace.channels.size()));
   resampleTrace(trace, offset, times, out, interpolation);
   return out;
 }
 
-void resampleTrace(const SampledTrace& trace, double offset, std::span<const double> times, Eigen::Ref<JointMatrix> out,
+void resampleTrace(const SampledTrace& trace, double offset, const EvenTimes& times, Eigen::Ref<JointMatrix> out,
                    Interpolation interpolation) {
-  if (out.rows() != static_cast<Eigen::Index>(times.size()) || out.cols() != static_cast<Eigen::Index>(trace.channels.size()))
+  if (out.rows() != static_cast<Eigen::Index>(times.count) || out.cols() != static_cast<Eigen::Index>(trace.channels.size()))
     throw std::logic_error("resampleTrace: the output is not one row per time and one column per channel");
-  std::vector<UniformSpline> splines;
-  for (const auto& channel : trace.channels) splines.emplace_back(trace.start + offset, trace.period, channel, interpolation);
-  if (splines.empty()) return;
-  for (size_t i = 0; i < times.size(); ++i) {
-    const auto where = splines.front().locate(times[i]);
-    double* row = out.row(static_cast<Eigen::Index>(i)).data();
-    for (size_t c = 0; c < splines.size(); ++c) row[c] = splines[c].at(where);
+  // A block of times a channel at a time: each channel's spline evaluated in one vectorised pass
+  // into a buffer that stays in the cache, then into the output's column.
+  constexpr size_t kBlock = 4096;
+  std::vector<double> buffer(std::min(kBlock, times.count));
+  for (size_t c = 0; c < trace.channels.size(); ++c) {
+    const UniformSpline spline(trace.start + offset, trace.period, trace.channels[c], interpolation);
+    for (size_t b = 0; b < times.count; b += kBlock) {
+      const size_t length = std::min(kBlock, times.count - b);
+      spline.atEvenly(times.first + times.step * static_cast<double>(b), times.step, {buffer.data(), length});
+      for (size_t k = 0; k < length; ++k) out(static_cast<Eigen::Index>(b + k), static_cast<Eigen::Index>(c)) = buffer[k];
+    }
   }
 }
 

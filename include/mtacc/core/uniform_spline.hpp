@@ -28,6 +28,11 @@ class UniformSpline {
   double at(const Location& where) const;
   double slopeAt(const Location& where) const;
   double operator()(double t) const { return at(locate(t)); }
+  // The values, or the slopes (per s), at first + k * step for k = 0 .. out.size() - 1: at and
+  // slopeAt at each time, in one pass the compiler vectorises. Throws InvalidInput like locate
+  // when the first or the last time falls outside the span.
+  void atEvenly(double first, double step, std::span<double> out) const;
+  void slopeAtEvenly(double first, double step, std::span<double> out) const;
 
   double first() const { return start_; }
   double last() const { return start_ + period_ * static_cast<double>(values_.size() - 1); }

@@ -44,13 +44,19 @@ struct ClockOffset {
 // window, or offsets whose overlap holds fewer than a quarter of the encoder samples.
 ClockOffset estimateClockOffset(const SampledTrace& command, const SampledTrace& encoder, const ClockOffsetSearch& search = {});
 
-// The trace, with its clock moved by `offset`, at the given times (s): row i holds every
-// channel at times[i] (the poses there, for a trace of axis positions). Throws InvalidInput when
-// a time falls outside the moved trace's span.
-JointMatrix resampleTrace(const SampledTrace& trace, double offset, std::span<const double> times,
+// Times first + k * step (s), k = 0 .. count - 1: an instrument's clock.
+struct EvenTimes {
+  double first = 0.0, step = 0.0;
+  size_t count = 0;
+};
+
+// The trace, with its clock moved by `offset`, at the given times: row k holds every channel at
+// time k (the poses there, for a trace of axis positions). Throws InvalidInput when a time falls
+// outside the moved trace's span.
+JointMatrix resampleTrace(const SampledTrace& trace, double offset, const EvenTimes& times,
                           Interpolation interpolation = Interpolation::CubicSpline);
-// The same into `out` (times.size() rows, one column per channel).
-void resampleTrace(const SampledTrace& trace, double offset, std::span<const double> times, Eigen::Ref<JointMatrix> out,
+// The same into `out` (times.count rows, one column per channel).
+void resampleTrace(const SampledTrace& trace, double offset, const EvenTimes& times, Eigen::Ref<JointMatrix> out,
                    Interpolation interpolation = Interpolation::CubicSpline);
 
 }  // namespace mtacc
