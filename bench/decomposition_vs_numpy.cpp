@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
   fmt::print("NumPy/SciPy (vectorised over samples), 1 thread: median {:.3f} s over {} runs (the first {:.3f} s)\n", theirs,
              theirSeconds.size(), theirSeconds.front());
   fmt::print("ratio at 1 thread against 1: mtacc is {:.1f}x faster (target >= 5x)\n", theirs / ours);
-  fmt::print("mtacc's run takes {:.0f} page faults (median): its long series in 2 MB pages, the rest in 4 KB ones\n",
+  fmt::print("mtacc's run takes {:.0f} page faults (median): its long series in 2 MB pages, kept for reuse when freed, the rest in 4 KB ones\n",
              bench::median(pageFaults));
 
   // The virtual machine: seed 004's CapBall program at 600 mm/min (about 10 s) with the structure.

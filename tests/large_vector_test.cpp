@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <numeric>
+#include <vector>
 
 #include "mtacc/core/large_vector.hpp"
 #include "mtacc/core/transform.hpp"
@@ -38,4 +39,24 @@ TEST(LargeVector, AnImpossibleSizeThrowsBadAlloc) {
   EXPECT_THROW((void)allocator.allocate(std::size_t{1} << 60), std::bad_alloc);
   EXPECT_THROW((void)allocator.allocate(std::size_t(-1) / 8 - 1), std::bad_alloc);  // rounding up to 2 MB would wrap
   EXPECT_THROW((void)allocator.allocate(std::size_t(-1) / 4), std::bad_array_new_length);
+}
+
+TEST(LargeVector, AFreedBlockIsReusedForTheNextOfItsSizeAndTheKeptBytesAreBounded) {
+  const size_t bytes = 3 * kLargeBlockBytes + 5;  // mapped in four huge pages
+  void* first = allocateLargeBlock(bytes);
+  freeLargeBlock(first, bytes);
+  EXPECT_GE(keptLargeBlockBytes(), 4 * kLargeBlockBytes);
+  void* other = allocateLargeBlock(kLargeBlockBytes);  // another size: not that block
+  EXPECT_NE(other, first);
+  void* again = allocateLargeBlock(4 * kLargeBlockBytes);  // the same mapped size
+  EXPECT_EQ(again, first);
+  static_cast<char*>(again)[4 * kLargeBlockBytes - 1] = 1;  // the whole block is mapped
+  freeLargeBlock(again, 4 * kLargeBlockBytes);
+  freeLargeBlock(other, kLargeBlockBytes);
+
+  std::vector<void*> many;  // 600 MB mapped (never touched), then freed: at most 512 MB kept
+  for (int k = 0; k < 300; ++k) many.push_back(allocateLargeBlock(kLargeBlockBytes));
+  for (void* block : many) freeLargeBlock(block, kLargeBlockBytes);
+  EXPECT_LE(keptLargeBlockBytes(), std::size_t{512} << 20);
+  EXPECT_GE(keptLargeBlockBytes(), std::size_t{500} << 20);
 }
