@@ -75,7 +75,7 @@ void evenly(double position, double advance, double intervals, std::span<double>
   checkInside(position, intervals);
   checkInside(position + advance * static_cast<double>(n - 1), intervals);
   const auto lastInterval = static_cast<long>(intervals) - 1;
-  double* __restrict to = out.data();  // not the samples f reads: so the compiler may keep them in registers
+  double* __restrict to = out.data();  // aliases none of the samples f reads: their loads may leave the loop
   const auto from = [&](size_t k) { return std::clamp(position + advance * static_cast<double>(k), 0.0, intervals); };
   const auto intervalOf = [&](double x) { return std::min(static_cast<long>(x), lastInterval); };
   if (!(advance > 0.0 && advance < 0.5)) {
