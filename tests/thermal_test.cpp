@@ -157,6 +157,47 @@ TEST(ThermalDrift, APositionDependentDriftIsRecoveredAndPredictedWhereItWasNotRe
                              gammaSe[model.sensors[0] == 1 ? 0 : 1] * 1e6));
 }
 
+// The cross-validated RMS of the model on `sensors` fitted directly: for each of the five
+// contiguous folds, least squares on the other folds' rows of [1, T_S (, p, p T_S)] by QR, and
+// the held-out rows' squared residuals summed; what the selection gets from its Gram matrices.
+double directCrossValidatedRms(const ThermalRecord& r, const std::vector<int>& sensors) {
+  const long n = r.drift.size(), m = static_cast<long>(sensors.size()) + 1;
+  const bool positional = r.position.size() > 0;
+  Eigen::MatrixXd z(n, positional ? 2 * m : m);
+  z.col(0).setOnes();
+  for (long j = 1; j < m; ++j) z.col(j) = r.temperatures.col(sensors[static_cast<size_t>(j - 1)]);
+  if (positional) z.rightCols(m) = z.leftCols(m).array().colwise() * r.position.array();
+  double squares = 0.0;
+  for (long f = 0; f < 5; ++f) {
+    const long begin = n * f / 5, end = n * (f + 1) / 5;
+    Eigen::MatrixXd train(n - (end - begin), z.cols());
+    Eigen::VectorXd y(train.rows());
+    train << z.topRows(begin), z.bottomRows(n - end);
+    y << r.drift.head(begin), r.drift.tail(n - end);
+    const Eigen::VectorXd beta = train.colPivHouseholderQr().solve(y);
+    squares += (r.drift.segment(begin, end - begin) - z.middleRows(begin, end - begin) * beta).squaredNorm();
+  }
+  return std::sqrt(squares / static_cast<double>(n));
+}
+
+TEST(ThermalDrift, TheCrossValidatedRmsIsThatOfDirectFitsOnTheOtherFolds) {
+  // 12,503 samples: folds of 2500 and 2501 rows, which the selection sums in chunks of 1024.
+  // They agree to about 2e-14; 1e-10 leaves room for the Gram matrices' squared condition number.
+  const long n = 12503;
+  ThermalRecord r{Eigen::MatrixXd(n, 4), Eigen::VectorXd(n), {}};
+  const Eigen::ArrayXd t = Eigen::ArrayXd::LinSpaced(n, 0, 1);
+  r.temperatures << 20 + 3 * t, 21 + (6 * t).sin(), 20 + t.square(), 22 + 0.2 * Eigen::ArrayXd::Random(n);
+  r.drift = 2e-3 * r.temperatures.col(1) - 1e-3 * r.temperatures.col(2) + 0.3e-3 * Eigen::VectorXd::Random(n);
+  for (const bool positional : {false, true}) {
+    if (positional) r.position = 100 * (40 * t).sin();
+    const auto selection = selectSensors(r);
+    ASSERT_GE(selection.steps.size(), 2u) << positional;
+    EXPECT_NEAR(selection.steps.front().crossValidatedRms / directCrossValidatedRms(r, {}), 1, 1e-10) << positional;
+    EXPECT_NEAR(selection.bestSingleSensorRms / directCrossValidatedRms(r, {selection.bestSingleSensor}), 1, 1e-10) << positional;
+    EXPECT_NEAR(selection.crossValidatedRms / directCrossValidatedRms(r, selection.model.sensors), 1, 1e-10) << positional;
+  }
+}
+
 TEST(ThermalDrift, BadRecordsAreRefused) {
   const auto message = [](const ThermalRecord& r, const std::vector<int>& sensors) {
     const auto e = test::thrown<InvalidInput>([&] { fitDriftModel(r, sensors); });

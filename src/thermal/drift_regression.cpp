@@ -17,13 +17,15 @@ void checkRecord(const ThermalRecord& record) {
     throw InvalidInput(fmt::format("{} temperature samples for {} drift samples", record.temperatures.rows(), record.drift.size()));
   if (record.position.size() && record.position.size() != record.drift.size())
     throw InvalidInput(fmt::format("{} positions for {} drift samples", record.position.size(), record.drift.size()));
-  for (long k = 0; k < record.temperatures.rows(); ++k) {
-    if (!std::isfinite(record.drift[k])) throw InvalidInput(fmt::format("drift sample {}: not a finite number", k));
-    if (record.position.size() && !std::isfinite(record.position[k]))
-      throw InvalidInput(fmt::format("position sample {}: not a finite number", k));
-    for (long i = 0; i < record.temperatures.cols(); ++i)
-      if (!std::isfinite(record.temperatures(k, i))) throw InvalidInput(fmt::format("sensor {} sample {}: not a finite number", i, k));
-  }
+  const bool allFinite = record.drift.allFinite() && record.position.allFinite() && record.temperatures.allFinite();
+  if (!allFinite)  // the first sample with a number that is not: a search row by row, across the columns' storage
+    for (long k = 0; k < record.temperatures.rows(); ++k) {
+      if (!std::isfinite(record.drift[k])) throw InvalidInput(fmt::format("drift sample {}: not a finite number", k));
+      if (record.position.size() && !std::isfinite(record.position[k]))
+        throw InvalidInput(fmt::format("position sample {}: not a finite number", k));
+      for (long i = 0; i < record.temperatures.cols(); ++i)
+        if (!std::isfinite(record.temperatures(k, i))) throw InvalidInput(fmt::format("sensor {} sample {}: not a finite number", i, k));
+    }
   if (record.position.size() && record.position.maxCoeff() == record.position.minCoeff())
     throw InvalidInput("the position does not change: no position dependence to fit");
 }
@@ -73,28 +75,47 @@ struct FoldGrams {
   Eigen::VectorXd totalZy;
 };
 
+// The design's rows are formed a chunk at a time into a buffer that stays in the cache and
+// summed into the fold's Gram matrix (its lower triangle, then mirrored): the whole design of a
+// day at 1 Hz with 64 sensors would be 45 MB written once and read once, its fresh pages half of
+// the selection's time.
 FoldGrams foldGrams(const ThermalRecord& record, int folds) {
+  constexpr long kChunkRows = 1024;
   const long n = record.temperatures.rows(), p = record.temperatures.cols(), width = (p + 1) * perSensor(record);
-  Eigen::MatrixXd z(n, width);
-  z.col(0).setOnes();
-  z.middleCols(1, p) = record.temperatures.rowwise() - record.temperatures.colwise().mean();
-  if (record.position.size()) {
-    z.col(p + 1) = record.position.array() - record.position.mean();
-    z.rightCols(p) = z.middleCols(1, p).array().colwise() * z.col(p + 1).array();
-  }
-  const Eigen::VectorXd y = record.drift.array() - record.drift.mean();
+  const bool positional = record.position.size() > 0;
+  const Eigen::RowVectorXd meanTemperature = record.temperatures.colwise().mean();
+  const double meanPosition = positional ? record.position.mean() : 0.0, meanDrift = record.drift.mean();
+  Eigen::MatrixXd chunk(std::min(kChunkRows, n), width);
+  Eigen::VectorXd driftChunk(chunk.rows());
   FoldGrams g;
   g.totalZz = Eigen::MatrixXd::Zero(width, width);
   g.totalZy = Eigen::VectorXd::Zero(width);
   for (int f = 0; f < folds; ++f) {
-    const long begin = n * f / folds, rows = n * (f + 1) / folds - begin;
-    const auto block = z.middleRows(begin, rows);
-    const auto yb = y.segment(begin, rows);
-    g.zz.push_back(block.transpose() * block);
-    g.zy.push_back(block.transpose() * yb);
-    g.yy.push_back(yb.squaredNorm());
-    g.totalZz += g.zz.back();
-    g.totalZy += g.zy.back();
+    const long end = n * (f + 1) / folds;
+    Eigen::MatrixXd zz = Eigen::MatrixXd::Zero(width, width);
+    Eigen::VectorXd zy = Eigen::VectorXd::Zero(width);
+    double yy = 0.0;
+    for (long begin = n * f / folds; begin < end; begin += kChunkRows) {
+      const long rows = std::min(kChunkRows, end - begin);
+      auto z = chunk.topRows(rows);
+      auto y = driftChunk.head(rows);
+      z.col(0).setOnes();
+      z.middleCols(1, p) = record.temperatures.middleRows(begin, rows).rowwise() - meanTemperature;
+      if (positional) {
+        z.col(p + 1) = record.position.segment(begin, rows).array() - meanPosition;
+        z.rightCols(p) = z.middleCols(1, p).array().colwise() * z.col(p + 1).array();
+      }
+      y = record.drift.segment(begin, rows).array() - meanDrift;
+      zz.selfadjointView<Eigen::Lower>().rankUpdate(z.transpose());
+      zy.noalias() += z.transpose() * y;
+      yy += y.squaredNorm();
+    }
+    zz.triangularView<Eigen::StrictlyUpper>() = zz.transpose();
+    g.totalZz += zz;
+    g.totalZy += zy;
+    g.zz.push_back(std::move(zz));
+    g.zy.push_back(std::move(zy));
+    g.yy.push_back(yy);
   }
   return g;
 }
