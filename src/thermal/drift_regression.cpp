@@ -18,7 +18,7 @@ void checkRecord(const ThermalRecord& record) {
   if (record.position.size() && record.position.size() != record.drift.size())
     throw InvalidInput(fmt::format("{} positions for {} drift samples", record.position.size(), record.drift.size()));
   const bool allFinite = record.drift.allFinite() && record.position.allFinite() && record.temperatures.allFinite();
-  if (!allFinite)  // the first sample with a number that is not: a search row by row, across the columns' storage
+  if (!allFinite)  // then the sample-by-sample search that names the first bad number (it strides across the columns)
     for (long k = 0; k < record.temperatures.rows(); ++k) {
       if (!std::isfinite(record.drift[k])) throw InvalidInput(fmt::format("drift sample {}: not a finite number", k));
       if (record.position.size() && !std::isfinite(record.position[k]))
