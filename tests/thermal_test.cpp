@@ -157,8 +157,8 @@ TEST(ThermalDrift, APositionDependentDriftIsRecoveredAndPredictedWhereItWasNotRe
                              gammaSe[model.sensors[0] == 1 ? 0 : 1] * 1e6));
 }
 
-// The cross-validated RMS of the model on `sensors` fitted directly: for each of the five
-// contiguous folds, least squares on the other folds' rows of [1, T_S (, p, p T_S)] by QR, and
+// The cross-validated RMS of the model on `sensors` fitted directly: for each of the selection's
+// contiguous folds (five by default), least squares on the other folds' rows of [1, T_S (, p, p T_S)] by QR, and
 // the held-out rows' squared residuals summed; what the selection gets from its Gram matrices.
 double directCrossValidatedRms(const ThermalRecord& r, const std::vector<int>& sensors) {
   const long n = r.drift.size(), m = static_cast<long>(sensors.size()) + 1;
@@ -167,9 +167,10 @@ double directCrossValidatedRms(const ThermalRecord& r, const std::vector<int>& s
   z.col(0).setOnes();
   for (long j = 1; j < m; ++j) z.col(j) = r.temperatures.col(sensors[static_cast<size_t>(j - 1)]);
   if (positional) z.rightCols(m) = z.leftCols(m).array().colwise() * r.position.array();
+  const long folds = SensorSelectionOptions{}.folds;
   double squares = 0.0;
-  for (long f = 0; f < 5; ++f) {
-    const long begin = n * f / 5, end = n * (f + 1) / 5;
+  for (long f = 0; f < folds; ++f) {
+    const long begin = n * f / folds, end = n * (f + 1) / folds;
     Eigen::MatrixXd train(n - (end - begin), z.cols());
     Eigen::VectorXd y(train.rows());
     train << z.topRows(begin), z.bottomRows(n - end);
