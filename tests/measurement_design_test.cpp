@@ -10,6 +10,7 @@
 
 #include "mtacc/identification/identification.hpp"
 #include "mtacc/io/plan_yaml.hpp"
+#include "mtacc/measurement/design_candidates.hpp"
 #include "mtacc/measurement/machine_time.hpp"
 #include "mtacc/measurement/simulation.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
@@ -156,6 +157,41 @@ TEST(MeasurementDesign, WrittenPlanIsReadBackWithTheSamePrediction) {
   EXPECT_LE(d.outlook.minutes, 30.0 * (1 + 1e-9));
   // The I criterion's TCP figure is the one the design minimised: its RMS over the volume.
   EXPECT_NEAR(d.pareto[3].tcpRms, d.outlook.tcpRms, 1e-6 * d.outlook.tcpRms);
+}
+
+// Each candidate run's plan entry, read as a plan, is that run: on every bundled 5-axis machine,
+// and on a tilting table whose B axis cannot reach zero, where the runs start at B's mid-travel
+// and the ballbar circles' entries say so (at B = 0 no circle would be within the travel).
+TEST(DesignCandidates, PlanEntriesRegenerateTheRuns) {
+  auto offZero = std::make_shared<Machine>(*test::bundled("tilting-table"));
+  offZero->name = "tilting table, B from 10 deg";
+  offZero->axes[static_cast<size_t>(offZero->commandedAxisIndex("B"))].travel->min = 10 * kDeg;
+  std::vector<std::shared_ptr<const Machine>> machines{offZero};
+  for (const char* name : {"tilting-table", "double-pivot-head", "swivel-head-table", "inclined-a-table", "maho", "multitasking-b-c"})
+    machines.push_back(test::bundled(name));
+  for (const auto& machine : machines) {
+    SCOPED_TRACE(machine->name);
+    const auto nominal = compileNominal(machine);
+    const auto set = designCandidates(nominal, {});
+    std::string plan = "name: candidates\nruns:\n";
+    int circles = 0;
+    for (const auto& c : set.candidates) {
+      plan += c.planEntry;
+      circles += c.name.starts_with("circle-");
+      EXPECT_EQ(travelViolation(*machine, c.run), "") << c.name;
+    }
+    if (machine == offZero) {
+      EXPECT_EQ(circles, 6);  // XY, YZ, ZX at 100 and 150 mm
+    }
+    const auto read = parseTestPlan(nominal, plan, "plan.yaml");
+    ASSERT_EQ(read.runs.size(), set.candidates.size());
+    for (size_t k = 0; k < read.runs.size(); ++k) {
+      const auto& run = set.candidates[k].run;
+      EXPECT_EQ(read.runs[k].name, run.name);
+      ASSERT_EQ(read.runs[k].q.rows(), run.q.rows()) << run.name;
+      EXPECT_LT((read.runs[k].q - run.q).cwiseAbs().maxCoeff(), 1e-9) << run.name;
+    }
+  }
 }
 
 // Closed forms: a rest-to-rest move with a trapezoidal profile (t = d/v + v/a when the axis

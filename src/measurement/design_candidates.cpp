@@ -11,6 +11,7 @@
 #include "mtacc/kinematics/forward.hpp"
 #include "mtacc/measurement/rotary_axis_tests.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
+#include "rotary_run_setup.hpp"
 
 namespace mtacc {
 namespace {
@@ -22,18 +23,6 @@ std::string estimateEntry(const std::vector<SetupParameter>& estimate) {
   std::string names;
   for (const auto s : estimate) names += (names.empty() ? "" : ", ") + setupParameterName(s);
   return "    estimate: [" + names + "]\n";
-}
-
-std::string mm(const Vec3& v) { return fmt::format("[{:.12g} mm, {:.12g} mm, {:.12g} mm]", v.x(), v.y(), v.z()); }
-
-// The machine at its start: the linear axes at the middle of their travels, the rotary axes at zero.
-std::vector<double> startPose(const Machine& m) {
-  std::vector<double> q(static_cast<size_t>(m.commandedCount()), 0.0);
-  for (int j = 0; j < m.commandedCount(); ++j) {
-    const auto& a = m.axes[static_cast<size_t>(j)];
-    if (!a.isRotary() && a.travel) q[static_cast<size_t>(j)] = 0.5 * (a.travel->min + a.travel->max);
-  }
-  return q;
 }
 
 // Positions of a rotary axis while another one turns: zero and ±30, 60, 90 deg within its travel.
@@ -72,14 +61,6 @@ std::string poseLabel(const Machine& m, int axis, const std::vector<double>& q) 
   return out;
 }
 
-std::string poseEntry(const Machine& m, int axis, const std::vector<double>& q) {
-  std::string out;
-  for (int k = 0; k < m.commandedCount(); ++k)
-    if (k != axis && m.axes[static_cast<size_t>(k)].isRotary())
-      out += fmt::format("{}{}: {:.10g} deg", out.empty() ? "" : ", ", m.axes[static_cast<size_t>(k)].name, q[static_cast<size_t>(k)] / kDeg);
-  return out.empty() ? "" : ", pose: {" + out + "}";
-}
-
 // A sweep of a rotary axis: ±90 deg about zero within its travel, or all of its travel (a turn
 // at most); a continuous axis a full turn.
 struct Sweep {
@@ -110,10 +91,7 @@ std::vector<Vec3> spherePlacements(const KinematicModel& nominal, const Candidat
   const AxisLine line = axisLine(nominal, q, table);
   const Vec3 point = workpiece.inverse() * line.point;
   const Vec3 direction = workpiece.linear().transpose() * line.direction;
-  int best = 0;  // the workpiece axis most across the line, made square to it
-  for (int k = 1; k < 3; ++k)
-    if (std::abs(direction[k]) < std::abs(direction[best])) best = k;
-  const Vec3 out = (Vec3::Unit(best) - direction * direction[best]).normalized();
+  const Vec3 out = across(direction);
   std::vector<Vec3> placements;
   for (const double radius : o.radii)
     for (const double along : {0.0, o.spread}) placements.push_back(point + radius * out + along * direction);
@@ -174,7 +152,7 @@ void sphereCandidates(const KinematicModel& nominal, const CandidateOptions& o, 
                     c.description += fmt::format(", {} at {:g} deg", m.axes[static_cast<size_t>(k)].name, pose[static_cast<size_t>(k)] / kDeg);
                 c.planEntry = fmt::format("  - name: {}\n    sphere: {{{}axis: {}, from: {:.10g} deg, to: {:.10g} deg, points: {}, spheres: [{}]{}}}\n{}{}",
                                           c.name, instrument == Instrument::TouchProbe ? "instrument: probe, " : "", axis.name, sweep.from / kDeg,
-                                          to / kDeg, positions, mm(placements[s]), poseEntry(m, j, pose),
+                                          to / kDeg, positions, mm(placements[s]), poseEntry(m, pose, j),
                                           b > 0 ? "    tool_ball: " + mm(toolBalls[b]) + "\n" : "", estimateEntry(sphere));
                 out.candidates.push_back(std::move(c));
               }
@@ -214,7 +192,7 @@ void rotaryBallbarCandidates(const KinematicModel& nominal, const CandidateOptio
 }
 
 // ISO 230-4 circles in XY, YZ, ZX of each bar length, the centre pivot at the tool at mid-travel,
-// the rotary axes at zero.
+// the rotary axes at the start pose (given in the plan entry).
 void circleCandidates(const KinematicModel& nominal, const CandidateOptions& o, CandidateSet& out) {
   const Machine& m = *nominal.machine;
   const auto q = startPose(m);
@@ -250,8 +228,8 @@ void circleCandidates(const KinematicModel& nominal, const CandidateOptions& o, 
       c.name = name;
       c.run.name = c.name;
       c.description = fmt::format("ballbar circle {:g} mm in {}, both directions, about the tool at mid-travel", length, plane);
-      c.planEntry = fmt::format("  - name: {}\n    circle: {{plane: {}, centre: {}, radius: {:.10g} mm, points: {}, feed: {:.10g} mm/min}}\n{}",
-                                c.name, plane, mm(centre), length, o.ballbarPoints, o.feed, estimateEntry(c.run.estimate));
+      c.planEntry = fmt::format("  - name: {}\n    circle: {{plane: {}, centre: {}, radius: {:.10g} mm, points: {}, feed: {:.10g} mm/min{}}}\n{}",
+                                c.name, plane, mm(centre), length, o.ballbarPoints, o.feed, poseEntry(m, q, -1), estimateEntry(c.run.estimate));
       out.candidates.push_back(std::move(c));
     }
 }

@@ -12,20 +12,10 @@
 #include "mtacc/measurement/rtest_evaluation.hpp"
 #include "mtacc/measurement/simulation.hpp"
 #include "mtacc/measurement/standard_paths.hpp"
+#include "rotary_run_setup.hpp"
 
 namespace mtacc {
 namespace {
-
-// The pose the tests start from: the linear axes at the middle of their travels, the rotary axes
-// at zero (or the middle of a travel without it).
-std::vector<double> startPose(const Machine& m) {
-  std::vector<double> q(static_cast<size_t>(m.commandedCount()), 0.0);
-  for (int j = 0; j < m.commandedCount(); ++j) {
-    const auto& a = m.axes[static_cast<size_t>(j)];
-    if (a.travel && (!a.isRotary() || a.travel->min > 0 || a.travel->max < 0)) q[static_cast<size_t>(j)] = 0.5 * (a.travel->min + a.travel->max);
-  }
-  return q;
-}
 
 double distanceFromLine(const AxisLine& line, const Vec3& p) {
   const Vec3 r = p - line.point;
@@ -38,32 +28,11 @@ std::pair<double, double> sweep(const Axis& axis, double start, double half) {
   return {std::max(axis.travel->min, start - half), std::min(axis.travel->max, start + half)};
 }
 
-// A unit vector across the line: the machine axis most across it, made square to it.
-Vec3 across(const Vec3& direction) {
-  int best = 0;
-  for (int k = 1; k < 3; ++k)
-    if (std::abs(direction[k]) < std::abs(direction[best])) best = k;
-  return (Vec3::Unit(best) - direction * direction[best]).normalized();
-}
-
-std::string mm(const Vec3& v) { return fmt::format("[{:.12g} mm, {:.12g} mm, {:.12g} mm]", v.x(), v.y(), v.z()); }
-
-std::string poseEntry(const Machine& m, const std::vector<double>& q, int moving) {
-  std::string out;
-  for (int j = 0; j < m.commandedCount(); ++j) {
-    const auto& a = m.axes[static_cast<size_t>(j)];
-    if (j == moving || !a.isRotary()) continue;
-    out += fmt::format("{}{}: {:.10g} deg", out.empty() ? "" : ", ", a.name, q[static_cast<size_t>(j)] / kDeg);
-  }
-  return out.empty() ? "" : ", pose: {" + out + "}";
-}
-
 void requireWithinTravel(const Machine& m, const RotaryAxisTest& t) {
   const std::string violation = travelViolation(m, t.run);
   if (!violation.empty())
     throw UnreachableInput({}, fmt::format("{}: {} (a smaller radius, spread or ballbar length may reach)", t.name, violation));
 }
-
 
 }  // namespace
 
