@@ -51,19 +51,19 @@ struct PythonMachine : MachineSetup {
     return *models;
   }
 };
-using MachineClass = py::class_<PythonMachine>;
+using MachineBinding = py::class_<PythonMachine>;
 
 // The bindings by family, each adding its functions to the module or its methods to Machine.
 void exposeOptions(py::module_& mod);
-void exposeMachineErrors(MachineClass& machine);
-void exposeKinematics(MachineClass& machine);
-void exposeBudget(MachineClass& machine);
-void exposeTestPieces(MachineClass& machine);
-void exposeMeasurements(MachineClass& machine);
-void exposeDirectMeasurements(MachineClass& machine);
+void exposeMachineErrors(MachineBinding& machine);
+void exposeKinematics(MachineBinding& machine);
+void exposeBudget(MachineBinding& machine);
+void exposeTestPieces(MachineBinding& machine);
+void exposeMeasurements(MachineBinding& machine);
+void exposeDirectMeasurements(MachineBinding& machine);
 void exposeProcedures(py::module_& mod);
-void exposeCompensation(MachineClass& machine);
-void exposeDynamics(py::module_& mod, MachineClass& machine);
+void exposeCompensation(MachineBinding& machine);
+void exposeDynamics(py::module_& mod, MachineBinding& machine);
 void exposeThermal(py::module_& mod);
 
 }  // namespace mtacc::python

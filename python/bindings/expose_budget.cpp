@@ -11,7 +11,7 @@
 
 namespace mtacc::python {
 
-void exposeBudget(MachineClass& machine) {
+void exposeBudget(MachineBinding& machine) {
   machine
       .def("sensitivity_coefficient", [](const PythonMachine& s, const Array& q, const std::string& name, const py::object& epsilon,
                                          const std::vector<double>& direction) {

@@ -7,7 +7,7 @@
 
 namespace mtacc::python {
 
-void exposeCompensation(MachineClass& machine) {
+void exposeCompensation(MachineBinding& machine) {
   machine
       .def("compensation_tables",
            [](const PythonMachine& s, const OptionValues& options) {

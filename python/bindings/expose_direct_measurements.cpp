@@ -20,7 +20,7 @@ void exposeProcedures(py::module_& mod) {
   });
 }
 
-void exposeDirectMeasurements(MachineClass& machine) {
+void exposeDirectMeasurements(MachineBinding& machine) {
   machine
       .def("fit_component", [](const PythonMachine& s, const OptionValues& options, const std::string& errorsOut) {
         const ComponentFitRequest r = componentFitRequest(options);

@@ -9,7 +9,7 @@
 
 namespace mtacc::python {
 
-void exposeDynamics(py::module_& mod, MachineClass& machine) {
+void exposeDynamics(py::module_& mod, MachineBinding& machine) {
   machine
       .def("decompose", [](const PythonMachine& s, const OptionValues& options) {
         const DecompositionRequest request = decompositionRequest(options);

@@ -8,7 +8,7 @@
 
 namespace mtacc::python {
 
-void exposeKinematics(MachineClass& machine) {
+void exposeKinematics(MachineBinding& machine) {
   machine
       .def("fk", [](const PythonMachine& s, const Array& q, const py::object& dirs, const OptionValues& options, bool errors) {
         const auto joints_ = joints(*s.machine, q);

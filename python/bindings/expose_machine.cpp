@@ -58,7 +58,7 @@ void exposeOptions(py::module_& mod) {
   });
 }
 
-void exposeMachineErrors(MachineClass& machine) {
+void exposeMachineErrors(MachineBinding& machine) {
   machine.def("check", [](const PythonMachine& s) { return toPython(toJson(checkMachine(s))); })
       .def("error_unit", [](const PythonMachine& s, const std::string& name) {
         return errorDimension(s, name) == Dimension::Length ? "mm" : "rad";

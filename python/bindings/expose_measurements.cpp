@@ -13,7 +13,7 @@
 
 namespace mtacc::python {
 
-void exposeMeasurements(MachineClass& machine) {
+void exposeMeasurements(MachineBinding& machine) {
   machine
       .def("simulate", [](const PythonMachine& s, const OptionValues& options) { return toPython(toJson(simulatePlanRuns(s, options))); })
       .def("simulate_ballbar", [](const PythonMachine& s, const OptionValues& options) { return toPython(toJson(simulateBallbar(s, options))); })

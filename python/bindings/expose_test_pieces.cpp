@@ -23,7 +23,7 @@ py::dict gridOf(const HeightGrid& g) { return py::dict(py::arg("x0") = g.x0, py:
 
 }  // namespace
 
-void exposeTestPieces(MachineClass& machine) {
+void exposeTestPieces(MachineBinding& machine) {
   machine
       .def("cone", [](const PythonMachine& s, const OptionValues& options, const std::string& limitsYaml) {
         ConeStudyRequest request = coneStudyRequest(*s.machine, options);

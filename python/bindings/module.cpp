@@ -29,7 +29,7 @@ PYBIND11_MODULE(_mtacc, mod) {
     }
   });
 
-  MachineClass machine(mod, "Machine");
+  MachineBinding machine(mod, "Machine");
   machine.def(py::init([](const std::string& path, const std::string& errors, const std::string& alignment, std::optional<double> load,
                           const std::string& thermal) { return PythonMachine{{loadMachineSetup({path, errors, alignment, load, thermal})}, {}}; }),
               py::arg("machine"), py::arg("errors") = "", py::arg("alignment") = "", py::arg("load") = py::none(), py::arg("thermal") = "");

@@ -17,6 +17,10 @@
 
 namespace mtacc::controller_fit {
 
+// mm: the largest residual of the controller's model fitted to the nominal machine; beyond it the
+// nominal machine is not of the controller's kind.
+constexpr double kNominalFit = 1e-6;
+
 struct ControllerPose {
   Vec3 world;            // the tool tip in the controller's world coordinates (mm)
   double first, second;  // the controller's angles of its two rotary axes (rad)

@@ -18,8 +18,6 @@ namespace {
 using Module = LinuxcncKinematics::Module;
 using controller_fit::ControllerPose;
 
-constexpr double kNominalFit = 1e-6;  // mm: the nominal machine must be LinuxCNC's to rounding
-
 // The machine's commanded axes in LinuxCNC's roles, and how its commands follow from the joints.
 struct Roles {
   size_t x, y, z, tilt, c;
@@ -183,7 +181,7 @@ LinuxcncKinematicsFit fitLinuxcncKinematics(const std::shared_ptr<const Machine>
         exact = s;
       }
     }
-  if (best > kNominalFit)
+  if (best > controller_fit::kNominalFit)
     throw InputError({m.sourceFile, 0, "axes"},
                      fmt::format("the nominal machine is not LinuxCNC's {} (its best fit leaves {:.3g} mm)", start.p.name(), best));
   // maxkins' conventional-directions turns B the other way: the pin in place of a sign.

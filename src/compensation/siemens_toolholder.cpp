@@ -18,10 +18,8 @@ namespace {
 
 using controller_fit::ControllerPose;
 
-constexpr double kNominalFit = 1e-6;  // mm: the nominal machine must be the data set's to rounding
-
 // The machine's commanded axes in the data set's roles: X, Y, Z, and the rotary axes v1, v2.
-struct Roles {
+struct ToolholderRoles {
   std::array<size_t, 3> linear;
   std::array<size_t, 2> rotary;
   char type;
@@ -29,7 +27,7 @@ struct Roles {
 
 // What a fit moves: the data set, each axis vector as tilts across its start, and the
 // controller's workpiece frame in the machine's workpiece coordinates (origin and rotation vector).
-struct Solution {
+struct ToolholderSolution {
   SiemensToolholder h;
   std::array<std::array<double, 2>, 2> tilt{};
   Vec3 origin = Vec3::Zero(), turn = Vec3::Zero();
@@ -37,7 +35,7 @@ struct Solution {
 
 // The data set a solution stands for: the axis vectors tilted, the chains closed as CYCLE800 closes
 // them (the vector back to the reference point is the others' sum, negated).
-SiemensToolholder dataSet(const Solution& s) {
+SiemensToolholder dataSet(const ToolholderSolution& s) {
   SiemensToolholder h = s.h;
   for (size_t k = 0; k < 2; ++k) {
     const Vec3 v = h.v[k].normalized(), across = v.unitOrthogonal();
@@ -52,7 +50,7 @@ SiemensToolholder dataSet(const Solution& s) {
 
 // The values a fit moves: the work offset and rotation alone, or with l2, l3, the axis vectors'
 // tilts and the angle offsets (the closing vectors follow from l2 and l3).
-std::vector<double*> freeValues(Solution& s, bool withDataSet) {
+std::vector<double*> toolholderValues(ToolholderSolution& s, bool withDataSet) {
   std::vector<double*> values;
   for (Vec3* vector : {&s.origin, &s.turn})
     for (int k = 0; k < 3; ++k) values.push_back(&(*vector)[k]);
@@ -66,7 +64,7 @@ std::vector<double*> freeValues(Solution& s, bool withDataSet) {
   return values;
 }
 
-std::vector<double> commands(const Roles& roles, size_t count, const SiemensToolholder& h, const ControllerPose& pose) {
+std::vector<double> commands(const ToolholderRoles& roles, size_t count, const SiemensToolholder& h, const ControllerPose& pose) {
   const Vec3 xyz = h.machinePosition(pose.world, {pose.first, pose.second}, Vec3::Zero());
   std::vector<double> q(count, 0.0);
   for (size_t k = 0; k < 3; ++k) q[roles.linear[k]] = xyz[static_cast<Eigen::Index>(k)];
@@ -75,24 +73,26 @@ std::vector<double> commands(const Roles& roles, size_t count, const SiemensTool
   return q;
 }
 
-controller_fit::Model model(const Roles& roles, size_t count, Solution& s, bool withDataSet) {
+controller_fit::Model toolholderModel(const ToolholderRoles& roles, size_t count, ToolholderSolution& s, bool withDataSet) {
   return {[&roles, count, &s](const ControllerPose& pose) { return commands(roles, count, dataSet(s), pose); }, s.origin,
-          freeValues(s, withDataSet), &s.turn};
+          toolholderValues(s, withDataSet), &s.turn};
 }
 
 // The tilts baked into the vectors after the fit.
-Solution fitted(const KinematicModel& machine, const Roles& roles, Solution s, const std::vector<ControllerPose>& poses, bool withDataSet) {
-  controller_fit::fit(machine, model(roles, static_cast<size_t>(machine.machine->commandedCount()), s, withDataSet), poses);
+ToolholderSolution fittedToolholder(const KinematicModel& machine, const ToolholderRoles& roles, ToolholderSolution s,
+                                    const std::vector<ControllerPose>& poses, bool withDataSet) {
+  controller_fit::fit(machine, toolholderModel(roles, static_cast<size_t>(machine.machine->commandedCount()), s, withDataSet), poses);
   s.h = dataSet(s);
   s.tilt = {};
   return s;
 }
 
-Eigen::VectorXd residual(const KinematicModel& machine, const Roles& roles, Solution s, const std::vector<ControllerPose>& poses) {
-  return controller_fit::residual(machine, model(roles, static_cast<size_t>(machine.machine->commandedCount()), s, false), poses);
+Eigen::VectorXd toolholderResidual(const KinematicModel& machine, const ToolholderRoles& roles, ToolholderSolution s,
+                                   const std::vector<ControllerPose>& poses) {
+  return controller_fit::residual(machine, toolholderModel(roles, static_cast<size_t>(machine.machine->commandedCount()), s, false), poses);
 }
 
-Roles roles(const Machine& m) {
+ToolholderRoles toolholderRoles(const Machine& m) {
   const int x = m.commandedAxisIndex("X"), y = m.commandedAxisIndex("Y"), z = m.commandedAxisIndex("Z");
   const InputLocation at{m.sourceFile, 0, "axes"};
   std::vector<int> rotary;
@@ -104,7 +104,7 @@ Roles roles(const Machine& m) {
     if (m.axes[static_cast<size_t>(linear)].isRotary()) throw InputError(at, "SINUMERIK's orientable toolholder needs linear X, Y, Z");
   const auto place = [](const std::vector<int>& chain, int axis) { return std::find(chain.begin(), chain.end(), axis) - chain.begin(); };
   const auto onTable = [&](int axis) { return place(m.workpieceChain, axis) < std::ssize(m.workpieceChain); };
-  Roles r{{static_cast<size_t>(x), static_cast<size_t>(y), static_cast<size_t>(z)}, {}, 'M'};
+  ToolholderRoles r{{static_cast<size_t>(x), static_cast<size_t>(y), static_cast<size_t>(z)}, {}, 'M'};
   int first = rotary[0], second = rotary[1];
   if (onTable(first) == onTable(second)) {
     // Both in the head (T) or both in the table (P): v1 is the axis nearer the bed, which carries v2.
@@ -136,48 +136,49 @@ std::string SiemensToolholder::carries() const {
 
 SiemensToolholderFit fitSiemensToolholder(const std::shared_ptr<const Machine>& machine, const ErrorModel& errors) {
   const Machine& m = *machine;
-  const Roles r = roles(m);
+  const ToolholderRoles r = toolholderRoles(m);
   const KinematicModel nominal = compileNominal(machine), actual = compile(machine, errors);
   const auto count = static_cast<size_t>(m.commandedCount());
   const std::vector<double> home(count, 0.0);
   std::vector<ControllerPose> poses = controller_fit::poseLattice(m, r.linear, r.rotary[0], r.rotary[1]);
   // Each axis turns what it carries right-handed about v: v along the machine file's direction or against it.
-  Solution start;
+  ToolholderSolution start;
   start.h.type = r.type;
   for (size_t k = 0; k < 2; ++k) start.h.axes[k] = m.axes[r.rotary[k]].name;
   start.origin = toolPosition(nominal, home.data());
-  Solution exact;
+  ToolholderSolution exact;
   double best = std::numeric_limits<double>::infinity();
   for (double firstSign : {1.0, -1.0})
     for (double secondSign : {1.0, -1.0}) {
-      Solution trial = start;
+      ToolholderSolution trial = start;
       trial.h.v = {firstSign * m.axes[r.rotary[0]].direction, secondSign * m.axes[r.rotary[1]].direction};
-      const Solution s = fitted(nominal, r, trial, poses, true);
-      const double largest = residual(nominal, r, s, poses).cwiseAbs().maxCoeff();
+      const ToolholderSolution s = fittedToolholder(nominal, r, trial, poses, true);
+      const double largest = toolholderResidual(nominal, r, s, poses).cwiseAbs().maxCoeff();
       if (largest < best) {
         best = largest;
         exact = s;
       }
     }
-  if (best > kNominalFit)
+  if (best > controller_fit::kNominalFit)
     throw InputError({m.sourceFile, 0, "axes"},
                      fmt::format("the nominal machine is not a SINUMERIK toolholder of type {} (its best fit leaves {:.3g} mm)", r.type, best));
   controller_fit::keepWithinTravel(m, poses, [&](const ControllerPose& pose) { return commands(r, count, dataSet(exact), pose); });
   // Before: the nominal data set, the workpiece probed (its work offset fitted); after: both fitted.
-  const Solution withNominal = fitted(actual, r, exact, poses, false), withDataSet = fitted(actual, r, exact, poses, true);
+  const ToolholderSolution withNominal = fittedToolholder(actual, r, exact, poses, false);
+  const ToolholderSolution withDataSet = fittedToolholder(actual, r, exact, poses, true);
   SiemensToolholderFit f;
   f.nominal = exact.h;
   f.actual = withDataSet.h;
   f.worldOrigin = exact.origin;
   f.workOffset = withDataSet.origin - exact.origin;
   f.workRotation = withDataSet.turn - exact.turn;
-  f.notCarried = controller_fit::notCarried(machine, errors, model(r, count, exact, true), poses);
-  f.residual = controller_fit::residualFigures(residual(actual, r, withNominal, poses), residual(actual, r, withDataSet, poses));
+  f.notCarried = controller_fit::notCarried(machine, errors, toolholderModel(r, count, exact, true), poses);
+  f.residual = controller_fit::residualFigures(toolholderResidual(actual, r, withNominal, poses), toolholderResidual(actual, r, withDataSet, poses));
   return f;
 }
 
 CommandCorrection siemensToolholderCorrection(const std::shared_ptr<const Machine>& machine, const SiemensToolholderFit& f) {
-  const Roles r = roles(*machine);
+  const ToolholderRoles r = toolholderRoles(*machine);
   const auto nominal = std::make_shared<const KinematicModel>(compileNominal(machine));
   return [r, nominal, f](const std::vector<double>& q) -> Vec3 {
     const Vec3 world = controller_fit::turned(f.workRotation).transpose() * (toolPosition(*nominal, q.data()) - f.worldOrigin - f.workOffset);

@@ -10,12 +10,12 @@
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/text_file.hpp"
 #include "mtacc/core/units.hpp"
+#include "measured_point_limits.hpp"
 
 namespace mtacc {
 namespace {
 
 constexpr int kMostFeatures = 10000;
-constexpr double kLargest = 1e4;       // mm, any coordinate
 constexpr double kOffDeclared = 1.0;   // mm a feature may lie off the declared line or plane
 constexpr double kMeasuredOff = 10.0;  // mm a measured feature may lie from its placed certificate
 
@@ -113,7 +113,7 @@ ArtefactMeasurement parseArtefactMeasurement(const Machine& machine, const std::
         Row r{n, Vec3::Zero(), std::nullopt, std::nullopt};
         const auto coordinate = [&](size_t f) {
           const double x = parseNumber(fields[f], kColumns[f]);
-          if (!(std::abs(x) <= kLargest)) fail(kColumns[f], fmt::format("within +-{} mm", kLargest));
+          if (!(std::abs(x) <= kLargestMeasuredCoordinate)) fail(kColumns[f], fmt::format("within +-{} mm", kLargestMeasuredCoordinate));
           return x;
         };
         try {

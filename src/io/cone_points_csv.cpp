@@ -8,11 +8,11 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/text_file.hpp"
+#include "measured_point_limits.hpp"
 
 namespace mtacc {
 namespace {
 
-constexpr double kLargest = 1e4;      // mm
 constexpr size_t kMostPoints = 1000000;
 
 }  // namespace
@@ -43,7 +43,7 @@ ConePoints parseConePoints(const std::string& text, const std::string& source) {
           } catch (const InputError& e) {
             fail(key, e.reason());
           }
-          if (!(std::abs(p[k]) <= kLargest)) fail(key, fmt::format("within +-{} mm", kLargest));
+          if (!(std::abs(p[k]) <= kLargestMeasuredCoordinate)) fail(key, fmt::format("within +-{} mm", kLargestMeasuredCoordinate));
         }
         const std::string& element = fields[0];
         if (element == "plane") {

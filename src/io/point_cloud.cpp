@@ -12,14 +12,14 @@
 #include "mtacc/core/input_error.hpp"
 #include "mtacc/core/text.hpp"
 #include "mtacc/core/text_file.hpp"
+#include "measured_point_limits.hpp"
 
 namespace mtacc {
 namespace {
 
-constexpr double kLargest = 1e4;  // mm
 constexpr size_t kMostPoints = 50'000'000;
 
-struct Reader {
+struct CloudReader {
   const std::string& source;
   std::vector<Vec3> points;
 
@@ -28,15 +28,15 @@ struct Reader {
   }
   void add(const Vec3& p, int line, const std::string& where) {
     for (int k = 0; k < 3; ++k)
-      if (!(std::abs(p[k]) <= kLargest))
-        fail(line, std::string(1, "xyz"[k]), fmt::format("{}: {} is not a finite coordinate within +-{} mm", where, p[k], kLargest));
+      if (!(std::abs(p[k]) <= kLargestMeasuredCoordinate))
+        fail(line, std::string(1, "xyz"[k]), fmt::format("{}: {} is not a finite coordinate within +-{} mm", where, p[k], kLargestMeasuredCoordinate));
     if (points.size() >= kMostPoints) fail(line, "points", fmt::format("more than {} points", kMostPoints));
     points.push_back(p);
   }
 };
 
 std::vector<Vec3> csv(const std::string& text, const std::string& source) {
-  Reader r{source, {}};
+  CloudReader r{source, {}};
   int n = 0;
   bool header = false;
   readCommentedLines(
@@ -65,7 +65,7 @@ std::vector<Vec3> csv(const std::string& text, const std::string& source) {
 }
 
 template <class T>
-T readBinary(const std::string& bytes, size_t& at, const Reader& r, const std::string& what) {
+T readBinary(const std::string& bytes, size_t& at, const CloudReader& r, const std::string& what) {
   if (at + sizeof(T) > bytes.size()) r.fail(0, "points", "the file ends inside " + what);
   T v;
   std::memcpy(&v, bytes.data() + at, sizeof(T));
@@ -82,7 +82,7 @@ size_t plyScalarSize(const std::string& type) {
 }
 
 std::vector<Vec3> ply(const std::string& bytes, const std::string& source) {
-  Reader r{source, {}};
+  CloudReader r{source, {}};
   const auto end = bytes.find("end_header");
   if (bytes.rfind("ply", 0) != 0 || end == std::string::npos) r.fail(1, "header", "not a PLY file ('ply' ... 'end_header')");
   std::istringstream header(bytes.substr(0, end));
@@ -170,7 +170,7 @@ std::vector<Vec3> ply(const std::string& bytes, const std::string& source) {
 }
 
 std::vector<Vec3> stl(const std::string& bytes, const std::string& source) {
-  Reader r{source, {}};
+  CloudReader r{source, {}};
   // Each corner once: a surface's triangles share them.
   std::set<std::array<double, 3>> seen;
   const auto corner = [&](const Vec3& p, int line, const std::string& where) {
