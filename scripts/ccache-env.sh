@@ -1,7 +1,8 @@
 # Sourced by the build scripts: compile through ccache (Debian's package), with a cache outside
 # the checkout that survives between runs on the same machine and is shared by every clone:
 # paths below the checkout are hashed relative to it (CCACHE_BASEDIR) and the build folder is not
-# hashed (CCACHE_NOHASHDIR), so a fresh clone elsewhere hits the objects of the last one.
+# hashed (CCACHE_NOHASHDIR), so a fresh clone elsewhere hits the objects of the last one (the
+# test build's; the main job's unity files include the sources by absolute path).
 # 5 GB holds the Release and the sanitizer trees with room for a few versions of each.
 home=${HOME:-$(getent passwd "$(id -u)" | cut -d: -f6)}
 export CCACHE_DIR=${CCACHE_DIR:-${XDG_CACHE_HOME:-$home/.cache}/mtacc-ccache}
