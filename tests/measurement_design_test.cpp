@@ -174,14 +174,14 @@ TEST(DesignCandidates, PlanEntriesRegenerateTheRuns) {
     const auto nominal = compileNominal(machine);
     const auto set = designCandidates(nominal, {});
     std::string plan = "name: candidates\nruns:\n";
-    int circles = 0;
+    size_t circles = 0;
     for (const auto& c : set.candidates) {
       plan += c.planEntry;
       circles += c.name.starts_with("circle-");
       EXPECT_EQ(travelViolation(*machine, c.run), "") << c.name;
     }
     if (machine == offZero) {
-      EXPECT_EQ(circles, 6);  // XY, YZ, ZX at 100 and 150 mm
+      EXPECT_EQ(circles, 3 * CandidateOptions{}.ballbarLengths.size());  // XY, YZ, ZX at each bar length
     }
     const auto read = parseTestPlan(nominal, plan, "plan.yaml");
     ASSERT_EQ(read.runs.size(), set.candidates.size());

@@ -20,8 +20,8 @@ Vec3 across(const Vec3& direction);
 // "[x mm, y mm, z mm]", as a test plan writes a point.
 std::string mm(const Vec3& v);
 
-// ", pose: {B: -30 deg}": the rotary axes other than `moving` at q, as a test plan's run gives them;
-// "" on a machine with no other rotary axis.
+// ", pose: {B: -30 deg}": the rotary axes other than `moving` (-1: every one) at q, as a test
+// plan's run gives them; "" on a machine with no other rotary axis.
 std::string poseEntry(const Machine& m, const std::vector<double>& q, int moving);
 
 }  // namespace mtacc
